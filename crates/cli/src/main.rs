@@ -1,1 +1,40 @@
-fn main() {}
+//! The `hdot` command-line tool.
+//!
+//! Each subcommand lives in a module of its own under `cmd/`, with a clap
+//! `Args` struct and a `run` function returning the process exit code.
+//! Exit codes: 0 success; 1 a check or verification failed; 2 bad input
+//! (a file that does not parse, an unknown name, an invalid option).
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+mod cmd;
+
+/// Derive, print, check and verify the equations of three-dimensional
+/// rigid-body kinetics.
+#[derive(Debug, Parser)]
+#[command(name = "hdot", version, about, long_about = None, propagate_version = true)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    // -- subcommands (one line each; keep alphabetical within a group) --
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result: anyhow::Result<ExitCode> = match cli.command {
+        // -- dispatch (one line each) --
+    };
+    match result {
+        Ok(code) => code,
+        Err(err) => {
+            eprintln!("error: {err:#}");
+            ExitCode::from(2)
+        }
+    }
+}
