@@ -1,1 +1,2 @@
-//! One module per subcommand.
+//! One module per subcommand, each with a clap `Args` struct and
+//! `run(args) -> anyhow::Result<ExitCode>`.
