@@ -1,0 +1,209 @@
+//! Interned atoms: the indivisible building blocks of every expression.
+//!
+//! An [`Atom`] is a `u32` handle into a process-wide interner, so that
+//! comparing, hashing and copying atoms in the polynomial hot loops costs
+//! one integer operation (STYLE.md item 1). Three kinds exist:
+//!
+//! * a *constant* symbol (`I_x`, `m`, `L`);
+//! * a *time-dependent* symbol together with its derivative order
+//!   (`theta` is order 0, θ̇ is `theta'` of order 1, θ̈ order 2, …). Each
+//!   derivative is an atom of its own: there is no unevaluated derivative
+//!   node anywhere in the core;
+//! * `sin` or `cos` of an angle symbol (order 0, constant or time-dependent).
+//!
+//! Atom ids depend on the order of interning, so nothing that is printed
+//! or compared across processes may depend on them: printers sort by
+//! [`Atom::sort_key`], which depends only on names.
+
+use std::collections::HashMap;
+use std::fmt;
+use std::sync::{OnceLock, RwLock};
+
+/// What an atom is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum AtomKind {
+    /// A symbol; `time` says whether it is a function of time, `order` is
+    /// the order of its time derivative (always 0 for constants).
+    Var {
+        /// The symbol's name as written in a derivation file.
+        name: &'static str,
+        /// Whether the symbol is a function of time.
+        time: bool,
+        /// How many times it has been differentiated.
+        order: u32,
+    },
+    /// `sin` of an angle (an order-0 [`AtomKind::Var`] atom).
+    Sin(Atom),
+    /// `cos` of an angle (an order-0 [`AtomKind::Var`] atom).
+    Cos(Atom),
+}
+
+/// A handle to an interned atom. Copy, compare and hash in O(1).
+#[derive(Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Atom(u32);
+
+#[derive(Default)]
+struct Interner {
+    kinds: Vec<AtomKind>,
+    ids: HashMap<AtomKind, Atom>,
+    names: HashMap<String, &'static str>,
+}
+
+fn interner() -> &'static RwLock<Interner> {
+    static INTERNER: OnceLock<RwLock<Interner>> = OnceLock::new();
+    INTERNER.get_or_init(Default::default)
+}
+
+fn intern(kind: AtomKind) -> Atom {
+    if let Some(a) = interner().read().expect("atom interner poisoned").ids.get(&kind) {
+        return *a;
+    }
+    let mut w = interner().write().expect("atom interner poisoned");
+    if let Some(a) = w.ids.get(&kind) {
+        return *a;
+    }
+    let id = Atom(u32::try_from(w.kinds.len()).expect("more than 2^32 atoms"));
+    w.kinds.push(kind);
+    w.ids.insert(kind, id);
+    id
+}
+
+fn intern_name(name: &str) -> &'static str {
+    if let Some(s) = interner().read().expect("atom interner poisoned").names.get(name) {
+        return s;
+    }
+    let mut w = interner().write().expect("atom interner poisoned");
+    if let Some(s) = w.names.get(name) {
+        return s;
+    }
+    let s: &'static str = Box::leak(name.to_owned().into_boxed_str());
+    w.names.insert(name.to_owned(), s);
+    s
+}
+
+/// # Construction
+impl Atom {
+    /// A constant symbol.
+    pub fn constant(name: &str) -> Atom {
+        intern(AtomKind::Var { name: intern_name(name), time: false, order: 0 })
+    }
+
+    /// A time-dependent symbol, differentiated `order` times.
+    pub fn time(name: &str, order: u32) -> Atom {
+        intern(AtomKind::Var { name: intern_name(name), time: true, order })
+    }
+
+    /// `sin(angle)`. Returns `None` unless `angle` is an undifferentiated symbol.
+    pub fn sin(angle: Atom) -> Option<Atom> {
+        angle.is_angle().then(|| intern(AtomKind::Sin(angle)))
+    }
+
+    /// `cos(angle)`. Returns `None` unless `angle` is an undifferentiated symbol.
+    pub fn cos(angle: Atom) -> Option<Atom> {
+        angle.is_angle().then(|| intern(AtomKind::Cos(angle)))
+    }
+}
+
+/// # Queries
+impl Atom {
+    /// What this atom is.
+    pub fn kind(self) -> AtomKind {
+        interner().read().expect("atom interner poisoned").kinds[self.0 as usize]
+    }
+
+    /// The symbol's name (for `sin`/`cos`, the angle's name).
+    pub fn name(self) -> &'static str {
+        match self.kind() {
+            AtomKind::Var { name, .. } => name,
+            AtomKind::Sin(a) | AtomKind::Cos(a) => a.name(),
+        }
+    }
+
+    /// True for an undifferentiated symbol, which may stand inside sin/cos.
+    pub fn is_angle(self) -> bool {
+        matches!(self.kind(), AtomKind::Var { order: 0, .. })
+    }
+
+    /// True when the atom varies with time.
+    pub fn is_time_dependent(self) -> bool {
+        match self.kind() {
+            AtomKind::Var { time, .. } => time,
+            AtomKind::Sin(a) | AtomKind::Cos(a) => a.is_time_dependent(),
+        }
+    }
+
+    /// The derivative order of a symbol (0 for constants, sin and cos).
+    pub fn order(self) -> u32 {
+        match self.kind() {
+            AtomKind::Var { order, .. } => order,
+            _ => 0,
+        }
+    }
+
+    /// The same symbol differentiated once more; `None` for constants and trig atoms.
+    pub fn derivative(self) -> Option<Atom> {
+        match self.kind() {
+            AtomKind::Var { name, time: true, order } => Some(Atom::time(name, order + 1)),
+            _ => None,
+        }
+    }
+
+    /// The undifferentiated symbol this atom derives from (itself for order 0).
+    pub fn base(self) -> Atom {
+        match self.kind() {
+            AtomKind::Var { name, time: true, order } if order > 0 => Atom::time(name, 0),
+            _ => self,
+        }
+    }
+
+    /// An order that depends only on names, for stable printing:
+    /// constants first, then time-dependent symbols by derivative order
+    /// and name, then `sin`, then `cos`.
+    pub fn sort_key(self) -> (u8, u32, &'static str) {
+        match self.kind() {
+            AtomKind::Var { name, time: false, .. } => (0, 0, name),
+            AtomKind::Var { name, time: true, order } => (1, order, name),
+            AtomKind::Sin(a) => (2, 0, a.name()),
+            AtomKind::Cos(a) => (3, 0, a.name()),
+        }
+    }
+}
+
+/// Source syntax: `I_x`, `theta''`, `sin(theta)`.
+impl fmt::Display for Atom {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.kind() {
+            AtomKind::Var { name, order, .. } => {
+                f.write_str(name)?;
+                for _ in 0..order {
+                    f.write_str("'")?;
+                }
+                Ok(())
+            }
+            AtomKind::Sin(a) => write!(f, "sin({a})"),
+            AtomKind::Cos(a) => write!(f, "cos({a})"),
+        }
+    }
+}
+
+impl fmt::Debug for Atom {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        fmt::Display::fmt(self, f)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn interning_is_idempotent_and_kinds_differ() {
+        assert_eq!(Atom::time("theta", 2), Atom::time("theta", 2));
+        assert_ne!(Atom::time("m", 0), Atom::constant("m"));
+        let th = Atom::time("theta", 0);
+        assert_eq!(th.derivative().unwrap().derivative(), Some(Atom::time("theta", 2)));
+        assert_eq!(Atom::sin(Atom::time("theta", 1)), None);
+        assert_eq!(Atom::cos(th).unwrap().to_string(), "cos(theta)");
+        assert_eq!(Atom::time("phi", 2).to_string(), "phi''");
+    }
+}

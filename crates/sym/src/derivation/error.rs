@@ -1,0 +1,72 @@
+//! Errors of derivation files, located at file:line:column with a snippet.
+
+use std::fmt;
+
+/// An error in a derivation file, with its location and a caret snippet.
+///
+/// `Display` prints it the way compilers do:
+///
+/// ```text
+/// error: unknown symbol `I_w`; declare it under [symbols]
+///   --> derivations/euler.toml:14:12
+///    |
+/// 14 | value = "I_w*omega_x"
+///    |          ^^^
+/// ```
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub struct Diagnostic {
+    /// The file, as given.
+    pub path: String,
+    /// 1-based line.
+    pub line: usize,
+    /// 1-based column, in characters.
+    pub column: usize,
+    /// What went wrong.
+    pub message: String,
+    /// The text of the offending line.
+    pub source_line: String,
+    /// Width of the caret underline, in characters (at least 1).
+    pub width: usize,
+}
+
+impl Diagnostic {
+    /// Builds a diagnostic for the byte range `start..end` of `text`.
+    pub fn at(path: &str, text: &str, start: usize, end: usize, message: impl Into<String>) -> Diagnostic {
+        let start = start.min(text.len());
+        let end = end.clamp(start, text.len());
+        let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
+        let line_end = text[start..].find('\n').map_or(text.len(), |i| start + i);
+        let line = text[..start].matches('\n').count() + 1;
+        let column = text[line_start..start].chars().count() + 1;
+        let width = text[start..end.min(line_end)].chars().count().max(1);
+        Diagnostic {
+            path: path.to_owned(),
+            line,
+            column,
+            message: message.into(),
+            source_line: text[line_start..line_end].trim_end_matches('\r').to_owned(),
+            width,
+        }
+    }
+
+    /// A diagnostic about a file as a whole (no line to show).
+    pub fn file(path: &str, message: impl Into<String>) -> Diagnostic {
+        Diagnostic { path: path.to_owned(), line: 0, column: 0, message: message.into(), source_line: String::new(), width: 0 }
+    }
+}
+
+impl fmt::Display for Diagnostic {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(f, "error: {}", self.message)?;
+        if self.line == 0 {
+            return write!(f, "  --> {}", self.path);
+        }
+        let n = self.line.to_string();
+        let pad = " ".repeat(n.len());
+        writeln!(f, "{pad}--> {}:{}:{}", self.path, self.line, self.column)?;
+        writeln!(f, "{pad} |")?;
+        writeln!(f, "{n} | {}", self.source_line)?;
+        let lead: String = self.source_line.chars().take(self.column - 1).map(|c| if c == '\t' { '\t' } else { ' ' }).collect();
+        write!(f, "{pad} | {lead}{}", "^".repeat(self.width))
+    }
+}

@@ -1,0 +1,650 @@
+//! Evaluation of derivation-file expressions to canonical values.
+
+use std::collections::HashMap;
+
+use toml::Spanned;
+
+use super::raw::{RawFrame, RawStep, string_contents};
+use super::{Abbreviation, Check, Diagnostic, unfold};
+use crate::atom::Atom;
+use crate::frame::Frame;
+use crate::parse::{Ast, AstKind, Span, parse};
+use crate::poly::Poly;
+use crate::present::{Presentation, present};
+use crate::symbols::{Decl, Symbols};
+use crate::vector::{Mat3, Vec3};
+
+/// The value of a step: a scalar, a vector in a named frame, or a matrix.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Value {
+    /// A scalar expression.
+    Scalar(Poly),
+    /// A vector and the frame its components are expressed in.
+    Vector(Vec3, String),
+    /// A 3×3 matrix (an inertia tensor, a rotation).
+    Matrix(Mat3),
+}
+
+impl Value {
+    fn describe(&self) -> String {
+        match self {
+            Value::Scalar(_) => "a scalar".into(),
+            Value::Vector(_, f) => format!("a vector (in frame {f})"),
+            Value::Matrix(_) => "a matrix".into(),
+        }
+    }
+
+    /// Applies `f` to every component.
+    pub fn map(&self, f: &mut dyn FnMut(&Poly) -> Poly) -> Value {
+        match self {
+            Value::Scalar(p) => Value::Scalar(f(p)),
+            Value::Vector(v, fr) => Value::Vector(Vec3([f(&v.0[0]), f(&v.0[1]), f(&v.0[2])]), fr.clone()),
+            Value::Matrix(m) => Value::Matrix(Mat3(std::array::from_fn(|i| std::array::from_fn(|j| f(&m.0[i][j]))))),
+        }
+    }
+}
+
+/// Functions the expression language knows, for error messages.
+const FUNCTIONS: &str = "sin, cos, dt, dt_rel, cross, dot, angvel, inertia, principal, diag, subst, express, transpose";
+
+pub(crate) struct Context<'a> {
+    path: &'a str,
+    text: &'a str,
+    pub symbols: Symbols,
+    pub frames: Vec<Frame>,
+    values: HashMap<String, Value>,
+}
+
+type R<T> = Result<T, Diagnostic>;
+
+impl<'a> Context<'a> {
+    pub fn new(path: &'a str, text: &'a str) -> Context<'a> {
+        let mut n = Frame::inertial("N");
+        n.doc = "inertial (Newtonian) frame".into();
+        Context { path, text, symbols: Symbols::new(), frames: vec![n], values: HashMap::new() }
+    }
+
+    fn diag(&self, start: usize, end: usize, msg: impl Into<String>) -> Diagnostic {
+        Diagnostic::at(self.path, self.text, start, end, msg)
+    }
+
+    /// The byte offset where the contents of a spanned TOML string begin.
+    fn content_start(&self, s: &Spanned<String>) -> usize {
+        let start = s.span().start;
+        let rest = &self.text[start.min(self.text.len())..];
+        if rest.starts_with("\"\"\"") || rest.starts_with("'''") {
+            start + 3 + usize::from(rest[3..].starts_with('\n'))
+        } else if rest.starts_with('"') || rest.starts_with('\'') {
+            start + 1
+        } else {
+            start
+        }
+    }
+
+    /// A diagnostic at bytes `from..to` of the contents of a spanned string.
+    pub fn diag_string(&self, s: &Spanned<String>, from: usize, to: usize, msg: impl Into<String>) -> Diagnostic {
+        let base = self.content_start(s);
+        self.diag(base + from, base + to, msg)
+    }
+
+    fn at(&self, base: usize, span: Span, msg: impl Into<String>) -> Diagnostic {
+        self.diag(base + span.start, base + span.end, msg)
+    }
+
+    fn parse_at(&self, text: &str, base: usize) -> R<Ast> {
+        parse(text).map_err(|e| self.at(base, e.span, e.message))
+    }
+
+    pub fn declare(&mut self, s: &Spanned<String>, decl: Decl) -> R<()> {
+        let name = s.get_ref();
+        let valid = name.chars().next().is_some_and(|c| c.is_alphabetic())
+            && name.chars().all(|c| c.is_alphanumeric() || c == '_');
+        if !valid {
+            return Err(self.diag_string(s, 0, name.len(), format!("`{name}` is not a valid symbol name (letters, digits, _)")));
+        }
+        if matches!(name.as_str(), "sin" | "cos" | "in" | "pi" | "t") {
+            return Err(self.diag_string(s, 0, name.len(), format!("`{name}` is reserved and cannot be a symbol")));
+        }
+        if !self.symbols.declare(name, decl) {
+            return Err(self.diag_string(s, 0, name.len(), format!("`{name}` is declared twice")));
+        }
+        Ok(())
+    }
+
+    pub fn bind(&mut self, name: &str, v: Value) {
+        self.values.insert(name.to_owned(), v);
+    }
+
+    /// Parses and evaluates a spanned string that must be a scalar.
+    pub fn scalar_in(&self, s: &Spanned<String>) -> R<Poly> {
+        let base = self.content_start(s);
+        let ast = self.parse_at(s.get_ref(), base)?;
+        self.scalar(&ast, base)
+    }
+
+    fn scalar(&self, ast: &Ast, base: usize) -> R<Poly> {
+        match self.eval(ast, base)? {
+            Value::Scalar(p) => Ok(p),
+            v => Err(self.at(base, ast.span, format!("expected a scalar, found {}", v.describe()))),
+        }
+    }
+
+    fn vector(&self, ast: &Ast, base: usize) -> R<(Vec3, String)> {
+        match self.eval(ast, base)? {
+            Value::Vector(v, f) => Ok((v, f)),
+            v => Err(self.at(base, ast.span, format!("expected a vector, found {}", v.describe()))),
+        }
+    }
+
+    fn frame_index(&self, name: &str) -> Option<usize> {
+        self.frames.iter().position(|f| f.name == name)
+    }
+
+    fn frame_arg(&self, ast: &Ast, base: usize) -> R<usize> {
+        if let AstKind::Name { name, primes: 0 } = &ast.kind
+            && let Some(i) = self.frame_index(name)
+        {
+            return Ok(i);
+        }
+        let known: Vec<&str> = self.frames.iter().map(|f| f.name.as_str()).collect();
+        Err(self.at(base, ast.span, format!("expected a frame name (one of {})", known.join(", "))))
+    }
+
+    pub fn add_frame(&mut self, f: &RawFrame) -> R<()> {
+        let name = f.name.get_ref();
+        if self.frame_index(name).is_some() || self.symbols.get(name).is_some() {
+            return Err(self.diag_string(&f.name, 0, name.len(), format!("`{name}` is already a frame or a symbol")));
+        }
+        let mut frame = Frame::inertial(name);
+        frame.doc = f.doc.clone();
+        if let Some(axes) = &f.axes {
+            let a = axes.get_ref();
+            if a.len() != 3 || a.iter().any(|s| s.is_empty()) {
+                let sp = axes.span();
+                return Err(self.diag(sp.start, sp.end, "`axes` must name three axes, such as [\"1\", \"2\", \"3\"]"));
+            }
+            frame.axes = [a[0].clone(), a[1].clone(), a[2].clone()];
+        }
+        match (&f.angular_velocity, &f.parent, &f.rotation) {
+            (Some(w), None, None) => {
+                let base = self.content_start(w);
+                let ast = self.parse_at(w.get_ref(), base)?;
+                let AstKind::Vector { items, frame: fr } = &ast.kind else {
+                    return Err(self.at(base, ast.span, "the angular velocity must be a vector literal such as [omega_x, omega_y, omega_z]"));
+                };
+                if let Some((other, sp)) = fr
+                    && other != name
+                {
+                    return Err(self.at(base, *sp, format!("a frame's angular velocity is given in its own components (`in {name}`)")));
+                }
+                frame.omega = self.three_scalars(items, ast.span, base)?;
+            }
+            (None, Some(parent), Some(rot)) => {
+                let Some(pi) = self.frame_index(parent.get_ref()) else {
+                    let p = parent.get_ref();
+                    return Err(self.diag_string(parent, 0, p.len(), format!("unknown parent frame `{p}` (declare it first)")));
+                };
+                let base = self.content_start(rot);
+                let ast = self.parse_at(rot.get_ref(), base)?;
+                let parent_frame = &self.frames[pi];
+                let bad = || format!("a rotation is written axis(angle), such as {}(phi)", parent_frame.axes[2]);
+                let AstKind::Call { func, args } = &ast.kind else {
+                    return Err(self.at(base, ast.span, bad()));
+                };
+                let Some(k) = parent_frame.axes.iter().position(|a| a == func) else {
+                    return Err(self.at(base, ast.span, format!("`{func}` is not an axis of frame {}; {}", parent_frame.name, bad())));
+                };
+                let [arg] = args.as_slice() else {
+                    return Err(self.at(base, ast.span, bad()));
+                };
+                let AstKind::Name { name: q, primes: 0 } = &arg.kind else {
+                    return Err(self.at(base, arg.span, "the rotation angle must be a declared symbol"));
+                };
+                let q = self.symbols.atom(q, 0, arg.span).map_err(|e| self.at(base, e.span, e.message))?;
+                let r = Mat3::rotation(k, q);
+                // Ω_child = Rᵀ Ω_parent + q̇ e_k (e_k is shared by parent and child).
+                let mut omega = r.transpose().mul_vec(&parent_frame.omega);
+                if let Some(qd) = q.derivative() {
+                    omega.0[k] = &omega.0[k] + &Poly::atom(qd);
+                }
+                frame.omega = omega;
+                frame.parent = Some((parent_frame.name.clone(), r));
+            }
+            _ => {
+                let n = f.name.get_ref().len();
+                return Err(self.diag_string(
+                    &f.name,
+                    0,
+                    n,
+                    "a frame needs either `angular_velocity` or both `parent` and `rotation`",
+                ));
+            }
+        }
+        self.frames.push(frame);
+        Ok(())
+    }
+
+    fn three_scalars(&self, items: &[Ast], span: Span, base: usize) -> R<Vec3> {
+        if items.len() != 3 {
+            return Err(self.at(base, span, format!("a vector has three components, found {}", items.len())));
+        }
+        Ok(Vec3([self.scalar(&items[0], base)?, self.scalar(&items[1], base)?, self.scalar(&items[2], base)?]))
+    }
+
+    /// The matrix taking components in frame `i` to its root frame, and the root.
+    fn to_root(&self, mut i: usize) -> (usize, Mat3) {
+        let mut r = Mat3::identity();
+        while let Some((p, m)) = &self.frames[i].parent {
+            r = m.mul(&r);
+            i = self.frame_index(p).expect("parent exists");
+        }
+        (i, r)
+    }
+
+    pub fn eval_step(&self, s: &RawStep) -> R<Value> {
+        let base = self.content_start(&s.value);
+        let ast = self.parse_at(s.value.get_ref(), base)?;
+        self.eval(&ast, base)
+    }
+
+    pub fn axes_of(&self, v: &Value) -> [String; 3] {
+        match v {
+            Value::Vector(_, f) => self.frames[self.frame_index(f).expect("frame exists")].axes.clone(),
+            _ => ["x".into(), "y".into(), "z".into()],
+        }
+    }
+
+    fn default_frame(&self) -> Option<&str> {
+        match self.frames.len() {
+            1 => Some("N"),
+            2 => Some(&self.frames[1].name),
+            _ => None,
+        }
+    }
+
+    fn same_frame(&self, base: usize, span: Span, a: &str, b: &str) -> R<()> {
+        if a == b {
+            Ok(())
+        } else {
+            Err(self.at(base, span, format!("vectors in different frames ({a} and {b}); convert one with express(v, {a})")))
+        }
+    }
+
+    fn eval(&self, ast: &Ast, base: usize) -> R<Value> {
+        let err = |span: Span, m: String| -> R<Value> { Err(self.at(base, span, m)) };
+        match &ast.kind {
+            AstKind::Num(r) => Ok(Value::Scalar(Poly::constant(r.clone()))),
+            AstKind::Name { name, primes } => {
+                if *primes == 0
+                    && let Some(v) = self.values.get(name)
+                {
+                    return Ok(v.clone());
+                }
+                if self.symbols.get(name).is_some() {
+                    let a = self.symbols.atom(name, *primes, ast.span).map_err(|e| self.at(base, e.span, e.message))?;
+                    return Ok(Value::Scalar(Poly::atom(a)));
+                }
+                if self.frame_index(name).is_some() {
+                    return err(ast.span, format!("`{name}` is a frame; write angvel({name}) for its angular velocity"));
+                }
+                if self.values.contains_key(name) {
+                    return err(ast.span, format!("`{name}` is a step, not a time-dependent symbol: write dt({name})"));
+                }
+                err(ast.span, format!("unknown name `{name}`: not a declared symbol, an earlier step or a frame"))
+            }
+            AstKind::Vector { items, frame } => {
+                let f = match frame {
+                    Some((f, sp)) => match self.frame_index(f) {
+                        Some(_) => f.clone(),
+                        None => return err(*sp, format!("unknown frame `{f}`")),
+                    },
+                    None => match self.default_frame() {
+                        Some(f) => f.to_owned(),
+                        None => return err(ast.span, "several frames are declared: say which with `[…] in F`".into()),
+                    },
+                };
+                Ok(Value::Vector(self.three_scalars(items, ast.span, base)?, f))
+            }
+            AstKind::Add(items) => {
+                let mut acc = self.eval(&items[0], base)?;
+                for it in &items[1..] {
+                    let v = self.eval(it, base)?;
+                    acc = match (acc, v) {
+                        (Value::Scalar(a), Value::Scalar(b)) => Value::Scalar(&a + &b),
+                        (Value::Vector(a, fa), Value::Vector(b, fb)) => {
+                            self.same_frame(base, it.span, &fa, &fb)?;
+                            Value::Vector(a.add(&b), fa)
+                        }
+                        (Value::Matrix(a), Value::Matrix(b)) => Value::Matrix(a.add(&b)),
+                        (a, b) => return err(it.span, format!("cannot add {} to {}", b.describe(), a.describe())),
+                    };
+                }
+                Ok(acc)
+            }
+            AstKind::Neg(x) => Ok(self.eval(x, base)?.map(&mut |p| -p)),
+            AstKind::Mul(items) => {
+                let mut acc = self.eval(&items[0], base)?;
+                for it in &items[1..] {
+                    if let AstKind::Recip(d) = &it.kind {
+                        let p = self.scalar(d, base)?;
+                        let Some(c) = p.as_constant().and_then(|c| c.recip()) else {
+                            return err(d.span, "only division by a non-zero number is allowed".into());
+                        };
+                        acc = acc.map(&mut |x| x.scale(&c));
+                        continue;
+                    }
+                    let v = self.eval(it, base)?;
+                    acc = match (acc, v) {
+                        (Value::Scalar(a), Value::Scalar(b)) => Value::Scalar(&a * &b),
+                        (Value::Scalar(s), v) | (v, Value::Scalar(s)) => v.map(&mut |x| &s * x),
+                        (Value::Matrix(m), Value::Vector(v, f)) => Value::Vector(m.mul_vec(&v), f),
+                        (Value::Matrix(a), Value::Matrix(b)) => Value::Matrix(a.mul(&b)),
+                        (Value::Vector(..), Value::Vector(..)) => {
+                            return err(it.span, "the product of two vectors is ambiguous: use dot(a, b) or cross(a, b)".into());
+                        }
+                        (a, b) => return err(it.span, format!("cannot multiply {} by {}", a.describe(), b.describe())),
+                    };
+                }
+                Ok(acc)
+            }
+            AstKind::Recip(_) => unreachable!("divisors occur only inside products"),
+            AstKind::Pow(b, n) => {
+                let p = self.scalar(b, base)?;
+                Ok(Value::Scalar(p.pow(*n)))
+            }
+            AstKind::Cross(a, b) => self.cross(a, b, base, ast.span),
+            AstKind::Member(v, comp, sp) => {
+                let (v, f) = self.vector(v, base)?;
+                let fr = &self.frames[self.frame_index(&f).expect("frame")];
+                match fr.axes.iter().position(|a| a == comp) {
+                    Some(k) => Ok(Value::Scalar(v.0[k].clone())),
+                    None => err(*sp, format!("frame {f} has axes {}, not `{comp}`", fr.axes.join(", "))),
+                }
+            }
+            AstKind::Assign { name_span, .. } => err(*name_span, "`name = value` is only allowed inside subst(…)".into()),
+            AstKind::Call { func, args } => self.call(func, args, base, ast.span),
+        }
+    }
+
+    fn cross(&self, a: &Ast, b: &Ast, base: usize, span: Span) -> R<Value> {
+        let (x, fx) = self.vector(a, base)?;
+        let (y, fy) = self.vector(b, base)?;
+        self.same_frame(base, span, &fx, &fy)?;
+        Ok(Value::Vector(x.cross(&y), fx))
+    }
+
+    fn arity(&self, func: &str, args: &[Ast], n: usize, base: usize, span: Span) -> R<()> {
+        if args.len() == n {
+            Ok(())
+        } else {
+            Err(self.at(base, span, format!("`{func}` takes {n} argument{}, found {}", if n == 1 { "" } else { "s" }, args.len())))
+        }
+    }
+
+    fn call(&self, func: &str, args: &[Ast], base: usize, span: Span) -> R<Value> {
+        match func {
+            "sin" | "cos" => {
+                let a = self.symbols.trig(func, args, span).map_err(|e| self.at(base, e.span, e.message))?;
+                Ok(Value::Scalar(Poly::atom(a)))
+            }
+            "dt" | "dt_rel" => {
+                self.arity(func, args, 1, base, span)?;
+                Ok(match self.eval(&args[0], base)? {
+                    Value::Vector(v, f) if func == "dt" => {
+                        let fr = &self.frames[self.frame_index(&f).expect("frame")];
+                        Value::Vector(fr.dt(&v), f)
+                    }
+                    v => v.map(&mut |p| p.dt()),
+                })
+            }
+            "cross" => {
+                self.arity(func, args, 2, base, span)?;
+                self.cross(&args[0], &args[1], base, span)
+            }
+            "dot" => {
+                self.arity(func, args, 2, base, span)?;
+                let (x, fx) = self.vector(&args[0], base)?;
+                let (y, fy) = self.vector(&args[1], base)?;
+                self.same_frame(base, span, &fx, &fy)?;
+                Ok(Value::Scalar(x.dot(&y)))
+            }
+            "angvel" => {
+                self.arity(func, args, 1, base, span)?;
+                let i = self.frame_arg(&args[0], base)?;
+                Ok(Value::Vector(self.frames[i].omega.clone(), self.frames[i].name.clone()))
+            }
+            "inertia" => {
+                self.arity(func, args, 6, base, span)?;
+                let s: Vec<Poly> = args.iter().map(|a| self.scalar(a, base)).collect::<R<_>>()?;
+                let [ix, iy, iz, pxy, pyz, pzx]: [Poly; 6] = s.try_into().expect("six");
+                Ok(Value::Matrix(Mat3::inertia([ix, iy, iz], [pxy, pyz, pzx])))
+            }
+            "principal" | "diag" => {
+                self.arity(func, args, 3, base, span)?;
+                let s: Vec<Poly> = args.iter().map(|a| self.scalar(a, base)).collect::<R<_>>()?;
+                let [a, b, c]: [Poly; 3] = s.try_into().expect("three");
+                Ok(Value::Matrix(Mat3::principal([a, b, c])))
+            }
+            "transpose" => {
+                self.arity(func, args, 1, base, span)?;
+                match self.eval(&args[0], base)? {
+                    Value::Matrix(m) => Ok(Value::Matrix(m.transpose())),
+                    v => Err(self.at(base, args[0].span, format!("expected a matrix, found {}", v.describe()))),
+                }
+            }
+            "express" => {
+                self.arity(func, args, 2, base, span)?;
+                let (v, from) = self.vector(&args[0], base)?;
+                let to = self.frame_arg(&args[1], base)?;
+                let from_i = self.frame_index(&from).expect("frame");
+                let (ra, ma) = self.to_root(from_i);
+                let (rb, mb) = self.to_root(to);
+                if ra != rb {
+                    return Err(self.at(
+                        base,
+                        span,
+                        format!("no chain of rotations relates frames {from} and {}", self.frames[to].name),
+                    ));
+                }
+                Ok(Value::Vector(mb.transpose().mul_vec(&ma.mul_vec(&v)), self.frames[to].name.clone()))
+            }
+            "subst" => self.subst(args, base, span),
+            _ => Err(self.at(base, span, format!("unknown function `{func}`; known functions: {FUNCTIONS}"))),
+        }
+    }
+
+    /// `subst(x, a = e, b' = 0, theta = pi/2, …)`.
+    fn subst(&self, args: &[Ast], base: usize, span: Span) -> R<Value> {
+        let Some((first, rules)) = args.split_first() else {
+            return Err(self.at(base, span, "subst(x, name = value, …) needs an expression and at least one rule"));
+        };
+        let mut v = self.eval(first, base)?;
+        if rules.is_empty() {
+            return Err(self.at(base, span, "subst(x, name = value, …) needs at least one rule"));
+        }
+        for r in rules {
+            let AstKind::Assign { name, primes, name_span, value } = &r.kind else {
+                return Err(self.at(base, r.span, "expected a rule `name = value`"));
+            };
+            let Some(decl) = self.symbols.get(name) else {
+                return Err(self.at(base, *name_span, format!("cannot substitute for `{name}`: it is not a declared symbol")));
+            };
+            let target = self.symbols.atom(name, *primes, *name_span).map_err(|e| self.at(base, e.span, e.message))?;
+            let time = !matches!(decl, Decl::Constant);
+            if let Some(turns) = quarter_turns(value) {
+                if *primes > 0 {
+                    return Err(self.at(base, value.span, "a multiple of pi is an angle, not a rate"));
+                }
+                let mut failed = false;
+                v = v.map(&mut |p| {
+                    p.subst_quarter_turns(target, turns).unwrap_or_else(|| {
+                        failed = true;
+                        p.clone()
+                    })
+                });
+                if failed {
+                    return Err(self.at(base, *name_span, format!("`{name}` occurs outside sin/cos, so it cannot be set to a multiple of pi")));
+                }
+                continue;
+            }
+            let val = self.scalar(value, base)?;
+            if !time {
+                v = v.map(&mut |p| p.subst(&mut |a| (a == target).then(|| val.clone())));
+                continue;
+            }
+            // A rate or angle: the symbol's derivatives of order ≥ `primes`
+            // follow by differentiating the value.
+            let angle = val.as_atom().filter(|a| a.is_angle());
+            let mut failed = false;
+            v = v.map(&mut |p| {
+                p.subst(&mut |a| match a.kind() {
+                    crate::AtomKind::Var { .. } if a.base() == target.base() && a.order() >= *primes => {
+                        Some(val.dt_n(a.order() - primes))
+                    }
+                    crate::AtomKind::Sin(q) | crate::AtomKind::Cos(q) if q == target && *primes == 0 => match angle {
+                        Some(w) => {
+                            let is_sin = matches!(a.kind(), crate::AtomKind::Sin(_));
+                            Some(Poly::atom(if is_sin { Atom::sin(w) } else { Atom::cos(w) }.expect("angle")))
+                        }
+                        None => {
+                            failed = true;
+                            None
+                        }
+                    },
+                    _ => None,
+                })
+            });
+            if failed {
+                return Err(self.at(
+                    base,
+                    value.span,
+                    format!("`{name}` occurs inside sin/cos: substitute another angle symbol or a multiple of pi/2"),
+                ));
+            }
+        }
+        Ok(v)
+    }
+
+    /// The presentation of a step: atoms to collect by, abbreviations to fold.
+    pub fn presentation(&self, s: &RawStep, abbrevs: &[Abbreviation]) -> R<Presentation> {
+        let mut pres = Presentation::default();
+        if let Some(list) = &s.collect {
+            let spans = string_contents(self.text, list.span().start, list.span().end);
+            for (k, item) in list.get_ref().iter().enumerate() {
+                let base = spans.get(k).map_or(list.span().start, |s| s.0);
+                let ast = self.parse_at(item, base)?;
+                let atom = match &ast.kind {
+                    AstKind::Name { name, primes } => self.symbols.atom(name, *primes, ast.span),
+                    AstKind::Call { func, args } if func == "sin" || func == "cos" => self.symbols.trig(func, args, ast.span),
+                    _ => return Err(self.at(base, ast.span, "collect by symbols such as omega_x, omega_x' or sin(theta)")),
+                }
+                .map_err(|e| self.at(base, e.span, e.message))?;
+                pres.collect.push(atom);
+            }
+        }
+        if let Some(list) = &s.fold {
+            let spans = string_contents(self.text, list.span().start, list.span().end);
+            for (k, item) in list.get_ref().iter().enumerate() {
+                match abbrevs.iter().find(|a| &a.name == item) {
+                    Some(a) => pres.fold.push((a.atom, a.definition.clone())),
+                    None => {
+                        let (s0, s1) = spans.get(k).copied().unwrap_or((list.span().start, list.span().end));
+                        return Err(self.diag(s0, s1, format!("`{item}` is not a declared [[abbreviation]]")));
+                    }
+                }
+            }
+        }
+        Ok(pres)
+    }
+
+    /// Checks a step's value against its `expect`.
+    pub fn checks(
+        &self,
+        s: &RawStep,
+        value: &Value,
+        abbrevs: &[Abbreviation],
+        pres: &Presentation,
+        axes: &[String; 3],
+    ) -> R<Vec<Check>> {
+        let Some(exp) = &s.expect else { return Ok(vec![]) };
+        let sp = exp.span();
+        let spans = string_contents(self.text, sp.start, sp.end);
+        let texts: Vec<String> = match exp.get_ref() {
+            toml::Value::String(t) => vec![t.clone()],
+            toml::Value::Array(a) if a.iter().all(|x| x.is_str()) => {
+                a.iter().map(|x| x.as_str().expect("string").to_owned()).collect()
+            }
+            _ => return Err(self.diag(sp.start, sp.end, "`expect` is a string (scalar) or an array of three strings (vector)")),
+        };
+        let derived: Vec<(String, Poly)> = match value {
+            Value::Scalar(p) if texts.len() == 1 && matches!(exp.get_ref(), toml::Value::String(_)) => {
+                vec![(String::new(), p.clone())]
+            }
+            Value::Vector(v, _) if texts.len() == 3 => (0..3).map(|k| (axes[k].clone(), v.0[k].clone())).collect(),
+            v => {
+                return Err(self.diag(
+                    sp.start,
+                    sp.end,
+                    format!("the step is {}, so `expect` must be {}", v.describe(), match v {
+                        Value::Scalar(_) => "one string",
+                        Value::Vector(..) => "an array of three strings",
+                        Value::Matrix(_) => "omitted (check components in scalar steps)",
+                    }),
+                ));
+            }
+        };
+        let mut out = Vec::new();
+        for (k, ((comp, got), text)) in derived.into_iter().zip(&texts).enumerate() {
+            let base = spans.get(k).map_or(sp.start, |s| s.0);
+            let ast = self.parse_at(text, base)?;
+            let want = self.scalar(&ast, base)?;
+            let difference = &unfold(abbrevs, &got) - &unfold(abbrevs, &want);
+            out.push(Check { component: comp, expected_text: text.clone(), expected: present(&want, pres), difference });
+        }
+        Ok(out)
+    }
+}
+
+/// `pi`, `pi/2`, `k*pi/2`, `k*pi`, `0` as a number of quarter turns.
+fn quarter_turns(ast: &Ast) -> Option<i64> {
+    use crate::rational::Rational;
+    fn walk(a: &Ast) -> Option<(Rational, bool)> {
+        match &a.kind {
+            AstKind::Name { name, primes: 0 } if name == "pi" => Some((Rational::ONE, true)),
+            AstKind::Num(r) => Some((r.clone(), false)),
+            AstKind::Neg(x) => walk(x).map(|(r, p)| (-r, p)),
+            AstKind::Mul(items) => {
+                let mut acc = Rational::ONE;
+                let mut has_pi = false;
+                for it in items {
+                    let (r, p) = match &it.kind {
+                        AstKind::Recip(d) => {
+                            let (r, p) = walk(d)?;
+                            if p {
+                                return None;
+                            }
+                            (r.recip()?, false)
+                        }
+                        _ => walk(it)?,
+                    };
+                    if p && has_pi {
+                        return None;
+                    }
+                    has_pi |= p;
+                    acc = &acc * &r;
+                }
+                Some((acc, has_pi))
+            }
+            _ => None,
+        }
+    }
+    let (r, has_pi) = walk(ast)?;
+    if !has_pi {
+        return None;
+    }
+    let q = &r * &Rational::int(2);
+    if !q.is_integer() {
+        return None;
+    }
+    q.parts().0.parse().ok()
+}

@@ -1,0 +1,126 @@
+//! The TOML layer of derivation files: plain data with source spans.
+
+use serde::Deserialize;
+use toml::Spanned;
+
+use super::Diagnostic;
+
+/// A whole file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawFile {
+    pub title: String,
+    pub source: String,
+    #[serde(default)]
+    pub summary: String,
+    #[serde(default)]
+    pub assumptions: Vec<String>,
+    #[serde(default)]
+    pub symbols: RawSymbols,
+    #[serde(default, rename = "abbreviation")]
+    pub abbreviations: Vec<RawAbbrev>,
+    #[serde(default, rename = "frame")]
+    pub frames: Vec<RawFrame>,
+    #[serde(default, rename = "step")]
+    pub steps: Vec<RawStep>,
+}
+
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawSymbols {
+    #[serde(default)]
+    pub constants: Vec<Spanned<String>>,
+    #[serde(default)]
+    pub time: Vec<Spanned<String>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawAbbrev {
+    pub name: Spanned<String>,
+    pub value: Spanned<String>,
+    #[serde(default)]
+    pub doc: String,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawFrame {
+    pub name: Spanned<String>,
+    #[serde(default)]
+    pub doc: String,
+    /// Ω relative to N, in this frame's components.
+    pub angular_velocity: Option<Spanned<String>>,
+    /// The frame this one is turned from.
+    pub parent: Option<Spanned<String>>,
+    /// `z(phi)`: turned by `phi` about the parent's z axis.
+    pub rotation: Option<Spanned<String>>,
+    /// Axis names (default x, y, z).
+    pub axes: Option<Spanned<Vec<String>>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawStep {
+    pub name: Spanned<String>,
+    pub value: Spanned<String>,
+    pub label: Option<String>,
+    #[serde(default)]
+    pub doc: String,
+    #[serde(default = "yes")]
+    pub show: bool,
+    pub expect: Option<Spanned<toml::Value>>,
+    pub collect: Option<Spanned<Vec<String>>>,
+    pub fold: Option<Spanned<Vec<String>>>,
+}
+
+fn yes() -> bool {
+    true
+}
+
+pub(crate) fn parse(path: &str, text: &str) -> Result<RawFile, Diagnostic> {
+    toml::from_str::<RawFile>(text).map_err(|e| {
+        let span = e.span().unwrap_or(0..0);
+        Diagnostic::at(path, text, span.start, span.end, format!("invalid derivation file: {}", e.message().trim()))
+    })
+}
+
+/// The byte ranges of the contents of the string literals inside
+/// `text[start..end]` (basic `"…"`, literal `'…'`, and their triple-quoted
+/// forms), in order.
+pub(crate) fn string_contents(text: &str, start: usize, end: usize) -> Vec<(usize, usize)> {
+    let bytes = text.as_bytes();
+    let mut out = Vec::new();
+    let mut i = start;
+    while i < end.min(bytes.len()) {
+        let q = bytes[i];
+        if q == b'"' || q == b'\'' {
+            let triple = bytes.get(i..i + 3) == Some(&[q, q, q][..]);
+            let open = if triple { 3 } else { 1 };
+            let mut j = i + open;
+            if triple && bytes.get(j) == Some(&b'\n') {
+                j += 1;
+            }
+            let cstart = j;
+            while j < bytes.len() {
+                if q == b'"' && bytes[j] == b'\\' {
+                    j += 2;
+                    continue;
+                }
+                if bytes[j] == q && (!triple || bytes.get(j..j + 3) == Some(&[q, q, q][..])) {
+                    break;
+                }
+                j += 1;
+            }
+            out.push((cstart, j.min(bytes.len())));
+            i = j + open;
+        } else if q == b'#' {
+            while i < end && bytes[i] != b'\n' {
+                i += 1;
+            }
+        } else {
+            i += 1;
+        }
+    }
+    out
+}

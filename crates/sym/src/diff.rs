@@ -1,0 +1,65 @@
+//! Time derivatives, `d/dt`, by the product and chain rules.
+//!
+//! A time-dependent symbol of order k differentiates to the same symbol of
+//! order k + 1; `d/dt sin θ = cos θ · θ̇`, `d/dt cos θ = −sin θ · θ̇`;
+//! constants differentiate to zero. The result is canonical.
+//!
+//! # Example
+//! ```
+//! use hdot_sym::Symbols;
+//! let s = Symbols::parse_decl(&["I"], &["theta", "omega"]);
+//! let e = s.poly("I*omega*sin(theta)").unwrap();
+//! let expected = s.poly("I*omega'*sin(theta) + I*omega*cos(theta)*theta'").unwrap();
+//! assert_eq!(e.dt(), expected);
+//! ```
+
+use crate::atom::{Atom, AtomKind};
+use crate::poly::{Accum, Monomial, Poly};
+use crate::rational::Rational;
+
+/// The derivative of a single atom, as a list of `(monomial, coefficient)`.
+fn atom_dt(a: Atom) -> Vec<(Monomial, Rational)> {
+    match a.kind() {
+        AtomKind::Var { time: false, .. } => vec![],
+        AtomKind::Var { time: true, .. } => {
+            vec![(Monomial::atom(a.derivative().expect("time symbol"), 1), Rational::ONE)]
+        }
+        AtomKind::Sin(q) => match q.derivative() {
+            Some(qd) => vec![(Monomial::from_factors([(Atom::cos(q).expect("angle"), 1), (qd, 1)]), Rational::ONE)],
+            None => vec![],
+        },
+        AtomKind::Cos(q) => match q.derivative() {
+            Some(qd) => vec![(Monomial::from_factors([(Atom::sin(q).expect("angle"), 1), (qd, 1)]), -Rational::ONE)],
+            None => vec![],
+        },
+    }
+}
+
+impl Poly {
+    /// The total time derivative `d/dt`.
+    pub fn dt(&self) -> Poly {
+        let mut acc = Accum::with_capacity(self.len() * 2);
+        for (m, c) in self.terms() {
+            for &(a, e) in m.factors() {
+                if !a.is_time_dependent() {
+                    continue;
+                }
+                let rest = m.without(a, 1);
+                let k = c * &Rational::int(e as i64);
+                for (dm, dc) in atom_dt(a) {
+                    acc.push(rest.mul(&dm), &k * &dc);
+                }
+            }
+        }
+        acc.finish()
+    }
+
+    /// The `n`-th time derivative.
+    pub fn dt_n(&self, n: u32) -> Poly {
+        let mut p = self.clone();
+        for _ in 0..n {
+            p = p.dt();
+        }
+        p
+    }
+}

@@ -1,0 +1,231 @@
+//! Expression trees for presentation and for the parser: a flat node store.
+//!
+//! [`Expr`] keeps its nodes in one `Vec` in which every child comes before
+//! its parent and the root is last (the layout of egg's `RecExpr`). It is
+//! the *shape* of an expression as written or as it should be printed;
+//! arithmetic happens on the canonical [`Poly`], reached by
+//! [`Expr::to_poly`]. `Display` prints source syntax that
+//! [`crate::Symbols::expr`] parses back to an identical tree.
+//!
+//! Invariant: `Num` holds non-negative rationals (signs are `Neg` nodes);
+//! `Add` and `Mul` have at least two children; `Pow` exponents are ≥ 2.
+
+use std::fmt;
+
+use crate::atom::Atom;
+use crate::poly::{Monomial, Poly};
+use crate::rational::Rational;
+
+/// Index of a node in an [`Expr`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Id(u32);
+
+/// One node of an [`Expr`].
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Node {
+    /// A non-negative rational number.
+    Num(Rational),
+    /// A symbol, a derivative of one, or sin/cos of an angle.
+    Atom(Atom),
+    /// A sum of two or more terms.
+    Add(Vec<Id>),
+    /// A product of two or more factors.
+    Mul(Vec<Id>),
+    /// Negation.
+    Neg(Id),
+    /// A power with an integer exponent ≥ 2.
+    Pow(Id, u32),
+}
+
+/// A flat expression tree; the root is the last node.
+#[derive(Clone, Default)]
+pub struct Expr {
+    nodes: Vec<Node>,
+}
+
+/// # Construction
+impl Expr {
+    /// An empty store; add nodes, the last one added is the root.
+    pub fn new() -> Expr {
+        Expr::default()
+    }
+
+    /// Appends a node and returns its id. Children must already be present.
+    pub fn push(&mut self, node: Node) -> Id {
+        debug_assert!(match &node {
+            Node::Num(r) => !r.is_negative(),
+            Node::Add(v) | Node::Mul(v) => v.len() >= 2,
+            Node::Pow(_, e) => *e >= 2,
+            _ => true,
+        });
+        self.nodes.push(node);
+        Id(self.nodes.len() as u32 - 1)
+    }
+
+    /// A number node; negative values become `Neg(Num)`.
+    pub fn num(&mut self, r: &Rational) -> Id {
+        if r.is_negative() {
+            let n = self.push(Node::Num(r.abs()));
+            self.push(Node::Neg(n))
+        } else {
+            self.push(Node::Num(r.clone()))
+        }
+    }
+
+    /// A sum; a single term is returned as it is, an empty one is `0`.
+    pub fn add(&mut self, terms: Vec<Id>) -> Id {
+        match terms.len() {
+            0 => self.push(Node::Num(Rational::ZERO)),
+            1 => terms[0],
+            _ => self.push(Node::Add(terms)),
+        }
+    }
+
+    /// A product; a single factor is returned as it is, an empty one is `1`.
+    pub fn mul(&mut self, factors: Vec<Id>) -> Id {
+        match factors.len() {
+            0 => self.push(Node::Num(Rational::ONE)),
+            1 => factors[0],
+            _ => self.push(Node::Mul(factors)),
+        }
+    }
+
+    /// `atom^exp` (just the atom when `exp == 1`).
+    pub fn atom_pow(&mut self, a: Atom, exp: u32) -> Id {
+        let id = self.push(Node::Atom(a));
+        if exp >= 2 { self.push(Node::Pow(id, exp)) } else { id }
+    }
+
+    /// The default presentation of a canonical polynomial: terms in a stable
+    /// order that depends only on names, each as `±c · atoms`.
+    pub fn from_poly(p: &Poly) -> Expr {
+        let mut e = Expr::new();
+        let root = e.poly_node(p);
+        debug_assert_eq!(root.0 as usize, e.nodes.len() - 1);
+        e
+    }
+
+    /// Adds the default presentation of `p` and returns its id.
+    pub fn poly_node(&mut self, p: &Poly) -> Id {
+        let mut terms: Vec<(Vec<(Atom, u32)>, &Rational)> =
+            p.terms().iter().map(|(m, c)| (m.sorted_for_print(), c)).collect();
+        terms.sort_by(|a, b| print_order(&a.0, &b.0));
+        let ids = terms.into_iter().map(|(fs, c)| self.term_node(&fs, c)).collect();
+        self.add(ids)
+    }
+
+    /// `c · Π atoms` with the sign as a `Neg` node.
+    pub fn term_node(&mut self, factors: &[(Atom, u32)], c: &Rational) -> Id {
+        let mut ids = Vec::with_capacity(factors.len() + 1);
+        let mag = c.abs();
+        if !mag.is_one() || factors.is_empty() {
+            ids.push(self.push(Node::Num(mag)));
+        }
+        for &(a, e) in factors {
+            ids.push(self.atom_pow(a, e));
+        }
+        let m = self.mul(ids);
+        if c.is_negative() { self.push(Node::Neg(m)) } else { m }
+    }
+}
+
+/// Orders printed terms: by their factors' name keys, then exponents.
+pub(crate) fn print_order(a: &[(Atom, u32)], b: &[(Atom, u32)]) -> std::cmp::Ordering {
+    let ka = a.iter().map(|f| (f.0.sort_key(), std::cmp::Reverse(f.1)));
+    let kb = b.iter().map(|f| (f.0.sort_key(), std::cmp::Reverse(f.1)));
+    ka.cmp(kb)
+}
+
+/// # Queries
+impl Expr {
+    /// The root's id.
+    pub fn root(&self) -> Id {
+        Id(self.nodes.len() as u32 - 1)
+    }
+
+    /// The node at `id`.
+    pub fn node(&self, id: Id) -> &Node {
+        &self.nodes[id.0 as usize]
+    }
+
+    /// Number of nodes.
+    pub fn len(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// True for a store with no nodes.
+    pub fn is_empty(&self) -> bool {
+        self.nodes.is_empty()
+    }
+
+    /// Expands to the canonical form.
+    pub fn to_poly(&self) -> Poly {
+        let mut vals: Vec<Poly> = Vec::with_capacity(self.nodes.len());
+        for n in &self.nodes {
+            let v = match n {
+                Node::Num(r) => Poly::constant(r.clone()),
+                Node::Atom(a) => Poly::term(Monomial::atom(*a, 1), Rational::ONE),
+                Node::Add(c) => c.iter().map(|i| vals[i.0 as usize].clone()).sum(),
+                Node::Mul(c) => c.iter().fold(Poly::one(), |acc, i| &acc * &vals[i.0 as usize]),
+                Node::Neg(i) => -&vals[i.0 as usize],
+                Node::Pow(i, e) => vals[i.0 as usize].pow(*e),
+            };
+            vals.push(v);
+        }
+        vals.pop().unwrap_or_default()
+    }
+
+    /// Evaluates in `f64` without expanding.
+    pub fn eval(&self, value: &mut dyn FnMut(Atom) -> f64) -> f64 {
+        let mut vals: Vec<f64> = Vec::with_capacity(self.nodes.len());
+        for n in &self.nodes {
+            let v = match n {
+                Node::Num(r) => r.to_f64(),
+                Node::Atom(a) => value(*a),
+                Node::Add(c) => c.iter().map(|i| vals[i.0 as usize]).sum(),
+                Node::Mul(c) => c.iter().map(|i| vals[i.0 as usize]).product(),
+                Node::Neg(i) => -vals[i.0 as usize],
+                Node::Pow(i, e) => vals[i.0 as usize].powi(*e as i32),
+            };
+            vals.push(v);
+        }
+        vals.pop().unwrap_or(0.0)
+    }
+
+    fn same_tree(&self, a: Id, other: &Expr, b: Id) -> bool {
+        match (self.node(a), other.node(b)) {
+            (Node::Num(x), Node::Num(y)) => x == y,
+            (Node::Atom(x), Node::Atom(y)) => x == y,
+            (Node::Add(x), Node::Add(y)) | (Node::Mul(x), Node::Mul(y)) => {
+                x.len() == y.len() && x.iter().zip(y).all(|(i, j)| self.same_tree(*i, other, *j))
+            }
+            (Node::Neg(x), Node::Neg(y)) => self.same_tree(*x, other, *y),
+            (Node::Pow(x, e), Node::Pow(y, f)) => e == f && self.same_tree(*x, other, *y),
+            _ => false,
+        }
+    }
+}
+
+/// Two expressions are equal when their trees have the same shape and
+/// leaves (node numbering and sharing do not matter).
+impl PartialEq for Expr {
+    fn eq(&self, other: &Expr) -> bool {
+        !self.is_empty() && !other.is_empty() && self.same_tree(self.root(), other, other.root())
+    }
+}
+
+/// Source syntax, parsed back by [`crate::Symbols::expr`] to the same tree.
+impl fmt::Display for Expr {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.is_empty() {
+            return f.write_str("0");
+        }
+        f.write_str(&crate::print::print(self, &crate::print::Source))
+    }
+}
+
+impl fmt::Debug for Expr {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "Expr({self})")
+    }
+}

@@ -1,0 +1,173 @@
+//! Presentation: turning a canonical polynomial into the textbook's form.
+//!
+//! Two steps, both exact (the presented tree expands back to the input):
+//!
+//! 1. **Fold abbreviations.** For ω_z := ψ̇ + φ̇ cos θ, an atom of the
+//!    definition that occurs linearly with a constant coefficient (ψ̇) is
+//!    eliminated: ψ̇ := ω_z − φ̇ cos θ, and its derivatives likewise
+//!    (ψ̈ := ω̇_z + φ̇ θ̇ sin θ − φ̈ cos θ).
+//! 2. **Collect** the terms by a chosen list of atoms (the kinematic ones,
+//!    ω, ω̇, or the inertia ones, I, I′): each group's coefficient is
+//!    factored (rational content, common monomial, sign pulled out so that
+//!    the bracket starts with a plus) and printed as
+//!    `[number] [constants] [bracket] [time-dependent factors]`.
+//!
+//! Groups are ordered by the position of their atoms in the collect list;
+//! terms inside a bracket by highest derivative first, then by name. The
+//! order depends only on names, never on interning order.
+//!
+//! # Example
+//! ```
+//! use hdot_sym::{present::{present, Presentation}, print, Atom, Symbols};
+//! let s = Symbols::parse_decl(&["I_x", "I_y", "I_z"], &["omega_x", "omega_y", "omega_z"]);
+//! let p = s.poly("I_x*omega_x' - I_y*omega_y*omega_z + I_z*omega_z*omega_y").unwrap();
+//! let keys = ["omega_x", "omega_y", "omega_z"].iter()
+//!     .flat_map(|n| [Atom::time(n, 1), Atom::time(n, 0)]).collect();
+//! let e = present(&p, &Presentation { collect: keys, fold: vec![] });
+//! assert_eq!(print::unicode(&e), "I_x ω̇_x − (I_y − I_z) ω_y ω_z");
+//! assert_eq!(e.to_poly(), p);
+//! ```
+
+use std::cmp::{Ordering, Reverse};
+use std::collections::BTreeMap;
+
+use crate::atom::{Atom, AtomKind};
+use crate::expr::{Expr, Id, Node, print_order};
+use crate::poly::{Monomial, Poly};
+use crate::rational::Rational;
+
+/// How a result should be shown.
+#[derive(Clone, Debug, Default)]
+pub struct Presentation {
+    /// Atoms to collect by, in the order the groups should appear.
+    pub collect: Vec<Atom>,
+    /// Abbreviations to fold back in: the abbreviation's atom and its definition.
+    pub fold: Vec<(Atom, Poly)>,
+}
+
+/// Folds the abbreviation `name := def` into `p`. Returns `p` unchanged when
+/// no atom of `def` can be eliminated (none occurs linearly with a constant
+/// coefficient and nowhere else in `def`).
+pub fn fold(p: &Poly, name: Atom, def: &Poly) -> Poly {
+    let Some((v, c)) = eliminable(def) else {
+        return p.clone();
+    };
+    // v = (name - (def - c v)) / c
+    let rest = def - &Poly::term(Monomial::atom(v, 1), c.clone());
+    let inv = c.recip().expect("non-zero coefficient");
+    let v_expr = (&Poly::atom(name) - &rest).scale(&inv);
+    p.subst(&mut |a| match a.kind() {
+        AtomKind::Var { time: true, order, .. } if a.base() == v.base() && order >= v.order() => {
+            Some(v_expr.dt_n(order - v.order()))
+        }
+        _ => None,
+    })
+}
+
+/// An atom of `def` that occurs in exactly one term, to the first power,
+/// with a constant coefficient, and whose base symbol occurs nowhere else.
+fn eliminable(def: &Poly) -> Option<(Atom, Rational)> {
+    let mut best: Option<(Atom, Rational)> = None;
+    for (m, c) in def.terms() {
+        let [(v, 1)] = m.factors() else { continue };
+        if !matches!(v.kind(), AtomKind::Var { time: true, .. }) {
+            continue;
+        }
+        let others = def.terms().iter().filter(|(m2, _)| m2 != m);
+        let clash = others.flat_map(|(m2, _)| m2.factors()).any(|(a, _)| match a.kind() {
+            AtomKind::Var { .. } => a.base() == v.base(),
+            AtomKind::Sin(q) | AtomKind::Cos(q) => q == v.base(),
+        });
+        if !clash && best.as_ref().is_none_or(|b| v.order() > b.0.order()) {
+            best = Some((*v, c.clone()));
+        }
+    }
+    best
+}
+
+/// Presents `p` in textbook form (see the module doc).
+pub fn present(p: &Poly, pres: &Presentation) -> Expr {
+    let mut p = p.clone();
+    for (name, def) in &pres.fold {
+        p = fold(&p, *name, def);
+    }
+    let rank = |a: Atom| pres.collect.iter().position(|k| *k == a);
+    // Group by the collected part of each monomial.
+    let mut groups: BTreeMap<Monomial, Vec<(Monomial, Rational)>> = BTreeMap::new();
+    for (m, c) in p.terms() {
+        let (key, rest) = m.split(|a| rank(a).is_some());
+        groups.entry(key).or_default().push((rest, c.clone()));
+    }
+    let mut groups: Vec<(Monomial, Poly)> = groups.into_iter().map(|(k, ts)| (k, Poly::from_terms(ts))).collect();
+    let group_key = |k: &Monomial| {
+        let mut pos: Vec<(usize, Reverse<u32>)> =
+            k.factors().iter().map(|&(a, e)| (rank(a).expect("collected"), Reverse(e))).collect();
+        pos.sort();
+        (k.is_one(), pos)
+    };
+    groups.sort_by(|a, b| group_key(&a.0).cmp(&group_key(&b.0)));
+
+    let mut e = Expr::new();
+    let ids: Vec<Id> = groups.iter().map(|(k, q)| group_node(&mut e, k, q)).collect();
+    e.add(ids);
+    e
+}
+
+/// Term order inside a sum: highest derivative first, then by names.
+fn term_order(a: &[(Atom, u32)], b: &[(Atom, u32)]) -> Ordering {
+    let top = |f: &[(Atom, u32)]| f.iter().map(|x| x.0.order()).max().unwrap_or(0);
+    top(b).cmp(&top(a)).then_with(|| print_order(a, b))
+}
+
+/// `key · q` with q factored.
+fn group_node(e: &mut Expr, key: &Monomial, q: &Poly) -> Id {
+    let mut terms: Vec<(Vec<(Atom, u32)>, Monomial, Rational)> =
+        q.terms().iter().map(|(m, c)| (m.sorted_for_print(), m.clone(), c.clone())).collect();
+    terms.sort_by(|a, b| term_order(&a.0, &b.0));
+    // Content: rational gcd with the sign of the first printed term, and the
+    // common monomial.
+    let mut content = terms.iter().fold(Rational::ZERO, |g, t| g.gcd(&t.2));
+    if terms.first().is_some_and(|t| t.2.is_negative()) {
+        content = -content;
+    }
+    let common = terms.iter().skip(1).fold(terms[0].1.clone(), |g, t| g.gcd(&t.1));
+    let inv = content.recip().expect("non-zero content");
+
+    let mut outer = key.mul(&common);
+    let mut number = content.abs();
+    let bracket = if terms.len() == 1 {
+        outer = outer.mul(&terms[0].1.div(&common));
+        None
+    } else {
+        let ids: Vec<Id> = terms
+            .iter()
+            .map(|(_, m, c)| {
+                let m = m.div(&common);
+                let c = c * &inv;
+                e.term_node(&m.sorted_for_print(), &c)
+            })
+            .collect();
+        Some(e.add(ids))
+    };
+    if terms.len() == 1 {
+        number = terms[0].2.abs();
+    }
+    let negative = content.is_negative();
+
+    let factors = outer.sorted_for_print();
+    let mut ids = Vec::new();
+    if !number.is_one() || (factors.is_empty() && bracket.is_none()) {
+        ids.push(e.push(Node::Num(number)));
+    }
+    for &(a, x) in factors.iter().filter(|f| !f.0.is_time_dependent()) {
+        ids.push(e.atom_pow(a, x));
+    }
+    if let Some(b) = bracket {
+        ids.push(b);
+    }
+    for &(a, x) in factors.iter().filter(|f| f.0.is_time_dependent()) {
+        ids.push(e.atom_pow(a, x));
+    }
+    let m = e.mul(ids);
+    if negative { e.push(Node::Neg(m)) } else { m }
+}

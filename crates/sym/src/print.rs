@@ -1,0 +1,411 @@
+//! Printers: source syntax, Unicode text, LaTeX and SymPy.
+//!
+//! One precedence-aware walk over an [`Expr`] ([`print`]) is shared by all
+//! four; a [`Style`] says how atoms, numbers, products and powers look.
+//! Parentheses follow one rule set in every style, the one that makes the
+//! source syntax round-trip: a sum inside a sum or product, a product or a
+//! negation inside a product, and anything but an atom or integer under a
+//! power are parenthesised.
+//!
+//! # Example
+//! ```
+//! use hdot_sym::{print, Symbols};
+//! let s = Symbols::parse_decl(&["I_x"], &["omega_x", "theta"]);
+//! let e = s.expr("I_x*omega_x' - sin(theta)*theta''").unwrap();
+//! assert_eq!(print::latex(&e), r"I_x \dot{\omega}_x - \sin\theta \, \ddot{\theta}");
+//! assert_eq!(print::unicode(&e), "I_x ω̇_x − sin θ θ̈");
+//! ```
+
+use crate::atom::{Atom, AtomKind};
+use crate::expr::{Expr, Id, Node};
+use crate::rational::Rational;
+
+/// How the pieces of an expression are written.
+pub trait Style {
+    /// An atom (symbol, derivative, sin/cos).
+    fn atom(&self, a: Atom) -> String;
+    /// A non-negative number as a factor or term.
+    fn num(&self, r: &Rational) -> String;
+    /// Separator between factors of a product.
+    fn mul_sep(&self, left: &Node, right: &Node) -> &'static str;
+    /// `base^exp`; `base` is already parenthesised when needed.
+    fn pow(&self, base: &str, base_node: &Node, exp: u32) -> String;
+    /// The minus sign (prefix and infix).
+    fn minus(&self) -> &'static str {
+        "-"
+    }
+    /// Opening and closing parentheses.
+    fn parens(&self) -> (&'static str, &'static str) {
+        ("(", ")")
+    }
+}
+
+/// Prints `e` in the given style.
+pub fn print(e: &Expr, style: &dyn Style) -> String {
+    if e.is_empty() {
+        return style.num(&Rational::ZERO);
+    }
+    let mut out = String::new();
+    write(e, e.root(), style, &mut out);
+    out
+}
+
+fn paren(e: &Expr, id: Id, style: &dyn Style, out: &mut String) {
+    let (l, r) = style.parens();
+    out.push_str(l);
+    write(e, id, style, out);
+    out.push_str(r);
+}
+
+fn write(e: &Expr, id: Id, style: &dyn Style, out: &mut String) {
+    match e.node(id) {
+        Node::Num(r) => out.push_str(&style.num(r)),
+        Node::Atom(a) => out.push_str(&style.atom(*a)),
+        Node::Add(terms) => {
+            for (k, &t) in terms.iter().enumerate() {
+                match e.node(t) {
+                    Node::Neg(inner) if k > 0 => {
+                        out.push(' ');
+                        out.push_str(style.minus());
+                        out.push(' ');
+                        write_under_neg(e, *inner, style, out);
+                    }
+                    Node::Add(_) => {
+                        if k > 0 {
+                            out.push_str(" + ");
+                        }
+                        paren(e, t, style, out);
+                    }
+                    _ => {
+                        if k > 0 {
+                            out.push_str(" + ");
+                        }
+                        write(e, t, style, out);
+                    }
+                }
+            }
+        }
+        Node::Mul(factors) => {
+            for (k, &f) in factors.iter().enumerate() {
+                if k > 0 {
+                    out.push_str(style.mul_sep(e.node(factors[k - 1]), e.node(f)));
+                }
+                match e.node(f) {
+                    Node::Add(_) | Node::Mul(_) | Node::Neg(_) => paren(e, f, style, out),
+                    _ => write(e, f, style, out),
+                }
+            }
+        }
+        Node::Neg(inner) => {
+            out.push_str(style.minus());
+            write_under_neg(e, *inner, style, out);
+        }
+        Node::Pow(base, exp) => {
+            let mut b = String::new();
+            match e.node(*base) {
+                Node::Atom(_) => write(e, *base, style, &mut b),
+                Node::Num(r) if r.is_integer() => write(e, *base, style, &mut b),
+                _ => paren(e, *base, style, &mut b),
+            }
+            out.push_str(&style.pow(&b, e.node(*base), *exp));
+        }
+    }
+}
+
+/// After a minus sign: sums and negations need parentheses, a bare number
+/// too (so that `-(3)` stays distinct from the literal `-3` nowhere used).
+fn write_under_neg(e: &Expr, id: Id, style: &dyn Style, out: &mut String) {
+    match e.node(id) {
+        Node::Add(_) | Node::Neg(_) => paren(e, id, style, out),
+        _ => write(e, id, style, out),
+    }
+}
+
+// ---------------------------------------------------------------- names --
+
+const GREEK: &[(&str, &str, &str)] = &[
+    ("alpha", r"\alpha", "α"),
+    ("beta", r"\beta", "β"),
+    ("gamma", r"\gamma", "γ"),
+    ("delta", r"\delta", "δ"),
+    ("epsilon", r"\varepsilon", "ε"),
+    ("zeta", r"\zeta", "ζ"),
+    ("eta", r"\eta", "η"),
+    ("theta", r"\theta", "θ"),
+    ("kappa", r"\kappa", "κ"),
+    ("lambda", r"\lambda", "λ"),
+    ("mu", r"\mu", "μ"),
+    ("nu", r"\nu", "ν"),
+    ("xi", r"\xi", "ξ"),
+    ("pi", r"\pi", "π"),
+    ("rho", r"\rho", "ρ"),
+    ("sigma", r"\sigma", "σ"),
+    ("tau", r"\tau", "τ"),
+    ("phi", r"\phi", "φ"),
+    ("chi", r"\chi", "χ"),
+    ("psi", r"\psi", "ψ"),
+    ("omega", r"\omega", "ω"),
+    ("Gamma", r"\Gamma", "Γ"),
+    ("Delta", r"\Delta", "Δ"),
+    ("Theta", r"\Theta", "Θ"),
+    ("Lambda", r"\Lambda", "Λ"),
+    ("Pi", r"\Pi", "Π"),
+    ("Sigma", r"\Sigma", "Σ"),
+    ("Phi", r"\Phi", "Φ"),
+    ("Psi", r"\Psi", "Ψ"),
+    ("Omega", r"\Omega", "Ω"),
+];
+
+/// Splits a symbol name into its base and subscript: `omega_x` → (`omega`, `x`).
+fn split_name(name: &str) -> (&str, Option<&str>) {
+    match name.split_once('_') {
+        Some((b, s)) if !b.is_empty() && !s.is_empty() => (b, Some(s)),
+        _ => (name, None),
+    }
+}
+
+/// A base name written as a single capital followed by `p` means a prime:
+/// `Ip` is I′ (the transverse moment of an axisymmetric body).
+fn primed_base(base: &str) -> Option<char> {
+    let mut cs = base.chars();
+    match (cs.next(), cs.next(), cs.next()) {
+        (Some(c), Some('p'), None) if c.is_ascii_uppercase() => Some(c),
+        _ => None,
+    }
+}
+
+/// The LaTeX of a base name (no derivative marks).
+fn latex_base(base: &str) -> String {
+    if let Some(g) = GREEK.iter().find(|g| g.0 == base) {
+        return g.1.to_owned();
+    }
+    if let Some(c) = primed_base(base) {
+        return format!("{c}'");
+    }
+    if base.chars().count() == 1 { base.to_owned() } else { format!(r"\mathrm{{{base}}}") }
+}
+
+fn unicode_base(base: &str) -> String {
+    if let Some(g) = GREEK.iter().find(|g| g.0 == base) {
+        return g.2.to_owned();
+    }
+    if let Some(c) = primed_base(base) {
+        return format!("{c}′");
+    }
+    base.to_owned()
+}
+
+fn latex_sub(sub: &str) -> String {
+    let parts: Vec<String> =
+        sub.split('_').map(|p| GREEK.iter().find(|g| g.0 == p).map_or(p.to_owned(), |g| g.1.to_owned())).collect();
+    let s = parts.join(",");
+    if s.chars().count() == 1 { format!("_{s}") } else { format!("_{{{s}}}") }
+}
+
+/// LaTeX for a symbol name with `order` time derivatives: `\dot{\omega}_x`.
+pub fn latex_symbol(name: &str, order: u32) -> String {
+    let (base, sub) = split_name(name);
+    let b = latex_base(base);
+    let b = match order {
+        0 => b,
+        1 => format!(r"\dot{{{b}}}"),
+        2 => format!(r"\ddot{{{b}}}"),
+        3 => format!(r"\dddot{{{b}}}"),
+        4 => format!(r"\ddddot{{{b}}}"),
+        n => format!("{{{b}}}^{{({n})}}"),
+    };
+    match sub {
+        Some(s) => format!("{b}{}", latex_sub(s)),
+        None => b,
+    }
+}
+
+/// Unicode for a symbol name with `order` time derivatives: `ω̇_x`.
+pub fn unicode_symbol(name: &str, order: u32) -> String {
+    let (base, sub) = split_name(name);
+    let mut b = unicode_base(base);
+    match order {
+        0 => {}
+        1 => b.push('\u{307}'),
+        2 => b.push('\u{308}'),
+        3 => b.push('\u{20DB}'),
+        4 => b.push('\u{20DC}'),
+        n => b.push_str(&format!("⁽{}⁾", superscript(n))),
+    }
+    match sub {
+        Some(s) => {
+            let s: Vec<String> = s.split('_').map(unicode_base).collect();
+            format!("{b}_{}", s.join(","))
+        }
+        None => b,
+    }
+}
+
+fn superscript(n: u32) -> String {
+    n.to_string()
+        .chars()
+        .map(|c| match c {
+            '0' => '⁰',
+            '1' => '¹',
+            '2' => '²',
+            '3' => '³',
+            '4' => '⁴',
+            '5' => '⁵',
+            '6' => '⁶',
+            '7' => '⁷',
+            '8' => '⁸',
+            _ => '⁹',
+        })
+        .collect()
+}
+
+fn is_trig(n: &Node) -> bool {
+    matches!(n, Node::Atom(a) if matches!(a.kind(), AtomKind::Sin(_) | AtomKind::Cos(_)))
+}
+
+// --------------------------------------------------------------- styles --
+
+/// Source syntax of derivation files: `I_x*omega_x' - sin(theta)^2`.
+pub struct Source;
+
+impl Style for Source {
+    fn atom(&self, a: Atom) -> String {
+        a.to_string()
+    }
+    fn num(&self, r: &Rational) -> String {
+        r.to_string()
+    }
+    fn mul_sep(&self, _: &Node, _: &Node) -> &'static str {
+        "*"
+    }
+    fn pow(&self, base: &str, _: &Node, exp: u32) -> String {
+        format!("{base}^{exp}")
+    }
+}
+
+/// Unicode text: `I_x ω̇_x − (I_y − I_z) ω_y ω_z`.
+pub struct Unicode;
+
+impl Style for Unicode {
+    fn atom(&self, a: Atom) -> String {
+        match a.kind() {
+            AtomKind::Var { name, order, .. } => unicode_symbol(name, order),
+            AtomKind::Sin(q) => format!("sin {}", self.atom(q)),
+            AtomKind::Cos(q) => format!("cos {}", self.atom(q)),
+        }
+    }
+    fn num(&self, r: &Rational) -> String {
+        if r.is_integer() {
+            r.to_string()
+        } else {
+            let (n, d) = r.parts();
+            format!("({n}/{d})")
+        }
+    }
+    fn mul_sep(&self, _: &Node, _: &Node) -> &'static str {
+        " "
+    }
+    fn pow(&self, base: &str, node: &Node, exp: u32) -> String {
+        if let Node::Atom(a) = node
+            && let AtomKind::Sin(q) | AtomKind::Cos(q) = a.kind()
+        {
+            let f = if matches!(a.kind(), AtomKind::Sin(_)) { "sin" } else { "cos" };
+            return format!("{f}{} {}", superscript(exp), self.atom(q));
+        }
+        format!("{base}{}", superscript(exp))
+    }
+    fn minus(&self) -> &'static str {
+        "−"
+    }
+}
+
+/// LaTeX math (no surrounding `$`): `I_x \dot{\omega}_x - \left(I_y - I_z\right) \omega_y \omega_z`.
+pub struct Latex;
+
+impl Style for Latex {
+    fn atom(&self, a: Atom) -> String {
+        match a.kind() {
+            AtomKind::Var { name, order, .. } => latex_symbol(name, order),
+            AtomKind::Sin(q) => format!(r"\sin{}", latex_fn_arg(&self.atom(q))),
+            AtomKind::Cos(q) => format!(r"\cos{}", latex_fn_arg(&self.atom(q))),
+        }
+    }
+    fn num(&self, r: &Rational) -> String {
+        if r.is_integer() {
+            r.to_string()
+        } else {
+            let (n, d) = r.parts();
+            format!(r"\frac{{{n}}}{{{d}}}")
+        }
+    }
+    fn mul_sep(&self, left: &Node, _right: &Node) -> &'static str {
+        // A thin space after sin/cos keeps `\sin\theta \, \dot\phi` from
+        // reading as the sine of a product.
+        if is_trig(left) { r" \, " } else { " " }
+    }
+    fn pow(&self, base: &str, node: &Node, exp: u32) -> String {
+        if let Node::Atom(a) = node
+            && let AtomKind::Sin(q) | AtomKind::Cos(q) = a.kind()
+        {
+            let f = if matches!(a.kind(), AtomKind::Sin(_)) { r"\sin" } else { r"\cos" };
+            return format!("{f}^{{{exp}}}{}", latex_fn_arg(&self.atom(q)));
+        }
+        format!("{base}^{{{exp}}}")
+    }
+    fn parens(&self) -> (&'static str, &'static str) {
+        (r"\left(", r"\right)")
+    }
+}
+
+/// `\sin\theta` for a command, `\sin x` for a letter.
+fn latex_fn_arg(arg: &str) -> String {
+    if arg.starts_with('\\') { arg.to_owned() } else { format!(" {arg}") }
+}
+
+/// SymPy source: `I_x*omega_x.diff(t) - sin(theta)**2`, with symbol names
+/// mapped to Python identifiers by `var`.
+pub struct Sympy<'a> {
+    /// Maps a symbol name to the Python variable that holds it.
+    pub var: &'a dyn Fn(&str) -> String,
+}
+
+impl Style for Sympy<'_> {
+    fn atom(&self, a: Atom) -> String {
+        match a.kind() {
+            AtomKind::Var { name, order: 0, .. } => (self.var)(name),
+            AtomKind::Var { name, order: 1, .. } => format!("{}.diff(t)", (self.var)(name)),
+            AtomKind::Var { name, order, .. } => format!("{}.diff(t, {order})", (self.var)(name)),
+            AtomKind::Sin(q) => format!("sin({})", self.atom(q)),
+            AtomKind::Cos(q) => format!("cos({})", self.atom(q)),
+        }
+    }
+    fn num(&self, r: &Rational) -> String {
+        if r.is_integer() {
+            format!("Integer({r})")
+        } else {
+            let (n, d) = r.parts();
+            format!("Rational({n}, {d})")
+        }
+    }
+    fn mul_sep(&self, _: &Node, _: &Node) -> &'static str {
+        "*"
+    }
+    fn pow(&self, base: &str, _: &Node, exp: u32) -> String {
+        format!("{base}**{exp}")
+    }
+}
+
+/// Source syntax.
+pub fn source(e: &Expr) -> String {
+    print(e, &Source)
+}
+
+/// Unicode text.
+pub fn unicode(e: &Expr) -> String {
+    print(e, &Unicode)
+}
+
+/// LaTeX math.
+pub fn latex(e: &Expr) -> String {
+    print(e, &Latex)
+}

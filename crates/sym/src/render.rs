@@ -1,0 +1,1 @@
+//! Renders an evaluated derivation as Unicode text, LaTeX, Markdown, SymPy or JSON.

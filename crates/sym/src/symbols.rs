@@ -1,0 +1,179 @@
+//! Symbol tables: which names are constants, which are functions of time,
+//! and which are named abbreviations (ω_z := ψ̇ + φ̇ cos θ).
+//!
+//! A table turns source text into atoms: the parser knows only names, the
+//! table knows what they mean, so `theta'` is an error for a constant and
+//! an unknown name is reported at its span.
+//!
+//! # Example
+//! ```
+//! use hdot_sym::Symbols;
+//! let s = Symbols::parse_decl(&["I_x", "I_y", "I_z"], &["omega_x", "omega_y", "omega_z"]);
+//! let e = s.expr("I_x*omega_x' - (I_y - I_z)*omega_y*omega_z").unwrap();
+//! assert_eq!(e.to_string(), "I_x*omega_x' - (I_y - I_z)*omega_y*omega_z");
+//! assert!(s.expr("I_x'").is_err());
+//! ```
+
+use std::collections::HashMap;
+
+use crate::atom::Atom;
+use crate::expr::{Expr, Id, Node};
+use crate::parse::{Ast, AstKind, ParseError, Span, parse};
+use crate::poly::Poly;
+use crate::rational::Rational;
+
+/// What a declared name means.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Decl {
+    /// A constant (`I_x`, `m`).
+    Constant,
+    /// A function of time (`omega_x`, `theta`).
+    Time,
+    /// A function of time that abbreviates a longer expression.
+    Abbrev(Poly),
+}
+
+/// A table of declared symbols, in declaration order.
+#[derive(Clone, Debug, Default)]
+pub struct Symbols {
+    decls: HashMap<String, Decl>,
+    order: Vec<String>,
+}
+
+impl Symbols {
+    /// An empty table.
+    pub fn new() -> Symbols {
+        Symbols::default()
+    }
+
+    /// A table of constants and time-dependent symbols (for examples and tests).
+    pub fn parse_decl(constants: &[&str], time: &[&str]) -> Symbols {
+        let mut s = Symbols::new();
+        for c in constants {
+            s.declare(c, Decl::Constant);
+        }
+        for t in time {
+            s.declare(t, Decl::Time);
+        }
+        s
+    }
+
+    /// Declares `name`; returns false when it was already declared.
+    pub fn declare(&mut self, name: &str, decl: Decl) -> bool {
+        if self.decls.contains_key(name) {
+            return false;
+        }
+        self.decls.insert(name.to_owned(), decl);
+        self.order.push(name.to_owned());
+        true
+    }
+
+    /// What `name` means, if declared.
+    pub fn get(&self, name: &str) -> Option<&Decl> {
+        self.decls.get(name)
+    }
+
+    /// Names in declaration order.
+    pub fn names(&self) -> &[String] {
+        &self.order
+    }
+
+    /// The atom for `name` with `primes` derivatives, or an error at `span`.
+    pub fn atom(&self, name: &str, primes: u32, span: Span) -> Result<Atom, ParseError> {
+        match self.decls.get(name) {
+            Some(Decl::Constant) if primes > 0 => Err(ParseError {
+                span,
+                message: format!("`{name}` is a constant and has no time derivative; declare it under `time` if it varies"),
+            }),
+            Some(Decl::Constant) => Ok(Atom::constant(name)),
+            Some(Decl::Time | Decl::Abbrev(_)) => Ok(Atom::time(name, primes)),
+            None => Err(ParseError { span, message: format!("unknown symbol `{name}`; declare it under [symbols]") }),
+        }
+    }
+
+    /// Parses a scalar expression into a tree, keeping its written shape.
+    pub fn expr(&self, text: &str) -> Result<Expr, ParseError> {
+        let ast = parse(text)?;
+        let mut e = Expr::new();
+        self.lower(&ast, &mut e)?;
+        Ok(e)
+    }
+
+    /// Parses and expands a scalar expression to canonical form.
+    pub fn poly(&self, text: &str) -> Result<Poly, ParseError> {
+        Ok(self.expr(text)?.to_poly())
+    }
+
+    /// `sin(q)` / `cos(q)` of a declared angle.
+    pub fn trig(&self, func: &str, args: &[Ast], span: Span) -> Result<Atom, ParseError> {
+        let [arg] = args else {
+            return Err(ParseError { span, message: format!("`{func}` takes exactly one argument") });
+        };
+        let AstKind::Name { name, primes: 0 } = &arg.kind else {
+            return Err(ParseError {
+                span: arg.span,
+                message: format!("`{func}` takes a single angle symbol, such as `{func}(theta)`"),
+            });
+        };
+        let q = self.atom(name, 0, arg.span)?;
+        Ok(if func == "sin" { Atom::sin(q) } else { Atom::cos(q) }.expect("order-0 symbol"))
+    }
+
+    /// Lowers a scalar syntax tree into `e`, returning the new node.
+    pub fn lower(&self, ast: &Ast, e: &mut Expr) -> Result<Id, ParseError> {
+        let fail = |span: Span, m: &str| Err(ParseError { span, message: m.to_owned() });
+        Ok(match &ast.kind {
+            AstKind::Num(r) => e.push(Node::Num(r.clone())),
+            AstKind::Name { name, primes } => {
+                let a = self.atom(name, *primes, ast.span)?;
+                e.push(Node::Atom(a))
+            }
+            AstKind::Call { func, args } if func == "sin" || func == "cos" => {
+                let a = self.trig(func, args, ast.span)?;
+                e.push(Node::Atom(a))
+            }
+            AstKind::Call { func, .. } => {
+                return fail(ast.span, &format!("`{func}(…)` is not a scalar function; scalars allow + - * / ^ sin cos"));
+            }
+            AstKind::Add(items) => {
+                let ids = items.iter().map(|i| self.lower(i, e)).collect::<Result<Vec<_>, _>>()?;
+                e.push(Node::Add(ids))
+            }
+            AstKind::Mul(items) => {
+                let mut ids = Vec::new();
+                for it in items {
+                    if let AstKind::Recip(d) = &it.kind {
+                        let mut tmp = Expr::new();
+                        self.lower(d, &mut tmp)?;
+                        let Some(c) = tmp.to_poly().as_constant().filter(|c| !c.is_zero()) else {
+                            return fail(d.span, "only division by a non-zero number is allowed");
+                        };
+                        let r = c.recip().expect("non-zero");
+                        ids.push(e.num(&r));
+                    } else {
+                        ids.push(self.lower(it, e)?);
+                    }
+                }
+                e.mul(ids)
+            }
+            AstKind::Neg(x) => {
+                let id = self.lower(x, e)?;
+                e.push(Node::Neg(id))
+            }
+            AstKind::Pow(b, n) => {
+                let id = self.lower(b, e)?;
+                match n {
+                    0 => e.push(Node::Num(Rational::ONE)),
+                    1 => id,
+                    n => e.push(Node::Pow(id, *n)),
+                }
+            }
+            AstKind::Recip(_) => unreachable!("divisors occur only inside products"),
+            AstKind::Vector { .. } | AstKind::Cross(..) => {
+                return fail(ast.span, "a vector where a scalar is expected");
+            }
+            AstKind::Member(..) => return fail(ast.span, "components are not available in a scalar expression"),
+            AstKind::Assign { name_span, .. } => return fail(*name_span, "`name = value` is only allowed in subst(…)"),
+        })
+    }
+}
