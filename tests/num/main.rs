@@ -1,1 +1,12 @@
-//! Tests of hdot-num.
+//! Tests of hdot-num. One module per source module.
+
+// Named proptest strategies (particle_cloud, rigid_body, angular_velocity…).
+mod strategies;
+// Inertia invariant, parallel axes, principal axes.
+mod inertia;
+// Primitives: analytic vs discretised mass properties, convergence.
+mod discretize;
+// Particle sums: determinism, kinetics against rigid-body formulas.
+mod sums;
+// Bad input: CSV, bodies.
+mod bad_input;

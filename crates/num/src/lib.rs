@@ -2,5 +2,18 @@
 //!
 //! (Work in progress; see `docs/numerics.md`.)
 
+pub mod body;
 pub mod chart;
+pub mod cloud;
+pub mod discretize;
+pub mod error;
 pub mod fsio;
+pub mod inertia;
+pub mod sums;
+
+pub use body::{Body, Composite, MassProperties, Part, Pose, Primitive};
+pub use cloud::ParticleCloud;
+pub use discretize::{Discretization, DiscretizedBody, DiscretizedComposite, Method};
+pub use error::{BodyError, CsvError, CsvErrorKind};
+pub use inertia::{Inertia, InertiaError, Principal};
+pub use sums::{Kinetics, Motion, ParticleSource};

@@ -1,0 +1,223 @@
+//! Stored particle clouds in structure-of-arrays layout, from code or CSV.
+//!
+//! CSV format: one particle per line, `x,y,z,m`; an optional header line
+//! whose first field is not a number (e.g. `x,y,z,m`); blank lines and
+//! lines starting with `#` are skipped. Every error names the file, the
+//! line and the field.
+
+use std::path::{Path, PathBuf};
+
+use nalgebra::Vector3;
+
+use crate::body::MassProperties;
+use crate::error::{BodyError, CsvError, CsvErrorKind};
+use crate::sums::{Block, LEAF, ParticleSource};
+
+/// Point masses in world coordinates, stored as four arrays.
+/// Invariant: non-empty, positions finite, masses finite and positive.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParticleCloud {
+    x: Vec<f64>,
+    y: Vec<f64>,
+    z: Vec<f64>,
+    m: Vec<f64>,
+}
+
+/// # Construction
+impl ParticleCloud {
+    /// A cloud from `(position, mass)` pairs, checked.
+    ///
+    /// # Example
+    /// ```
+    /// use hdot_num::ParticleCloud;
+    /// use nalgebra::Vector3;
+    /// let c = ParticleCloud::try_from_particles([(Vector3::x(), 1.0), (-Vector3::x(), 1.0)]).unwrap();
+    /// let p = c.mass_properties();
+    /// assert_eq!(p.mass, 2.0);
+    /// assert_eq!(p.inertia_g.moments(), [0.0, 2.0, 2.0]);
+    /// assert!(ParticleCloud::try_from_particles([(Vector3::x(), 0.0)]).is_err());
+    /// ```
+    pub fn try_from_particles(
+        particles: impl IntoIterator<Item = (Vector3<f64>, f64)>,
+    ) -> Result<Self, BodyError> {
+        let mut c = Self {
+            x: Vec::new(),
+            y: Vec::new(),
+            z: Vec::new(),
+            m: Vec::new(),
+        };
+        for (i, (p, m)) in particles.into_iter().enumerate() {
+            let what = || format!("particle {i}");
+            for (field, value) in [("x", p.x), ("y", p.y), ("z", p.z)] {
+                if !value.is_finite() {
+                    return Err(BodyError::NotFinite {
+                        what: what(),
+                        field,
+                        value,
+                    });
+                }
+            }
+            crate::body::check_mass(&what(), m)?;
+            c.x.push(p.x);
+            c.y.push(p.y);
+            c.z.push(p.z);
+            c.m.push(m);
+        }
+        if c.m.is_empty() {
+            return Err(BodyError::Empty {
+                what: "particle cloud".into(),
+            });
+        }
+        Ok(c)
+    }
+
+    /// A cloud from four arrays, checked.
+    pub fn try_from_arrays(
+        x: Vec<f64>,
+        y: Vec<f64>,
+        z: Vec<f64>,
+        m: Vec<f64>,
+    ) -> Result<Self, BodyError> {
+        if x.len() != m.len() || y.len() != m.len() || z.len() != m.len() {
+            return Err(BodyError::BadDimension {
+                what: "particle cloud".into(),
+                field: "length",
+                value: m.len() as f64,
+                reason: "x, y, z and m must have the same length",
+            });
+        }
+        Self::try_from_particles((0..m.len()).map(|i| (Vector3::new(x[i], y[i], z[i]), m[i])))
+    }
+
+    /// Reads a CSV file (see the module docs).
+    pub fn from_csv_path(path: &Path) -> Result<Self, CsvError> {
+        let text = std::fs::read_to_string(path).map_err(|e| CsvError {
+            file: path.to_path_buf(),
+            line: 0,
+            field: "-".into(),
+            kind: CsvErrorKind::Io(e.to_string()),
+        })?;
+        Self::from_csv_str(path, &text)
+    }
+
+    /// Parses CSV text; `file` is the name used in errors.
+    ///
+    /// # Example
+    /// ```
+    /// use hdot_num::ParticleCloud;
+    /// let e = ParticleCloud::from_csv_str("c.csv".as_ref(), "x,y,z,m\n0,0,0,1\n1,2,x3,1\n").unwrap_err();
+    /// assert_eq!(e.to_string(), "c.csv:3: field `z`: not a number: \"x3\"");
+    /// ```
+    pub fn from_csv_str(file: &Path, text: &str) -> Result<Self, CsvError> {
+        const FIELDS: [&str; 4] = ["x", "y", "z", "m"];
+        let err = |line: usize, field: &str, kind| CsvError {
+            file: PathBuf::from(file),
+            line,
+            field: field.to_string(),
+            kind,
+        };
+        let mut cols: [Vec<f64>; 4] = Default::default();
+        for (i, raw) in text.lines().enumerate() {
+            let line = i + 1;
+            let t = raw.trim();
+            if t.is_empty() || t.starts_with('#') {
+                continue;
+            }
+            let parts: Vec<&str> = t.split(',').map(str::trim).collect();
+            let is_header = cols[0].is_empty()
+                && parts.first().is_some_and(|f| f.parse::<f64>().is_err())
+                && parts.iter().all(|f| FIELDS.contains(f));
+            if is_header {
+                continue;
+            }
+            if parts.len() > 4 {
+                return Err(err(line, "-", CsvErrorKind::TooMany(parts.len())));
+            }
+            for (k, name) in FIELDS.iter().enumerate() {
+                let Some(s) = parts.get(k).filter(|s| !s.is_empty()) else {
+                    return Err(err(line, name, CsvErrorKind::Missing));
+                };
+                let v: f64 = s
+                    .parse()
+                    .map_err(|_| err(line, name, CsvErrorKind::NotANumber(s.to_string())))?;
+                if !v.is_finite() {
+                    return Err(err(line, name, CsvErrorKind::NotFinite(v)));
+                }
+                if k == 3 && v <= 0.0 {
+                    return Err(err(line, name, CsvErrorKind::NonPositiveMass(v)));
+                }
+                cols[k].push(v);
+            }
+        }
+        if cols[3].is_empty() {
+            return Err(err(0, "-", CsvErrorKind::Empty));
+        }
+        let [x, y, z, m] = cols;
+        Ok(Self { x, y, z, m })
+    }
+}
+
+/// # Access
+impl ParticleCloud {
+    /// Number of particles.
+    pub fn len(&self) -> usize {
+        self.m.len()
+    }
+    /// Always false (a cloud is never empty).
+    pub fn is_empty(&self) -> bool {
+        self.m.is_empty()
+    }
+    /// The four arrays `(x, y, z, m)`.
+    pub fn arrays(&self) -> (&[f64], &[f64], &[f64], &[f64]) {
+        (&self.x, &self.y, &self.z, &self.m)
+    }
+    /// Particle `i` as `(position, mass)`.
+    pub fn particle(&self, i: usize) -> (Vector3<f64>, f64) {
+        (Vector3::new(self.x[i], self.y[i], self.z[i]), self.m[i])
+    }
+    /// Mass properties by particle sums (exact for a cloud up to round-off).
+    pub fn mass_properties(&self) -> MassProperties {
+        crate::sums::mass_properties(self).expect("a cloud is non-empty with positive masses")
+    }
+    /// Stores all particles of any source (e.g. a discretised primitive).
+    pub fn collect_from<S: ParticleSource + ?Sized>(src: &S) -> Result<Self, BodyError> {
+        let n = src.len();
+        let mut c = Self {
+            x: Vec::with_capacity(n),
+            y: Vec::with_capacity(n),
+            z: Vec::with_capacity(n),
+            m: Vec::with_capacity(n),
+        };
+        let mut lo = 0;
+        while lo < n {
+            let hi = (lo + LEAF).min(n);
+            src.visit(lo, hi, &mut |b| {
+                c.x.extend_from_slice(b.x);
+                c.y.extend_from_slice(b.y);
+                c.z.extend_from_slice(b.z);
+                c.m.extend_from_slice(b.m);
+            });
+            lo = hi;
+        }
+        if c.m.is_empty() {
+            return Err(BodyError::Empty {
+                what: "particle cloud".into(),
+            });
+        }
+        Ok(c)
+    }
+}
+
+impl ParticleSource for ParticleCloud {
+    fn len(&self) -> usize {
+        self.m.len()
+    }
+    fn visit(&self, lo: usize, hi: usize, f: &mut dyn FnMut(Block<'_>)) {
+        f(Block {
+            x: &self.x[lo..hi],
+            y: &self.y[lo..hi],
+            z: &self.z[lo..hi],
+            m: &self.m[lo..hi],
+        });
+    }
+}

@@ -1,0 +1,414 @@
+//! Particle sums: deterministic parallel reductions over any
+//! [`ParticleSource`], and the kinematic quantities of a rigid motion.
+//!
+//! # Determinism
+//!
+//! A sum over particles `lo..hi` is split at the midpoint into two halves,
+//! recursively, down to leaves of at most [`LEAF`] particles; leaves are
+//! summed in order, halves combined as `left + right`. The tree depends on
+//! the particle count only, never on the number of threads: rayon decides
+//! *who* computes a subtree, not *how* it is cut. The result is the same to
+//! the bit with 1 thread or 64 (pairwise summation: error grows like
+//! `(LEAF + log₂ N) ε`). Memory: one leaf buffer per active task, i.e.
+//! bounded by the thread count × the recursion depth.
+
+use nalgebra::Vector3;
+
+use crate::body::MassProperties;
+use crate::error::BodyError;
+use crate::inertia::Inertia;
+
+/// Particles per leaf of the summation tree.
+pub const LEAF: usize = 512;
+/// Subtrees smaller than this are summed on the current thread.
+const PAR_MIN: usize = 1 << 15;
+
+/// A contiguous block of particles in structure-of-arrays layout (all four
+/// slices have the same length).
+#[derive(Debug, Clone, Copy)]
+pub struct Block<'a> {
+    /// x coordinates.
+    pub x: &'a [f64],
+    /// y coordinates.
+    pub y: &'a [f64],
+    /// z coordinates.
+    pub z: &'a [f64],
+    /// masses.
+    pub m: &'a [f64],
+}
+
+/// Anything that can present its particles, by index range, as blocks:
+/// stored clouds (zero copy) and lazily generated discretisations.
+pub trait ParticleSource: Sync {
+    /// Number of particles.
+    fn len(&self) -> usize;
+    /// True when there is no particle.
+    fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+    /// Calls `f` on consecutive blocks covering particles `lo..hi` in
+    /// order (`hi - lo ≤ LEAF`).
+    fn visit(&self, lo: usize, hi: usize, f: &mut dyn FnMut(Block<'_>));
+}
+
+/// A reduction over particles: an accumulator filled block by block and
+/// combined pairwise.
+pub trait Kernel: Sync {
+    /// The partial sum.
+    type Acc: Default + Send;
+    /// Adds a block's particles to `acc`.
+    fn accumulate(&self, acc: &mut Self::Acc, block: Block<'_>);
+    /// `left + right` (left covers the lower indices).
+    fn combine(&self, left: Self::Acc, right: Self::Acc) -> Self::Acc;
+}
+
+/// Runs `kernel` over all particles of `src`: bitwise the same result
+/// whatever the number of rayon threads.
+pub fn reduce<S: ParticleSource + ?Sized, K: Kernel>(src: &S, kernel: &K) -> K::Acc {
+    reduce_range(src, kernel, 0, src.len())
+}
+
+fn reduce_range<S: ParticleSource + ?Sized, K: Kernel>(
+    src: &S,
+    kernel: &K,
+    lo: usize,
+    hi: usize,
+) -> K::Acc {
+    if hi - lo <= LEAF {
+        let mut acc = K::Acc::default();
+        if hi > lo {
+            src.visit(lo, hi, &mut |b| kernel.accumulate(&mut acc, b));
+        }
+        return acc;
+    }
+    let mid = lo + (hi - lo) / 2;
+    let (l, r) = if hi - lo >= PAR_MIN {
+        rayon::join(
+            || reduce_range(src, kernel, lo, mid),
+            || reduce_range(src, kernel, mid, hi),
+        )
+    } else {
+        (
+            reduce_range(src, kernel, lo, mid),
+            reduce_range(src, kernel, mid, hi),
+        )
+    };
+    kernel.combine(l, r)
+}
+
+// ---------------------------------------------------------------- moments
+
+/// Zeroth, first and second moments of mass about an origin `o`:
+/// `Σ m`, `Σ m r`, and `Σ m r_i r_j` (with `r = p − o`).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Moments {
+    /// Σ m.
+    pub mass: f64,
+    /// Σ m r.
+    pub first: Vector3<f64>,
+    /// Σ m [xx, yy, zz, xy, yz, zx].
+    pub second: [f64; 6],
+}
+
+impl Moments {
+    /// The inertia tensor about the origin of the sums (unchecked: it comes
+    /// from positive masses).
+    pub fn inertia(&self) -> Inertia {
+        let [xx, yy, zz, xy, yz, zx] = self.second;
+        Inertia::new_unchecked(nalgebra::Matrix3::new(
+            yy + zz,
+            -xy,
+            -zx,
+            -xy,
+            zz + xx,
+            -yz,
+            -zx,
+            -yz,
+            xx + yy,
+        ))
+    }
+}
+
+/// Kernel of [`Moments`] about `origin`.
+#[derive(Debug, Clone, Copy)]
+pub struct MomentKernel {
+    /// The origin of the position vectors.
+    pub origin: Vector3<f64>,
+}
+
+const LANES: usize = 4;
+
+impl Kernel for MomentKernel {
+    type Acc = Moments;
+
+    fn accumulate(&self, acc: &mut Moments, b: Block<'_>) {
+        let (ox, oy, oz) = (self.origin.x, self.origin.y, self.origin.z);
+        // Independent lanes so that the compiler can vectorise; reduced in
+        // a fixed order at the end of the block.
+        let mut s = [[0.0f64; LANES]; 10];
+        let n = b.m.len();
+        let body = n - n % LANES;
+        let mut i = 0;
+        while i < body {
+            #[allow(clippy::needless_range_loop)] // lanes, for vectorisation
+            for l in 0..LANES {
+                let m = b.m[i + l];
+                let x = b.x[i + l] - ox;
+                let y = b.y[i + l] - oy;
+                let z = b.z[i + l] - oz;
+                let (mx, my, mz) = (m * x, m * y, m * z);
+                s[0][l] += m;
+                s[1][l] += mx;
+                s[2][l] += my;
+                s[3][l] += mz;
+                s[4][l] += mx * x;
+                s[5][l] += my * y;
+                s[6][l] += mz * z;
+                s[7][l] += mx * y;
+                s[8][l] += my * z;
+                s[9][l] += mz * x;
+            }
+            i += LANES;
+        }
+        for j in body..n {
+            let m = b.m[j];
+            let x = b.x[j] - ox;
+            let y = b.y[j] - oy;
+            let z = b.z[j] - oz;
+            let (mx, my, mz) = (m * x, m * y, m * z);
+            let v = [
+                m,
+                mx,
+                my,
+                mz,
+                mx * x,
+                my * y,
+                mz * z,
+                mx * y,
+                my * z,
+                mz * x,
+            ];
+            for (k, v) in v.into_iter().enumerate() {
+                s[k][0] += v;
+            }
+        }
+        let r: [f64; 10] = std::array::from_fn(|k| (s[k][0] + s[k][1]) + (s[k][2] + s[k][3]));
+        acc.mass += r[0];
+        acc.first += Vector3::new(r[1], r[2], r[3]);
+        for k in 0..6 {
+            acc.second[k] += r[4 + k];
+        }
+    }
+
+    fn combine(&self, a: Moments, b: Moments) -> Moments {
+        Moments {
+            mass: a.mass + b.mass,
+            first: a.first + b.first,
+            second: std::array::from_fn(|k| a.second[k] + b.second[k]),
+        }
+    }
+}
+
+/// Moments of `src` about `origin`.
+pub fn moments<S: ParticleSource + ?Sized>(src: &S, origin: Vector3<f64>) -> Moments {
+    reduce(src, &MomentKernel { origin })
+}
+
+/// Mass properties of `src` by particle sums, in two passes (the centre,
+/// then the second moments about the centre, so that no large parallel-
+/// axis term cancels).
+pub fn mass_properties<S: ParticleSource + ?Sized>(src: &S) -> Result<MassProperties, BodyError> {
+    if src.is_empty() {
+        return Err(BodyError::Empty {
+            what: "particle set".into(),
+        });
+    }
+    let first = moments(src, Vector3::zeros());
+    crate::body::check_mass("particle set", first.mass)?;
+    let center = first.first / first.mass;
+    let second = moments(src, center);
+    // Correct the (round-off) residual first moment about the centre.
+    let center = center + second.first / second.mass;
+    Ok(MassProperties {
+        mass: second.mass,
+        center,
+        inertia_g: second.inertia(),
+    })
+}
+
+// ---------------------------------------------------------------- kinetics
+
+/// Instantaneous rigid motion: angular velocity and acceleration of the
+/// body, velocity and acceleration of its mass centre G (world axes,
+/// absolute rates).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Motion {
+    /// ω.
+    pub omega: Vector3<f64>,
+    /// α = dω/dt.
+    pub alpha: Vector3<f64>,
+    /// v̄, velocity of G.
+    pub v_g: Vector3<f64>,
+    /// ā, acceleration of G.
+    pub a_g: Vector3<f64>,
+}
+
+impl Motion {
+    /// Rotation about a fixed point `o`: v̄ = ω × r̄,
+    /// ā = α × r̄ + ω × (ω × r̄) with r̄ = G − O.
+    pub fn about_fixed_point(
+        o: Vector3<f64>,
+        g: Vector3<f64>,
+        omega: Vector3<f64>,
+        alpha: Vector3<f64>,
+    ) -> Self {
+        let r = g - o;
+        Self {
+            omega,
+            alpha,
+            v_g: omega.cross(&r),
+            a_g: alpha.cross(&r) + omega.cross(&omega.cross(&r)),
+        }
+    }
+
+    /// Velocity of the body point at `p` (G at `g`).
+    pub fn velocity_at(&self, g: &Vector3<f64>, p: &Vector3<f64>) -> Vector3<f64> {
+        self.v_g + self.omega.cross(&(p - g))
+    }
+
+    /// Acceleration of the body point at `p` (G at `g`).
+    pub fn acceleration_at(&self, g: &Vector3<f64>, p: &Vector3<f64>) -> Vector3<f64> {
+        let r = p - g;
+        self.a_g + self.alpha.cross(&r) + self.omega.cross(&self.omega.cross(&r))
+    }
+}
+
+/// Kinetic quantities of a body in a motion, about its centre G and a
+/// reference point O (world axes).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Kinetics {
+    /// Σ m.
+    pub mass: f64,
+    /// Linear momentum Σ m v = m v̄.
+    pub momentum: Vector3<f64>,
+    /// H_G = Σ m r′ × v′ (r′, v′ relative to G).
+    pub h_g: Vector3<f64>,
+    /// H_O = Σ m r × v (r from O).
+    pub h_o: Vector3<f64>,
+    /// T = Σ ½ m v².
+    pub kinetic_energy: f64,
+    /// Resultant force Σ m a = m ā.
+    pub force: Vector3<f64>,
+    /// Ḣ_G = Σ m r′ × a (the couple of the effective forces at G).
+    pub hdot_g: Vector3<f64>,
+    /// Σ m r × a: moment about O of the effective forces, which equals
+    /// the moment about O of the external forces (= Ḣ_O when O is fixed
+    /// or is G).
+    pub moment_o: Vector3<f64>,
+}
+
+impl Kinetics {
+    fn add(self, o: Self) -> Self {
+        Self {
+            mass: self.mass + o.mass,
+            momentum: self.momentum + o.momentum,
+            h_g: self.h_g + o.h_g,
+            h_o: self.h_o + o.h_o,
+            kinetic_energy: self.kinetic_energy + o.kinetic_energy,
+            force: self.force + o.force,
+            hdot_g: self.hdot_g + o.hdot_g,
+            moment_o: self.moment_o + o.moment_o,
+        }
+    }
+}
+
+/// Kernel of the direct particle sums of [`Kinetics`].
+#[derive(Debug, Clone, Copy)]
+pub struct KineticKernel {
+    /// The motion.
+    pub motion: Motion,
+    /// Mass centre G.
+    pub center: Vector3<f64>,
+    /// Reference point O.
+    pub reference: Vector3<f64>,
+}
+
+impl Kernel for KineticKernel {
+    type Acc = Kinetics;
+
+    fn accumulate(&self, acc: &mut Kinetics, b: Block<'_>) {
+        let Motion {
+            omega,
+            alpha,
+            v_g,
+            a_g,
+        } = self.motion;
+        let mut k = Kinetics::default();
+        for i in 0..b.m.len() {
+            let m = b.m[i];
+            let p = Vector3::new(b.x[i], b.y[i], b.z[i]);
+            let rp = p - self.center;
+            let r = p - self.reference;
+            let vp = omega.cross(&rp);
+            let v = v_g + vp;
+            let ap = alpha.cross(&rp) + omega.cross(&vp);
+            let a = a_g + ap;
+            k.mass += m;
+            k.momentum += v * m;
+            k.h_g += rp.cross(&vp) * m;
+            k.h_o += r.cross(&v) * m;
+            k.kinetic_energy += 0.5 * m * v.norm_squared();
+            k.force += a * m;
+            k.hdot_g += rp.cross(&a) * m;
+            k.moment_o += r.cross(&a) * m;
+        }
+        *acc = acc.add(k);
+    }
+
+    fn combine(&self, a: Kinetics, b: Kinetics) -> Kinetics {
+        a.add(b)
+    }
+}
+
+/// Direct particle sums of the kinetic quantities of `src` in `motion`,
+/// about its centre `center` and the reference point `reference`.
+pub fn kinetics<S: ParticleSource + ?Sized>(
+    src: &S,
+    motion: &Motion,
+    center: Vector3<f64>,
+    reference: Vector3<f64>,
+) -> Kinetics {
+    reduce(
+        src,
+        &KineticKernel {
+            motion: *motion,
+            center,
+            reference,
+        },
+    )
+}
+
+/// The same quantities from the rigid-body formulas: H_G = I_G ω,
+/// H_O = r̄ × m v̄ + H_G, T = ½ m v̄² + ½ ω·I_G ω, Ḣ_G = I_G α + ω × (I_G ω),
+/// ΣM_O = r̄ × m ā + Ḣ_G, ΣF = m ā (r̄ = G − O).
+pub fn rigid_kinetics(
+    props: &MassProperties,
+    motion: &Motion,
+    reference: Vector3<f64>,
+) -> Kinetics {
+    let m = props.mass;
+    let i = props.inertia_g;
+    let rbar = props.center - reference;
+    let h_g = i.apply(&motion.omega);
+    let hdot_g = i.apply(&motion.alpha) + motion.omega.cross(&h_g);
+    Kinetics {
+        mass: m,
+        momentum: motion.v_g * m,
+        h_g,
+        h_o: rbar.cross(&(motion.v_g * m)) + h_g,
+        kinetic_energy: 0.5 * m * motion.v_g.norm_squared() + 0.5 * motion.omega.dot(&h_g),
+        force: motion.a_g * m,
+        hdot_g,
+        moment_o: rbar.cross(&(motion.a_g * m)) + hdot_g,
+    }
+}
