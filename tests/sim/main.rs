@@ -1,1 +1,14 @@
-//! Tests of hdot-sim.
+//! Tests of hdot-sim. One module per source module, plus the stability
+//! studies of issue 5.
+
+// Shared named proptest strategies.
+mod strategies;
+
+// elliptic.rs: identities, special values, series of K.
+mod elliptic;
+// exact.rs: closed forms against the ODE and against each other.
+mod exact;
+// integrate.rs: orders, invariants, step control.
+mod integrate;
+// Stability where methods fail (issue 5, item 4).
+mod stability;

@@ -1,1 +1,43 @@
-//! placeholder
+//! # hdot-sim: the motion of rigid bodies, integrated or exact
+//!
+//! **Owns**: the equations of motion as ODE right-hand sides
+//! ([`models`]: torque-free body and heavy top with a unit-quaternion
+//! attitude, the same in Eulerian angles, a shaft about a fixed axis), the
+//! integrators ([`integrate()`]: explicit Euler, RK4, Dormand–Prince 5(4)
+//! and 8(5,3), implicit midpoint, symplectic splittings of order 2 and 4),
+//! the closed-form motions ([`exact`], with Jacobi elliptic functions of our
+//! own in [`elliptic`]), scenes ([`scene`]), the choice of the least exact
+//! model for a scene and the reports and sweeps the CLI prints ([`run`]).
+//!
+//! **Does not own**: deriving the equations (that is `hdot-sym`: this crate
+//! codes the *results* of §5–§10 of the reference sheet, which the symbolic
+//! crate derives and checks), general numerics (`hdot-num`), the command
+//! line (`hdot`).
+//!
+//! **Why cut this way**: a simulation wants a fixed-size state and a
+//! right-hand side that costs a few dozen flops; evaluating derived
+//! expressions at run time would dominate every comparison of methods. The
+//! equations here are short, stated once in each model's docs, and tested
+//! against the invariants they must conserve and the closed forms.
+//!
+//! ## Conventions
+//! State `[q_w, q_x, q_y, q_z, ω_1, ω_2, ω_3]`: `q` turns body axes into
+//! space axes, `ω` is in body principal axes. Space Z is up.
+
+pub mod body;
+pub mod elliptic;
+mod error;
+pub mod exact;
+mod integrate;
+pub mod models;
+pub mod run;
+pub mod scene;
+mod system;
+mod tableau;
+
+pub use body::{PrincipalMoments, Shape};
+pub use error::SimError;
+pub use integrate::{Limits, Method, Stats, Step, fixed_step_count, integrate};
+/// Re-exported so that users (and the tests) name the same nalgebra version.
+pub use nalgebra;
+pub use system::System;

@@ -1,0 +1,150 @@
+//! Typed errors of the simulation crate: each says where (file, field, time).
+
+use std::path::PathBuf;
+
+/// Everything that can go wrong while reading a scene or running it.
+#[derive(Debug, thiserror::Error)]
+pub enum SimError {
+    /// A step size that is zero, negative or not finite.
+    #[error("step size must be positive and finite, got {0}")]
+    NonPositiveStep(f64),
+    /// A tolerance that is zero, negative or not finite.
+    #[error("tolerance must be positive and finite, got {0}")]
+    NonPositiveTolerance(f64),
+    /// An end time that is negative or not finite.
+    #[error("end time must be non-negative and finite, got {0}")]
+    BadEndTime(f64),
+    /// An attitude quaternion that is not of unit norm (or not finite).
+    #[error("{field}: attitude quaternion must be finite and of unit norm, got norm {norm}")]
+    NonUnitAttitude {
+        /// Where the quaternion came from (scene field or argument name).
+        field: String,
+        /// Its norm (NaN if a component is NaN).
+        norm: f64,
+    },
+    /// A field of a scene file with an invalid value.
+    #[error("{file}: field `{field}`: {message}")]
+    BadField {
+        /// The scene file.
+        file: PathBuf,
+        /// Dotted path of the field.
+        field: String,
+        /// What is wrong with it.
+        message: String,
+    },
+    /// A scene file that is not valid TOML or lacks a field.
+    #[error("{file}: {message}")]
+    Parse {
+        /// The scene file.
+        file: PathBuf,
+        /// The parser's message (it names line and column).
+        message: String,
+    },
+    /// A scene file that cannot be read.
+    #[error("{file}: {source}")]
+    Io {
+        /// The file.
+        file: PathBuf,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+    /// Principal moments that no physical body has.
+    #[error("principal moments {moments:?}: {message}")]
+    BadInertia {
+        /// The moments given.
+        moments: [f64; 3],
+        /// Which condition fails.
+        message: String,
+    },
+    /// A model asked for (by `--model`) that the scene does not allow.
+    #[error("model `{model}` cannot be honoured for scene `{scene}`: {reason}")]
+    ModelNotApplicable {
+        /// The model asked for.
+        model: String,
+        /// The scene name.
+        scene: String,
+        /// Why not.
+        reason: String,
+    },
+    /// A method that cannot integrate this model (e.g. a splitting of a non-splittable model).
+    #[error("method `{method}` cannot integrate model `{model}`: {reason}")]
+    MethodNotApplicable {
+        /// The method asked for.
+        method: String,
+        /// The model.
+        model: String,
+        /// Why not.
+        reason: String,
+    },
+    /// An unknown name on the command line or in a scene.
+    #[error("unknown {what} `{name}` (expected one of: {expected})")]
+    UnknownName {
+        /// What kind of name (method, model, ...).
+        what: &'static str,
+        /// The name given.
+        name: String,
+        /// The names that are accepted.
+        expected: String,
+    },
+    /// The Eulerian-angle kinematics are singular (θ at 0 or π).
+    #[error(
+        "Eulerian angles singular at t = {t}: nutation θ = {theta} (sin θ = {sin_theta:e}); \
+         use the quaternion model"
+    )]
+    EulerAngleSingularity {
+        /// Time of the failing step.
+        t: f64,
+        /// The nutation angle reached.
+        theta: f64,
+        /// Its sine.
+        sin_theta: f64,
+    },
+    /// The state became NaN or infinite: the method is unstable at this step.
+    #[error("state not finite at t = {t} (step {step}): the method is unstable at this step size")]
+    NonFinite {
+        /// Time reached.
+        t: f64,
+        /// Number of the step.
+        step: u64,
+    },
+    /// An adaptive method's step became too small.
+    #[error("step size underflow at t = {t} (h = {h:e})")]
+    StepSizeUnderflow {
+        /// Time reached.
+        t: f64,
+        /// The step size.
+        h: f64,
+    },
+    /// An implicit method's iteration did not converge.
+    #[error(
+        "implicit iteration did not converge at t = {t} with h = {h}: step too large for fixed-point iteration"
+    )]
+    NotConverged {
+        /// Time of the step.
+        t: f64,
+        /// The step size.
+        h: f64,
+    },
+    /// An adaptive run needed more steps than allowed.
+    #[error("more than {max_steps} steps needed before t = {t}")]
+    TooManySteps {
+        /// The step limit.
+        max_steps: u64,
+        /// Time reached.
+        t: f64,
+    },
+    /// Stored output would exceed the memory budget.
+    #[error(
+        "stored output would need {needed} bytes, more than the budget of {budget} bytes; \
+         stream it to a file (--output FILE.csv) or sample less often"
+    )]
+    MemoryBudget {
+        /// Bytes the output would need.
+        needed: u64,
+        /// The budget.
+        budget: u64,
+    },
+    /// Writing streamed output failed.
+    #[error("writing output: {0}")]
+    Output(#[source] std::io::Error),
+}

@@ -1,0 +1,16 @@
+//! The equations of motion, one model per file.
+//!
+//! * [`free`]: a body about its mass centre (torque-free) or about a fixed
+//!   point under gravity (heavy top): unit quaternion + body angular velocity.
+//! * [`euler_angles`]: the same body with Eulerian angles (φ, θ, ψ), for
+//!   comparison; singular at θ = 0 and θ = π.
+//! * [`shaft`]: rotation about a fixed axis, one degree of freedom, with the
+//!   bearing reactions of §6.
+
+pub mod euler_angles;
+pub mod free;
+pub mod shaft;
+
+pub use euler_angles::EulerAngleBody;
+pub use free::{FreeBody, Gravity};
+pub use shaft::Shaft;

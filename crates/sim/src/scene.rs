@@ -1,0 +1,475 @@
+//! Scenes: TOML files describing a body, its supports and its initial
+//! motion. The format is documented in `docs/simulation.md`; every scene
+//! bundled in `docs/examples/sim-*.toml` is an example of it.
+//!
+//! ```toml
+//! name = "torque-free asymmetric body"
+//! kind = "free"                        # free | heavy-top | fixed-axis
+//! t_end = 100.0
+//! [body]
+//! principal_moments = [0.6, 0.8, 1.0]  # or: shape = { kind = "prism", mass = 1, a = 1, b = 2, c = 3 }
+//! [initial]
+//! attitude = [1.0, 0.0, 0.0, 0.0]      # unit quaternion (w, x, y, z); or euler_angles = [φ, θ, ψ]
+//! angular_momentum = [1.8, 0.4, -0.9]  # body axes; or angular_velocity = [...]
+//! ```
+
+use std::path::{Path, PathBuf};
+
+use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+use serde::Deserialize;
+
+use crate::exact::SteadyTop;
+use crate::models::Shaft;
+use crate::models::euler_angles::quaternion_from_angles;
+use crate::{PrincipalMoments, Shape, SimError};
+
+/// Relative residual of §7's relation under which a heavy top counts as
+/// being in steady precession.
+pub const STEADY_TOL: f64 = 1e-12;
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawScene {
+    name: String,
+    #[serde(default)]
+    description: String,
+    kind: String,
+    t_end: f64,
+    body: Option<RawBody>,
+    initial: Option<RawInitial>,
+    top: Option<RawTop>,
+    shaft: Option<RawShaft>,
+    motor: Option<RawMotor>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawBody {
+    principal_moments: Option<[f64; 3]>,
+    shape: Option<Shape>,
+}
+
+#[derive(Debug, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct RawInitial {
+    attitude: Option<[f64; 4]>,
+    euler_angles: Option<[f64; 3]>,
+    angular_momentum: Option<[f64; 3]>,
+    angular_velocity: Option<[f64; 3]>,
+    steady_precession: Option<RawSteady>,
+    angle: Option<f64>,
+    rate: Option<f64>,
+}
+
+#[derive(Debug, Deserialize, Clone, Copy)]
+#[serde(deny_unknown_fields)]
+struct RawSteady {
+    theta: f64,
+    spin: f64,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawTop {
+    distance: f64,
+    #[serde(default = "default_g")]
+    g: f64,
+    mass: Option<f64>,
+}
+
+fn default_g() -> f64 {
+    9.81
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawShaft {
+    rotor_moment: f64,
+    bearings: [f64; 2],
+    #[serde(default)]
+    masses: Vec<RawMass>,
+    #[serde(default)]
+    friction: f64,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawMass {
+    mass: f64,
+    at: [f64; 3],
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawMotor {
+    stall_torque: f64,
+    no_load_speed: Option<f64>,
+}
+
+/// A validated scene.
+#[derive(Debug, Clone)]
+pub struct Scene {
+    /// Display name.
+    pub name: String,
+    /// Free text.
+    pub description: String,
+    /// File it was read from (for messages).
+    pub file: PathBuf,
+    /// Default end time.
+    pub t_end: f64,
+    /// What moves and how it is supported.
+    pub kind: SceneKind,
+}
+
+/// The three kinds of scene.
+#[derive(Debug, Clone)]
+pub enum SceneKind {
+    /// No force, no support: motion about the mass centre.
+    Free {
+        /// Principal moments about G.
+        moments: PrincipalMoments,
+        /// Initial attitude.
+        q0: UnitQuaternion<f64>,
+        /// Initial body angular velocity.
+        w0: Vector3<f64>,
+    },
+    /// A body on a fixed point O under gravity, G on body axis 3.
+    HeavyTop {
+        /// Principal moments about O.
+        moments: PrincipalMoments,
+        /// Weight × distance O→G.
+        weight_arm: f64,
+        /// Initial attitude.
+        q0: UnitQuaternion<f64>,
+        /// Initial body angular velocity.
+        w0: Vector3<f64>,
+        /// The steady precession it starts in, if it does (§7).
+        steady: Option<SteadyTop>,
+    },
+    /// A shaft in two bearings driven by a motor.
+    FixedAxis {
+        /// The shaft.
+        shaft: Shaft,
+        /// Initial angle and rate.
+        y0: [f64; 2],
+    },
+}
+
+impl SceneKind {
+    /// The `kind` string of the file.
+    pub fn name(&self) -> &'static str {
+        match self {
+            SceneKind::Free { .. } => "free",
+            SceneKind::HeavyTop { .. } => "heavy-top",
+            SceneKind::FixedAxis { .. } => "fixed-axis",
+        }
+    }
+}
+
+/// Checks an attitude quaternion: finite and of unit norm to `1e-12`.
+pub fn unit_attitude(q: [f64; 4], field: &str) -> Result<UnitQuaternion<f64>, SimError> {
+    let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
+    if !(n.is_finite() && (n - 1.0).abs() <= 1e-12) {
+        return Err(SimError::NonUnitAttitude {
+            field: field.to_string(),
+            norm: n,
+        });
+    }
+    Ok(UnitQuaternion::from_quaternion(Quaternion::new(
+        q[0], q[1], q[2], q[3],
+    )))
+}
+
+/// # Construction
+impl Scene {
+    /// Reads and validates a scene file.
+    pub fn from_file(path: &Path) -> Result<Scene, SimError> {
+        let text = std::fs::read_to_string(path).map_err(|source| SimError::Io {
+            file: path.to_path_buf(),
+            source,
+        })?;
+        Scene::parse(&text, path)
+    }
+
+    /// Parses and validates scene text; `file` names it in messages.
+    pub fn parse(text: &str, file: &Path) -> Result<Scene, SimError> {
+        let raw: RawScene = toml::from_str(text).map_err(|e| SimError::Parse {
+            file: file.to_path_buf(),
+            message: e.to_string(),
+        })?;
+        let bad = |field: &str, message: String| SimError::BadField {
+            file: file.to_path_buf(),
+            field: field.to_string(),
+            message,
+        };
+        if !(raw.t_end.is_finite() && raw.t_end > 0.0) {
+            return Err(bad(
+                "t_end",
+                format!("must be positive and finite, got {}", raw.t_end),
+            ));
+        }
+        let initial = raw.initial.unwrap_or_default();
+        let finite3 = |v: [f64; 3], field: &str| -> Result<Vector3<f64>, SimError> {
+            if v.iter().all(|x| x.is_finite()) {
+                Ok(Vector3::from(v))
+            } else {
+                Err(bad(field, format!("components must be finite, got {v:?}")))
+            }
+        };
+        let kind = match raw.kind.as_str() {
+            "free" | "heavy-top" => {
+                let body = raw
+                    .body
+                    .ok_or_else(|| bad("body", "missing table [body]".into()))?;
+                let (moments_g, mass) = match (body.principal_moments, body.shape) {
+                    (Some(m), None) => (m, None),
+                    (None, Some(s)) => {
+                        s.validate().map_err(|e| bad("body.shape", e))?;
+                        (s.moments(), Some(s.mass()))
+                    }
+                    _ => {
+                        return Err(bad(
+                            "body",
+                            "give exactly one of `principal_moments` and `shape`".into(),
+                        ));
+                    }
+                };
+                let heavy = raw.kind == "heavy-top";
+                let (moments, weight_arm) = if heavy {
+                    let top = raw
+                        .top
+                        .ok_or_else(|| bad("top", "missing table [top]".into()))?;
+                    let m = top.mass.or(mass).ok_or_else(|| {
+                        bad(
+                            "top.mass",
+                            "needed when the body gives `principal_moments`".into(),
+                        )
+                    })?;
+                    if !(top.distance.is_finite() && top.distance > 0.0) {
+                        return Err(bad(
+                            "top.distance",
+                            format!("must be positive, got {}", top.distance),
+                        ));
+                    }
+                    if !(m.is_finite() && m > 0.0 && top.g.is_finite() && top.g > 0.0) {
+                        return Err(bad("top", "mass and g must be positive".into()));
+                    }
+                    let l2 = m * top.distance * top.distance;
+                    // Parallel axes (§11): about O the transverse moments gain m l².
+                    let about_o = [moments_g[0] + l2, moments_g[1] + l2, moments_g[2]];
+                    (about_o, m * top.g * top.distance)
+                } else {
+                    (moments_g, 0.0)
+                };
+                let moments =
+                    PrincipalMoments::new(moments).map_err(|e| bad("body", e.to_string()))?;
+                let i = moments.get();
+                let (q0, w0, steady) = if let Some(s) = initial.steady_precession {
+                    if !heavy {
+                        return Err(bad(
+                            "initial.steady_precession",
+                            "only a heavy top has a forced steady precession; a free axisymmetric body precesses by itself".into(),
+                        ));
+                    }
+                    if (i[0] - i[1]).abs() > 1e-12 * i[0] {
+                        return Err(bad(
+                            "body",
+                            "steady precession needs I_1 = I_2 (symmetric top)".into(),
+                        ));
+                    }
+                    if !(s.theta > 0.0 && s.theta < std::f64::consts::PI) {
+                        return Err(bad(
+                            "initial.steady_precession.theta",
+                            "must lie in (0, π)".into(),
+                        ));
+                    }
+                    let phi_dot =
+                        SteadyTop::slow_precession_rate(i[2], i[0], weight_arm, s.theta, s.spin)
+                            .ok_or_else(|| {
+                                bad(
+                                    "initial.steady_precession.spin",
+                                    "too slow for a steady precession at this θ".into(),
+                                )
+                            })?;
+                    let top = SteadyTop {
+                        phi0: 0.0,
+                        theta: s.theta,
+                        psi0: 0.0,
+                        phi_dot,
+                        psi_dot: s.spin - phi_dot * s.theta.cos(),
+                        omega_z: s.spin,
+                    };
+                    let y = top.state(0.0);
+                    (
+                        crate::models::free::attitude(&y),
+                        Vector3::new(y[4], y[5], y[6]),
+                        Some(top),
+                    )
+                } else {
+                    let q0 = match (initial.attitude, initial.euler_angles) {
+                        (Some(q), None) => {
+                            unit_attitude(q, &format!("{}: initial.attitude", file.display()))?
+                        }
+                        (None, Some(e)) => {
+                            let e = finite3(e, "initial.euler_angles")?;
+                            quaternion_from_angles(e.x, e.y, e.z)
+                        }
+                        (None, None) => UnitQuaternion::identity(),
+                        _ => {
+                            return Err(bad(
+                                "initial",
+                                "give at most one of `attitude` and `euler_angles`".into(),
+                            ));
+                        }
+                    };
+                    let w0 = match (initial.angular_momentum, initial.angular_velocity) {
+                        (Some(h), None) => {
+                            let h = finite3(h, "initial.angular_momentum")?;
+                            Vector3::new(h.x / i[0], h.y / i[1], h.z / i[2])
+                        }
+                        (None, Some(w)) => finite3(w, "initial.angular_velocity")?,
+                        _ => {
+                            return Err(bad(
+                                "initial",
+                                "give exactly one of `angular_momentum` and `angular_velocity`"
+                                    .into(),
+                            ));
+                        }
+                    };
+                    let steady = if heavy {
+                        detect_steady(i, weight_arm, &q0, &w0)
+                    } else {
+                        None
+                    };
+                    (q0, w0, steady)
+                };
+                if heavy {
+                    SceneKind::HeavyTop {
+                        moments,
+                        weight_arm,
+                        q0,
+                        w0,
+                        steady,
+                    }
+                } else {
+                    SceneKind::Free { moments, q0, w0 }
+                }
+            }
+            "fixed-axis" => {
+                let s = raw
+                    .shaft
+                    .ok_or_else(|| bad("shaft", "missing table [shaft]".into()))?;
+                let motor = raw
+                    .motor
+                    .ok_or_else(|| bad("motor", "missing table [motor]".into()))?;
+                if !(s.rotor_moment.is_finite() && s.rotor_moment >= 0.0) {
+                    return Err(bad("shaft.rotor_moment", "must be non-negative".into()));
+                }
+                if !(s.bearings[0].is_finite()
+                    && s.bearings[1].is_finite()
+                    && s.bearings[0] != s.bearings[1])
+                {
+                    return Err(bad(
+                        "shaft.bearings",
+                        "two distinct finite positions needed".into(),
+                    ));
+                }
+                let (mut iz, mut ixz, mut iyz, mut m, mut mx, mut my) =
+                    (s.rotor_moment, 0.0, 0.0, 0.0, 0.0, 0.0);
+                for (k, p) in s.masses.iter().enumerate() {
+                    if !(p.mass.is_finite() && p.mass > 0.0 && p.at.iter().all(|x| x.is_finite())) {
+                        return Err(bad(
+                            &format!("shaft.masses[{k}]"),
+                            "mass must be positive, position finite".into(),
+                        ));
+                    }
+                    let [x, y, z] = p.at;
+                    iz += p.mass * (x * x + y * y);
+                    ixz += p.mass * x * z;
+                    iyz += p.mass * y * z;
+                    m += p.mass;
+                    mx += p.mass * x;
+                    my += p.mass * y;
+                }
+                if iz <= 0.0 {
+                    return Err(bad(
+                        "shaft",
+                        "the moment about the axis must be positive".into(),
+                    ));
+                }
+                let no_load = motor.no_load_speed.unwrap_or(f64::INFINITY);
+                if !(motor.stall_torque.is_finite() && no_load > 0.0 && s.friction >= 0.0) {
+                    return Err(bad(
+                        "motor",
+                        "stall torque finite, no-load speed positive, friction ≥ 0".into(),
+                    ));
+                }
+                let shaft = Shaft {
+                    i_z: iz,
+                    i_xz: ixz,
+                    i_yz: iyz,
+                    mass: m,
+                    xbar: if m > 0.0 { mx / m } else { 0.0 },
+                    ybar: if m > 0.0 { my / m } else { 0.0 },
+                    stall_torque: motor.stall_torque,
+                    no_load_speed: no_load,
+                    friction: s.friction,
+                    bearings: s.bearings,
+                };
+                let y0 = [initial.angle.unwrap_or(0.0), initial.rate.unwrap_or(0.0)];
+                if !(y0[0].is_finite() && y0[1].is_finite()) {
+                    return Err(bad("initial", "angle and rate must be finite".into()));
+                }
+                SceneKind::FixedAxis { shaft, y0 }
+            }
+            other => {
+                return Err(bad(
+                    "kind",
+                    format!("unknown kind `{other}` (expected free, heavy-top or fixed-axis)"),
+                ));
+            }
+        };
+        Ok(Scene {
+            name: raw.name,
+            description: raw.description,
+            file: file.to_path_buf(),
+            t_end: raw.t_end,
+            kind,
+        })
+    }
+}
+
+/// A heavy top given by attitude and ω is in steady precession when θ̇ = 0,
+/// it is symmetric and §7's relation holds to [`STEADY_TOL`].
+fn detect_steady(
+    i: [f64; 3],
+    weight_arm: f64,
+    q0: &UnitQuaternion<f64>,
+    w0: &Vector3<f64>,
+) -> Option<SteadyTop> {
+    if (i[0] - i[1]).abs() > 1e-12 * i[0] {
+        return None;
+    }
+    let (phi, theta, psi) = crate::models::euler_angles::angles_from_quaternion(q0);
+    if theta.sin() < 1e-8 {
+        return None;
+    }
+    let (s, c) = psi.sin_cos();
+    // §7 frame components: ω' = R_z(ψ) ω.
+    let wx = c * w0.x - s * w0.y;
+    let wy = s * w0.x + c * w0.y;
+    let scale = w0.norm().max(f64::MIN_POSITIVE);
+    if wy.abs() > 1e-12 * scale {
+        return None;
+    }
+    let phi_dot = -wx / theta.sin();
+    let top = SteadyTop {
+        phi0: phi,
+        theta,
+        psi0: psi,
+        phi_dot,
+        psi_dot: w0.z - phi_dot * theta.cos(),
+        omega_z: w0.z,
+    };
+    (top.residual(i[2], i[0], weight_arm) <= STEADY_TOL).then_some(top)
+}
