@@ -10,3 +10,5 @@ mod discretize;
 mod sums;
 // Bad input: CSV, bodies.
 mod bad_input;
+// Scenes and worked problems.
+mod scenes;

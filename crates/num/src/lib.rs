@@ -9,6 +9,8 @@ pub mod discretize;
 pub mod error;
 pub mod fsio;
 pub mod inertia;
+pub mod scene;
+pub mod solve;
 pub mod sums;
 
 pub use body::{Body, Composite, MassProperties, Part, Pose, Primitive};
