@@ -1,1 +1,13 @@
-//! Tests of hdot-sym.
+//! Tests of hdot-sym, one module per concern:
+//!
+//! - `strategies`: the named proptest strategies (random expression trees);
+//! - `algebra`: laws of the algebra that hold for every input (proptest);
+//! - `identities`: one-line `input => expected` identities;
+//! - `snapshots`: every derivation file in every output format (insta);
+//! - `broken`: broken derivation files, each asserting its error's location.
+
+mod algebra;
+mod broken;
+mod identities;
+mod snapshots;
+mod strategies;

@@ -599,7 +599,14 @@ impl<'a> Context<'a> {
             let ast = self.parse_at(text, base)?;
             let want = self.scalar(&ast, base)?;
             let difference = &unfold(abbrevs, &got) - &unfold(abbrevs, &want);
-            out.push(Check { component: comp, expected_text: text.clone(), expected: present(&want, pres), difference });
+            // Keep the expectation as written when it is a plain formula in
+            // the declared symbols; otherwise present its canonical form.
+            let mut written = crate::expr::Expr::new();
+            let expected = match self.symbols.lower(&ast, &mut written) {
+                Ok(_) => written,
+                Err(_) => present(&want, pres),
+            };
+            out.push(Check { component: comp, expected_text: text.clone(), expected, difference });
         }
         Ok(out)
     }

@@ -114,7 +114,8 @@ pub struct Check {
     pub component: String,
     /// The expected form as written.
     pub expected_text: String,
-    /// The expected form, presented like the result.
+    /// The expected form as written (or presented like the result when it
+    /// refers to earlier steps).
     pub expected: Expr,
     /// `derived − expected`, with abbreviations expanded; zero when it holds.
     pub difference: Poly,

@@ -1,0 +1,55 @@
+//! Finding derivation files: by name in the derivations folder, or by path.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, bail};
+
+/// The folder of bundled derivations: `--dir`, then `$HDOT_DERIVATIONS`,
+/// then `./derivations`, then the folder this binary was built from.
+pub fn derivations_dir(explicit: Option<&Path>) -> PathBuf {
+    if let Some(d) = explicit {
+        return d.to_owned();
+    }
+    if let Some(d) = std::env::var_os("HDOT_DERIVATIONS") {
+        return PathBuf::from(d);
+    }
+    let here = PathBuf::from("derivations");
+    if here.is_dir() {
+        return here;
+    }
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../derivations")
+}
+
+/// Every `*.toml` in `dir`, sorted by name.
+pub fn all(dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
+    let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
+        .with_context(|| format!("cannot read the derivations folder {}", dir.display()))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    v.sort();
+    Ok(v)
+}
+
+/// The short name of a derivation file (its stem).
+pub fn name_of(p: &Path) -> String {
+    p.file_stem().map_or_else(String::new, |s| s.to_string_lossy().into_owned())
+}
+
+/// Resolves `NAME` (a file in `dir`) or `PATH` (an existing file, or
+/// anything containing a path separator or ending in `.toml`).
+pub fn resolve(dir: &Path, arg: &str) -> anyhow::Result<PathBuf> {
+    let p = Path::new(arg);
+    if p.is_file() || arg.contains('/') || arg.ends_with(".toml") {
+        if !p.is_file() {
+            bail!("no such derivation file: {arg}");
+        }
+        return Ok(p.to_owned());
+    }
+    let candidate = dir.join(format!("{arg}.toml"));
+    if candidate.is_file() {
+        return Ok(candidate);
+    }
+    let names: Vec<String> = all(dir).unwrap_or_default().iter().map(|p| name_of(p)).collect();
+    bail!("unknown derivation `{arg}`; known: {} (or give a path to a .toml file)", names.join(", "))
+}

@@ -1,0 +1,31 @@
+//! `hdot list`: the bundled derivations with title and source.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::Args;
+
+use crate::catalog;
+
+/// List the bundled derivations with their titles and sources.
+#[derive(Debug, Args)]
+pub struct ListArgs {
+    /// Folder of derivation files (default: ./derivations).
+    #[arg(long, value_name = "DIR")]
+    dir: Option<PathBuf>,
+}
+
+pub fn run(args: ListArgs) -> anyhow::Result<ExitCode> {
+    let dir = catalog::derivations_dir(args.dir.as_deref());
+    let mut failed = false;
+    for p in catalog::all(&dir)? {
+        match hdot_sym::derivation::load(&p) {
+            Ok(d) => println!("{:<28} {}\n{:<28} source: {}", d.name, d.title, "", d.source),
+            Err(e) => {
+                failed = true;
+                println!("{:<28} (does not load: {})", catalog::name_of(&p), e.message);
+            }
+        }
+    }
+    Ok(if failed { ExitCode::from(2) } else { ExitCode::SUCCESS })
+}

@@ -1,0 +1,124 @@
+//! Laws of the algebra, for every input (proptest, seeded by proptest's
+//! deterministic default RNG and persisted failures).
+
+use hdot_sym::{Atom, AtomKind, Expr, Node, Poly};
+use proptest::prelude::*;
+
+use crate::strategies::{Tree, build, expr, point, symbols, tree, value_at};
+
+fn config() -> ProptestConfig {
+    ProptestConfig { cases: 192, failure_persistence: None, ..ProptestConfig::default() }
+}
+
+/// Σ |c| Π |x|^e: an upper bound on the magnitudes summed when evaluating `p`.
+fn poly_scale(p: &Poly, v: &mut dyn FnMut(Atom) -> f64) -> f64 {
+    p.terms()
+        .iter()
+        .map(|(m, c)| c.to_f64().abs() * m.factors().iter().map(|&(a, e)| v(a).abs().powi(e as i32)).product::<f64>())
+        .sum()
+}
+
+/// The tree evaluated with every intermediate replaced by its absolute value.
+fn tree_scale(e: &Expr, v: &mut dyn FnMut(Atom) -> f64) -> f64 {
+    let mut abs = |a: Atom| v(a).abs();
+    // Evaluating with |x| and without negation bounds every intermediate.
+    let mut positive = Expr::new();
+    fn copy(src: &Expr, id: hdot_sym::expr::Id, dst: &mut Expr) -> hdot_sym::expr::Id {
+        match src.node(id).clone() {
+            Node::Neg(i) => copy(src, i, dst),
+            Node::Add(c) => {
+                let ids = c.iter().map(|i| copy(src, *i, dst)).collect();
+                dst.push(Node::Add(ids))
+            }
+            Node::Mul(c) => {
+                let ids = c.iter().map(|i| copy(src, *i, dst)).collect();
+                dst.push(Node::Mul(ids))
+            }
+            Node::Pow(i, k) => {
+                let j = copy(src, i, dst);
+                dst.push(Node::Pow(j, k))
+            }
+            n => dst.push(n),
+        }
+    }
+    copy(e, e.root(), &mut positive);
+    positive.eval(&mut abs)
+}
+
+proptest! {
+    #![proptest_config(config())]
+
+    /// Expanding the default presentation of a canonical form gives it back.
+    #[test]
+    fn canonical_form_is_idempotent(e in expr()) {
+        let p = e.to_poly();
+        prop_assert_eq!(Expr::from_poly(&p).to_poly(), p);
+    }
+
+    /// (a + b) c = a c + b c.
+    #[test]
+    fn multiplication_distributes_over_addition(a in expr(), b in expr(), c in expr()) {
+        let (a, b, c) = (a.to_poly(), b.to_poly(), c.to_poly());
+        prop_assert_eq!(&(&a + &b) * &c, &(&a * &c) + &(&b * &c));
+    }
+
+    /// d/dt (a b) = ȧ b + a ḃ.
+    #[test]
+    fn time_derivative_obeys_the_product_rule(a in expr(), b in expr()) {
+        let (a, b) = (a.to_poly(), b.to_poly());
+        prop_assert_eq!((&a * &b).dt(), &(&a.dt() * &b) + &(&a * &b.dt()));
+    }
+
+    /// A random tree evaluated in floating point equals its canonical form
+    /// evaluated at the same point, within round-off scaled by magnitudes.
+    #[test]
+    fn canonical_form_evaluates_like_the_tree(e in expr(), p in point()) {
+        let mut v = |a: Atom| value_at(&p, a);
+        let direct = e.eval(&mut v);
+        let poly = e.to_poly();
+        let expanded = poly.eval(&mut v);
+        let scale = tree_scale(&e, &mut v) + poly_scale(&poly, &mut v);
+        prop_assert!((direct - expanded).abs() <= 256.0 * f64::EPSILON * scale,
+            "tree {direct} vs canonical {expanded} (scale {scale}) for {e}");
+    }
+
+    /// Printing in source syntax and parsing back gives the same tree.
+    #[test]
+    fn print_then_parse_is_the_identity(e in expr()) {
+        let text = e.to_string();
+        let back = symbols().expr(&text).map_err(|err| TestCaseError::fail(format!("{text}: {err}")))?;
+        prop_assert_eq!(back, e);
+    }
+
+    /// The canonical form never holds sin² of an angle.
+    #[test]
+    fn canonical_form_has_no_sin_squared(e in expr()) {
+        let p = e.to_poly();
+        for (m, _) in p.terms() {
+            for &(a, k) in m.factors() {
+                prop_assert!(!(matches!(a.kind(), AtomKind::Sin(_)) && k >= 2), "{p}");
+            }
+        }
+    }
+
+    /// Substituting `a := f` in the canonical form equals expanding the tree
+    /// in which every leaf `a` was replaced by the tree of `f` (exact).
+    #[test]
+    fn substitution_commutes_with_expansion(t in tree(), f in tree()) {
+        let a = Atom::constant("a");
+        let replaced = replace_leaf(&t, a, &f);
+        let lhs = build(&t).to_poly().subst(&mut |x| (x == a).then(|| build(&f).to_poly()));
+        prop_assert_eq!(lhs, build(&replaced).to_poly());
+    }
+}
+
+fn replace_leaf(t: &Tree, a: Atom, f: &Tree) -> Tree {
+    match t {
+        Tree::Atom(x) if *x == a => f.clone(),
+        Tree::Add(v) => Tree::Add(v.iter().map(|c| replace_leaf(c, a, f)).collect()),
+        Tree::Mul(v) => Tree::Mul(v.iter().map(|c| replace_leaf(c, a, f)).collect()),
+        Tree::Neg(c) => Tree::Neg(Box::new(replace_leaf(c, a, f))),
+        Tree::Pow(c, k) => Tree::Pow(Box::new(replace_leaf(c, a, f)), *k),
+        other => other.clone(),
+    }
+}
