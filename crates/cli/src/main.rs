@@ -9,7 +9,9 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+mod catalog;
 mod cmd;
+mod output;
 
 /// Derive, print, check and verify the equations of three-dimensional
 /// rigid-body kinetics.
@@ -23,12 +25,21 @@ struct Cli {
 #[derive(Debug, Subcommand)]
 enum Command {
     // -- subcommands (one line each; keep alphabetical within a group) --
+    /// Run derivations and check their expectations; print a table.
+    Check(cmd::check::CheckArgs),
+    /// Derive one derivation's equations and print them in textbook form.
+    Derive(cmd::derive::DeriveArgs),
+    /// List the bundled derivations with title and source.
+    List(cmd::list::ListArgs),
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result: anyhow::Result<ExitCode> = match cli.command {
         // -- dispatch (one line each) --
+        Command::Check(a) => cmd::check::run(a),
+        Command::Derive(a) => cmd::derive::run(a),
+        Command::List(a) => cmd::list::run(a),
     };
     match result {
         Ok(code) => code,

@@ -1,2 +1,5 @@
 //! One module per subcommand, each with a clap `Args` struct and
 //! `run(args) -> anyhow::Result<ExitCode>`.
+pub mod check;
+pub mod derive;
+pub mod list;
