@@ -25,6 +25,10 @@ struct Cli {
 #[derive(Debug, Subcommand)]
 enum Command {
     // -- subcommands (one line each; keep alphabetical within a group) --
+    /// Simulate a scene with the least exact model; report error, drift and cost.
+    Simulate(cmd::simulate::SimulateArgs),
+    /// Sweep every method over steps and tolerances; write CSV and chart.
+    WorkPrecision(cmd::work_precision::WorkPrecisionArgs),
     /// Run derivations and check their expectations; print a table.
     Check(cmd::check::CheckArgs),
     /// Derive one derivation's equations and print them in textbook form.
@@ -37,6 +41,8 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result: anyhow::Result<ExitCode> = match cli.command {
         // -- dispatch (one line each) --
+        Command::Simulate(a) => cmd::simulate::run(a),
+        Command::WorkPrecision(a) => cmd::work_precision::run(a),
         Command::Check(a) => cmd::check::run(a),
         Command::Derive(a) => cmd::derive::run(a),
         Command::List(a) => cmd::list::run(a),

@@ -1,1 +1,922 @@
+//! Running a scene: choosing the least model that is exact for it, running
+//! it, comparing with the exact or reference solution, and sweeping every
+//! method for the work-precision study.
+//!
+//! # The model-selection rule
+//!
+//! | scene | model chosen | why |
+//! |---|---|---|
+//! | fixed axis | `fixed-axis` | one degree of freedom; the motor law is linear in ω, so the closed form needs no integration; reactions from §6 |
+//! | free, spin about a principal axis | `steady-precession` (permanent rotation) | ω is constant |
+//! | free, axisymmetric | `steady-precession` | §9: closed form, θ constant, no integration |
+//! | free, asymmetric | `elliptic` | closed form through Jacobi elliptic functions |
+//! | heavy top in steady precession | `steady-precession` | §7's relation holds: θ, φ̇, ψ̇ constant |
+//! | heavy top otherwise | `rigid-body` with the method cheapest for the tolerance | no closed form here; the bundled work-precision data rank the methods |
+//!
+//! `--model` and `--method` override: a method alone means "integrate the
+//! rigid-body (or one-degree-of-freedom) equations with it".
 
+use std::fmt;
+use std::io::Write;
+use std::str::FromStr;
+use std::time::Instant;
+
+use serde::Serialize;
+
+use crate::exact::{SteadyTop, TorqueFree};
+use crate::models::euler_angles::to_quaternion_state;
+use crate::models::free::{attitude, pack, state_distance};
+use crate::models::{EulerAngleBody, FreeBody, Gravity, Shaft};
+use crate::scene::{Scene, SceneKind};
+use crate::{Limits, Method, SimError, Stats, Step, integrate};
+
+/// A model of the motion.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Model {
+    /// One degree of freedom about a fixed axis (§6).
+    FixedAxis,
+    /// Closed-form steady precession (§7, §9) or permanent rotation.
+    SteadyPrecession,
+    /// Closed form of the asymmetric torque-free body (Jacobi elliptic functions).
+    Elliptic,
+    /// Euler's equations with a unit-quaternion attitude, integrated.
+    RigidBody,
+    /// Euler's equations with Eulerian angles, integrated.
+    EulerAngles,
+}
+
+impl Model {
+    /// Every model, least first.
+    pub const ALL: [Model; 5] =
+        [Model::FixedAxis, Model::SteadyPrecession, Model::Elliptic, Model::RigidBody, Model::EulerAngles];
+
+    /// Command-line name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Model::FixedAxis => "fixed-axis",
+            Model::SteadyPrecession => "steady-precession",
+            Model::Elliptic => "elliptic",
+            Model::RigidBody => "rigid-body",
+            Model::EulerAngles => "euler-angles",
+        }
+    }
+}
+
+impl fmt::Display for Model {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Model {
+    type Err = SimError;
+    fn from_str(s: &str) -> Result<Self, SimError> {
+        Model::ALL.into_iter().find(|m| m.name() == s).ok_or_else(|| SimError::UnknownName {
+            what: "model",
+            name: s.to_string(),
+            expected: Model::ALL.map(Model::name).join(", "),
+        })
+    }
+}
+
+/// What the user asked for (all optional).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Request {
+    /// `--model`.
+    pub model: Option<Model>,
+    /// `--method`.
+    pub method: Option<Method>,
+    /// `--dt` or `--tol`.
+    pub step: Option<Step>,
+    /// `--t-end` (else the scene's).
+    pub t_end: Option<f64>,
+}
+
+/// Default tolerance of adaptive runs and of the heavy-top method choice.
+pub const DEFAULT_TOL: f64 = 1e-8;
+/// Default fixed step.
+pub const DEFAULT_DT: f64 = 1e-3;
+/// Tolerance of the DOP853 reference run where there is no closed form.
+pub const REFERENCE_TOL: f64 = 1e-14;
+
+/// The model and method a run will use, and why.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Plan {
+    /// Model name.
+    #[serde(serialize_with = "ser_display")]
+    pub model: Model,
+    /// Method, if the model is integrated.
+    #[serde(serialize_with = "ser_opt_display")]
+    pub method: Option<Method>,
+    /// Step or tolerance, if integrated.
+    #[serde(serialize_with = "ser_step")]
+    pub step: Option<Step>,
+    /// End time.
+    pub t_end: f64,
+    /// Why this model (and method).
+    pub reason: String,
+}
+
+fn ser_display<S: serde::Serializer, T: fmt::Display>(v: &T, s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_str(&v.to_string())
+}
+
+fn ser_opt_display<S: serde::Serializer, T: fmt::Display>(v: &Option<T>, s: S) -> Result<S::Ok, S::Error> {
+    match v {
+        Some(v) => s.serialize_str(&v.to_string()),
+        None => s.serialize_none(),
+    }
+}
+
+fn ser_step<S: serde::Serializer>(v: &Option<Step>, s: S) -> Result<S::Ok, S::Error> {
+    match v {
+        Some(st) => s.serialize_str(&step_label(*st)),
+        None => s.serialize_none(),
+    }
+}
+
+/// `dt=…` or `tol=…`.
+pub fn step_label(step: Step) -> String {
+    match step {
+        Step::Fixed(h) => format!("dt={h:e}"),
+        Step::Tolerance(t) => format!("tol={t:e}"),
+    }
+}
+
+fn not_applicable(model: Model, scene: &Scene, reason: &str) -> SimError {
+    SimError::ModelNotApplicable {
+        model: model.name().into(),
+        scene: format!("{} ({})", scene.name, scene.file.display()),
+        reason: reason.into(),
+    }
+}
+
+/// Chooses the model (and method) for a scene: see the module docs.
+pub fn plan(scene: &Scene, req: &Request) -> Result<Plan, SimError> {
+    let t_end = req.t_end.unwrap_or(scene.t_end);
+    if !(t_end.is_finite() && t_end >= 0.0) {
+        return Err(SimError::BadEndTime(t_end));
+    }
+    if let Some(step) = req.step {
+        step.validate()?;
+    }
+    let default_step = |m: Method| {
+        req.step.unwrap_or(if m.is_adaptive() { Step::Tolerance(DEFAULT_TOL) } else { Step::Fixed(DEFAULT_DT) })
+    };
+    let integrated = |model: Model, method: Option<Method>, reason: String| -> Result<Plan, SimError> {
+        let method = method.unwrap_or(Method::Dop853);
+        Ok(Plan { model, method: Some(method), step: Some(default_step(method)), t_end, reason })
+    };
+    let closed =
+        |model: Model, reason: &str| Plan { model, method: None, step: None, t_end, reason: reason.to_string() };
+    match &scene.kind {
+        SceneKind::FixedAxis { .. } => match req.model {
+            None | Some(Model::FixedAxis) => Ok(match req.method {
+                None => closed(
+                    Model::FixedAxis,
+                    "the bearings fix the axis: one degree of freedom, I_z α = T_0 (1 − ω/ω_0) − c ω, \
+                     linear in ω, so its closed form needs no integration; bearing reactions from §6",
+                ),
+                Some(m) => integrated(
+                    Model::FixedAxis,
+                    Some(m),
+                    format!("one-degree-of-freedom equation (§6) integrated with {m} as requested"),
+                )?,
+            }),
+            Some(other) => Err(not_applicable(
+                other,
+                scene,
+                "the bearings constrain the body to one degree of freedom; only `fixed-axis` describes it",
+            )),
+        },
+        SceneKind::Free { moments, q0, w0 } => {
+            let exact = TorqueFree::new(moments.get(), *q0, *w0)?;
+            let closed_model = match exact {
+                TorqueFree::Elliptic(_) => Model::Elliptic,
+                _ => Model::SteadyPrecession,
+            };
+            match (req.model, req.method) {
+                (Some(Model::FixedAxis), _) => Err(not_applicable(
+                    Model::FixedAxis,
+                    scene,
+                    "the body is free: no bearing fixes its axis (a spin about a principal axis is \
+                     found by the closed form as a permanent rotation)",
+                )),
+                (Some(Model::SteadyPrecession), _) if closed_model != Model::SteadyPrecession => Err(not_applicable(
+                    Model::SteadyPrecession,
+                    scene,
+                    "the body is not axisymmetric (three distinct moments): its motion is not a steady precession",
+                )),
+                (Some(Model::Elliptic), _) if closed_model != Model::Elliptic => Err(not_applicable(
+                    Model::Elliptic,
+                    scene,
+                    "the elliptic form needs three distinct moments and a motion that is not a permanent rotation; \
+                     use steady-precession",
+                )),
+                (Some(m @ (Model::SteadyPrecession | Model::Elliptic)), _) => {
+                    Ok(closed(m, "closed form, as requested"))
+                }
+                (Some(m @ (Model::RigidBody | Model::EulerAngles)), method) => {
+                    integrated(m, method, format!("{m} integration as requested (reference: the closed form)"))
+                }
+                (None, Some(method)) => integrated(
+                    Model::RigidBody,
+                    Some(method),
+                    format!("integration with {method} as requested (reference: the closed form)"),
+                ),
+                (None, None) => Ok(closed(
+                    closed_model,
+                    match exact {
+                        TorqueFree::Permanent { .. } => {
+                            "torque-free spin about a principal axis: permanent rotation, ω constant, no integration"
+                        }
+                        TorqueFree::Axisymmetric(_) => {
+                            "torque-free axisymmetric body: closed-form steady precession about H (§9), no integration"
+                        }
+                        TorqueFree::Elliptic(_) => {
+                            "torque-free asymmetric body: exact solution by Jacobi elliptic functions, no integration"
+                        }
+                    },
+                )),
+            }
+        }
+        SceneKind::HeavyTop { steady, .. } => match (req.model, req.method) {
+            (Some(m @ (Model::FixedAxis | Model::Elliptic)), _) => Err(not_applicable(
+                m,
+                scene,
+                "a heavy top on a fixed point has three degrees of freedom and a gravity torque",
+            )),
+            (Some(Model::SteadyPrecession), _) if steady.is_none() => Err(not_applicable(
+                Model::SteadyPrecession,
+                scene,
+                "the initial state does not satisfy §7's steady-precession relation (or θ̇ ≠ 0)",
+            )),
+            (Some(Model::SteadyPrecession), _) => Ok(closed(Model::SteadyPrecession, "closed form, as requested")),
+            (Some(m), method) => integrated(m, method, format!("{m} integration as requested")),
+            (None, Some(method)) => {
+                integrated(Model::RigidBody, Some(method), format!("integration with {method} as requested"))
+            }
+            (None, None) if steady.is_some() => Ok(closed(
+                Model::SteadyPrecession,
+                "heavy top started in steady precession (W l = (I ω_z − I' φ̇ cos θ) φ̇ holds, θ̇ = 0): \
+                 θ, φ̇, ψ̇ stay constant (§7), no integration",
+            )),
+            (None, None) => {
+                let tol = match req.step {
+                    Some(Step::Tolerance(t)) => t,
+                    Some(Step::Fixed(_)) | None => DEFAULT_TOL,
+                };
+                let rows = bundled_heavy_top_data();
+                match cheapest(&rows, tol) {
+                    Some(row) => Ok(Plan {
+                        model: Model::RigidBody,
+                        method: Some(row.method),
+                        step: Some(row.step),
+                        t_end,
+                        reason: format!(
+                            "heavy top: no closed form here, so integrate; {} at {} is the cheapest method \
+                             reaching error ≤ {tol:e} in the bundled work-precision data ({:.3e} s there)",
+                            row.method,
+                            step_label(row.step),
+                            row.wall_s
+                        ),
+                    }),
+                    None => integrated(
+                        Model::RigidBody,
+                        Some(Method::Dop853),
+                        format!(
+                            "heavy top: no closed form here; no bundled run reaches {tol:e}, so dop853 at that tolerance"
+                        ),
+                    )
+                    .map(|mut p| {
+                        p.step = Some(Step::Tolerance(tol));
+                        p
+                    }),
+                }
+            }
+        },
+    }
+}
+
+/// Relative change of an invariant between start and end.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Drift {
+    /// Which invariant (`energy`, `|H|`, `H_Z`).
+    pub name: &'static str,
+    /// `|I(T) − I(0)| / |I(0)|`.
+    pub relative: f64,
+}
+
+/// §7 check of a simulated steady precession.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct PrecessionCheck {
+    /// φ̇ from §7's relation.
+    pub predicted: f64,
+    /// φ̇ measured from the simulated attitude over [0, T].
+    pub simulated: f64,
+    /// `|simulated − predicted| / |predicted|`.
+    pub relative_difference: f64,
+    /// Largest |θ(T) − θ(0)|.
+    pub nutation_change: f64,
+}
+
+/// What a run reports.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Report {
+    /// Scene name.
+    pub scene: String,
+    /// Scene kind.
+    pub kind: &'static str,
+    /// Model, method and why.
+    pub plan: Plan,
+    /// The reference the error is measured against.
+    pub reference: String,
+    /// Distance to the reference at T (None when the run *is* the closed form).
+    pub error: Option<f64>,
+    /// Invariant drifts at T.
+    pub drifts: Vec<Drift>,
+    /// Right-hand-side evaluations (sub-flows for the splittings).
+    pub evaluations: u64,
+    /// Accepted steps.
+    pub steps: u64,
+    /// Rejected steps.
+    pub rejected: u64,
+    /// Wall time of the run (without the reference), seconds.
+    pub wall_s: f64,
+    /// State at T (`[q, ω]`, `[angle, ω]` for a shaft).
+    pub final_state: Vec<f64>,
+    /// Heavy top in steady precession: §7 check.
+    pub precession: Option<PrecessionCheck>,
+    /// Shaft: bearing reactions at T (`[A_x, A_y, B_x, B_y]`) and moments `[M_x, M_y, M_z]`.
+    pub reactions: Option<[f64; 7]>,
+    /// Stored trajectory rows (time first), when asked for.
+    pub trajectory: Option<Vec<Vec<f64>>>,
+}
+
+/// Output options of a run.
+pub struct Output<'a> {
+    /// Stream every accepted step as a CSV row to this writer.
+    pub stream: Option<&'a mut dyn Write>,
+    /// Keep the trajectory in the report.
+    pub store: bool,
+    /// Budget in bytes for the stored trajectory.
+    pub memory_budget: u64,
+    /// Called with the current time after every step.
+    pub progress: Option<&'a mut dyn FnMut(f64)>,
+}
+
+impl Default for Output<'_> {
+    fn default() -> Self {
+        Output { stream: None, store: false, memory_budget: 64 << 20, progress: None }
+    }
+}
+
+/// Bytes one stored row of `len` numbers takes (values and vector header).
+fn row_bytes(len: usize) -> u64 {
+    (len * 8 + 24) as u64
+}
+
+/// Records streamed/stored rows and progress inside the integrator's observer.
+struct Recorder<'a, 'b> {
+    out: &'b mut Output<'a>,
+    rows: Vec<Vec<f64>>,
+    bytes: u64,
+}
+
+impl Recorder<'_, '_> {
+    fn record(&mut self, row: Vec<f64>) -> Result<(), SimError> {
+        if let Some(p) = self.out.progress.as_mut() {
+            p(row[0]);
+        }
+        if let Some(w) = self.out.stream.as_mut() {
+            let line: Vec<String> = row.iter().map(|v| format!("{v:e}")).collect();
+            writeln!(w, "{}", line.join(",")).map_err(SimError::Output)?;
+        }
+        if self.out.store {
+            self.bytes += row_bytes(row.len());
+            if self.bytes > self.out.memory_budget {
+                return Err(SimError::MemoryBudget { needed: self.bytes, budget: self.out.memory_budget });
+            }
+            self.rows.push(row);
+        }
+        Ok(())
+    }
+
+    fn active(&self) -> bool {
+        self.out.stream.is_some() || self.out.store || self.out.progress.is_some()
+    }
+}
+
+/// Checks the budget of stored output before a fixed-step run.
+fn check_budget(out: &Output<'_>, plan: &Plan, row_len: usize) -> Result<(), SimError> {
+    if !out.store {
+        return Ok(());
+    }
+    let rows = match plan.step {
+        Some(Step::Fixed(h)) => crate::fixed_step_count(plan.t_end, h) + 1,
+        _ => 1,
+    };
+    let needed = rows.saturating_mul(row_bytes(row_len));
+    if needed > out.memory_budget {
+        return Err(SimError::MemoryBudget { needed, budget: out.memory_budget });
+    }
+    Ok(())
+}
+
+/// CSV header of the streamed rows for a scene.
+pub fn stream_header(scene: &Scene, model: Model) -> &'static str {
+    match (&scene.kind, model) {
+        (SceneKind::FixedAxis { .. }, _) => "t,angle,omega,A_x,A_y,B_x,B_y",
+        (_, Model::EulerAngles) => "t,phi,theta,psi,omega_1,omega_2,omega_3",
+        _ => "t,q_w,q_x,q_y,q_z,omega_1,omega_2,omega_3",
+    }
+}
+
+fn relative(a: f64, b: f64) -> f64 {
+    (a - b).abs() / b.abs().max(f64::MIN_POSITIVE)
+}
+
+fn free_body(scene: &Scene) -> Option<(FreeBody, [f64; 7])> {
+    match &scene.kind {
+        SceneKind::Free { moments, q0, w0 } => Some((FreeBody { moments: moments.get(), gravity: None }, pack(q0, w0))),
+        SceneKind::HeavyTop { moments, weight_arm, q0, w0, .. } => Some((
+            FreeBody { moments: moments.get(), gravity: Some(Gravity { weight_arm: *weight_arm }) },
+            pack(q0, w0),
+        )),
+        SceneKind::FixedAxis { .. } => None,
+    }
+}
+
+/// The exact or reference state at `t` of a free body or heavy top, and its name.
+pub fn reference_state(scene: &Scene, t: f64) -> Result<([f64; 7], String), SimError> {
+    match &scene.kind {
+        SceneKind::Free { moments, q0, w0 } => {
+            let exact = TorqueFree::new(moments.get(), *q0, *w0)?;
+            Ok((exact.state(t), format!("closed form: {}", exact.form())))
+        }
+        SceneKind::HeavyTop { steady: Some(top), .. } => {
+            Ok((top.state(t), "closed form: steady precession (§7)".into()))
+        }
+        SceneKind::HeavyTop { .. } => {
+            let (body, y0) = free_body(scene).expect("heavy top");
+            let (y, _) = integrate(
+                &body,
+                Method::Dop853,
+                Step::Tolerance(REFERENCE_TOL),
+                0.0,
+                y0,
+                t,
+                Limits::default(),
+                |_, _| Ok(()),
+            )?;
+            Ok((y, format!("dop853 at tol={REFERENCE_TOL:e}")))
+        }
+        SceneKind::FixedAxis { .. } => Err(SimError::ModelNotApplicable {
+            model: "rigid-body".into(),
+            scene: scene.name.clone(),
+            reason: "a shaft has a one-degree-of-freedom state".into(),
+        }),
+    }
+}
+
+fn free_drifts(body: &FreeBody, y0: &[f64; 7], y: &[f64; 7]) -> Vec<Drift> {
+    vec![
+        Drift { name: "energy", relative: relative(body.energy(y), body.energy(y0)) },
+        Drift {
+            name: if body.gravity.is_some() { "H_Z" } else { "|H|" },
+            relative: relative(body.momentum_invariant(y), body.momentum_invariant(y0)),
+        },
+    ]
+}
+
+fn precession_check(top: &SteadyTop, y: &[f64; 7], t: f64) -> PrecessionCheck {
+    let (phi, theta, _) = crate::models::euler_angles::angles_from_quaternion(&attitude(y));
+    let predicted_phi = top.phi0 + top.phi_dot * t;
+    let tau = std::f64::consts::TAU;
+    let d = (phi - predicted_phi).rem_euclid(tau);
+    let d = if d > std::f64::consts::PI { d - tau } else { d };
+    let simulated = if t > 0.0 { top.phi_dot + d / t } else { top.phi_dot };
+    PrecessionCheck {
+        predicted: top.phi_dot,
+        simulated,
+        relative_difference: relative(simulated, top.phi_dot),
+        nutation_change: (theta - top.theta).abs(),
+    }
+}
+
+fn shaft_reactions(shaft: &Shaft, w: f64) -> [f64; 7] {
+    let r = shaft.reactions(w);
+    [r.bearing_a[0], r.bearing_a[1], r.bearing_b[0], r.bearing_b[1], r.moment_x, r.moment_y, r.moment_z]
+}
+
+/// Runs a scene as planned.
+pub fn run(scene: &Scene, plan: &Plan, out: &mut Output<'_>) -> Result<Report, SimError> {
+    let t_end = plan.t_end;
+    let mut report = Report {
+        scene: scene.name.clone(),
+        kind: scene.kind.name(),
+        plan: plan.clone(),
+        reference: String::new(),
+        error: None,
+        drifts: vec![],
+        evaluations: 0,
+        steps: 0,
+        rejected: 0,
+        wall_s: 0.0,
+        final_state: vec![],
+        precession: None,
+        reactions: None,
+        trajectory: None,
+    };
+    let row_len = match &scene.kind {
+        SceneKind::FixedAxis { .. } => 7,
+        _ => 8,
+    };
+    check_budget(out, plan, row_len)?;
+    let mut rec = Recorder { out, rows: vec![], bytes: 0 };
+    match (&scene.kind, plan.model) {
+        (SceneKind::FixedAxis { shaft, y0 }, Model::FixedAxis) => {
+            let start = Instant::now();
+            let (y, stats) = match (plan.method, plan.step) {
+                (Some(method), Some(step)) => {
+                    let active = rec.active();
+                    integrate(shaft, method, step, 0.0, *y0, t_end, Limits::default(), |t, y| {
+                        if active {
+                            let mut row = vec![t, y[0], y[1]];
+                            row.extend_from_slice(&shaft_reactions(shaft, y[1])[..4]);
+                            rec.record(row)?;
+                        }
+                        Ok(())
+                    })?
+                }
+                _ => {
+                    let y = shaft.exact(y0, t_end);
+                    let mut row = vec![t_end, y[0], y[1]];
+                    row.extend_from_slice(&shaft_reactions(shaft, y[1])[..4]);
+                    if rec.active() {
+                        rec.record(row)?;
+                    }
+                    (y, Stats::default())
+                }
+            };
+            report.wall_s = start.elapsed().as_secs_f64();
+            let exact = shaft.exact(y0, t_end);
+            report.reference = "closed form of the one-degree-of-freedom equation".into();
+            if plan.method.is_some() {
+                report.error = Some(((y[0] - exact[0]).powi(2) + (y[1] - exact[1]).powi(2)).sqrt());
+            }
+            report.reactions = Some(shaft_reactions(shaft, y[1]));
+            report.final_state = y.to_vec();
+            set_stats(&mut report, stats);
+        }
+        (SceneKind::FixedAxis { .. }, m) => {
+            return Err(not_applicable(m, scene, "only `fixed-axis` describes a shaft"));
+        }
+        (_, Model::FixedAxis) => {
+            return Err(not_applicable(Model::FixedAxis, scene, "no bearing fixes the axis of this body"));
+        }
+        (_, Model::SteadyPrecession | Model::Elliptic) => {
+            let (body, y0) = free_body(scene).expect("free or heavy top");
+            let start = Instant::now();
+            let (y, name) = reference_state(scene, t_end)?;
+            report.wall_s = start.elapsed().as_secs_f64();
+            if rec.active() {
+                let mut row = vec![t_end];
+                row.extend_from_slice(&y);
+                rec.record(row)?;
+            }
+            report.reference = name;
+            report.drifts = free_drifts(&body, &y0, &y);
+            report.final_state = y.to_vec();
+        }
+        (_, Model::RigidBody) => {
+            let (body, y0) = free_body(scene).expect("free or heavy top");
+            let (method, step) = method_step(plan)?;
+            let active = rec.active();
+            let start = Instant::now();
+            let (y, stats) = integrate(&body, method, step, 0.0, y0, t_end, Limits::default(), |t, y| {
+                if active {
+                    let mut row = vec![t];
+                    row.extend_from_slice(y);
+                    rec.record(row)?;
+                }
+                Ok(())
+            })?;
+            report.wall_s = start.elapsed().as_secs_f64();
+            finish_free(scene, &body, &y0, &y, t_end, &mut report)?;
+            set_stats(&mut report, stats);
+        }
+        (_, Model::EulerAngles) => {
+            let (body, y0) = free_body(scene).expect("free or heavy top");
+            let (method, step) = method_step(plan)?;
+            let (phi, theta, psi) = crate::models::euler_angles::angles_from_quaternion(&attitude(&y0));
+            let e0 = [phi, theta, psi, y0[4], y0[5], y0[6]];
+            let sys = EulerAngleBody { moments: body.moments, weight_arm: body.gravity.map_or(0.0, |g| g.weight_arm) };
+            let active = rec.active();
+            let start = Instant::now();
+            let (e, stats) = integrate(&sys, method, step, 0.0, e0, t_end, Limits::default(), |t, y| {
+                if active {
+                    let mut row = vec![t];
+                    row.extend_from_slice(y);
+                    rec.record(row)?;
+                }
+                Ok(())
+            })?;
+            report.wall_s = start.elapsed().as_secs_f64();
+            let y = to_quaternion_state(&e);
+            finish_free(scene, &body, &y0, &y, t_end, &mut report)?;
+            set_stats(&mut report, stats);
+        }
+    }
+    if rec.out.store {
+        report.trajectory = Some(std::mem::take(&mut rec.rows));
+    }
+    Ok(report)
+}
+
+fn method_step(plan: &Plan) -> Result<(Method, Step), SimError> {
+    match (plan.method, plan.step) {
+        (Some(m), Some(s)) => Ok((m, s)),
+        _ => Err(SimError::MethodNotApplicable {
+            method: "none".into(),
+            model: plan.model.name().into(),
+            reason: "an integrated model needs a method and a step".into(),
+        }),
+    }
+}
+
+fn set_stats(report: &mut Report, stats: Stats) {
+    report.evaluations = stats.evaluations;
+    report.steps = stats.steps;
+    report.rejected = stats.rejected;
+}
+
+fn finish_free(
+    scene: &Scene,
+    body: &FreeBody,
+    y0: &[f64; 7],
+    y: &[f64; 7],
+    t_end: f64,
+    report: &mut Report,
+) -> Result<(), SimError> {
+    let (reference, name) = reference_state(scene, t_end)?;
+    report.reference = name;
+    report.error = Some(state_distance(y, &reference));
+    report.drifts = free_drifts(body, y0, y);
+    report.final_state = y.to_vec();
+    if let SceneKind::HeavyTop { steady: Some(top), .. } = &scene.kind {
+        report.precession = Some(precession_check(top, y, t_end));
+    }
+    Ok(())
+}
+
+impl fmt::Display for Report {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let p = &self.plan;
+        writeln!(f, "scene:       {} ({})", self.scene, self.kind)?;
+        writeln!(f, "model:       {}", p.model)?;
+        writeln!(f, "why:         {}", p.reason)?;
+        match (p.method, p.step) {
+            (Some(m), Some(s)) => writeln!(f, "method:      {m} ({})", step_label(s))?,
+            _ => writeln!(f, "method:      none (closed form)")?,
+        }
+        writeln!(f, "t_end:       {}", p.t_end)?;
+        writeln!(f, "reference:   {}", self.reference)?;
+        match self.error {
+            Some(e) => writeln!(f, "error at T:  {e:.3e}")?,
+            None => writeln!(f, "error at T:  0 (this is the reference)")?,
+        }
+        for d in &self.drifts {
+            writeln!(f, "drift {:<6} {:.3e} (relative)", format!("{}:", d.name), d.relative)?;
+        }
+        writeln!(f, "evaluations: {} ({} steps, {} rejected)", self.evaluations, self.steps, self.rejected)?;
+        writeln!(f, "wall time:   {:.3e} s", self.wall_s)?;
+        if let Some(pc) = &self.precession {
+            writeln!(
+                f,
+                "precession:  simulated φ̇ = {:.9}, §7 predicts {:.9} (relative difference {:.2e}, |Δθ| = {:.2e})",
+                pc.simulated, pc.predicted, pc.relative_difference, pc.nutation_change
+            )?;
+        }
+        if let Some(r) = &self.reactions {
+            writeln!(
+                f,
+                "reactions:   A = ({:.6}, {:.6}), B = ({:.6}, {:.6}) N; ΣM_O = ({:.6}, {:.6}, {:.6}) N·m",
+                r[0], r[1], r[2], r[3], r[4], r[5], r[6]
+            )?;
+        }
+        let state: Vec<String> = self.final_state.iter().map(|v| format!("{v:.12}")).collect();
+        writeln!(f, "state at T:  [{}]", state.join(", "))
+    }
+}
+
+// ---------------------------------------------------------------- work-precision
+
+/// One run of the work-precision sweep.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Row {
+    /// Method.
+    #[serde(serialize_with = "ser_display")]
+    pub method: Method,
+    /// Step or tolerance.
+    #[serde(skip)]
+    pub step: Step,
+    /// Distance to the reference at T (NaN if the run failed).
+    pub error: f64,
+    /// Mean wall time of one run, seconds.
+    pub wall_s: f64,
+    /// Evaluations.
+    pub evaluations: u64,
+    /// Accepted steps.
+    pub steps: u64,
+    /// Relative energy drift at T.
+    pub energy_drift: f64,
+    /// Relative drift of |H| (free) or H_Z (heavy top) at T; NaN for a shaft.
+    pub momentum_drift: f64,
+    /// `ok` or the error message.
+    pub status: String,
+}
+
+/// CSV header of [`Row::csv`].
+pub const CSV_HEADER: &str = "method,step,value,error,wall_s,evaluations,steps,energy_drift,momentum_drift,status";
+
+impl Row {
+    /// One CSV line (no newline).
+    pub fn csv(&self) -> String {
+        let (kind, value) = match self.step {
+            Step::Fixed(h) => ("dt", h),
+            Step::Tolerance(t) => ("tol", t),
+        };
+        format!(
+            "{},{kind},{value:e},{:e},{:e},{},{},{:e},{:e},{}",
+            self.method,
+            self.error,
+            self.wall_s,
+            self.evaluations,
+            self.steps,
+            self.energy_drift,
+            self.momentum_drift,
+            self.status.replace(',', ";")
+        )
+    }
+
+    /// Parses a line written by [`Row::csv`].
+    pub fn parse_csv(line: &str) -> Option<Row> {
+        let f: Vec<&str> = line.splitn(10, ',').collect();
+        if f.len() != 10 {
+            return None;
+        }
+        let value: f64 = f[2].parse().ok()?;
+        Some(Row {
+            method: f[0].parse().ok()?,
+            step: match f[1] {
+                "dt" => Step::Fixed(value),
+                "tol" => Step::Tolerance(value),
+                _ => return None,
+            },
+            error: f[3].parse().ok()?,
+            wall_s: f[4].parse().ok()?,
+            evaluations: f[5].parse().ok()?,
+            steps: f[6].parse().ok()?,
+            energy_drift: f[7].parse().ok()?,
+            momentum_drift: f[8].parse().ok()?,
+            status: f[9].to_string(),
+        })
+    }
+}
+
+/// The heavy-top sweep bundled at build time (`crates/sim/data/`), made by
+/// `hdot work-precision docs/examples/sim-heavy-top.toml`.
+pub fn bundled_heavy_top_data() -> Vec<Row> {
+    include_str!("../data/work-precision-heavy-top.csv").lines().skip(1).filter_map(Row::parse_csv).collect()
+}
+
+/// The successful row of least wall time whose error is at most `tol`.
+pub fn cheapest(rows: &[Row], tol: f64) -> Option<&Row> {
+    rows.iter().filter(|r| r.status == "ok" && r.error <= tol).min_by(|a, b| a.wall_s.total_cmp(&b.wall_s))
+}
+
+/// Steps and tolerances the sweep tries for a method over `[0, t_end]`.
+pub fn sweep_steps(method: Method, t_end: f64) -> Vec<Step> {
+    if method.is_adaptive() {
+        return (3..=13).map(|k| Step::Tolerance(10f64.powi(-k))).collect();
+    }
+    // Steps from t_end/8 down by factors of 2 until the cost cap.
+    let max_steps: u64 = match method {
+        Method::Euler => 1 << 21,
+        _ => 1 << 17,
+    };
+    let mut out = vec![];
+    let mut n: u64 = 8;
+    while n <= max_steps {
+        out.push(Step::Fixed(t_end / n as f64));
+        n *= 2;
+    }
+    out
+}
+
+/// Runs every method over its steps on a scene; `min_time` is the least
+/// total wall time spent repeating one run to time it.
+pub fn work_precision(
+    scene: &Scene,
+    t_end: f64,
+    min_time: f64,
+    mut progress: impl FnMut(&Row),
+) -> Result<Vec<Row>, SimError> {
+    let mut rows = vec![];
+    for method in Method::ALL {
+        let mut previous_error = f64::INFINITY;
+        for step in sweep_steps(method, t_end) {
+            let row = sweep_one(scene, method, step, t_end, min_time)?;
+            let err = row.error;
+            progress(&row);
+            rows.push(row);
+            // Stop refining once round-off dominates.
+            if err.is_finite() && err < 1e-13 && previous_error < 1e-12 {
+                break;
+            }
+            if err.is_finite() {
+                previous_error = err;
+            }
+        }
+    }
+    Ok(rows)
+}
+
+fn timed<T>(min_time: f64, mut f: impl FnMut() -> Result<T, SimError>) -> Result<(T, f64), SimError> {
+    let start = Instant::now();
+    let mut out = f()?;
+    let first = start.elapsed().as_secs_f64();
+    if first >= min_time {
+        return Ok((out, first));
+    }
+    let reps = ((min_time / first.max(1e-7)).ceil() as u32).clamp(1, 1000);
+    let start = Instant::now();
+    for _ in 0..reps {
+        out = f()?;
+    }
+    Ok((out, start.elapsed().as_secs_f64() / reps as f64))
+}
+
+fn sweep_one(scene: &Scene, method: Method, step: Step, t_end: f64, min_time: f64) -> Result<Row, SimError> {
+    let mut row = Row {
+        method,
+        step,
+        error: f64::NAN,
+        wall_s: f64::NAN,
+        evaluations: 0,
+        steps: 0,
+        energy_drift: f64::NAN,
+        momentum_drift: f64::NAN,
+        status: "ok".into(),
+    };
+    match &scene.kind {
+        SceneKind::FixedAxis { shaft, y0 } => {
+            let run = || integrate(shaft, method, step, 0.0, *y0, t_end, Limits::default(), |_, _| Ok(()));
+            match timed(min_time, run) {
+                Ok(((y, stats), wall)) => {
+                    let e = shaft.exact(y0, t_end);
+                    row.error = ((y[0] - e[0]).powi(2) + (y[1] - e[1]).powi(2)).sqrt();
+                    row.wall_s = wall;
+                    row.evaluations = stats.evaluations;
+                    row.steps = stats.steps;
+                    row.energy_drift = relative(shaft.energy(&y), shaft.energy(&e));
+                }
+                Err(e) => row.status = e.to_string(),
+            }
+        }
+        _ => {
+            let (body, y0) = free_body(scene).expect("free or heavy top");
+            let (reference, _) = reference_state(scene, t_end)?;
+            let run = || integrate(&body, method, step, 0.0, y0, t_end, Limits::default(), |_, _| Ok(()));
+            match timed(min_time, run) {
+                Ok(((y, stats), wall)) => {
+                    row.error = state_distance(&y, &reference);
+                    row.wall_s = wall;
+                    row.evaluations = stats.evaluations;
+                    row.steps = stats.steps;
+                    let d = free_drifts(&body, &y0, &y);
+                    row.energy_drift = d[0].relative;
+                    row.momentum_drift = d[1].relative;
+                }
+                Err(e) => row.status = e.to_string(),
+            }
+        }
+    }
+    Ok(row)
+}
+
+/// Writes the work-precision chart (error against wall time, log–log, one
+/// line per method) to `<stem>.svg` and `<stem>.png` with the shared helper.
+pub fn write_chart(rows: &[Row], stem: &std::path::Path, title: &str) -> Result<(), hdot_num::chart::ChartError> {
+    let series: Vec<hdot_num::chart::Series> = Method::ALL
+        .into_iter()
+        .filter_map(|m| {
+            let mut pts: Vec<(f64, f64)> =
+                rows.iter().filter(|r| r.method == m && r.status == "ok").map(|r| (r.wall_s, r.error)).collect();
+            pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+            (!pts.is_empty()).then(|| hdot_num::chart::Series::new(m.name(), pts))
+        })
+        .collect();
+    hdot_num::chart::loglog_chart(stem, title, "wall time per run (s)", "error at T", &series)
+}

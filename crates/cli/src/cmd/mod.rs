@@ -3,3 +3,5 @@
 pub mod check;
 pub mod derive;
 pub mod list;
+pub mod simulate;
+pub mod work_precision;

@@ -1,0 +1,155 @@
+//! `hdot simulate SCENE`: run a scene with the least exact model (or the one
+//! asked for) and report error, invariant drift, cost and wall time.
+
+use std::io::{BufWriter, IsTerminal, Write};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::Context;
+use clap::Args;
+use hdot_sim::run::{self, Output, Request};
+use hdot_sim::scene::Scene;
+use hdot_sim::{Method, SimError, Step};
+
+/// Arguments of `hdot simulate`.
+#[derive(Debug, Args)]
+pub struct SimulateArgs {
+    /// Scene file (TOML), e.g. docs/examples/sim-heavy-top.toml.
+    pub scene: PathBuf,
+    /// Integration method: euler, rk4, dopri5, dop853, midpoint, split2, split4.
+    #[arg(long)]
+    pub method: Option<String>,
+    /// Model: fixed-axis, steady-precession, elliptic, rigid-body, euler-angles.
+    #[arg(long)]
+    pub model: Option<String>,
+    /// Fixed step size.
+    #[arg(long, conflicts_with = "tol", allow_negative_numbers = true)]
+    pub dt: Option<f64>,
+    /// Tolerance of an adaptive method (rtol = atol); for a heavy top without
+    /// --method, the error the chosen method must reach.
+    #[arg(long, allow_negative_numbers = true)]
+    pub tol: Option<f64>,
+    /// End time (default: the scene's).
+    #[arg(long, allow_negative_numbers = true)]
+    pub t_end: Option<f64>,
+    /// Output format.
+    #[arg(long, default_value = "text", value_parser = ["text", "json"])]
+    pub format: String,
+    /// Stream every step to this CSV file as it is computed.
+    #[arg(long)]
+    pub output: Option<PathBuf>,
+    /// Include the trajectory in the report (bounded by --memory-budget).
+    #[arg(long)]
+    pub trajectory: bool,
+    /// Budget in bytes for the stored trajectory.
+    #[arg(long, default_value_t = 64 << 20)]
+    pub memory_budget: u64,
+}
+
+/// Errors of the input (exit 2) as opposed to failures of a run (exit 1).
+fn is_input_error(e: &SimError) -> bool {
+    !matches!(
+        e,
+        SimError::EulerAngleSingularity { .. }
+            | SimError::NonFinite { .. }
+            | SimError::StepSizeUnderflow { .. }
+            | SimError::NotConverged { .. }
+            | SimError::TooManySteps { .. }
+            | SimError::Output(_)
+    )
+}
+
+/// Runs `hdot simulate`.
+pub fn run(args: SimulateArgs) -> anyhow::Result<ExitCode> {
+    let scene = Scene::from_file(&args.scene)?;
+    let method = args
+        .method
+        .as_deref()
+        .map(str::parse::<Method>)
+        .transpose()?;
+    let model = args
+        .model
+        .as_deref()
+        .map(str::parse::<run::Model>)
+        .transpose()?;
+    let step = match (args.dt, args.tol) {
+        (Some(h), _) => Some(Step::Fixed(h).validate()?),
+        (_, Some(t)) => Some(Step::Tolerance(t).validate()?),
+        _ => None,
+    };
+    let request = Request {
+        model,
+        method,
+        step,
+        t_end: args.t_end,
+    };
+    let plan = run::plan(&scene, &request)?;
+
+    let mut file = match &args.output {
+        Some(path) => {
+            let f = std::fs::File::create(path)
+                .with_context(|| format!("creating {}", path.display()))?;
+            let mut w = BufWriter::new(f);
+            writeln!(w, "{}", run::stream_header(&scene, plan.model))?;
+            Some(w)
+        }
+        None => None,
+    };
+    // A progress bar only on a terminal, and only for runs long enough to need one.
+    let long = match plan.step {
+        Some(Step::Fixed(h)) => plan.t_end / h > 2e5,
+        Some(Step::Tolerance(t)) => t < 1e-10 && plan.t_end > 1e3,
+        None => false,
+    };
+    let bar = (long && std::io::stderr().is_terminal()).then(|| {
+        let bar = indicatif::ProgressBar::new(1000);
+        bar.set_style(
+            indicatif::ProgressStyle::with_template("{bar:40} {percent}% t={msg} eta {eta}")
+                .expect("valid template"),
+        );
+        bar
+    });
+    let t_end = plan.t_end;
+    let mut last_tick = 0u64;
+    let mut tick = |t: f64| {
+        if let Some(b) = &bar {
+            let pos = if t_end > 0.0 {
+                (1000.0 * t / t_end) as u64
+            } else {
+                1000
+            };
+            if pos != last_tick {
+                last_tick = pos;
+                b.set_position(pos);
+                b.set_message(format!("{t:.3}"));
+            }
+        }
+    };
+    let mut out = Output {
+        stream: file.as_mut().map(|w| w as &mut dyn Write),
+        store: args.trajectory,
+        memory_budget: args.memory_budget,
+        progress: bar.as_ref().map(|_| &mut tick as &mut dyn FnMut(f64)),
+    };
+    let result = run::run(&scene, &plan, &mut out);
+    if let Some(b) = &bar {
+        b.finish_and_clear();
+    }
+    if let Some(mut w) = file {
+        w.flush()?;
+    }
+    let report = match result {
+        Ok(r) => r,
+        Err(e) if is_input_error(&e) => return Err(e.into()),
+        Err(e) => {
+            eprintln!("error: {e}");
+            return Ok(ExitCode::from(1));
+        }
+    };
+    if args.format == "json" {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+    } else {
+        print!("{report}");
+    }
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,64 @@
+//! `hdot work-precision SCENE`: sweep every method over step sizes and
+//! tolerances; write the CSV and the chart (error against wall time).
+
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::Context;
+use clap::Args;
+use hdot_sim::run;
+use hdot_sim::scene::Scene;
+
+/// Arguments of `hdot work-precision`.
+#[derive(Debug, Args)]
+pub struct WorkPrecisionArgs {
+    /// Scene file (TOML).
+    pub scene: PathBuf,
+    /// Directory for `<scene>-work-precision.{csv,svg,png}`.
+    #[arg(long, default_value = ".")]
+    pub out: PathBuf,
+    /// End time (default: the scene's).
+    #[arg(long, allow_negative_numbers = true)]
+    pub t_end: Option<f64>,
+    /// Least wall time spent repeating one run to time it, seconds.
+    #[arg(long, default_value_t = 0.02)]
+    pub min_time: f64,
+}
+
+/// Runs `hdot work-precision`.
+pub fn run(args: WorkPrecisionArgs) -> anyhow::Result<ExitCode> {
+    let scene = Scene::from_file(&args.scene)?;
+    let t_end = args.t_end.unwrap_or(scene.t_end);
+    if !(t_end.is_finite() && t_end > 0.0) {
+        anyhow::bail!("--t-end must be positive and finite, got {t_end}");
+    }
+    std::fs::create_dir_all(&args.out)
+        .with_context(|| format!("creating {}", args.out.display()))?;
+    let stem_name = format!(
+        "{}-work-precision",
+        args.scene
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .unwrap_or("scene")
+    );
+    let stem = args.out.join(&stem_name);
+    let rows = run::work_precision(&scene, t_end, args.min_time, |r| {
+        eprintln!("{}", r.csv());
+    })?;
+    let csv = stem.with_extension("csv");
+    let mut f =
+        std::fs::File::create(&csv).with_context(|| format!("creating {}", csv.display()))?;
+    writeln!(f, "{}", run::CSV_HEADER)?;
+    for r in &rows {
+        writeln!(f, "{}", r.csv())?;
+    }
+    run::write_chart(&rows, &stem, &format!("{} (T = {t_end})", scene.name))?;
+    println!(
+        "wrote {}, {}.svg, {}.png",
+        csv.display(),
+        stem.display(),
+        stem.display()
+    );
+    Ok(ExitCode::SUCCESS)
+}
