@@ -1,1 +1,126 @@
-//! Tests of the hdot binary.
+//! Tests of the `hdot` binary: exit codes, messages, atomic output.
+
+use std::process::Command;
+
+use hdot_tests::{hdot_bin, repo_root};
+
+fn hdot(args: &[&str]) -> std::process::Output {
+    Command::new(hdot_bin())
+        .args(args)
+        .current_dir(repo_root())
+        .output()
+        .expect("run hdot")
+}
+
+fn text(b: &[u8]) -> String {
+    String::from_utf8_lossy(b).into_owned()
+}
+
+#[test]
+fn check_passes_on_the_bundled_derivations() {
+    let out = hdot(&["check"]);
+    let so = text(&out.stdout);
+    assert!(out.status.success(), "{so}{}", text(&out.stderr));
+    for name in [
+        "angular-momentum",
+        "euler-principal",
+        "euler-general",
+        "fixed-axis",
+    ] {
+        let line = so
+            .lines()
+            .find(|l| l.starts_with(name))
+            .unwrap_or_else(|| panic!("{name} missing:\n{so}"));
+        assert!(line.trim_end().ends_with("ok"), "{line}");
+    }
+}
+
+#[test]
+fn derive_prints_eulers_equations_in_latex() {
+    let out = hdot(&["derive", "euler-principal", "--format", "latex"]);
+    assert!(out.status.success());
+    let so = text(&out.stdout);
+    assert!(
+        so.contains(
+            r"\Sigma M_{x} &= I_x \dot{\omega}_x - \left(I_y - I_z\right) \omega_y \omega_z"
+        ),
+        "{so}"
+    );
+}
+
+#[test]
+fn unknown_names_and_broken_files_exit_2_with_a_location() {
+    let out = hdot(&["derive", "no-such-derivation"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(text(&out.stderr).contains("unknown derivation `no-such-derivation`"));
+
+    let out = hdot(&["derive", "tests/sym/broken/02-unknown-symbol.toml"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        text(&out.stderr).contains("02-unknown-symbol.toml:9:24"),
+        "{}",
+        text(&out.stderr)
+    );
+}
+
+#[test]
+fn a_failing_expectation_exits_1_and_names_the_component() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = dir.path().join("wrong.toml");
+    std::fs::write(
+        &f,
+        "title = \"w\"\nsource = \"s\"\n[symbols]\nconstants = [\"m\"]\ntime = [\"x\"]\n[[step]]\nname = \"p\"\nvalue = \"m*x'\"\nexpect = \"m*x\"\n",
+    )
+    .unwrap();
+    let out = hdot(&["check", f.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    let so = text(&out.stdout);
+    assert!(
+        so.contains("FAILED (1 of 1)") && so.contains("p: derived − expected = -m*x + m*x'"),
+        "{so}"
+    );
+}
+
+#[test]
+fn out_is_written_whole_or_not_at_all() {
+    let dir = tempfile::tempdir().unwrap();
+    let good = dir.path().join("euler.tex");
+    let out = hdot(&[
+        "derive",
+        "euler-principal",
+        "--format",
+        "latex",
+        "--out",
+        good.to_str().unwrap(),
+    ]);
+    assert!(out.status.success());
+    assert!(
+        std::fs::read_to_string(&good)
+            .unwrap()
+            .contains(r"\begin{align*}")
+    );
+
+    let bad = dir.path().join("broken.tex");
+    let out = hdot(&[
+        "derive",
+        "tests/sym/broken/05-unknown-function.toml",
+        "--out",
+        bad.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(!bad.exists(), "nothing may be written on error");
+    assert_eq!(
+        std::fs::read_dir(dir.path()).unwrap().count(),
+        1,
+        "no temporary file left behind"
+    );
+}
+
+#[test]
+fn every_command_has_help() {
+    for cmd in ["list", "derive", "check"] {
+        let out = hdot(&[cmd, "--help"]);
+        assert!(out.status.success(), "{cmd} --help");
+        assert!(text(&out.stdout).contains("Usage: hdot"), "{cmd}");
+    }
+}

@@ -55,7 +55,12 @@ fn interner() -> &'static RwLock<Interner> {
 }
 
 fn intern(kind: AtomKind) -> Atom {
-    if let Some(a) = interner().read().expect("atom interner poisoned").ids.get(&kind) {
+    if let Some(a) = interner()
+        .read()
+        .expect("atom interner poisoned")
+        .ids
+        .get(&kind)
+    {
         return *a;
     }
     let mut w = interner().write().expect("atom interner poisoned");
@@ -69,7 +74,12 @@ fn intern(kind: AtomKind) -> Atom {
 }
 
 fn intern_name(name: &str) -> &'static str {
-    if let Some(s) = interner().read().expect("atom interner poisoned").names.get(name) {
+    if let Some(s) = interner()
+        .read()
+        .expect("atom interner poisoned")
+        .names
+        .get(name)
+    {
         return s;
     }
     let mut w = interner().write().expect("atom interner poisoned");
@@ -85,12 +95,20 @@ fn intern_name(name: &str) -> &'static str {
 impl Atom {
     /// A constant symbol.
     pub fn constant(name: &str) -> Atom {
-        intern(AtomKind::Var { name: intern_name(name), time: false, order: 0 })
+        intern(AtomKind::Var {
+            name: intern_name(name),
+            time: false,
+            order: 0,
+        })
     }
 
     /// A time-dependent symbol, differentiated `order` times.
     pub fn time(name: &str, order: u32) -> Atom {
-        intern(AtomKind::Var { name: intern_name(name), time: true, order })
+        intern(AtomKind::Var {
+            name: intern_name(name),
+            time: true,
+            order,
+        })
     }
 
     /// `sin(angle)`. Returns `None` unless `angle` is an undifferentiated symbol.
@@ -143,7 +161,11 @@ impl Atom {
     /// The same symbol differentiated once more; `None` for constants and trig atoms.
     pub fn derivative(self) -> Option<Atom> {
         match self.kind() {
-            AtomKind::Var { name, time: true, order } => Some(Atom::time(name, order + 1)),
+            AtomKind::Var {
+                name,
+                time: true,
+                order,
+            } => Some(Atom::time(name, order + 1)),
             _ => None,
         }
     }
@@ -151,7 +173,11 @@ impl Atom {
     /// The undifferentiated symbol this atom derives from (itself for order 0).
     pub fn base(self) -> Atom {
         match self.kind() {
-            AtomKind::Var { name, time: true, order } if order > 0 => Atom::time(name, 0),
+            AtomKind::Var {
+                name,
+                time: true,
+                order,
+            } if order > 0 => Atom::time(name, 0),
             _ => self,
         }
     }
@@ -161,8 +187,14 @@ impl Atom {
     /// and name, then `sin`, then `cos`.
     pub fn sort_key(self) -> (u8, u32, &'static str) {
         match self.kind() {
-            AtomKind::Var { name, time: false, .. } => (0, 0, name),
-            AtomKind::Var { name, time: true, order } => (1, order, name),
+            AtomKind::Var {
+                name, time: false, ..
+            } => (0, 0, name),
+            AtomKind::Var {
+                name,
+                time: true,
+                order,
+            } => (1, order, name),
             AtomKind::Sin(a) => (2, 0, a.name()),
             AtomKind::Cos(a) => (3, 0, a.name()),
         }
@@ -201,7 +233,10 @@ mod tests {
         assert_eq!(Atom::time("theta", 2), Atom::time("theta", 2));
         assert_ne!(Atom::time("m", 0), Atom::constant("m"));
         let th = Atom::time("theta", 0);
-        assert_eq!(th.derivative().unwrap().derivative(), Some(Atom::time("theta", 2)));
+        assert_eq!(
+            th.derivative().unwrap().derivative(),
+            Some(Atom::time("theta", 2))
+        );
         assert_eq!(Atom::sin(Atom::time("theta", 1)), None);
         assert_eq!(Atom::cos(th).unwrap().to_string(), "cos(theta)");
         assert_eq!(Atom::time("phi", 2).to_string(), "phi''");

@@ -22,14 +22,23 @@ fn atom_dt(a: Atom) -> Vec<(Monomial, Rational)> {
     match a.kind() {
         AtomKind::Var { time: false, .. } => vec![],
         AtomKind::Var { time: true, .. } => {
-            vec![(Monomial::atom(a.derivative().expect("time symbol"), 1), Rational::ONE)]
+            vec![(
+                Monomial::atom(a.derivative().expect("time symbol"), 1),
+                Rational::ONE,
+            )]
         }
         AtomKind::Sin(q) => match q.derivative() {
-            Some(qd) => vec![(Monomial::from_factors([(Atom::cos(q).expect("angle"), 1), (qd, 1)]), Rational::ONE)],
+            Some(qd) => vec![(
+                Monomial::from_factors([(Atom::cos(q).expect("angle"), 1), (qd, 1)]),
+                Rational::ONE,
+            )],
             None => vec![],
         },
         AtomKind::Cos(q) => match q.derivative() {
-            Some(qd) => vec![(Monomial::from_factors([(Atom::sin(q).expect("angle"), 1), (qd, 1)]), -Rational::ONE)],
+            Some(qd) => vec![(
+                Monomial::from_factors([(Atom::sin(q).expect("angle"), 1), (qd, 1)]),
+                -Rational::ONE,
+            )],
             None => vec![],
         },
     }

@@ -93,7 +93,11 @@ impl Expr {
     /// `atom^exp` (just the atom when `exp == 1`).
     pub fn atom_pow(&mut self, a: Atom, exp: u32) -> Id {
         let id = self.push(Node::Atom(a));
-        if exp >= 2 { self.push(Node::Pow(id, exp)) } else { id }
+        if exp >= 2 {
+            self.push(Node::Pow(id, exp))
+        } else {
+            id
+        }
     }
 
     /// The default presentation of a canonical polynomial: terms in a stable
@@ -107,10 +111,16 @@ impl Expr {
 
     /// Adds the default presentation of `p` and returns its id.
     pub fn poly_node(&mut self, p: &Poly) -> Id {
-        let mut terms: Vec<(Vec<(Atom, u32)>, &Rational)> =
-            p.terms().iter().map(|(m, c)| (m.sorted_for_print(), c)).collect();
+        let mut terms: Vec<(Vec<(Atom, u32)>, &Rational)> = p
+            .terms()
+            .iter()
+            .map(|(m, c)| (m.sorted_for_print(), c))
+            .collect();
         terms.sort_by(|a, b| print_order(&a.0, &b.0));
-        let ids = terms.into_iter().map(|(fs, c)| self.term_node(&fs, c)).collect();
+        let ids = terms
+            .into_iter()
+            .map(|(fs, c)| self.term_node(&fs, c))
+            .collect();
         self.add(ids)
     }
 
@@ -125,7 +135,11 @@ impl Expr {
             ids.push(self.atom_pow(a, e));
         }
         let m = self.mul(ids);
-        if c.is_negative() { self.push(Node::Neg(m)) } else { m }
+        if c.is_negative() {
+            self.push(Node::Neg(m))
+        } else {
+            m
+        }
     }
 }
 
@@ -166,7 +180,9 @@ impl Expr {
                 Node::Num(r) => Poly::constant(r.clone()),
                 Node::Atom(a) => Poly::term(Monomial::atom(*a, 1), Rational::ONE),
                 Node::Add(c) => c.iter().map(|i| vals[i.0 as usize].clone()).sum(),
-                Node::Mul(c) => c.iter().fold(Poly::one(), |acc, i| &acc * &vals[i.0 as usize]),
+                Node::Mul(c) => c
+                    .iter()
+                    .fold(Poly::one(), |acc, i| &acc * &vals[i.0 as usize]),
                 Node::Neg(i) => -&vals[i.0 as usize],
                 Node::Pow(i, e) => vals[i.0 as usize].pow(*e),
             };

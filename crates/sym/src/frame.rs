@@ -48,7 +48,10 @@ impl Frame {
 
     /// A frame rotating with angular velocity `omega` (its own components).
     pub fn rotating(name: &str, omega: Vec3) -> Frame {
-        Frame { omega, ..Frame::inertial(name) }
+        Frame {
+            omega,
+            ..Frame::inertial(name)
+        }
     }
 
     /// The inertial-frame time derivative of a vector expressed in this frame:

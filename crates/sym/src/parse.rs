@@ -30,7 +30,10 @@ pub struct Span {
 
 impl Span {
     fn to(self, other: Span) -> Span {
-        Span { start: self.start, end: other.end }
+        Span {
+            start: self.start,
+            end: other.end,
+        }
     }
 }
 
@@ -45,7 +48,10 @@ pub struct ParseError {
 }
 
 fn err<T>(span: Span, message: impl Into<String>) -> Result<T, ParseError> {
-    Err(ParseError { span, message: message.into() })
+    Err(ParseError {
+        span,
+        message: message.into(),
+    })
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -77,7 +83,10 @@ fn tokenize(text: &str) -> Result<Vec<(Tok, Span)>, ParseError> {
             }
             if let Some(&(j, '.')) = it.peek() {
                 return err(
-                    Span { start: i, end: j + 1 },
+                    Span {
+                        start: i,
+                        end: j + 1,
+                    },
                     "decimal numbers are not allowed in symbolic expressions; write an exact fraction such as 3/2",
                 );
             }
@@ -97,7 +106,13 @@ fn tokenize(text: &str) -> Result<Vec<(Tok, Span)>, ParseError> {
             out.push((Tok::Ident(s), Span { start: i, end }));
         } else if c == '\'' {
             it.next();
-            out.push((Tok::Prime, Span { start: i, end: i + 1 }));
+            out.push((
+                Tok::Prime,
+                Span {
+                    start: i,
+                    end: i + 1,
+                },
+            ));
         } else if "+-*/^()[],.=×·".contains(c) {
             it.next();
             let len = c.len_utf8();
@@ -106,12 +121,30 @@ fn tokenize(text: &str) -> Result<Vec<(Tok, Span)>, ParseError> {
                 '·' => '*',
                 c => c,
             };
-            out.push((Tok::Sym(c), Span { start: i, end: i + len }));
+            out.push((
+                Tok::Sym(c),
+                Span {
+                    start: i,
+                    end: i + len,
+                },
+            ));
         } else {
-            return err(Span { start: i, end: i + c.len_utf8() }, format!("unexpected character `{c}`"));
+            return err(
+                Span {
+                    start: i,
+                    end: i + c.len_utf8(),
+                },
+                format!("unexpected character `{c}`"),
+            );
         }
     }
-    out.push((Tok::End, Span { start: text.len(), end: text.len() }));
+    out.push((
+        Tok::End,
+        Span {
+            start: text.len(),
+            end: text.len(),
+        },
+    ));
     Ok(out)
 }
 
@@ -184,11 +217,17 @@ struct Parser {
 
 /// Parses one expression; the whole text must be consumed.
 pub fn parse(text: &str) -> Result<Ast, ParseError> {
-    let mut p = Parser { toks: tokenize(text)?, pos: 0 };
+    let mut p = Parser {
+        toks: tokenize(text)?,
+        pos: 0,
+    };
     let e = p.expr()?;
     match p.peek() {
         Tok::End => Ok(e),
-        t => err(p.span(), format!("unexpected {} after the end of the expression", describe(t))),
+        t => err(
+            p.span(),
+            format!("unexpected {} after the end of the expression", describe(t)),
+        ),
     }
 }
 
@@ -234,7 +273,10 @@ impl Parser {
         if self.eat(c) {
             Ok(self.prev_span())
         } else {
-            err(self.span(), format!("expected `{c}` {what}, found {}", describe(self.peek())))
+            err(
+                self.span(),
+                format!("expected `{c}` {what}, found {}", describe(self.peek())),
+            )
         }
     }
 
@@ -249,7 +291,10 @@ impl Parser {
                 let s = self.prev_span();
                 let t = self.term_no_unary()?;
                 let span = s.to(t.span);
-                items.push(Ast { kind: AstKind::Neg(Box::new(t)), span });
+                items.push(Ast {
+                    kind: AstKind::Neg(Box::new(t)),
+                    span,
+                });
             } else {
                 break;
             }
@@ -258,7 +303,10 @@ impl Parser {
             items.pop().expect("one item")
         } else {
             let span = start.to(items.last().expect("items").span);
-            Ast { kind: AstKind::Add(items), span }
+            Ast {
+                kind: AstKind::Add(items),
+                span,
+            }
         })
     }
 
@@ -267,14 +315,20 @@ impl Parser {
             let s = self.prev_span();
             let t = self.term()?;
             let span = s.to(t.span);
-            return Ok(Ast { kind: AstKind::Neg(Box::new(t)), span });
+            return Ok(Ast {
+                kind: AstKind::Neg(Box::new(t)),
+                span,
+            });
         }
         self.term_no_unary()
     }
 
     fn term_no_unary(&mut self) -> Result<Ast, ParseError> {
         if *self.peek() == Tok::Sym('-') || *self.peek() == Tok::Sym('+') {
-            return err(self.span(), "two signs in a row; put the second term in parentheses");
+            return err(
+                self.span(),
+                "two signs in a row; put the second term in parentheses",
+            );
         }
         let first = self.cross()?;
         let start = first.span;
@@ -286,7 +340,10 @@ impl Parser {
                 let s = self.prev_span();
                 let f = self.factor(false)?;
                 let span = s.to(f.span);
-                items.push(Ast { kind: AstKind::Recip(Box::new(f)), span });
+                items.push(Ast {
+                    kind: AstKind::Recip(Box::new(f)),
+                    span,
+                });
             } else {
                 break;
             }
@@ -295,7 +352,10 @@ impl Parser {
             items.pop().expect("one item")
         } else {
             let span = start.to(items.last().expect("items").span);
-            Ast { kind: AstKind::Mul(items), span }
+            Ast {
+                kind: AstKind::Mul(items),
+                span,
+            }
         })
     }
 
@@ -306,7 +366,10 @@ impl Parser {
             self.bump();
             let b = self.factor(true)?;
             let span = a.span.to(b.span);
-            return Ok(Ast { kind: AstKind::Cross(Box::new(a), Box::new(b)), span });
+            return Ok(Ast {
+                kind: AstKind::Cross(Box::new(a), Box::new(b)),
+                span,
+            });
         }
         Ok(a)
     }
@@ -322,7 +385,10 @@ impl Parser {
                 return err(s, "exponent too large");
             };
             let span = base.span.to(s);
-            return Ok(Ast { kind: AstKind::Pow(Box::new(base), n), span });
+            return Ok(Ast {
+                kind: AstKind::Pow(Box::new(base), n),
+                span,
+            });
         }
         Ok(base)
     }
@@ -335,7 +401,10 @@ impl Parser {
                 return err(s, "expected a component name after `.` (such as x, y, z)");
             };
             let span = e.span.to(s);
-            e = Ast { kind: AstKind::Member(Box::new(e), name, s), span };
+            e = Ast {
+                kind: AstKind::Member(Box::new(e), name, s),
+                span,
+            };
         }
         Ok(e)
     }
@@ -346,9 +415,14 @@ impl Parser {
             Tok::Int(n) => {
                 let mut text = n;
                 let mut span = s;
-                if allow_rational && *self.peek() == Tok::Sym('/') && matches!(self.peek_at(1), Tok::Int(_)) {
+                if allow_rational
+                    && *self.peek() == Tok::Sym('/')
+                    && matches!(self.peek_at(1), Tok::Int(_))
+                {
                     self.bump();
-                    let (Tok::Int(d), ds) = self.bump() else { unreachable!() };
+                    let (Tok::Int(d), ds) = self.bump() else {
+                        unreachable!()
+                    };
                     if d.chars().all(|c| c == '0') {
                         return err(ds, "division by zero");
                     }
@@ -356,13 +430,19 @@ impl Parser {
                     span = s.to(ds);
                 }
                 let r = Rational::parse(&text).expect("digits parse");
-                Ok(Ast { kind: AstKind::Num(r), span })
+                Ok(Ast {
+                    kind: AstKind::Num(r),
+                    span,
+                })
             }
             Tok::Ident(name) => {
                 if self.eat('(') {
                     let args = self.args()?;
                     let close = self.expect(')', "to close the argument list")?;
-                    return Ok(Ast { kind: AstKind::Call { func: name, args }, span: s.to(close) });
+                    return Ok(Ast {
+                        kind: AstKind::Call { func: name, args },
+                        span: s.to(close),
+                    });
                 }
                 let mut primes = 0;
                 let mut span = s;
@@ -370,7 +450,10 @@ impl Parser {
                     primes += 1;
                     span = s.to(self.bump().1);
                 }
-                Ok(Ast { kind: AstKind::Name { name, primes }, span })
+                Ok(Ast {
+                    kind: AstKind::Name { name, primes },
+                    span,
+                })
             }
             Tok::Sym('(') => {
                 let e = self.expr()?;
@@ -394,7 +477,10 @@ impl Parser {
                     span = span.to(fs);
                     frame = Some((f, fs));
                 }
-                Ok(Ast { kind: AstKind::Vector { items, frame }, span })
+                Ok(Ast {
+                    kind: AstKind::Vector { items, frame },
+                    span,
+                })
             }
             Tok::End => err(s, "expected an expression, found the end of the text"),
             t => err(s, format!("expected an expression, found {}", describe(&t))),
@@ -411,7 +497,9 @@ impl Parser {
             while *self.peek_at(k) == Tok::Prime {
                 k += 1;
             }
-            if let (Tok::Ident(name), Tok::Sym('=')) = (self.peek().clone(), self.peek_at(k).clone()) {
+            if let (Tok::Ident(name), Tok::Sym('=')) =
+                (self.peek().clone(), self.peek_at(k).clone())
+            {
                 let (_, ns) = self.bump();
                 let mut name_span = ns;
                 for _ in 1..k {
@@ -421,7 +509,15 @@ impl Parser {
                 let v = self.expr()?;
                 let span = ns.to(v.span);
                 let primes = (k - 1) as u32;
-                args.push(Ast { kind: AstKind::Assign { name, primes, name_span, value: Box::new(v) }, span });
+                args.push(Ast {
+                    kind: AstKind::Assign {
+                        name,
+                        primes,
+                        name_span,
+                        value: Box::new(v),
+                    },
+                    span,
+                });
             } else {
                 args.push(self.expr()?);
             }
@@ -450,7 +546,9 @@ mod tests {
     #[test]
     fn rational_literals_and_division() {
         let a = parse("1/2*m").unwrap();
-        let AstKind::Mul(items) = a.kind else { panic!() };
+        let AstKind::Mul(items) = a.kind else {
+            panic!()
+        };
         assert_eq!(items[0].kind, AstKind::Num(Rational::new(1, 2).unwrap()));
     }
 }

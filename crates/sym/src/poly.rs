@@ -171,7 +171,9 @@ pub(crate) struct Accum {
 
 impl Accum {
     pub(crate) fn with_capacity(n: usize) -> Accum {
-        Accum { map: FxHashMap::with_capacity_and_hasher(n, Default::default()) }
+        Accum {
+            map: FxHashMap::with_capacity_and_hasher(n, Default::default()),
+        }
     }
 
     pub(crate) fn push(&mut self, m: Monomial, c: Rational) {
@@ -179,8 +181,13 @@ impl Accum {
             return;
         }
         // Find a sin atom with exponent >= 2 and rewrite sin^2 = 1 - cos^2.
-        if let Some(&(s, _)) = m.0.iter().find(|f| f.1 >= 2 && matches!(f.0.kind(), AtomKind::Sin(_))) {
-            let AtomKind::Sin(angle) = s.kind() else { unreachable!() };
+        if let Some(&(s, _)) =
+            m.0.iter()
+                .find(|f| f.1 >= 2 && matches!(f.0.kind(), AtomKind::Sin(_)))
+        {
+            let AtomKind::Sin(angle) = s.kind() else {
+                unreachable!()
+            };
             let cos = Atom::cos(angle).expect("sin argument is an angle");
             let rest = m.without(s, 2);
             let with_cos = rest.mul(&Monomial::atom(cos, 2));
@@ -224,7 +231,13 @@ impl Poly {
 
     /// A rational constant.
     pub fn constant(c: Rational) -> Poly {
-        if c.is_zero() { Poly::zero() } else { Poly { terms: vec![(Monomial::one(), c)] } }
+        if c.is_zero() {
+            Poly::zero()
+        } else {
+            Poly {
+                terms: vec![(Monomial::one(), c)],
+            }
+        }
     }
 
     /// An integer constant.
@@ -234,7 +247,9 @@ impl Poly {
 
     /// A single atom.
     pub fn atom(a: Atom) -> Poly {
-        Poly { terms: vec![(Monomial::atom(a, 1), Rational::ONE)] }
+        Poly {
+            terms: vec![(Monomial::atom(a, 1), Rational::ONE)],
+        }
     }
 
     /// A single term `c · m` (reduced to canonical form).
@@ -266,6 +281,11 @@ impl Poly {
         self.terms.len()
     }
 
+    /// True for zero (no terms).
+    pub fn is_empty(&self) -> bool {
+        self.terms.is_empty()
+    }
+
     /// True for zero.
     pub fn is_zero(&self) -> bool {
         self.terms.is_empty()
@@ -283,14 +303,20 @@ impl Poly {
     /// The single atom this polynomial is, if it is one.
     pub fn as_atom(&self) -> Option<Atom> {
         match self.terms.as_slice() {
-            [(m, c)] if c.is_one() && m.factors().len() == 1 && m.factors()[0].1 == 1 => Some(m.factors()[0].0),
+            [(m, c)] if c.is_one() && m.factors().len() == 1 && m.factors()[0].1 == 1 => {
+                Some(m.factors()[0].0)
+            }
             _ => None,
         }
     }
 
     /// Every atom that occurs, sorted by id, without repeats.
     pub fn atoms(&self) -> Vec<Atom> {
-        let mut v: Vec<Atom> = self.terms.iter().flat_map(|t| t.0.factors().iter().map(|f| f.0)).collect();
+        let mut v: Vec<Atom> = self
+            .terms
+            .iter()
+            .flat_map(|t| t.0.factors().iter().map(|f| f.0))
+            .collect();
         v.sort_unstable();
         v.dedup();
         v
@@ -322,7 +348,9 @@ impl Poly {
         if c.is_zero() {
             return Poly::zero();
         }
-        Poly { terms: self.terms.iter().map(|(m, k)| (m.clone(), k * c)).collect() }
+        Poly {
+            terms: self.terms.iter().map(|(m, k)| (m.clone(), k * c)).collect(),
+        }
     }
 
     /// `self^n`, by repeated squaring.
@@ -390,7 +418,9 @@ impl std::ops::Sub for &Poly {
 impl std::ops::Neg for &Poly {
     type Output = Poly;
     fn neg(self) -> Poly {
-        Poly { terms: self.terms.iter().map(|(m, c)| (m.clone(), -c)).collect() }
+        Poly {
+            terms: self.terms.iter().map(|(m, c)| (m.clone(), -c)).collect(),
+        }
     }
 }
 

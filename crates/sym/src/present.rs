@@ -57,9 +57,9 @@ pub fn fold(p: &Poly, name: Atom, def: &Poly) -> Poly {
     let inv = c.recip().expect("non-zero coefficient");
     let v_expr = (&Poly::atom(name) - &rest).scale(&inv);
     p.subst(&mut |a| match a.kind() {
-        AtomKind::Var { time: true, order, .. } if a.base() == v.base() && order >= v.order() => {
-            Some(v_expr.dt_n(order - v.order()))
-        }
+        AtomKind::Var {
+            time: true, order, ..
+        } if a.base() == v.base() && order >= v.order() => Some(v_expr.dt_n(order - v.order())),
         _ => None,
     })
 }
@@ -74,10 +74,12 @@ fn eliminable(def: &Poly) -> Option<(Atom, Rational)> {
             continue;
         }
         let others = def.terms().iter().filter(|(m2, _)| m2 != m);
-        let clash = others.flat_map(|(m2, _)| m2.factors()).any(|(a, _)| match a.kind() {
-            AtomKind::Var { .. } => a.base() == v.base(),
-            AtomKind::Sin(q) | AtomKind::Cos(q) => q == v.base(),
-        });
+        let clash = others
+            .flat_map(|(m2, _)| m2.factors())
+            .any(|(a, _)| match a.kind() {
+                AtomKind::Var { .. } => a.base() == v.base(),
+                AtomKind::Sin(q) | AtomKind::Cos(q) => q == v.base(),
+            });
         if !clash && best.as_ref().is_none_or(|b| v.order() > b.0.order()) {
             best = Some((*v, c.clone()));
         }
@@ -98,17 +100,26 @@ pub fn present(p: &Poly, pres: &Presentation) -> Expr {
         let (key, rest) = m.split(|a| rank(a).is_some());
         groups.entry(key).or_default().push((rest, c.clone()));
     }
-    let mut groups: Vec<(Monomial, Poly)> = groups.into_iter().map(|(k, ts)| (k, Poly::from_terms(ts))).collect();
+    let mut groups: Vec<(Monomial, Poly)> = groups
+        .into_iter()
+        .map(|(k, ts)| (k, Poly::from_terms(ts)))
+        .collect();
     let group_key = |k: &Monomial| {
-        let mut pos: Vec<(usize, Reverse<u32>)> =
-            k.factors().iter().map(|&(a, e)| (rank(a).expect("collected"), Reverse(e))).collect();
+        let mut pos: Vec<(usize, Reverse<u32>)> = k
+            .factors()
+            .iter()
+            .map(|&(a, e)| (rank(a).expect("collected"), Reverse(e)))
+            .collect();
         pos.sort();
         (k.is_one(), pos)
     };
-    groups.sort_by(|a, b| group_key(&a.0).cmp(&group_key(&b.0)));
+    groups.sort_by_key(|g| group_key(&g.0));
 
     let mut e = Expr::new();
-    let ids: Vec<Id> = groups.iter().map(|(k, q)| group_node(&mut e, k, q)).collect();
+    let ids: Vec<Id> = groups
+        .iter()
+        .map(|(k, q)| group_node(&mut e, k, q))
+        .collect();
     e.add(ids);
     e
 }
@@ -119,10 +130,16 @@ fn term_order(a: &[(Atom, u32)], b: &[(Atom, u32)]) -> Ordering {
     top(b).cmp(&top(a)).then_with(|| print_order(a, b))
 }
 
+/// A term with its factors in print order.
+type PrintTerm = (Vec<(Atom, u32)>, Monomial, Rational);
+
 /// `key · q` with q factored.
 fn group_node(e: &mut Expr, key: &Monomial, q: &Poly) -> Id {
-    let mut terms: Vec<(Vec<(Atom, u32)>, Monomial, Rational)> =
-        q.terms().iter().map(|(m, c)| (m.sorted_for_print(), m.clone(), c.clone())).collect();
+    let mut terms: Vec<PrintTerm> = q
+        .terms()
+        .iter()
+        .map(|(m, c)| (m.sorted_for_print(), m.clone(), c.clone()))
+        .collect();
     terms.sort_by(|a, b| term_order(&a.0, &b.0));
     // Content: rational gcd with the sign of the first printed term, and the
     // common monomial.
@@ -130,7 +147,10 @@ fn group_node(e: &mut Expr, key: &Monomial, q: &Poly) -> Id {
     if terms.first().is_some_and(|t| t.2.is_negative()) {
         content = -content;
     }
-    let common = terms.iter().skip(1).fold(terms[0].1.clone(), |g, t| g.gcd(&t.1));
+    let common = terms
+        .iter()
+        .skip(1)
+        .fold(terms[0].1.clone(), |g, t| g.gcd(&t.1));
     let inv = content.recip().expect("non-zero content");
 
     let mut outer = key.mul(&common);

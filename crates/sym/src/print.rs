@@ -182,7 +182,11 @@ fn latex_base(base: &str) -> String {
     if let Some(c) = primed_base(base) {
         return format!("{c}'");
     }
-    if base.chars().count() == 1 { base.to_owned() } else { format!(r"\mathrm{{{base}}}") }
+    if base.chars().count() == 1 {
+        base.to_owned()
+    } else {
+        format!(r"\mathrm{{{base}}}")
+    }
 }
 
 fn unicode_base(base: &str) -> String {
@@ -196,10 +200,21 @@ fn unicode_base(base: &str) -> String {
 }
 
 fn latex_sub(sub: &str) -> String {
-    let parts: Vec<String> =
-        sub.split('_').map(|p| GREEK.iter().find(|g| g.0 == p).map_or(p.to_owned(), |g| g.1.to_owned())).collect();
+    let parts: Vec<String> = sub
+        .split('_')
+        .map(|p| {
+            GREEK
+                .iter()
+                .find(|g| g.0 == p)
+                .map_or(p.to_owned(), |g| g.1.to_owned())
+        })
+        .collect();
     let s = parts.join(",");
-    if s.chars().count() == 1 { format!("_{s}") } else { format!("_{{{s}}}") }
+    if s.chars().count() == 1 {
+        format!("_{s}")
+    } else {
+        format!("_{{{s}}}")
+    }
 }
 
 /// LaTeX for a symbol name with `order` time derivatives: `\dot{\omega}_x`.
@@ -309,7 +324,11 @@ impl Style for Unicode {
         if let Node::Atom(a) = node
             && let AtomKind::Sin(q) | AtomKind::Cos(q) = a.kind()
         {
-            let f = if matches!(a.kind(), AtomKind::Sin(_)) { "sin" } else { "cos" };
+            let f = if matches!(a.kind(), AtomKind::Sin(_)) {
+                "sin"
+            } else {
+                "cos"
+            };
             return format!("{f}{} {}", superscript(exp), self.atom(q));
         }
         format!("{base}{}", superscript(exp))
@@ -347,7 +366,11 @@ impl Style for Latex {
         if let Node::Atom(a) = node
             && let AtomKind::Sin(q) | AtomKind::Cos(q) = a.kind()
         {
-            let f = if matches!(a.kind(), AtomKind::Sin(_)) { r"\sin" } else { r"\cos" };
+            let f = if matches!(a.kind(), AtomKind::Sin(_)) {
+                r"\sin"
+            } else {
+                r"\cos"
+            };
             return format!("{f}^{{{exp}}}{}", latex_fn_arg(&self.atom(q)));
         }
         format!("{base}^{{{exp}}}")
@@ -359,7 +382,11 @@ impl Style for Latex {
 
 /// `\sin\theta` for a command, `\sin x` for a letter.
 fn latex_fn_arg(arg: &str) -> String {
-    if arg.starts_with('\\') { arg.to_owned() } else { format!(" {arg}") }
+    if arg.starts_with('\\') {
+        arg.to_owned()
+    } else {
+        format!(" {arg}")
+    }
 }
 
 /// SymPy source: `I_x*omega_x.diff(t) - sin(theta)**2`, with symbol names

@@ -120,7 +120,11 @@ impl Rational {
 
     /// The absolute value.
     pub fn abs(&self) -> Rational {
-        if self.is_negative() { -self } else { self.clone() }
+        if self.is_negative() {
+            -self
+        } else {
+            self.clone()
+        }
     }
 
     /// Numerator and denominator as decimal strings (denominator positive).
@@ -255,7 +259,11 @@ impl Ord for Rational {
 impl fmt::Display for Rational {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let (n, d) = self.parts();
-        if d == "1" { write!(f, "{n}") } else { write!(f, "{n}/{d}") }
+        if d == "1" {
+            write!(f, "{n}")
+        } else {
+            write!(f, "{n}/{d}")
+        }
     }
 }
 
@@ -270,7 +278,10 @@ mod tests {
         assert!(matches!(sq, Rational::Big(_)));
         let back = &sq * &big.recip().unwrap();
         assert_eq!(back, big);
-        assert_eq!(-Rational::int(i64::MIN), Rational::parse("9223372036854775808").unwrap());
+        assert_eq!(
+            -Rational::int(i64::MIN),
+            Rational::parse("9223372036854775808").unwrap()
+        );
     }
 
     #[test]
@@ -278,6 +289,9 @@ mod tests {
         assert_eq!(Rational::new(2, -4).unwrap(), Rational::Small(-1, 2));
         assert_eq!(Rational::parse("6/4").unwrap().to_string(), "3/2");
         assert_eq!(Rational::new(1, 0), None);
-        assert_eq!(Rational::parse("4/6").unwrap().gcd(&Rational::int(2)), Rational::new(2, 3).unwrap());
+        assert_eq!(
+            Rational::parse("4/6").unwrap().gcd(&Rational::int(2)),
+            Rational::new(2, 3).unwrap()
+        );
     }
 }

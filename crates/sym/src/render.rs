@@ -42,9 +42,18 @@ pub fn render(d: &Derivation, format: Format) -> String {
 
 /// A label such as `Sigma M` with component `x`, in LaTeX: `\Sigma M_{x}`.
 pub fn latex_label(label: &str, component: &str) -> String {
-    let words: Vec<String> = label.split_whitespace().map(|w| latex_symbol(w, 0)).collect();
+    let words: Vec<String> = label
+        .split_whitespace()
+        .map(|w| latex_symbol(w, 0))
+        .collect();
     let body = words.join(" ");
-    match (component.is_empty(), label.split_whitespace().last().is_some_and(|w| w.contains('_'))) {
+    match (
+        component.is_empty(),
+        label
+            .split_whitespace()
+            .last()
+            .is_some_and(|w| w.contains('_')),
+    ) {
         (true, _) => body,
         (false, false) => format!("{body}_{{{component}}}"),
         (false, true) => format!(r"\left({body}\right)_{{{component}}}"),
@@ -53,8 +62,17 @@ pub fn latex_label(label: &str, component: &str) -> String {
 
 /// A label with component in Unicode: `ΣM_x`.
 pub fn unicode_label(label: &str, component: &str) -> String {
-    let body: String = label.split_whitespace().map(|w| unicode_symbol(w, 0)).collect();
-    match (component.is_empty(), label.split_whitespace().last().is_some_and(|w| w.contains('_'))) {
+    let body: String = label
+        .split_whitespace()
+        .map(|w| unicode_symbol(w, 0))
+        .collect();
+    match (
+        component.is_empty(),
+        label
+            .split_whitespace()
+            .last()
+            .is_some_and(|w| w.contains('_')),
+    ) {
         (true, _) => body,
         (false, false) => format!("{body}_{component}"),
         (false, true) => format!("({body})_{component}"),
@@ -74,7 +92,12 @@ fn unicode_names(d: &Derivation, want: fn(&Decl) -> bool) -> String {
 
 fn frame_omega_unicode(d: &Derivation, k: usize) -> String {
     let f = &d.frames[k];
-    let c: Vec<String> = f.omega.0.iter().map(|p| print::unicode(&Expr::from_poly(p))).collect();
+    let c: Vec<String> = f
+        .omega
+        .0
+        .iter()
+        .map(|p| print::unicode(&Expr::from_poly(p)))
+        .collect();
     format!("({})", c.join(", "))
 }
 
@@ -103,23 +126,45 @@ fn unicode(d: &Derivation) -> String {
     }
     for a in &d.abbreviations {
         let e = print::unicode(&Expr::from_poly(&a.definition));
-        let _ = writeln!(o, "  abbreviation: {} = {e}{}", unicode_symbol(&a.name, 0), doc_suffix(&a.doc));
+        let _ = writeln!(
+            o,
+            "  abbreviation: {} = {e}{}",
+            unicode_symbol(&a.name, 0),
+            doc_suffix(&a.doc)
+        );
     }
     if d.frames.len() > 1 {
         let _ = writeln!(o, "\nFrames (Ω relative to N, in the frame's own axes):");
         for (k, f) in d.frames.iter().enumerate().skip(1) {
-            let _ = writeln!(o, "  {}: Ω = {}{}", f.name, frame_omega_unicode(d, k), doc_suffix(&f.doc));
+            let _ = writeln!(
+                o,
+                "  {}: Ω = {}{}",
+                f.name,
+                frame_omega_unicode(d, k),
+                doc_suffix(&f.doc)
+            );
         }
     }
     let mut n = 0;
     for s in d.steps.iter().filter(|s| s.show) {
         n += 1;
-        let _ = writeln!(o, "\n{n}. {} = {}{}", unicode_label(&s.label, ""), s.formula, doc_suffix(&s.doc));
+        let _ = writeln!(
+            o,
+            "\n{n}. {} = {}{}",
+            unicode_label(&s.label, ""),
+            s.formula,
+            doc_suffix(&s.doc)
+        );
         if let Value::Vector(_, f) = &s.value {
             let _ = writeln!(o, "   (components in frame {f})");
         }
         for (c, e) in &s.components {
-            let _ = writeln!(o, "   {} = {}", unicode_label(&s.label, c), print::unicode(e));
+            let _ = writeln!(
+                o,
+                "   {} = {}",
+                unicode_label(&s.label, c),
+                print::unicode(e)
+            );
         }
         write_checks_unicode(&mut o, s);
     }
@@ -127,7 +172,11 @@ fn unicode(d: &Derivation) -> String {
 }
 
 fn doc_suffix(doc: &str) -> String {
-    if doc.is_empty() { String::new() } else { format!("  — {doc}") }
+    if doc.is_empty() {
+        String::new()
+    } else {
+        format!("  — {doc}")
+    }
 }
 
 fn write_checks_unicode(o: &mut String, s: &Step) {
@@ -240,10 +289,27 @@ fn markdown(d: &Derivation) -> String {
         o.push('\n');
     }
     for s in d.steps.iter().filter(|s| s.show) {
-        let _ = writeln!(o, "**{}** = `{}`{}\n", s.name, s.formula, if s.doc.is_empty() { String::new() } else { format!(" — {}", s.doc) });
-        let lines: Vec<String> =
-            s.components.iter().map(|(c, e)| format!("{} &= {}", latex_label(&s.label, c), print::latex(e))).collect();
-        let _ = writeln!(o, "$$\n\\begin{{aligned}}\n{}\n\\end{{aligned}}\n$$\n", lines.join(" \\\\\n"));
+        let _ = writeln!(
+            o,
+            "**{}** = `{}`{}\n",
+            s.name,
+            s.formula,
+            if s.doc.is_empty() {
+                String::new()
+            } else {
+                format!(" — {}", s.doc)
+            }
+        );
+        let lines: Vec<String> = s
+            .components
+            .iter()
+            .map(|(c, e)| format!("{} &= {}", latex_label(&s.label, c), print::latex(e)))
+            .collect();
+        let _ = writeln!(
+            o,
+            "$$\n\\begin{{aligned}}\n{}\n\\end{{aligned}}\n$$\n",
+            lines.join(" \\\\\n")
+        );
         if !s.checks.is_empty() {
             if s.checks.iter().all(|c| c.holds()) {
                 let _ = writeln!(o, "✓ equals the expected (textbook) form.\n");
@@ -259,12 +325,60 @@ fn markdown(d: &Derivation) -> String {
 /// names the export itself uses.
 fn py_var(name: &str) -> String {
     const RESERVED: &[&str] = &[
-        "t", "sin", "cos", "Eq", "Symbol", "Function", "Rational", "Integer", "equations", "expected", "abbreviations",
-        "False", "None", "True", "and", "as", "assert", "async", "await", "break", "class", "continue", "def", "del",
-        "elif", "else", "except", "finally", "for", "from", "global", "if", "import", "in", "is", "lambda", "nonlocal",
-        "not", "or", "pass", "raise", "return", "try", "while", "with", "yield", "sympy", "labels",
+        "t",
+        "sin",
+        "cos",
+        "Eq",
+        "Symbol",
+        "Function",
+        "Rational",
+        "Integer",
+        "equations",
+        "expected",
+        "abbreviations",
+        "False",
+        "None",
+        "True",
+        "and",
+        "as",
+        "assert",
+        "async",
+        "await",
+        "break",
+        "class",
+        "continue",
+        "def",
+        "del",
+        "elif",
+        "else",
+        "except",
+        "finally",
+        "for",
+        "from",
+        "global",
+        "if",
+        "import",
+        "in",
+        "is",
+        "lambda",
+        "nonlocal",
+        "not",
+        "or",
+        "pass",
+        "raise",
+        "return",
+        "try",
+        "while",
+        "with",
+        "yield",
+        "sympy",
+        "labels",
     ];
-    if RESERVED.contains(&name) { format!("{name}_") } else { name.to_owned() }
+    if RESERVED.contains(&name) {
+        format!("{name}_")
+    } else {
+        name.to_owned()
+    }
 }
 
 fn sympy(d: &Derivation) -> String {
@@ -273,8 +387,14 @@ fn sympy(d: &Derivation) -> String {
     let mut o = String::new();
     let _ = writeln!(o, "# {} — generated by hdot from {}", d.title, d.path);
     let _ = writeln!(o, "# Source: {}", d.source);
-    let _ = writeln!(o, "# Symbols are built by name with Symbol(...); functions of time are Function(...)(t).");
-    let _ = writeln!(o, "from sympy import Eq, Function, Integer, Rational, Symbol, cos, sin\n");
+    let _ = writeln!(
+        o,
+        "# Symbols are built by name with Symbol(...); functions of time are Function(...)(t)."
+    );
+    let _ = writeln!(
+        o,
+        "from sympy import Eq, Function, Integer, Rational, Symbol, cos, sin\n"
+    );
     let _ = writeln!(o, "t = Symbol('t')");
     for n in d.symbols.names() {
         match d.symbols.get(n) {
@@ -290,7 +410,12 @@ fn sympy(d: &Derivation) -> String {
     let _ = writeln!(o, "\n# Abbreviations: name -> what it stands for.");
     let _ = writeln!(o, "abbreviations = {{");
     for a in &d.abbreviations {
-        let _ = writeln!(o, "    {}: {},", var(&a.name), print::print(&Expr::from_poly(&a.definition), &style));
+        let _ = writeln!(
+            o,
+            "    {}: {},",
+            var(&a.name),
+            print::print(&Expr::from_poly(&a.definition), &style)
+        );
     }
     let _ = writeln!(o, "}}\n");
     let mut eqs = Vec::new();
@@ -299,18 +424,34 @@ fn sympy(d: &Derivation) -> String {
     for s in d.steps.iter().filter(|s| s.show) {
         let base: String = s.label.split_whitespace().collect();
         for (k, (c, e)) in s.components.iter().enumerate() {
-            let lhs = if c.is_empty() { base.clone() } else { format!("{base}_{c}") };
+            let lhs = if c.is_empty() {
+                base.clone()
+            } else {
+                format!("{base}_{c}")
+            };
             labels.push(format!("'{}.{}'", s.name, c));
-            eqs.push(format!("    Eq(Symbol('{lhs}'), {}),", print::print(e, &style)));
+            eqs.push(format!(
+                "    Eq(Symbol('{lhs}'), {}),",
+                print::print(e, &style)
+            ));
             match s.checks.get(k) {
-                Some(ch) => exps.push(format!("    Eq(Symbol('{lhs}'), {}),", print::print(&ch.expected, &style))),
+                Some(ch) => exps.push(format!(
+                    "    Eq(Symbol('{lhs}'), {}),",
+                    print::print(&ch.expected, &style)
+                )),
                 None => exps.push("    None,".into()),
             }
         }
     }
-    let _ = writeln!(o, "# One equation per component of every shown step, in textbook form.");
+    let _ = writeln!(
+        o,
+        "# One equation per component of every shown step, in textbook form."
+    );
     let _ = writeln!(o, "equations = [\n{}\n]\n", eqs.join("\n"));
-    let _ = writeln!(o, "# The expected (textbook) form of each equation, or None.");
+    let _ = writeln!(
+        o,
+        "# The expected (textbook) form of each equation, or None."
+    );
     let _ = writeln!(o, "expected = [\n{}\n]\n", exps.join("\n"));
     let _ = writeln!(o, "# step.component of each equation.");
     let _ = writeln!(o, "labels = [{}]", labels.join(", "));

@@ -83,11 +83,16 @@ impl Symbols {
         match self.decls.get(name) {
             Some(Decl::Constant) if primes > 0 => Err(ParseError {
                 span,
-                message: format!("`{name}` is a constant and has no time derivative; declare it under `time` if it varies"),
+                message: format!(
+                    "`{name}` is a constant and has no time derivative; declare it under `time` if it varies"
+                ),
             }),
             Some(Decl::Constant) => Ok(Atom::constant(name)),
             Some(Decl::Time | Decl::Abbrev(_)) => Ok(Atom::time(name, primes)),
-            None => Err(ParseError { span, message: format!("unknown symbol `{name}`; declare it under [symbols]") }),
+            None => Err(ParseError {
+                span,
+                message: format!("unknown symbol `{name}`; declare it under [symbols]"),
+            }),
         }
     }
 
@@ -107,7 +112,10 @@ impl Symbols {
     /// `sin(q)` / `cos(q)` of a declared angle.
     pub fn trig(&self, func: &str, args: &[Ast], span: Span) -> Result<Atom, ParseError> {
         let [arg] = args else {
-            return Err(ParseError { span, message: format!("`{func}` takes exactly one argument") });
+            return Err(ParseError {
+                span,
+                message: format!("`{func}` takes exactly one argument"),
+            });
         };
         let AstKind::Name { name, primes: 0 } = &arg.kind else {
             return Err(ParseError {
@@ -116,12 +124,22 @@ impl Symbols {
             });
         };
         let q = self.atom(name, 0, arg.span)?;
-        Ok(if func == "sin" { Atom::sin(q) } else { Atom::cos(q) }.expect("order-0 symbol"))
+        Ok(if func == "sin" {
+            Atom::sin(q)
+        } else {
+            Atom::cos(q)
+        }
+        .expect("order-0 symbol"))
     }
 
     /// Lowers a scalar syntax tree into `e`, returning the new node.
     pub fn lower(&self, ast: &Ast, e: &mut Expr) -> Result<Id, ParseError> {
-        let fail = |span: Span, m: &str| Err(ParseError { span, message: m.to_owned() });
+        let fail = |span: Span, m: &str| {
+            Err(ParseError {
+                span,
+                message: m.to_owned(),
+            })
+        };
         Ok(match &ast.kind {
             AstKind::Num(r) => e.push(Node::Num(r.clone())),
             AstKind::Name { name, primes } => {
@@ -133,10 +151,18 @@ impl Symbols {
                 e.push(Node::Atom(a))
             }
             AstKind::Call { func, .. } => {
-                return fail(ast.span, &format!("`{func}(…)` is not a scalar function; scalars allow + - * / ^ sin cos"));
+                return fail(
+                    ast.span,
+                    &format!(
+                        "`{func}(…)` is not a scalar function; scalars allow + - * / ^ sin cos"
+                    ),
+                );
             }
             AstKind::Add(items) => {
-                let ids = items.iter().map(|i| self.lower(i, e)).collect::<Result<Vec<_>, _>>()?;
+                let ids = items
+                    .iter()
+                    .map(|i| self.lower(i, e))
+                    .collect::<Result<Vec<_>, _>>()?;
                 e.push(Node::Add(ids))
             }
             AstKind::Mul(items) => {
@@ -172,8 +198,15 @@ impl Symbols {
             AstKind::Vector { .. } | AstKind::Cross(..) => {
                 return fail(ast.span, "a vector where a scalar is expected");
             }
-            AstKind::Member(..) => return fail(ast.span, "components are not available in a scalar expression"),
-            AstKind::Assign { name_span, .. } => return fail(*name_span, "`name = value` is only allowed in subst(…)"),
+            AstKind::Member(..) => {
+                return fail(
+                    ast.span,
+                    "components are not available in a scalar expression",
+                );
+            }
+            AstKind::Assign { name_span, .. } => {
+                return fail(*name_span, "`name = value` is only allowed in subst(…)");
+            }
         })
     }
 }

@@ -54,12 +54,20 @@ impl Vec3 {
 
     /// `self + other`.
     pub fn add(&self, o: &Vec3) -> Vec3 {
-        Vec3([&self.0[0] + &o.0[0], &self.0[1] + &o.0[1], &self.0[2] + &o.0[2]])
+        Vec3([
+            &self.0[0] + &o.0[0],
+            &self.0[1] + &o.0[1],
+            &self.0[2] + &o.0[2],
+        ])
     }
 
     /// `self − other`.
     pub fn sub(&self, o: &Vec3) -> Vec3 {
-        Vec3([&self.0[0] - &o.0[0], &self.0[1] - &o.0[1], &self.0[2] - &o.0[2]])
+        Vec3([
+            &self.0[0] - &o.0[0],
+            &self.0[1] - &o.0[1],
+            &self.0[2] - &o.0[2],
+        ])
     }
 
     /// `−self`.
@@ -80,7 +88,11 @@ impl Vec3 {
     /// The cross product `self × other`.
     pub fn cross(&self, o: &Vec3) -> Vec3 {
         let (a, b) = (&self.0, &o.0);
-        Vec3([&(&a[1] * &b[2]) - &(&a[2] * &b[1]), &(&a[2] * &b[0]) - &(&a[0] * &b[2]), &(&a[0] * &b[1]) - &(&a[1] * &b[0])])
+        Vec3([
+            &(&a[1] * &b[2]) - &(&a[2] * &b[1]),
+            &(&a[2] * &b[0]) - &(&a[0] * &b[2]),
+            &(&a[0] * &b[1]) - &(&a[1] * &b[0]),
+        ])
     }
 
     /// Component-wise time derivative (the derivative *relative to* the
@@ -125,7 +137,11 @@ impl Mat3 {
     pub fn inertia(moments: [Poly; 3], products: [Poly; 3]) -> Mat3 {
         let [ix, iy, iz] = moments;
         let [pxy, pyz, pzx] = products.map(|p| -p);
-        Mat3([[ix, pxy.clone(), pzx.clone()], [pxy, iy, pyz.clone()], [pzx, pyz, iz]])
+        Mat3([
+            [ix, pxy.clone(), pzx.clone()],
+            [pxy, iy, pyz.clone()],
+            [pzx, pyz, iz],
+        ])
     }
 
     /// The inertia tensor in principal axes: `diag(I_1, I_2, I_3)`.
@@ -159,22 +175,30 @@ impl Mat3 {
     /// `self · other`.
     pub fn mul(&self, o: &Mat3) -> Mat3 {
         let t = o.transpose();
-        Mat3(std::array::from_fn(|i| std::array::from_fn(|j| Vec3(self.0[i].clone()).dot(&Vec3(t.0[j].clone())))))
+        Mat3(std::array::from_fn(|i| {
+            std::array::from_fn(|j| Vec3(self.0[i].clone()).dot(&Vec3(t.0[j].clone())))
+        }))
     }
 
     /// The transpose.
     pub fn transpose(&self) -> Mat3 {
-        Mat3(std::array::from_fn(|i| std::array::from_fn(|j| self.0[j][i].clone())))
+        Mat3(std::array::from_fn(|i| {
+            std::array::from_fn(|j| self.0[j][i].clone())
+        }))
     }
 
     /// Element-wise map.
     pub fn map(&self, f: impl Fn(&Poly) -> Poly) -> Mat3 {
-        Mat3(std::array::from_fn(|i| std::array::from_fn(|j| f(&self.0[i][j]))))
+        Mat3(std::array::from_fn(|i| {
+            std::array::from_fn(|j| f(&self.0[i][j]))
+        }))
     }
 
     /// `self + other`.
     pub fn add(&self, o: &Mat3) -> Mat3 {
-        Mat3(std::array::from_fn(|i| std::array::from_fn(|j| &self.0[i][j] + &o.0[i][j])))
+        Mat3(std::array::from_fn(|i| {
+            std::array::from_fn(|j| &self.0[i][j] + &o.0[i][j])
+        }))
     }
 
     /// True when symmetric.

@@ -31,7 +31,13 @@ pub struct Diagnostic {
 
 impl Diagnostic {
     /// Builds a diagnostic for the byte range `start..end` of `text`.
-    pub fn at(path: &str, text: &str, start: usize, end: usize, message: impl Into<String>) -> Diagnostic {
+    pub fn at(
+        path: &str,
+        text: &str,
+        start: usize,
+        end: usize,
+        message: impl Into<String>,
+    ) -> Diagnostic {
         let start = start.min(text.len());
         let end = end.clamp(start, text.len());
         let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
@@ -51,7 +57,14 @@ impl Diagnostic {
 
     /// A diagnostic about a file as a whole (no line to show).
     pub fn file(path: &str, message: impl Into<String>) -> Diagnostic {
-        Diagnostic { path: path.to_owned(), line: 0, column: 0, message: message.into(), source_line: String::new(), width: 0 }
+        Diagnostic {
+            path: path.to_owned(),
+            line: 0,
+            column: 0,
+            message: message.into(),
+            source_line: String::new(),
+            width: 0,
+        }
     }
 }
 
@@ -66,7 +79,12 @@ impl fmt::Display for Diagnostic {
         writeln!(f, "{pad}--> {}:{}:{}", self.path, self.line, self.column)?;
         writeln!(f, "{pad} |")?;
         writeln!(f, "{n} | {}", self.source_line)?;
-        let lead: String = self.source_line.chars().take(self.column - 1).map(|c| if c == '\t' { '\t' } else { ' ' }).collect();
+        let lead: String = self
+            .source_line
+            .chars()
+            .take(self.column - 1)
+            .map(|c| if c == '\t' { '\t' } else { ' ' })
+            .collect();
         write!(f, "{pad} | {lead}{}", "^".repeat(self.width))
     }
 }

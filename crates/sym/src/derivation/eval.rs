@@ -38,14 +38,19 @@ impl Value {
     pub fn map(&self, f: &mut dyn FnMut(&Poly) -> Poly) -> Value {
         match self {
             Value::Scalar(p) => Value::Scalar(f(p)),
-            Value::Vector(v, fr) => Value::Vector(Vec3([f(&v.0[0]), f(&v.0[1]), f(&v.0[2])]), fr.clone()),
-            Value::Matrix(m) => Value::Matrix(Mat3(std::array::from_fn(|i| std::array::from_fn(|j| f(&m.0[i][j]))))),
+            Value::Vector(v, fr) => {
+                Value::Vector(Vec3([f(&v.0[0]), f(&v.0[1]), f(&v.0[2])]), fr.clone())
+            }
+            Value::Matrix(m) => Value::Matrix(Mat3(std::array::from_fn(|i| {
+                std::array::from_fn(|j| f(&m.0[i][j]))
+            }))),
         }
     }
 }
 
 /// Functions the expression language knows, for error messages.
-const FUNCTIONS: &str = "sin, cos, dt, dt_rel, cross, dot, angvel, inertia, principal, diag, subst, express, transpose";
+const FUNCTIONS: &str =
+    "sin, cos, dt, dt_rel, cross, dot, angvel, inertia, principal, diag, subst, express, transpose";
 
 pub(crate) struct Context<'a> {
     path: &'a str,
@@ -61,7 +66,13 @@ impl<'a> Context<'a> {
     pub fn new(path: &'a str, text: &'a str) -> Context<'a> {
         let mut n = Frame::inertial("N");
         n.doc = "inertial (Newtonian) frame".into();
-        Context { path, text, symbols: Symbols::new(), frames: vec![n], values: HashMap::new() }
+        Context {
+            path,
+            text,
+            symbols: Symbols::new(),
+            frames: vec![n],
+            values: HashMap::new(),
+        }
     }
 
     fn diag(&self, start: usize, end: usize, msg: impl Into<String>) -> Diagnostic {
@@ -82,7 +93,13 @@ impl<'a> Context<'a> {
     }
 
     /// A diagnostic at bytes `from..to` of the contents of a spanned string.
-    pub fn diag_string(&self, s: &Spanned<String>, from: usize, to: usize, msg: impl Into<String>) -> Diagnostic {
+    pub fn diag_string(
+        &self,
+        s: &Spanned<String>,
+        from: usize,
+        to: usize,
+        msg: impl Into<String>,
+    ) -> Diagnostic {
         let base = self.content_start(s);
         self.diag(base + from, base + to, msg)
     }
@@ -100,10 +117,20 @@ impl<'a> Context<'a> {
         let valid = name.chars().next().is_some_and(|c| c.is_alphabetic())
             && name.chars().all(|c| c.is_alphanumeric() || c == '_');
         if !valid {
-            return Err(self.diag_string(s, 0, name.len(), format!("`{name}` is not a valid symbol name (letters, digits, _)")));
+            return Err(self.diag_string(
+                s,
+                0,
+                name.len(),
+                format!("`{name}` is not a valid symbol name (letters, digits, _)"),
+            ));
         }
         if matches!(name.as_str(), "sin" | "cos" | "in" | "pi" | "t") {
-            return Err(self.diag_string(s, 0, name.len(), format!("`{name}` is reserved and cannot be a symbol")));
+            return Err(self.diag_string(
+                s,
+                0,
+                name.len(),
+                format!("`{name}` is reserved and cannot be a symbol"),
+            ));
         }
         if !self.symbols.declare(name, decl) {
             return Err(self.diag_string(s, 0, name.len(), format!("`{name}` is declared twice")));
@@ -125,14 +152,22 @@ impl<'a> Context<'a> {
     fn scalar(&self, ast: &Ast, base: usize) -> R<Poly> {
         match self.eval(ast, base)? {
             Value::Scalar(p) => Ok(p),
-            v => Err(self.at(base, ast.span, format!("expected a scalar, found {}", v.describe()))),
+            v => Err(self.at(
+                base,
+                ast.span,
+                format!("expected a scalar, found {}", v.describe()),
+            )),
         }
     }
 
     fn vector(&self, ast: &Ast, base: usize) -> R<(Vec3, String)> {
         match self.eval(ast, base)? {
             Value::Vector(v, f) => Ok((v, f)),
-            v => Err(self.at(base, ast.span, format!("expected a vector, found {}", v.describe()))),
+            v => Err(self.at(
+                base,
+                ast.span,
+                format!("expected a vector, found {}", v.describe()),
+            )),
         }
     }
 
@@ -147,13 +182,22 @@ impl<'a> Context<'a> {
             return Ok(i);
         }
         let known: Vec<&str> = self.frames.iter().map(|f| f.name.as_str()).collect();
-        Err(self.at(base, ast.span, format!("expected a frame name (one of {})", known.join(", "))))
+        Err(self.at(
+            base,
+            ast.span,
+            format!("expected a frame name (one of {})", known.join(", ")),
+        ))
     }
 
     pub fn add_frame(&mut self, f: &RawFrame) -> R<()> {
         let name = f.name.get_ref();
         if self.frame_index(name).is_some() || self.symbols.get(name).is_some() {
-            return Err(self.diag_string(&f.name, 0, name.len(), format!("`{name}` is already a frame or a symbol")));
+            return Err(self.diag_string(
+                &f.name,
+                0,
+                name.len(),
+                format!("`{name}` is already a frame or a symbol"),
+            ));
         }
         let mut frame = Frame::inertial(name);
         frame.doc = f.doc.clone();
@@ -161,7 +205,11 @@ impl<'a> Context<'a> {
             let a = axes.get_ref();
             if a.len() != 3 || a.iter().any(|s| s.is_empty()) {
                 let sp = axes.span();
-                return Err(self.diag(sp.start, sp.end, "`axes` must name three axes, such as [\"1\", \"2\", \"3\"]"));
+                return Err(self.diag(
+                    sp.start,
+                    sp.end,
+                    "`axes` must name three axes, such as [\"1\", \"2\", \"3\"]",
+                ));
             }
             frame.axes = [a[0].clone(), a[1].clone(), a[2].clone()];
         }
@@ -170,37 +218,70 @@ impl<'a> Context<'a> {
                 let base = self.content_start(w);
                 let ast = self.parse_at(w.get_ref(), base)?;
                 let AstKind::Vector { items, frame: fr } = &ast.kind else {
-                    return Err(self.at(base, ast.span, "the angular velocity must be a vector literal such as [omega_x, omega_y, omega_z]"));
+                    return Err(self.at(
+                        base,
+                        ast.span,
+                        "the angular velocity must be a vector literal such as [omega_x, omega_y, omega_z]",
+                    ));
                 };
                 if let Some((other, sp)) = fr
                     && other != name
                 {
-                    return Err(self.at(base, *sp, format!("a frame's angular velocity is given in its own components (`in {name}`)")));
+                    return Err(self.at(
+                        base,
+                        *sp,
+                        format!("a frame's angular velocity is given in its own components (`in {name}`)"),
+                    ));
                 }
                 frame.omega = self.three_scalars(items, ast.span, base)?;
             }
             (None, Some(parent), Some(rot)) => {
                 let Some(pi) = self.frame_index(parent.get_ref()) else {
                     let p = parent.get_ref();
-                    return Err(self.diag_string(parent, 0, p.len(), format!("unknown parent frame `{p}` (declare it first)")));
+                    return Err(self.diag_string(
+                        parent,
+                        0,
+                        p.len(),
+                        format!("unknown parent frame `{p}` (declare it first)"),
+                    ));
                 };
                 let base = self.content_start(rot);
                 let ast = self.parse_at(rot.get_ref(), base)?;
                 let parent_frame = &self.frames[pi];
-                let bad = || format!("a rotation is written axis(angle), such as {}(phi)", parent_frame.axes[2]);
+                let bad = || {
+                    format!(
+                        "a rotation is written axis(angle), such as {}(phi)",
+                        parent_frame.axes[2]
+                    )
+                };
                 let AstKind::Call { func, args } = &ast.kind else {
                     return Err(self.at(base, ast.span, bad()));
                 };
                 let Some(k) = parent_frame.axes.iter().position(|a| a == func) else {
-                    return Err(self.at(base, ast.span, format!("`{func}` is not an axis of frame {}; {}", parent_frame.name, bad())));
+                    return Err(self.at(
+                        base,
+                        ast.span,
+                        format!(
+                            "`{func}` is not an axis of frame {}; {}",
+                            parent_frame.name,
+                            bad()
+                        ),
+                    ));
                 };
                 let [arg] = args.as_slice() else {
                     return Err(self.at(base, ast.span, bad()));
                 };
                 let AstKind::Name { name: q, primes: 0 } = &arg.kind else {
-                    return Err(self.at(base, arg.span, "the rotation angle must be a declared symbol"));
+                    return Err(self.at(
+                        base,
+                        arg.span,
+                        "the rotation angle must be a declared symbol",
+                    ));
                 };
-                let q = self.symbols.atom(q, 0, arg.span).map_err(|e| self.at(base, e.span, e.message))?;
+                let q = self
+                    .symbols
+                    .atom(q, 0, arg.span)
+                    .map_err(|e| self.at(base, e.span, e.message))?;
                 let r = Mat3::rotation(k, q);
                 // Ω_child = Rᵀ Ω_parent + q̇ e_k (e_k is shared by parent and child).
                 let mut omega = r.transpose().mul_vec(&parent_frame.omega);
@@ -226,9 +307,17 @@ impl<'a> Context<'a> {
 
     fn three_scalars(&self, items: &[Ast], span: Span, base: usize) -> R<Vec3> {
         if items.len() != 3 {
-            return Err(self.at(base, span, format!("a vector has three components, found {}", items.len())));
+            return Err(self.at(
+                base,
+                span,
+                format!("a vector has three components, found {}", items.len()),
+            ));
         }
-        Ok(Vec3([self.scalar(&items[0], base)?, self.scalar(&items[1], base)?, self.scalar(&items[2], base)?]))
+        Ok(Vec3([
+            self.scalar(&items[0], base)?,
+            self.scalar(&items[1], base)?,
+            self.scalar(&items[2], base)?,
+        ]))
     }
 
     /// The matrix taking components in frame `i` to its root frame, and the root.
@@ -249,7 +338,9 @@ impl<'a> Context<'a> {
 
     pub fn axes_of(&self, v: &Value) -> [String; 3] {
         match v {
-            Value::Vector(_, f) => self.frames[self.frame_index(f).expect("frame exists")].axes.clone(),
+            Value::Vector(_, f) => self.frames[self.frame_index(f).expect("frame exists")]
+                .axes
+                .clone(),
             _ => ["x".into(), "y".into(), "z".into()],
         }
     }
@@ -266,7 +357,13 @@ impl<'a> Context<'a> {
         if a == b {
             Ok(())
         } else {
-            Err(self.at(base, span, format!("vectors in different frames ({a} and {b}); convert one with express(v, {a})")))
+            Err(self.at(
+                base,
+                span,
+                format!(
+                    "vectors in different frames ({a} and {b}); convert one with express(v, {a})"
+                ),
+            ))
         }
     }
 
@@ -281,16 +378,34 @@ impl<'a> Context<'a> {
                     return Ok(v.clone());
                 }
                 if self.symbols.get(name).is_some() {
-                    let a = self.symbols.atom(name, *primes, ast.span).map_err(|e| self.at(base, e.span, e.message))?;
+                    let a = self
+                        .symbols
+                        .atom(name, *primes, ast.span)
+                        .map_err(|e| self.at(base, e.span, e.message))?;
                     return Ok(Value::Scalar(Poly::atom(a)));
                 }
                 if self.frame_index(name).is_some() {
-                    return err(ast.span, format!("`{name}` is a frame; write angvel({name}) for its angular velocity"));
+                    return err(
+                        ast.span,
+                        format!(
+                            "`{name}` is a frame; write angvel({name}) for its angular velocity"
+                        ),
+                    );
                 }
                 if self.values.contains_key(name) {
-                    return err(ast.span, format!("`{name}` is a step, not a time-dependent symbol: write dt({name})"));
+                    return err(
+                        ast.span,
+                        format!(
+                            "`{name}` is a step, not a time-dependent symbol: write dt({name})"
+                        ),
+                    );
                 }
-                err(ast.span, format!("unknown name `{name}`: not a declared symbol, an earlier step or a frame"))
+                err(
+                    ast.span,
+                    format!(
+                        "unknown name `{name}`: not a declared symbol, an earlier step or a frame"
+                    ),
+                )
             }
             AstKind::Vector { items, frame } => {
                 let f = match frame {
@@ -300,7 +415,12 @@ impl<'a> Context<'a> {
                     },
                     None => match self.default_frame() {
                         Some(f) => f.to_owned(),
-                        None => return err(ast.span, "several frames are declared: say which with `[…] in F`".into()),
+                        None => {
+                            return err(
+                                ast.span,
+                                "several frames are declared: say which with `[…] in F`".into(),
+                            );
+                        }
                     },
                 };
                 Ok(Value::Vector(self.three_scalars(items, ast.span, base)?, f))
@@ -316,7 +436,12 @@ impl<'a> Context<'a> {
                             Value::Vector(a.add(&b), fa)
                         }
                         (Value::Matrix(a), Value::Matrix(b)) => Value::Matrix(a.add(&b)),
-                        (a, b) => return err(it.span, format!("cannot add {} to {}", b.describe(), a.describe())),
+                        (a, b) => {
+                            return err(
+                                it.span,
+                                format!("cannot add {} to {}", b.describe(), a.describe()),
+                            );
+                        }
                     };
                 }
                 Ok(acc)
@@ -328,7 +453,10 @@ impl<'a> Context<'a> {
                     if let AstKind::Recip(d) = &it.kind {
                         let p = self.scalar(d, base)?;
                         let Some(c) = p.as_constant().and_then(|c| c.recip()) else {
-                            return err(d.span, "only division by a non-zero number is allowed".into());
+                            return err(
+                                d.span,
+                                "only division by a non-zero number is allowed".into(),
+                            );
                         };
                         acc = acc.map(&mut |x| x.scale(&c));
                         continue;
@@ -340,9 +468,17 @@ impl<'a> Context<'a> {
                         (Value::Matrix(m), Value::Vector(v, f)) => Value::Vector(m.mul_vec(&v), f),
                         (Value::Matrix(a), Value::Matrix(b)) => Value::Matrix(a.mul(&b)),
                         (Value::Vector(..), Value::Vector(..)) => {
-                            return err(it.span, "the product of two vectors is ambiguous: use dot(a, b) or cross(a, b)".into());
+                            return err(
+                                it.span,
+                                "the product of two vectors is ambiguous: use dot(a, b) or cross(a, b)".into(),
+                            );
                         }
-                        (a, b) => return err(it.span, format!("cannot multiply {} by {}", a.describe(), b.describe())),
+                        (a, b) => {
+                            return err(
+                                it.span,
+                                format!("cannot multiply {} by {}", a.describe(), b.describe()),
+                            );
+                        }
                     };
                 }
                 Ok(acc)
@@ -358,10 +494,16 @@ impl<'a> Context<'a> {
                 let fr = &self.frames[self.frame_index(&f).expect("frame")];
                 match fr.axes.iter().position(|a| a == comp) {
                     Some(k) => Ok(Value::Scalar(v.0[k].clone())),
-                    None => err(*sp, format!("frame {f} has axes {}, not `{comp}`", fr.axes.join(", "))),
+                    None => err(
+                        *sp,
+                        format!("frame {f} has axes {}, not `{comp}`", fr.axes.join(", ")),
+                    ),
                 }
             }
-            AstKind::Assign { name_span, .. } => err(*name_span, "`name = value` is only allowed inside subst(…)".into()),
+            AstKind::Assign { name_span, .. } => err(
+                *name_span,
+                "`name = value` is only allowed inside subst(…)".into(),
+            ),
             AstKind::Call { func, args } => self.call(func, args, base, ast.span),
         }
     }
@@ -377,14 +519,25 @@ impl<'a> Context<'a> {
         if args.len() == n {
             Ok(())
         } else {
-            Err(self.at(base, span, format!("`{func}` takes {n} argument{}, found {}", if n == 1 { "" } else { "s" }, args.len())))
+            Err(self.at(
+                base,
+                span,
+                format!(
+                    "`{func}` takes {n} argument{}, found {}",
+                    if n == 1 { "" } else { "s" },
+                    args.len()
+                ),
+            ))
         }
     }
 
     fn call(&self, func: &str, args: &[Ast], base: usize, span: Span) -> R<Value> {
         match func {
             "sin" | "cos" => {
-                let a = self.symbols.trig(func, args, span).map_err(|e| self.at(base, e.span, e.message))?;
+                let a = self
+                    .symbols
+                    .trig(func, args, span)
+                    .map_err(|e| self.at(base, e.span, e.message))?;
                 Ok(Value::Scalar(Poly::atom(a)))
             }
             "dt" | "dt_rel" => {
@@ -411,17 +564,26 @@ impl<'a> Context<'a> {
             "angvel" => {
                 self.arity(func, args, 1, base, span)?;
                 let i = self.frame_arg(&args[0], base)?;
-                Ok(Value::Vector(self.frames[i].omega.clone(), self.frames[i].name.clone()))
+                Ok(Value::Vector(
+                    self.frames[i].omega.clone(),
+                    self.frames[i].name.clone(),
+                ))
             }
             "inertia" => {
                 self.arity(func, args, 6, base, span)?;
-                let s: Vec<Poly> = args.iter().map(|a| self.scalar(a, base)).collect::<R<_>>()?;
+                let s: Vec<Poly> = args
+                    .iter()
+                    .map(|a| self.scalar(a, base))
+                    .collect::<R<_>>()?;
                 let [ix, iy, iz, pxy, pyz, pzx]: [Poly; 6] = s.try_into().expect("six");
                 Ok(Value::Matrix(Mat3::inertia([ix, iy, iz], [pxy, pyz, pzx])))
             }
             "principal" | "diag" => {
                 self.arity(func, args, 3, base, span)?;
-                let s: Vec<Poly> = args.iter().map(|a| self.scalar(a, base)).collect::<R<_>>()?;
+                let s: Vec<Poly> = args
+                    .iter()
+                    .map(|a| self.scalar(a, base))
+                    .collect::<R<_>>()?;
                 let [a, b, c]: [Poly; 3] = s.try_into().expect("three");
                 Ok(Value::Matrix(Mat3::principal([a, b, c])))
             }
@@ -429,7 +591,11 @@ impl<'a> Context<'a> {
                 self.arity(func, args, 1, base, span)?;
                 match self.eval(&args[0], base)? {
                     Value::Matrix(m) => Ok(Value::Matrix(m.transpose())),
-                    v => Err(self.at(base, args[0].span, format!("expected a matrix, found {}", v.describe()))),
+                    v => Err(self.at(
+                        base,
+                        args[0].span,
+                        format!("expected a matrix, found {}", v.describe()),
+                    )),
                 }
             }
             "express" => {
@@ -443,37 +609,72 @@ impl<'a> Context<'a> {
                     return Err(self.at(
                         base,
                         span,
-                        format!("no chain of rotations relates frames {from} and {}", self.frames[to].name),
+                        format!(
+                            "no chain of rotations relates frames {from} and {}",
+                            self.frames[to].name
+                        ),
                     ));
                 }
-                Ok(Value::Vector(mb.transpose().mul_vec(&ma.mul_vec(&v)), self.frames[to].name.clone()))
+                Ok(Value::Vector(
+                    mb.transpose().mul_vec(&ma.mul_vec(&v)),
+                    self.frames[to].name.clone(),
+                ))
             }
             "subst" => self.subst(args, base, span),
-            _ => Err(self.at(base, span, format!("unknown function `{func}`; known functions: {FUNCTIONS}"))),
+            _ => Err(self.at(
+                base,
+                span,
+                format!("unknown function `{func}`; known functions: {FUNCTIONS}"),
+            )),
         }
     }
 
     /// `subst(x, a = e, b' = 0, theta = pi/2, …)`.
     fn subst(&self, args: &[Ast], base: usize, span: Span) -> R<Value> {
         let Some((first, rules)) = args.split_first() else {
-            return Err(self.at(base, span, "subst(x, name = value, …) needs an expression and at least one rule"));
+            return Err(self.at(
+                base,
+                span,
+                "subst(x, name = value, …) needs an expression and at least one rule",
+            ));
         };
         let mut v = self.eval(first, base)?;
         if rules.is_empty() {
-            return Err(self.at(base, span, "subst(x, name = value, …) needs at least one rule"));
+            return Err(self.at(
+                base,
+                span,
+                "subst(x, name = value, …) needs at least one rule",
+            ));
         }
         for r in rules {
-            let AstKind::Assign { name, primes, name_span, value } = &r.kind else {
+            let AstKind::Assign {
+                name,
+                primes,
+                name_span,
+                value,
+            } = &r.kind
+            else {
                 return Err(self.at(base, r.span, "expected a rule `name = value`"));
             };
             let Some(decl) = self.symbols.get(name) else {
-                return Err(self.at(base, *name_span, format!("cannot substitute for `{name}`: it is not a declared symbol")));
+                return Err(self.at(
+                    base,
+                    *name_span,
+                    format!("cannot substitute for `{name}`: it is not a declared symbol"),
+                ));
             };
-            let target = self.symbols.atom(name, *primes, *name_span).map_err(|e| self.at(base, e.span, e.message))?;
+            let target = self
+                .symbols
+                .atom(name, *primes, *name_span)
+                .map_err(|e| self.at(base, e.span, e.message))?;
             let time = !matches!(decl, Decl::Constant);
             if let Some(turns) = quarter_turns(value) {
                 if *primes > 0 {
-                    return Err(self.at(base, value.span, "a multiple of pi is an angle, not a rate"));
+                    return Err(self.at(
+                        base,
+                        value.span,
+                        "a multiple of pi is an angle, not a rate",
+                    ));
                 }
                 let mut failed = false;
                 v = v.map(&mut |p| {
@@ -483,7 +684,11 @@ impl<'a> Context<'a> {
                     })
                 });
                 if failed {
-                    return Err(self.at(base, *name_span, format!("`{name}` occurs outside sin/cos, so it cannot be set to a multiple of pi")));
+                    return Err(self.at(
+                        base,
+                        *name_span,
+                        format!("`{name}` occurs outside sin/cos, so it cannot be set to a multiple of pi"),
+                    ));
                 }
                 continue;
             }
@@ -498,19 +703,28 @@ impl<'a> Context<'a> {
             let mut failed = false;
             v = v.map(&mut |p| {
                 p.subst(&mut |a| match a.kind() {
-                    crate::AtomKind::Var { .. } if a.base() == target.base() && a.order() >= *primes => {
+                    crate::AtomKind::Var { .. }
+                        if a.base() == target.base() && a.order() >= *primes =>
+                    {
                         Some(val.dt_n(a.order() - primes))
                     }
-                    crate::AtomKind::Sin(q) | crate::AtomKind::Cos(q) if q == target && *primes == 0 => match angle {
-                        Some(w) => {
-                            let is_sin = matches!(a.kind(), crate::AtomKind::Sin(_));
-                            Some(Poly::atom(if is_sin { Atom::sin(w) } else { Atom::cos(w) }.expect("angle")))
+                    crate::AtomKind::Sin(q) | crate::AtomKind::Cos(q)
+                        if q == target && *primes == 0 =>
+                    {
+                        match angle {
+                            Some(w) => {
+                                let is_sin = matches!(a.kind(), crate::AtomKind::Sin(_));
+                                Some(Poly::atom(
+                                    if is_sin { Atom::sin(w) } else { Atom::cos(w) }
+                                        .expect("angle"),
+                                ))
+                            }
+                            None => {
+                                failed = true;
+                                None
+                            }
                         }
-                        None => {
-                            failed = true;
-                            None
-                        }
-                    },
+                    }
                     _ => None,
                 })
             });
@@ -535,8 +749,16 @@ impl<'a> Context<'a> {
                 let ast = self.parse_at(item, base)?;
                 let atom = match &ast.kind {
                     AstKind::Name { name, primes } => self.symbols.atom(name, *primes, ast.span),
-                    AstKind::Call { func, args } if func == "sin" || func == "cos" => self.symbols.trig(func, args, ast.span),
-                    _ => return Err(self.at(base, ast.span, "collect by symbols such as omega_x, omega_x' or sin(theta)")),
+                    AstKind::Call { func, args } if func == "sin" || func == "cos" => {
+                        self.symbols.trig(func, args, ast.span)
+                    }
+                    _ => {
+                        return Err(self.at(
+                            base,
+                            ast.span,
+                            "collect by symbols such as omega_x, omega_x' or sin(theta)",
+                        ));
+                    }
                 }
                 .map_err(|e| self.at(base, e.span, e.message))?;
                 pres.collect.push(atom);
@@ -548,8 +770,15 @@ impl<'a> Context<'a> {
                 match abbrevs.iter().find(|a| &a.name == item) {
                     Some(a) => pres.fold.push((a.atom, a.definition.clone())),
                     None => {
-                        let (s0, s1) = spans.get(k).copied().unwrap_or((list.span().start, list.span().end));
-                        return Err(self.diag(s0, s1, format!("`{item}` is not a declared [[abbreviation]]")));
+                        let (s0, s1) = spans
+                            .get(k)
+                            .copied()
+                            .unwrap_or((list.span().start, list.span().end));
+                        return Err(self.diag(
+                            s0,
+                            s1,
+                            format!("`{item}` is not a declared [[abbreviation]]"),
+                        ));
                     }
                 }
             }
@@ -566,30 +795,47 @@ impl<'a> Context<'a> {
         pres: &Presentation,
         axes: &[String; 3],
     ) -> R<Vec<Check>> {
-        let Some(exp) = &s.expect else { return Ok(vec![]) };
+        let Some(exp) = &s.expect else {
+            return Ok(vec![]);
+        };
         let sp = exp.span();
         let spans = string_contents(self.text, sp.start, sp.end);
         let texts: Vec<String> = match exp.get_ref() {
             toml::Value::String(t) => vec![t.clone()],
-            toml::Value::Array(a) if a.iter().all(|x| x.is_str()) => {
-                a.iter().map(|x| x.as_str().expect("string").to_owned()).collect()
+            toml::Value::Array(a) if a.iter().all(|x| x.is_str()) => a
+                .iter()
+                .map(|x| x.as_str().expect("string").to_owned())
+                .collect(),
+            _ => {
+                return Err(self.diag(
+                    sp.start,
+                    sp.end,
+                    "`expect` is a string (scalar) or an array of three strings (vector)",
+                ));
             }
-            _ => return Err(self.diag(sp.start, sp.end, "`expect` is a string (scalar) or an array of three strings (vector)")),
         };
         let derived: Vec<(String, Poly)> = match value {
-            Value::Scalar(p) if texts.len() == 1 && matches!(exp.get_ref(), toml::Value::String(_)) => {
+            Value::Scalar(p)
+                if texts.len() == 1 && matches!(exp.get_ref(), toml::Value::String(_)) =>
+            {
                 vec![(String::new(), p.clone())]
             }
-            Value::Vector(v, _) if texts.len() == 3 => (0..3).map(|k| (axes[k].clone(), v.0[k].clone())).collect(),
+            Value::Vector(v, _) if texts.len() == 3 => {
+                (0..3).map(|k| (axes[k].clone(), v.0[k].clone())).collect()
+            }
             v => {
                 return Err(self.diag(
                     sp.start,
                     sp.end,
-                    format!("the step is {}, so `expect` must be {}", v.describe(), match v {
-                        Value::Scalar(_) => "one string",
-                        Value::Vector(..) => "an array of three strings",
-                        Value::Matrix(_) => "omitted (check components in scalar steps)",
-                    }),
+                    format!(
+                        "the step is {}, so `expect` must be {}",
+                        v.describe(),
+                        match v {
+                            Value::Scalar(_) => "one string",
+                            Value::Vector(..) => "an array of three strings",
+                            Value::Matrix(_) => "omitted (check components in scalar steps)",
+                        }
+                    ),
                 ));
             }
         };
@@ -606,7 +852,12 @@ impl<'a> Context<'a> {
                 Ok(_) => written,
                 Err(_) => present(&want, pres),
             };
-            out.push(Check { component: comp, expected_text: text.clone(), expected, difference });
+            out.push(Check {
+                component: comp,
+                expected_text: text.clone(),
+                expected,
+                difference,
+            });
         }
         Ok(out)
     }

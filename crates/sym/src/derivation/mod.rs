@@ -143,7 +143,12 @@ impl Derivation {
     pub fn failures(&self) -> Vec<(&str, &Check)> {
         self.steps
             .iter()
-            .flat_map(|s| s.checks.iter().filter(|c| !c.holds()).map(move |c| (s.name.as_str(), c)))
+            .flat_map(|s| {
+                s.checks
+                    .iter()
+                    .filter(|c| !c.holds())
+                    .map(move |c| (s.name.as_str(), c))
+            })
             .collect()
     }
 
@@ -170,18 +175,24 @@ pub(crate) fn unfold(abbrevs: &[Abbreviation], p: &Poly) -> Poly {
 /// Loads, runs and checks the derivation file at `path`.
 pub fn load(path: &Path) -> Result<Derivation, Diagnostic> {
     let shown = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| Diagnostic::file(&shown, format!("cannot read the file: {e}")))?;
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| Diagnostic::file(&shown, format!("cannot read the file: {e}")))?;
     load_str(&shown, &text)
 }
 
 /// Loads, runs and checks a derivation given as text; `path` names it in messages.
 pub fn load_str(path: &str, text: &str) -> Result<Derivation, Diagnostic> {
     let raw = raw::parse(path, text)?;
-    let name = Path::new(path).file_stem().map_or_else(|| path.to_owned(), |s| s.to_string_lossy().into_owned());
+    let name = Path::new(path)
+        .file_stem()
+        .map_or_else(|| path.to_owned(), |s| s.to_string_lossy().into_owned());
     let mut cx = eval::Context::new(path, text);
 
     // Symbols.
-    for (list, decl) in [(&raw.symbols.constants, Decl::Constant), (&raw.symbols.time, Decl::Time)] {
+    for (list, decl) in [
+        (&raw.symbols.constants, Decl::Constant),
+        (&raw.symbols.time, Decl::Time),
+    ] {
         for s in list.iter() {
             cx.declare(s, decl.clone())?;
         }
@@ -207,17 +218,29 @@ pub fn load_str(path: &str, text: &str) -> Result<Derivation, Diagnostic> {
     let mut seen: HashMap<String, ()> = HashMap::new();
     for s in &raw.steps {
         if seen.insert(s.name.get_ref().clone(), ()).is_some() {
-            return Err(cx.diag_string(&s.name, 0, s.name.get_ref().len(), "a step of this name is already defined"));
+            return Err(cx.diag_string(
+                &s.name,
+                0,
+                s.name.get_ref().len(),
+                "a step of this name is already defined",
+            ));
         }
         let value = cx.eval_step(s)?;
         let presentation = cx.presentation(s, &abbreviations)?;
         let axes = cx.axes_of(&value);
         let components: Vec<(String, Expr)> = match &value {
             Value::Scalar(p) => vec![(String::new(), present(p, &presentation))],
-            Value::Vector(v, _) => (0..3).map(|k| (axes[k].clone(), present(&v.0[k], &presentation))).collect(),
+            Value::Vector(v, _) => (0..3)
+                .map(|k| (axes[k].clone(), present(&v.0[k], &presentation)))
+                .collect(),
             Value::Matrix(m) => (0..3)
                 .flat_map(|i| (0..3).map(move |j| (i, j)))
-                .map(|(i, j)| (format!("{}{}", axes[i], axes[j]), present(&m.0[i][j], &presentation)))
+                .map(|(i, j)| {
+                    (
+                        format!("{}{}", axes[i], axes[j]),
+                        present(&m.0[i][j], &presentation),
+                    )
+                })
                 .collect(),
         };
         let checks = cx.checks(s, &value, &abbreviations, &presentation, &axes)?;

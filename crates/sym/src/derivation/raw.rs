@@ -81,7 +81,13 @@ fn yes() -> bool {
 pub(crate) fn parse(path: &str, text: &str) -> Result<RawFile, Diagnostic> {
     toml::from_str::<RawFile>(text).map_err(|e| {
         let span = e.span().unwrap_or(0..0);
-        Diagnostic::at(path, text, span.start, span.end, format!("invalid derivation file: {}", e.message().trim()))
+        Diagnostic::at(
+            path,
+            text,
+            span.start,
+            span.end,
+            format!("invalid derivation file: {}", e.message().trim()),
+        )
     })
 }
 
