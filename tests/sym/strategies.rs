@@ -12,10 +12,15 @@ pub fn symbols() -> Symbols {
 pub fn atom() -> impl Strategy<Value = Atom> {
     prop_oneof![
         prop::sample::select(vec!["a", "b", "I_x", "m"]).prop_map(Atom::constant),
-        (prop::sample::select(vec!["theta", "phi", "omega"]), 0u32..3).prop_map(|(n, k)| Atom::time(n, k)),
+        (prop::sample::select(vec!["theta", "phi", "omega"]), 0u32..3)
+            .prop_map(|(n, k)| Atom::time(n, k)),
         (prop::sample::select(vec!["theta", "phi"]), any::<bool>()).prop_map(|(n, s)| {
             let q = Atom::time(n, 0);
-            if s { Atom::sin(q).unwrap() } else { Atom::cos(q).unwrap() }
+            if s {
+                Atom::sin(q).unwrap()
+            } else {
+                Atom::cos(q).unwrap()
+            }
         }),
     ]
 }
@@ -68,7 +73,7 @@ pub fn build(t: &Tree) -> Expr {
             }
             Tree::Pow(c, k) => {
                 let id = go(c, e);
-                e.push(Node::Pow(id, *k))
+                e.push(Node::Pow(id, *k as i32))
             }
         }
     }
@@ -92,7 +97,10 @@ pub fn point() -> impl Strategy<Value = Vec<f64>> {
 pub fn value_at(p: &[f64], a: Atom) -> f64 {
     use hdot_sym::AtomKind;
     let idx = |name: &str, order: u32| {
-        let base = ["a", "b", "I_x", "m", "theta", "phi", "omega"].iter().position(|n| *n == name).unwrap();
+        let base = ["a", "b", "I_x", "m", "theta", "phi", "omega"]
+            .iter()
+            .position(|n| *n == name)
+            .unwrap();
         (base * 2 + order as usize) % p.len()
     };
     match a.kind() {

@@ -54,7 +54,7 @@ impl Poly {
                     continue;
                 }
                 let rest = m.without(a, 1);
-                let k = c * &Rational::int(e as i64);
+                let k = c * &Rational::int(i64::from(e));
                 for (dm, dc) in atom_dt(a) {
                     acc.push(rest.mul(&dm), &k * &dc);
                 }

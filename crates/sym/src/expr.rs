@@ -33,8 +33,9 @@ pub enum Node {
     Mul(Vec<Id>),
     /// Negation.
     Neg(Id),
-    /// A power with an integer exponent ≥ 2.
-    Pow(Id, u32),
+    /// A power with an integer exponent ≥ 2, or a negative one (a
+    /// denominator; only of constant symbols).
+    Pow(Id, i32),
 }
 
 /// A flat expression tree; the root is the last node.
@@ -55,7 +56,7 @@ impl Expr {
         debug_assert!(match &node {
             Node::Num(r) => !r.is_negative(),
             Node::Add(v) | Node::Mul(v) => v.len() >= 2,
-            Node::Pow(_, e) => *e >= 2,
+            Node::Pow(_, e) => *e >= 2 || *e < 0,
             _ => true,
         });
         self.nodes.push(node);
@@ -91,12 +92,12 @@ impl Expr {
     }
 
     /// `atom^exp` (just the atom when `exp == 1`).
-    pub fn atom_pow(&mut self, a: Atom, exp: u32) -> Id {
+    pub fn atom_pow(&mut self, a: Atom, exp: i32) -> Id {
         let id = self.push(Node::Atom(a));
-        if exp >= 2 {
-            self.push(Node::Pow(id, exp))
-        } else {
+        if exp == 1 {
             id
+        } else {
+            self.push(Node::Pow(id, exp))
         }
     }
 
@@ -111,7 +112,7 @@ impl Expr {
 
     /// Adds the default presentation of `p` and returns its id.
     pub fn poly_node(&mut self, p: &Poly) -> Id {
-        let mut terms: Vec<(Vec<(Atom, u32)>, &Rational)> = p
+        let mut terms: Vec<(Vec<(Atom, i32)>, &Rational)> = p
             .terms()
             .iter()
             .map(|(m, c)| (m.sorted_for_print(), c))
@@ -125,7 +126,7 @@ impl Expr {
     }
 
     /// `c · Π atoms` with the sign as a `Neg` node.
-    pub fn term_node(&mut self, factors: &[(Atom, u32)], c: &Rational) -> Id {
+    pub fn term_node(&mut self, factors: &[(Atom, i32)], c: &Rational) -> Id {
         let mut ids = Vec::with_capacity(factors.len() + 1);
         let mag = c.abs();
         if !mag.is_one() || factors.is_empty() {
@@ -144,7 +145,7 @@ impl Expr {
 }
 
 /// Orders printed terms: by their factors' name keys, then exponents.
-pub(crate) fn print_order(a: &[(Atom, u32)], b: &[(Atom, u32)]) -> std::cmp::Ordering {
+pub(crate) fn print_order(a: &[(Atom, i32)], b: &[(Atom, i32)]) -> std::cmp::Ordering {
     let ka = a.iter().map(|f| (f.0.sort_key(), std::cmp::Reverse(f.1)));
     let kb = b.iter().map(|f| (f.0.sort_key(), std::cmp::Reverse(f.1)));
     ka.cmp(kb)
@@ -184,7 +185,12 @@ impl Expr {
                     .iter()
                     .fold(Poly::one(), |acc, i| &acc * &vals[i.0 as usize]),
                 Node::Neg(i) => -&vals[i.0 as usize],
-                Node::Pow(i, e) => vals[i.0 as usize].pow(*e),
+                Node::Pow(i, e) if *e >= 0 => vals[i.0 as usize].pow(e.unsigned_abs()),
+                // Negative powers are of constant monomials (the invariant);
+                // anything else has no polynomial value and expands to zero.
+                Node::Pow(i, e) => vals[i.0 as usize]
+                    .inverse_monomial()
+                    .map_or_else(Poly::zero, |p| p.pow(e.unsigned_abs())),
             };
             vals.push(v);
         }
@@ -201,7 +207,7 @@ impl Expr {
                 Node::Add(c) => c.iter().map(|i| vals[i.0 as usize]).sum(),
                 Node::Mul(c) => c.iter().map(|i| vals[i.0 as usize]).product(),
                 Node::Neg(i) => -vals[i.0 as usize],
-                Node::Pow(i, e) => vals[i.0 as usize].powi(*e as i32),
+                Node::Pow(i, e) => vals[i.0 as usize].powi(*e),
             };
             vals.push(v);
         }

@@ -21,12 +21,19 @@ use smallvec::SmallVec;
 use crate::atom::{Atom, AtomKind};
 use crate::rational::Rational;
 
-/// A product of atoms with positive exponents, sorted by atom id.
+/// An exponent. Negative exponents occur only on constant symbols
+/// (`H_G/Ip` is `H_G·Ip⁻¹`), so that results such as φ̇ = H_G/I′ stay
+/// polynomials in everything that varies: a Laurent monomial in the
+/// constants, a plain monomial in the rest. The form remains unique.
+pub type Exp = i32;
+
+/// A product of atoms with non-zero exponents, sorted by atom id.
 ///
-/// Invariant: sorted strictly by atom, no zero exponents, at most the first
-/// power of any `sin` atom (in a canonical [`Poly`]).
+/// Invariant: sorted strictly by atom, no zero exponents, negative
+/// exponents only on constant symbols, at most the first power of any
+/// `sin` atom (in a canonical [`Poly`]).
 #[derive(Clone, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct Monomial(SmallVec<[(Atom, u32); 4]>);
+pub struct Monomial(SmallVec<[(Atom, Exp); 4]>);
 
 impl Monomial {
     /// The empty product, 1.
@@ -34,10 +41,10 @@ impl Monomial {
         Monomial(SmallVec::new())
     }
 
-    /// A single atom to a power (`exp > 0`).
-    pub fn atom(a: Atom, exp: u32) -> Monomial {
+    /// A single atom to a power (nothing for `exp == 0`).
+    pub fn atom(a: Atom, exp: Exp) -> Monomial {
         let mut v = SmallVec::new();
-        if exp > 0 {
+        if exp != 0 {
             v.push((a, exp));
         }
         Monomial(v)
@@ -45,21 +52,22 @@ impl Monomial {
 
     /// Builds a monomial from factors in any order (exponents of repeated
     /// atoms are added).
-    pub fn from_factors(factors: impl IntoIterator<Item = (Atom, u32)>) -> Monomial {
-        let mut v: SmallVec<[(Atom, u32); 4]> = factors.into_iter().filter(|f| f.1 > 0).collect();
+    pub fn from_factors(factors: impl IntoIterator<Item = (Atom, Exp)>) -> Monomial {
+        let mut v: SmallVec<[(Atom, Exp); 4]> = factors.into_iter().filter(|f| f.1 != 0).collect();
         v.sort_unstable_by_key(|f| f.0);
-        let mut out: SmallVec<[(Atom, u32); 4]> = SmallVec::with_capacity(v.len());
+        let mut out: SmallVec<[(Atom, Exp); 4]> = SmallVec::with_capacity(v.len());
         for (a, e) in v {
             match out.last_mut() {
                 Some(last) if last.0 == a => last.1 += e,
                 _ => out.push((a, e)),
             }
         }
+        out.retain(|f| f.1 != 0);
         Monomial(out)
     }
 
     /// The factors `(atom, exponent)`, sorted by atom id.
-    pub fn factors(&self) -> &[(Atom, u32)] {
+    pub fn factors(&self) -> &[(Atom, Exp)] {
         &self.0
     }
 
@@ -69,12 +77,12 @@ impl Monomial {
     }
 
     /// The exponent of `a` (0 when absent).
-    pub fn exponent(&self, a: Atom) -> u32 {
+    pub fn exponent(&self, a: Atom) -> Exp {
         self.0.iter().find(|f| f.0 == a).map_or(0, |f| f.1)
     }
 
     /// Total degree.
-    pub fn degree(&self) -> u32 {
+    pub fn degree(&self) -> Exp {
         self.0.iter().map(|f| f.1).sum()
     }
 
@@ -94,7 +102,10 @@ impl Monomial {
                     j += 1;
                 }
                 std::cmp::Ordering::Equal => {
-                    out.push((a[i].0, a[i].1 + b[j].1));
+                    let e = a[i].1 + b[j].1;
+                    if e != 0 {
+                        out.push((a[i].0, e));
+                    }
                     i += 1;
                     j += 1;
                 }
@@ -105,17 +116,9 @@ impl Monomial {
         Monomial(out)
     }
 
-    /// This monomial with the exponent of `a` lowered by `by` (saturating at 0).
-    pub fn without(&self, a: Atom, by: u32) -> Monomial {
-        let mut v = self.0.clone();
-        if let Some(pos) = v.iter().position(|f| f.0 == a) {
-            if v[pos].1 > by {
-                v[pos].1 -= by;
-            } else {
-                v.remove(pos);
-            }
-        }
-        Monomial(v)
+    /// This monomial divided by `a^by`.
+    pub fn without(&self, a: Atom, by: Exp) -> Monomial {
+        self.mul(&Monomial::atom(a, -by))
     }
 
     /// Splits into the part made of atoms accepted by `keep` and the rest.
@@ -124,30 +127,26 @@ impl Monomial {
         (Monomial(a), Monomial(b))
     }
 
-    /// The greatest common divisor (minimum exponents).
+    /// The greatest common divisor: the minimum exponent of every atom
+    /// (an absent atom has exponent 0), so a common denominator is kept.
     pub fn gcd(&self, other: &Monomial) -> Monomial {
-        Monomial(
-            self.0
-                .iter()
-                .filter_map(|&(a, e)| {
-                    let f = other.exponent(a);
-                    (f > 0).then_some((a, e.min(f)))
-                })
-                .collect(),
+        let mut atoms: Vec<Atom> = self.0.iter().chain(other.0.iter()).map(|f| f.0).collect();
+        atoms.sort_unstable();
+        atoms.dedup();
+        Monomial::from_factors(
+            atoms
+                .into_iter()
+                .map(|a| (a, self.exponent(a).min(other.exponent(a)))),
         )
     }
 
-    /// `self / other`, assuming `other` divides `self`.
+    /// `self / other`.
     pub fn div(&self, other: &Monomial) -> Monomial {
-        let mut m = self.clone();
-        for &(a, e) in other.factors() {
-            m = m.without(a, e);
-        }
-        m
+        self.mul(&Monomial(other.0.iter().map(|&(a, e)| (a, -e)).collect()))
     }
 
     /// Factors sorted by [`Atom::sort_key`], for printing.
-    pub fn sorted_for_print(&self) -> Vec<(Atom, u32)> {
+    pub fn sorted_for_print(&self) -> Vec<(Atom, Exp)> {
         let mut v = self.0.to_vec();
         v.sort_by_key(|f| f.0.sort_key());
         v
@@ -310,6 +309,25 @@ impl Poly {
         }
     }
 
+    /// The inverse of a single term whose atoms are all constants
+    /// (`2·m·Ip` → `½·m⁻¹·Ip⁻¹`); `None` for anything else or zero.
+    pub fn inverse_monomial(&self) -> Option<Poly> {
+        let [(m, c)] = self.terms.as_slice() else {
+            return None;
+        };
+        let constants = m
+            .factors()
+            .iter()
+            .all(|(a, _)| matches!(a.kind(), AtomKind::Var { time: false, .. }));
+        if !constants {
+            return None;
+        }
+        let inv = Monomial(m.0.iter().map(|&(a, e)| (a, -e)).collect());
+        Some(Poly {
+            terms: vec![(inv, c.recip()?)],
+        })
+    }
+
     /// Every atom that occurs, sorted by id, without repeats.
     pub fn atoms(&self) -> Vec<Atom> {
         let mut v: Vec<Atom> = self
@@ -333,7 +351,7 @@ impl Poly {
         for (m, c) in &self.terms {
             let mut p = c.to_f64();
             for &(a, e) in m.factors() {
-                p *= value(a).powi(e as i32);
+                p *= value(a).powi(e);
             }
             sum += p;
         }

@@ -105,7 +105,7 @@ pub fn present(p: &Poly, pres: &Presentation) -> Expr {
         .map(|(k, ts)| (k, Poly::from_terms(ts)))
         .collect();
     let group_key = |k: &Monomial| {
-        let mut pos: Vec<(usize, Reverse<u32>)> = k
+        let mut pos: Vec<(usize, Reverse<i32>)> = k
             .factors()
             .iter()
             .map(|&(a, e)| (rank(a).expect("collected"), Reverse(e)))
@@ -125,13 +125,13 @@ pub fn present(p: &Poly, pres: &Presentation) -> Expr {
 }
 
 /// Term order inside a sum: highest derivative first, then by names.
-fn term_order(a: &[(Atom, u32)], b: &[(Atom, u32)]) -> Ordering {
-    let top = |f: &[(Atom, u32)]| f.iter().map(|x| x.0.order()).max().unwrap_or(0);
+fn term_order(a: &[(Atom, i32)], b: &[(Atom, i32)]) -> Ordering {
+    let top = |f: &[(Atom, i32)]| f.iter().map(|x| x.0.order()).max().unwrap_or(0);
     top(b).cmp(&top(a)).then_with(|| print_order(a, b))
 }
 
 /// A term with its factors in print order.
-type PrintTerm = (Vec<(Atom, u32)>, Monomial, Rational);
+type PrintTerm = (Vec<(Atom, i32)>, Monomial, Rational);
 
 /// `key · q` with q factored.
 fn group_node(e: &mut Expr, key: &Monomial, q: &Poly) -> Id {

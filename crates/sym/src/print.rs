@@ -28,8 +28,18 @@ pub trait Style {
     fn num(&self, r: &Rational) -> String;
     /// Separator between factors of a product.
     fn mul_sep(&self, left: &Node, right: &Node) -> &'static str;
-    /// `base^exp`; `base` is already parenthesised when needed.
+    /// `base^exp` for `exp ≥ 2`; `base` is already parenthesised when needed.
     fn pow(&self, base: &str, base_node: &Node, exp: u32) -> String;
+    /// A quotient: the numerator (a product, possibly `1`) over denominator
+    /// factors (each an atom or a power).
+    fn fraction(&self, num: &str, dens: &[String]) -> String {
+        let mut s = num.to_owned();
+        for d in dens {
+            s.push('/');
+            s.push_str(d);
+        }
+        s
+    }
     /// The minus sign (prefix and infix).
     fn minus(&self) -> &'static str {
         "-"
@@ -86,16 +96,16 @@ fn write(e: &Expr, id: Id, style: &dyn Style, out: &mut String) {
             }
         }
         Node::Mul(factors) => {
-            for (k, &f) in factors.iter().enumerate() {
-                if k > 0 {
-                    out.push_str(style.mul_sep(e.node(factors[k - 1]), e.node(f)));
-                }
-                match e.node(f) {
-                    Node::Add(_) | Node::Mul(_) | Node::Neg(_) => paren(e, f, style, out),
-                    _ => write(e, f, style, out),
-                }
+            let (dens, nums): (Vec<Id>, Vec<Id>) = factors
+                .iter()
+                .partition(|&&f| matches!(e.node(f), Node::Pow(_, k) if *k < 0));
+            if dens.is_empty() {
+                write_product(e, &nums, style, out);
+            } else {
+                write_fraction(e, &nums, &dens, style, out);
             }
         }
+        Node::Pow(_, k) if *k < 0 => write_fraction(e, &[], &[id], style, out),
         Node::Neg(inner) => {
             out.push_str(style.minus());
             write_under_neg(e, *inner, style, out);
@@ -107,9 +117,50 @@ fn write(e: &Expr, id: Id, style: &dyn Style, out: &mut String) {
                 Node::Num(r) if r.is_integer() => write(e, *base, style, &mut b),
                 _ => paren(e, *base, style, &mut b),
             }
-            out.push_str(&style.pow(&b, e.node(*base), *exp));
+            out.push_str(&style.pow(&b, e.node(*base), exp.unsigned_abs()));
         }
     }
+}
+
+fn write_product(e: &Expr, factors: &[Id], style: &dyn Style, out: &mut String) {
+    for (k, &f) in factors.iter().enumerate() {
+        if k > 0 {
+            out.push_str(style.mul_sep(e.node(factors[k - 1]), e.node(f)));
+        }
+        match e.node(f) {
+            Node::Add(_) | Node::Mul(_) | Node::Neg(_) => paren(e, f, style, out),
+            _ => write(e, f, style, out),
+        }
+    }
+}
+
+/// `nums / dens`, each denominator a negative power of an atom.
+fn write_fraction(e: &Expr, nums: &[Id], dens: &[Id], style: &dyn Style, out: &mut String) {
+    let mut num = String::new();
+    if nums.is_empty() {
+        num.push_str(&style.num(&Rational::ONE));
+    } else {
+        write_product(e, nums, style, &mut num);
+    }
+    let dens: Vec<String> = dens
+        .iter()
+        .map(|&d| {
+            let Node::Pow(base, k) = e.node(d) else {
+                unreachable!("denominators are negative powers")
+            };
+            let mut b = String::new();
+            match e.node(*base) {
+                Node::Atom(_) => write(e, *base, style, &mut b),
+                _ => paren(e, *base, style, &mut b),
+            }
+            if *k == -1 {
+                b
+            } else {
+                style.pow(&b, e.node(*base), k.unsigned_abs())
+            }
+        })
+        .collect();
+    out.push_str(&style.fraction(&num, &dens));
 }
 
 /// After a minus sign: sums and negations need parentheses, a bare number
@@ -336,6 +387,13 @@ impl Style for Unicode {
     fn minus(&self) -> &'static str {
         "−"
     }
+    fn fraction(&self, num: &str, dens: &[String]) -> String {
+        if dens.len() == 1 {
+            format!("{num}/{}", dens[0])
+        } else {
+            format!("{num}/({})", dens.join(" "))
+        }
+    }
 }
 
 /// LaTeX math (no surrounding `$`): `I_x \dot{\omega}_x - \left(I_y - I_z\right) \omega_y \omega_z`.
@@ -377,6 +435,9 @@ impl Style for Latex {
     }
     fn parens(&self) -> (&'static str, &'static str) {
         (r"\left(", r"\right)")
+    }
+    fn fraction(&self, num: &str, dens: &[String]) -> String {
+        format!(r"\frac{{{num}}}{{{}}}", dens.join(" "))
     }
 }
 

@@ -34,7 +34,22 @@ impl Poly {
             let (kept, replaced) = m.split(|a| cache[&a].is_none());
             let mut p = Poly::term(kept, c.clone());
             for &(a, e) in replaced.factors() {
-                p = &p * &cache[&a].as_ref().expect("replaced atom").pow(e);
+                let r = cache[&a].as_ref().expect("replaced atom");
+                let f = if e > 0 {
+                    r.pow(e.unsigned_abs())
+                } else {
+                    // A constant in a denominator: only an invertible
+                    // replacement can stand there; otherwise the atom stays
+                    // (callers detect it, e.g. "I occurs in a denominator").
+                    match r.inverse_monomial() {
+                        Some(inv) => inv.pow(e.unsigned_abs()),
+                        None => Poly::term(
+                            crate::poly::Monomial::atom(a, e),
+                            crate::rational::Rational::ONE,
+                        ),
+                    }
+                };
+                p = &p * &f;
             }
             for (m2, c2) in p.terms() {
                 acc.push(m2.clone(), c2.clone());

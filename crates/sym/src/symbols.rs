@@ -132,6 +132,50 @@ impl Symbols {
         .expect("order-0 symbol"))
     }
 
+    /// A divisor `/d`: a non-zero number, or a product of constant symbols
+    /// (each becomes a negative power). Returns the factor nodes.
+    fn lower_divisor(&self, d: &Ast, e: &mut Expr) -> Result<Vec<Id>, ParseError> {
+        let fail = || ParseError {
+            span: d.span,
+            message: "only division by a non-zero number or by constant symbols is allowed"
+                .to_owned(),
+        };
+        // `/I` and `/I^2` keep their written shape.
+        match &d.kind {
+            AstKind::Name { .. } => {
+                let mut tmp = Expr::new();
+                self.lower(d, &mut tmp)?;
+                if let Node::Atom(a) = tmp.node(tmp.root()).clone()
+                    && !a.is_time_dependent()
+                {
+                    let id = e.push(Node::Atom(a));
+                    return Ok(vec![e.push(Node::Pow(id, -1))]);
+                }
+                return Err(fail());
+            }
+            AstKind::Pow(b, k) if matches!(b.kind, AstKind::Name { .. }) && *k >= 1 => {
+                let mut ids = self.lower_divisor(b, e)?;
+                if let Some(Node::Pow(base, _)) = ids.first().map(|i| e.node(*i).clone()) {
+                    ids = vec![e.push(Node::Pow(base, -(*k as i32)))];
+                }
+                return Ok(ids);
+            }
+            _ => {}
+        }
+        let mut tmp = Expr::new();
+        self.lower(d, &mut tmp)?;
+        let inv = tmp.to_poly().inverse_monomial().ok_or_else(fail)?;
+        let (m, c) = &inv.terms()[0];
+        let mut ids = Vec::new();
+        if !c.is_one() {
+            ids.push(e.num(c));
+        }
+        for &(a, k) in m.factors() {
+            ids.push(e.atom_pow(a, k));
+        }
+        Ok(ids)
+    }
+
     /// Lowers a scalar syntax tree into `e`, returning the new node.
     pub fn lower(&self, ast: &Ast, e: &mut Expr) -> Result<Id, ParseError> {
         let fail = |span: Span, m: &str| {
@@ -169,13 +213,7 @@ impl Symbols {
                 let mut ids = Vec::new();
                 for it in items {
                     if let AstKind::Recip(d) = &it.kind {
-                        let mut tmp = Expr::new();
-                        self.lower(d, &mut tmp)?;
-                        let Some(c) = tmp.to_poly().as_constant().filter(|c| !c.is_zero()) else {
-                            return fail(d.span, "only division by a non-zero number is allowed");
-                        };
-                        let r = c.recip().expect("non-zero");
-                        ids.push(e.num(&r));
+                        ids.extend(self.lower_divisor(d, e)?);
                     } else {
                         ids.push(self.lower(it, e)?);
                     }
@@ -191,7 +229,7 @@ impl Symbols {
                 match n {
                     0 => e.push(Node::Num(Rational::ONE)),
                     1 => id,
-                    n => e.push(Node::Pow(id, *n)),
+                    n => e.push(Node::Pow(id, i32::try_from(*n).unwrap_or(i32::MAX))),
                 }
             }
             AstKind::Recip(_) => unreachable!("divisors occur only inside products"),

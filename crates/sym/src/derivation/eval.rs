@@ -452,13 +452,13 @@ impl<'a> Context<'a> {
                 for it in &items[1..] {
                     if let AstKind::Recip(d) = &it.kind {
                         let p = self.scalar(d, base)?;
-                        let Some(c) = p.as_constant().and_then(|c| c.recip()) else {
+                        let Some(inv) = p.inverse_monomial() else {
                             return err(
                                 d.span,
-                                "only division by a non-zero number is allowed".into(),
+                                "only division by a non-zero number or by constant symbols is allowed".into(),
                             );
                         };
-                        acc = acc.map(&mut |x| x.scale(&c));
+                        acc = acc.map(&mut |x| x * &inv);
                         continue;
                     }
                     let v = self.eval(it, base)?;
