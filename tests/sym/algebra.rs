@@ -7,14 +7,24 @@ use proptest::prelude::*;
 use crate::strategies::{Tree, build, expr, point, symbols, tree, value_at};
 
 fn config() -> ProptestConfig {
-    ProptestConfig { cases: 192, failure_persistence: None, ..ProptestConfig::default() }
+    ProptestConfig {
+        cases: 192,
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    }
 }
 
 /// Σ |c| Π |x|^e: an upper bound on the magnitudes summed when evaluating `p`.
 fn poly_scale(p: &Poly, v: &mut dyn FnMut(Atom) -> f64) -> f64 {
     p.terms()
         .iter()
-        .map(|(m, c)| c.to_f64().abs() * m.factors().iter().map(|&(a, e)| v(a).abs().powi(e as i32)).product::<f64>())
+        .map(|(m, c)| {
+            c.to_f64().abs()
+                * m.factors()
+                    .iter()
+                    .map(|&(a, e)| v(a).abs().powi(e as i32))
+                    .product::<f64>()
+        })
         .sum()
 }
 

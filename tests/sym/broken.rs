@@ -8,23 +8,46 @@ use hdot_sym::derivation::load_str;
 fn each_broken_file_reports_its_location() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("sym/broken");
     let mut n = 0;
-    let mut entries: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().path()).collect();
+    let mut entries: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
     entries.sort();
     for path in entries {
         let text = std::fs::read_to_string(&path).unwrap();
         let first = text.lines().next().unwrap();
-        let spec = first.strip_prefix("# expect: ").unwrap_or_else(|| panic!("{}: no `# expect:` line", path.display()));
+        let spec = first
+            .strip_prefix("# expect: ")
+            .unwrap_or_else(|| panic!("{}: no `# expect:` line", path.display()));
         let mut parts = spec.splitn(3, ':');
         let line: usize = parts.next().unwrap().trim().parse().unwrap();
         let col: usize = parts.next().unwrap().trim().parse().unwrap();
         let fragment = parts.next().unwrap().trim();
         let name = format!("broken/{}", path.file_name().unwrap().to_string_lossy());
         let err = load_str(&name, &text).expect_err(&name);
-        assert_eq!((err.line, err.column), (line, col), "{name}: wrong location\n{err}");
-        assert!(err.message.contains(fragment), "{name}: message `{}` lacks `{fragment}`", err.message);
+        assert_eq!(
+            (err.line, err.column),
+            (line, col),
+            "{name}: wrong location\n{err}"
+        );
+        assert!(
+            err.message.contains(fragment),
+            "{name}: message `{}` lacks `{fragment}`",
+            err.message
+        );
         let shown = err.to_string();
-        assert!(shown.contains(&format!("--> {name}:{line}:{col}")), "{shown}");
-        assert!(shown.lines().last().unwrap().trim_start_matches(|c: char| c.is_ascii_digit() || c == ' ').starts_with('|'));
+        assert!(
+            shown.contains(&format!("--> {name}:{line}:{col}")),
+            "{shown}"
+        );
+        assert!(
+            shown
+                .lines()
+                .last()
+                .unwrap()
+                .trim_start_matches(|c: char| c.is_ascii_digit() || c == ' ')
+                .starts_with('|')
+        );
         n += 1;
     }
     assert!(n >= 8, "only {n} broken files found");
@@ -50,7 +73,12 @@ expect = ["I_x*w_x' - (I_y - I_z)*w_y*w_z", "I_y*w_y' + (I_z - I_x)*w_z*w_x", "I
     let f = d.failures();
     assert_eq!(f.len(), 1);
     assert_eq!(f[0].1.component, "y");
-    assert_eq!(f[0].1.difference, hdot_sym::Symbols::parse_decl(&["I_x", "I_z"], &["w_x", "w_z"]).poly("-2*(I_z - I_x)*w_z*w_x").unwrap());
+    assert_eq!(
+        f[0].1.difference,
+        hdot_sym::Symbols::parse_decl(&["I_x", "I_z"], &["w_x", "w_z"])
+            .poly("-2*(I_z - I_x)*w_z*w_x")
+            .unwrap()
+    );
 }
 
 #[test]

@@ -33,7 +33,8 @@ pub fn all(dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
 
 /// The short name of a derivation file (its stem).
 pub fn name_of(p: &Path) -> String {
-    p.file_stem().map_or_else(String::new, |s| s.to_string_lossy().into_owned())
+    p.file_stem()
+        .map_or_else(String::new, |s| s.to_string_lossy().into_owned())
 }
 
 /// Resolves `NAME` (a file in `dir`) or `PATH` (an existing file, or
@@ -50,6 +51,13 @@ pub fn resolve(dir: &Path, arg: &str) -> anyhow::Result<PathBuf> {
     if candidate.is_file() {
         return Ok(candidate);
     }
-    let names: Vec<String> = all(dir).unwrap_or_default().iter().map(|p| name_of(p)).collect();
-    bail!("unknown derivation `{arg}`; known: {} (or give a path to a .toml file)", names.join(", "))
+    let names: Vec<String> = all(dir)
+        .unwrap_or_default()
+        .iter()
+        .map(|p| name_of(p))
+        .collect();
+    bail!(
+        "unknown derivation `{arg}`; known: {} (or give a path to a .toml file)",
+        names.join(", ")
+    )
 }

@@ -27,9 +27,15 @@ pub fn run(args: CheckArgs) -> anyhow::Result<ExitCode> {
     let paths = if args.targets.is_empty() {
         catalog::all(&dir)?
     } else {
-        args.targets.iter().map(|t| catalog::resolve(&dir, t)).collect::<anyhow::Result<_>>()?
+        args.targets
+            .iter()
+            .map(|t| catalog::resolve(&dir, t))
+            .collect::<anyhow::Result<_>>()?
     };
-    println!("{:<30} {:>7} {:>10}  {}", "derivation", "checks", "time", "result");
+    println!(
+        "{:<30} {:>7} {:>10}  {}",
+        "derivation", "checks", "time", "result"
+    );
     let (mut failed, mut broken) = (0, 0);
     for p in &paths {
         let t0 = Instant::now();
@@ -39,8 +45,18 @@ pub fn run(args: CheckArgs) -> anyhow::Result<ExitCode> {
         match r {
             Ok(d) => {
                 let fails = d.failures();
-                let status = if fails.is_empty() { "ok".to_owned() } else { format!("FAILED ({} of {})", fails.len(), d.check_count()) };
-                println!("{:<30} {:>7} {:>10}  {}", d.name, d.check_count(), time, status);
+                let status = if fails.is_empty() {
+                    "ok".to_owned()
+                } else {
+                    format!("FAILED ({} of {})", fails.len(), d.check_count())
+                };
+                println!(
+                    "{:<30} {:>7} {:>10}  {}",
+                    d.name,
+                    d.check_count(),
+                    time,
+                    status
+                );
                 for (step, c) in fails {
                     println!(
                         "    {step}{}{}: derived − expected = {}",
@@ -58,7 +74,12 @@ pub fn run(args: CheckArgs) -> anyhow::Result<ExitCode> {
             }
         }
     }
-    println!("{} derivations, {} failed expectations, {} files with errors", paths.len(), failed, broken);
+    println!(
+        "{} derivations, {} failed expectations, {} files with errors",
+        paths.len(),
+        failed,
+        broken
+    );
     Ok(if broken > 0 {
         ExitCode::from(2)
     } else if failed > 0 {

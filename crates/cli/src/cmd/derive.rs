@@ -73,5 +73,9 @@ pub fn run(args: DeriveArgs) -> anyhow::Result<ExitCode> {
             c.difference
         );
     }
-    Ok(if failures.is_empty() { ExitCode::SUCCESS } else { ExitCode::from(1) })
+    Ok(if failures.is_empty() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
 }

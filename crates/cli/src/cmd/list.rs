@@ -20,12 +20,23 @@ pub fn run(args: ListArgs) -> anyhow::Result<ExitCode> {
     let mut failed = false;
     for p in catalog::all(&dir)? {
         match hdot_sym::derivation::load(&p) {
-            Ok(d) => println!("{:<28} {}\n{:<28} source: {}", d.name, d.title, "", d.source),
+            Ok(d) => println!(
+                "{:<28} {}\n{:<28} source: {}",
+                d.name, d.title, "", d.source
+            ),
             Err(e) => {
                 failed = true;
-                println!("{:<28} (does not load: {})", catalog::name_of(&p), e.message);
+                println!(
+                    "{:<28} (does not load: {})",
+                    catalog::name_of(&p),
+                    e.message
+                );
             }
         }
     }
-    Ok(if failed { ExitCode::from(2) } else { ExitCode::SUCCESS })
+    Ok(if failed {
+        ExitCode::from(2)
+    } else {
+        ExitCode::SUCCESS
+    })
 }
