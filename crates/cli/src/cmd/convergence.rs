@@ -1,0 +1,108 @@
+//! `hdot convergence [--out DIR] [--tol T]`: error of the discretised
+//! inertia of each bundled primitive against the analytic value, observed
+//! orders, charts (error vs particles and vs time, one line per method),
+//! and with `--tol` the cheapest discretisation meeting the tolerance.
+
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::Context;
+use clap::Args;
+use hdot_num::convergence::{
+    METHODS, PrimitiveSweeps, bundled_primitives, cheapest_meeting, observed_orders, sweep,
+    write_charts,
+};
+
+/// Arguments of `hdot convergence`.
+#[derive(Debug, Args)]
+pub struct ConvergenceArgs {
+    /// Directory for the charts (`<primitive>-error-vs-{particles,time}.{svg,png}`).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Report, per primitive, the cheapest discretisation whose relative
+    /// inertia error is at most T.
+    #[arg(long, value_name = "T")]
+    pub tol: Option<f64>,
+    /// Largest number of particles tried per discretisation.
+    #[arg(long, default_value_t = 2_000_000)]
+    pub max_particles: usize,
+}
+
+/// Runs the sweeps. Exit 1 when some primitive cannot meet `--tol`
+/// within `--max-particles`; 2 on a bad option.
+pub fn run(args: ConvergenceArgs) -> anyhow::Result<ExitCode> {
+    if let Some(t) = args.tol
+        && t.is_nan() || t <= 0.0 || t.is_infinite()
+    {
+        anyhow::bail!("--tol must be a positive number, got {t}");
+    }
+    if let Some(dir) = &args.out {
+        std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    }
+    let shapes = bundled_primitives();
+    let bar = std::io::stderr().is_terminal().then(|| {
+        let bar = indicatif::ProgressBar::new((shapes.len() * METHODS.len()) as u64);
+        bar.set_style(
+            indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} {msg}")
+                .expect("valid template"),
+        );
+        bar
+    });
+    let mut code = ExitCode::SUCCESS;
+    for shape in &shapes {
+        let mut sweeps = Vec::new();
+        println!("{}", shape.name());
+        for &method in &METHODS {
+            if let Some(b) = &bar {
+                b.set_message(format!("{} {method}", shape.name()));
+            }
+            let pts = sweep(shape, method, args.max_particles);
+            let orders = observed_orders(&pts);
+            let last = pts.last();
+            let order = orders.iter().rev().flatten().next();
+            println!(
+                "  {:<18} finest {:>9} particles  error {:>9}  observed order {}",
+                method.to_string(),
+                last.map_or(0, |p| p.particles),
+                last.map_or("-".into(), |p| format!("{:.2e}", p.error)),
+                order.map_or("(exact to round-off)".into(), |o| format!("{o:.2}")),
+            );
+            sweeps.push((method, pts));
+            if let Some(b) = &bar {
+                b.inc(1);
+            }
+        }
+        if let Some(tol) = args.tol {
+            match cheapest_meeting(shape, tol, &METHODS, args.max_particles) {
+                Some(p) => println!(
+                    "  cheapest for tol {tol:e}: {} with {} cells per parameter, {} particles, error {:.2e}",
+                    p.disc.method, p.disc.cells, p.particles, p.error
+                ),
+                None => {
+                    println!(
+                        "  no discretisation within {} particles meets tol {tol:e}",
+                        args.max_particles
+                    );
+                    code = ExitCode::from(1);
+                }
+            }
+        }
+        if let Some(dir) = &args.out {
+            let stems = write_charts(
+                dir,
+                &PrimitiveSweeps {
+                    shape: *shape,
+                    sweeps,
+                },
+            )?;
+            for s in stems {
+                println!("  wrote {}.{{svg,png}}", s.display());
+            }
+        }
+    }
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    Ok(code)
+}

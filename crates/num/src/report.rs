@@ -1,0 +1,221 @@
+//! What `hdot inertia` and `hdot dynamics` print: one serialisable report
+//! (the JSON keys of `docs/cli-numeric.md`) and its text form.
+
+use std::collections::BTreeMap;
+use std::fmt::Write;
+
+use nalgebra::{Matrix3, Vector3};
+use serde::Serialize;
+
+use crate::scene::{Problem, Scene};
+
+/// A 3-vector as JSON.
+pub type Vec3 = [f64; 3];
+/// A 3×3 matrix as JSON, row-major.
+pub type Mat3 = [[f64; 3]; 3];
+
+fn v(a: &Vector3<f64>) -> Vec3 {
+    [a.x, a.y, a.z]
+}
+
+fn m(a: &Matrix3<f64>) -> Mat3 {
+    std::array::from_fn(|i| std::array::from_fn(|j| a[(i, j)]))
+}
+
+/// The report of a scene. Field names are the JSON keys.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Report {
+    /// Scene title.
+    pub name: String,
+    /// `statics`, `motion` or `impulse`.
+    pub problem: &'static str,
+    /// Reference point O.
+    pub reference: Vec3,
+    /// Total mass.
+    pub mass: f64,
+    /// Mass centre G.
+    pub center: Vec3,
+    /// Inertia tensor about G, world axes (products with a minus sign).
+    #[serde(rename = "inertia_G")]
+    pub inertia_g: Mat3,
+    /// Inertia tensor about O, world axes.
+    #[serde(rename = "inertia_O")]
+    pub inertia_o: Mat3,
+    /// Principal moments about G, ascending.
+    pub principal_moments: Vec3,
+    /// Principal axes: `principal_axes[i]` is the unit axis of moment `i`.
+    pub principal_axes: [Vec3; 3],
+    /// Angular momentum about G (absent for `hdot inertia`).
+    #[serde(rename = "H_G", skip_serializing_if = "Option::is_none")]
+    pub h_g: Option<Vec3>,
+    /// Angular momentum about O.
+    #[serde(rename = "H_O", skip_serializing_if = "Option::is_none")]
+    pub h_o: Option<Vec3>,
+    /// Kinetic energy.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub kinetic_energy: Option<f64>,
+    /// Resultant of the external forces the motion requires, m ā.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub resultant_force: Option<Vec3>,
+    /// Resultant moment about O the motion requires (Σ M_O).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub resultant_moment: Option<Vec3>,
+    /// Resultant moment about G, Ḣ_G = I α + ω × (I ω).
+    #[serde(rename = "resultant_moment_G", skip_serializing_if = "Option::is_none")]
+    pub resultant_moment_g: Option<Vec3>,
+    /// Solved unknowns by name.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub unknowns: Option<BTreeMap<String, f64>>,
+    /// Why the unknowns were not solved (underdetermined, inconsistent).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub unsolved: Option<String>,
+    /// Largest relative difference between particle sums and rigid-body
+    /// formulas on a discretised copy of the body.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub particle_check: Option<f64>,
+}
+
+impl Report {
+    /// Mass properties only (`hdot inertia`).
+    pub fn inertia(scene: &Scene) -> Self {
+        let r = scene.inertia();
+        let axes = r.principal.axes.matrix();
+        Report {
+            name: scene.name.clone(),
+            problem: "statics",
+            reference: v(&scene.reference),
+            mass: r.props.mass,
+            center: v(&r.props.center),
+            inertia_g: m(r.props.inertia_g.matrix()),
+            inertia_o: m(r.inertia_o.matrix()),
+            principal_moments: v(&r.principal.moments),
+            principal_axes: std::array::from_fn(|i| v(&axes.column(i).into_owned())),
+            h_g: None,
+            h_o: None,
+            kinetic_energy: None,
+            resultant_force: None,
+            resultant_moment: None,
+            resultant_moment_g: None,
+            unknowns: None,
+            unsolved: None,
+            particle_check: None,
+        }
+    }
+
+    /// Everything (`hdot dynamics`).
+    pub fn dynamics(scene: &Scene) -> Self {
+        let d = scene.dynamics();
+        let mut r = Self::inertia(scene);
+        let k = d.kinetics;
+        let impulse = matches!(scene.problem, Problem::Impulse { .. });
+        r.problem = match scene.problem {
+            Problem::Statics => "statics",
+            Problem::Motion(_) => "motion",
+            Problem::Impulse { .. } => "impulse",
+        };
+        r.h_g = Some(v(&k.h_g));
+        r.h_o = Some(v(&k.h_o));
+        r.kinetic_energy = Some(k.kinetic_energy);
+        if !impulse {
+            r.resultant_force = Some(v(&k.force));
+            r.resultant_moment = Some(v(&k.moment_o));
+            r.resultant_moment_g = Some(v(&k.hdot_g));
+        }
+        r.unknowns = Some(d.unknowns);
+        r.unsolved = d.unsolved.map(|e| e.to_string());
+        r.particle_check = Some(d.particle_check);
+        r
+    }
+
+    /// Human-readable form (`--format text`), with `digits` significant
+    /// digits.
+    pub fn text(&self, digits: usize) -> String {
+        let f = |x: f64| fmt_num(x, digits);
+        let fv = |a: &Vec3| format!("({}, {}, {})", f(a[0]), f(a[1]), f(a[2]));
+        let mut s = String::new();
+        let _ = writeln!(s, "{}", self.name);
+        let _ = writeln!(s, "  mass              {}", f(self.mass));
+        let _ = writeln!(s, "  centre G          {}", fv(&self.center));
+        let _ = writeln!(s, "  reference O       {}", fv(&self.reference));
+        for (label, mat) in [
+            ("inertia about G", &self.inertia_g),
+            ("inertia about O", &self.inertia_o),
+        ] {
+            let _ = writeln!(s, "  {label} (world axes):");
+            for row in mat {
+                let _ = writeln!(
+                    s,
+                    "    [{:>12} {:>12} {:>12}]",
+                    f(row[0]),
+                    f(row[1]),
+                    f(row[2])
+                );
+            }
+        }
+        let _ = writeln!(s, "  principal moments {}", fv(&self.principal_moments));
+        for (i, a) in self.principal_axes.iter().enumerate() {
+            let _ = writeln!(s, "  principal axis {}  {}", i + 1, fv(a));
+        }
+        if self.h_g.is_some() {
+            let _ = writeln!(s, "  problem           {}", self.problem);
+        }
+        let opt = |s: &mut String, label: &str, x: &Option<Vec3>| {
+            if let Some(x) = x {
+                let _ = writeln!(s, "  {label:<17} {}", fv(x));
+            }
+        };
+        opt(&mut s, "H_G", &self.h_g);
+        opt(&mut s, "H_O", &self.h_o);
+        if let Some(t) = self.kinetic_energy {
+            let _ = writeln!(s, "  kinetic energy    {}", f(t));
+        }
+        opt(&mut s, "ΣF = m ā", &self.resultant_force);
+        opt(&mut s, "ΣM_O", &self.resultant_moment);
+        opt(&mut s, "ΣM_G = Ḣ_G", &self.resultant_moment_g);
+        if let Some(u) = &self.unknowns
+            && !u.is_empty()
+        {
+            let _ = writeln!(s, "  unknowns:");
+            for (k, x) in u {
+                let _ = writeln!(s, "    {k:<14} = {}", f(*x));
+            }
+        }
+        if let Some(e) = &self.unsolved {
+            let _ = writeln!(s, "  unknowns not solved: {e}");
+        }
+        if let Some(c) = self.particle_check {
+            if c <= 1e-9 {
+                let _ = writeln!(
+                    s,
+                    "  particle-sum check: ok (relative difference below 1e-9)"
+                );
+            } else {
+                let _ = writeln!(
+                    s,
+                    "  particle-sum check: MISMATCH (relative difference {c:.1e})"
+                );
+            }
+        }
+        s
+    }
+}
+
+/// `x` with `digits` significant digits; tiny values (round-off of an
+/// exact zero) print as 0.
+pub fn fmt_num(x: f64, digits: usize) -> String {
+    if x == 0.0 || x.abs() < 1e-12 {
+        return "0".into();
+    }
+    let e = x.abs().log10().floor() as i32;
+    if (-4..=6).contains(&e) {
+        let decimals = (digits as i32 - 1 - e).max(0) as usize;
+        let s = format!("{x:.decimals$}");
+        if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s
+        }
+    } else {
+        format!("{x:.prec$e}", prec = digits.saturating_sub(1))
+    }
+}
