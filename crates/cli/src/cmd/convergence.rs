@@ -33,7 +33,7 @@ pub struct ConvergenceArgs {
 /// within `--max-particles`; 2 on a bad option.
 pub fn run(args: ConvergenceArgs) -> anyhow::Result<ExitCode> {
     if let Some(t) = args.tol
-        && t.is_nan() || t <= 0.0 || t.is_infinite()
+        && (t.is_nan() || t <= 0.0 || t.is_infinite())
     {
         anyhow::bail!("--tol must be a positive number, got {t}");
     }
