@@ -31,8 +31,14 @@ enum Command {
     WorkPrecision(cmd::work_precision::WorkPrecisionArgs),
     /// Run derivations and check their expectations; print a table.
     Check(cmd::check::CheckArgs),
+    /// Discretised inertia against analytic: orders, charts, cheapest for --tol.
+    Convergence(cmd::convergence::ConvergenceArgs),
     /// Derive one derivation's equations and print them in textbook form.
     Derive(cmd::derive::DeriveArgs),
+    /// H_G, H_O, T, required resultants and solved unknowns of a scene.
+    Dynamics(cmd::dynamics::DynamicsArgs),
+    /// Mass, centre, inertia about G and O, principal axes of a scene.
+    Inertia(cmd::inertia::InertiaArgs),
     /// List the bundled derivations with title and source.
     List(cmd::list::ListArgs),
 }
@@ -44,7 +50,10 @@ fn main() -> ExitCode {
         Command::Simulate(a) => cmd::simulate::run(a),
         Command::WorkPrecision(a) => cmd::work_precision::run(a),
         Command::Check(a) => cmd::check::run(a),
+        Command::Convergence(a) => cmd::convergence::run(a),
         Command::Derive(a) => cmd::derive::run(a),
+        Command::Dynamics(a) => cmd::dynamics::run(a),
+        Command::Inertia(a) => cmd::inertia::run(a),
         Command::List(a) => cmd::list::run(a),
     };
     match result {

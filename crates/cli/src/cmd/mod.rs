@@ -1,7 +1,10 @@
 //! One module per subcommand, each with a clap `Args` struct and
 //! `run(args) -> anyhow::Result<ExitCode>`.
 pub mod check;
+pub mod convergence;
 pub mod derive;
+pub mod dynamics;
+pub mod inertia;
 pub mod list;
 pub mod simulate;
 pub mod work_precision;
