@@ -12,3 +12,7 @@ mod sums;
 mod bad_input;
 // Scenes and worked problems.
 mod scenes;
+// Convergence sweeps and the cheapest discretisation.
+mod convergence;
+// insta snapshots of the reports.
+mod snapshots;

@@ -103,7 +103,8 @@ pub fn observed_orders(points: &[ConvergencePoint]) -> Vec<Option<f64>> {
 }
 
 /// The discretisation with the fewest particles whose error is at most
-/// `tol`, over `methods` and the cell ladder, within `max_particles`.
+/// `tol`, over `methods` and the rungs of [`cell_ladder`], within
+/// `max_particles`.
 ///
 /// # Example
 /// ```
