@@ -397,8 +397,9 @@ impl Parser {
         let mut e = self.primary(allow_rational)?;
         while self.eat('.') {
             let (t, s) = self.bump();
-            let Tok::Ident(name) = t else {
-                return err(s, "expected a component name after `.` (such as x, y, z)");
+            let name = match t {
+                Tok::Ident(name) | Tok::Int(name) => name,
+                _ => return err(s, "expected a component name after `.` (such as x, y, z or 1, 2, 3)"),
             };
             let span = e.span.to(s);
             e = Ast {

@@ -179,13 +179,15 @@ fn group_node(e: &mut Expr, key: &Monomial, q: &Poly) -> Id {
     if !number.is_one() || (factors.is_empty() && bracket.is_none()) {
         ids.push(e.push(Node::Num(number)));
     }
-    for &(a, x) in factors.iter().filter(|f| !f.0.is_time_dependent()) {
+    // Constant symbols lead; sin/cos (even of a constant angle) follow the rates.
+    let leading = |a: Atom| !a.is_time_dependent() && matches!(a.kind(), AtomKind::Var { .. });
+    for &(a, x) in factors.iter().filter(|f| leading(f.0)) {
         ids.push(e.atom_pow(a, x));
     }
     if let Some(b) = bracket {
         ids.push(b);
     }
-    for &(a, x) in factors.iter().filter(|f| f.0.is_time_dependent()) {
+    for &(a, x) in factors.iter().filter(|f| !leading(f.0)) {
         ids.push(e.atom_pow(a, x));
     }
     let m = e.mul(ids);

@@ -40,11 +40,20 @@ pub fn render(d: &Derivation, format: Format) -> String {
     }
 }
 
+/// A label word with trailing primes: `epsilon_2''` → (`epsilon_2`, 2).
+fn label_word(w: &str) -> (&str, u32) {
+    let base = w.trim_end_matches('\'');
+    (base, (w.len() - base.len()) as u32)
+}
+
 /// A label such as `Sigma M` with component `x`, in LaTeX: `\Sigma M_{x}`.
 pub fn latex_label(label: &str, component: &str) -> String {
     let words: Vec<String> = label
         .split_whitespace()
-        .map(|w| latex_symbol(w, 0))
+        .map(|w| {
+            let (b, k) = label_word(w);
+            latex_symbol(b, k)
+        })
         .collect();
     let body = words.join(" ");
     match (
@@ -62,9 +71,12 @@ pub fn latex_label(label: &str, component: &str) -> String {
 
 /// A label with component in Unicode: `ΣM_x`.
 pub fn unicode_label(label: &str, component: &str) -> String {
-    let body: String = label
+        let body: String = label
         .split_whitespace()
-        .map(|w| unicode_symbol(w, 0))
+        .map(|w| {
+            let (b, k) = label_word(w);
+            unicode_symbol(b, k)
+        })
         .collect();
     match (
         component.is_empty(),

@@ -49,8 +49,8 @@ impl Value {
 }
 
 /// Functions the expression language knows, for error messages.
-const FUNCTIONS: &str =
-    "sin, cos, dt, dt_rel, cross, dot, angvel, inertia, principal, diag, subst, express, transpose";
+const FUNCTIONS: &str = "sin, cos, dt, dt_rel, cross, dot, angvel, inertia, principal, diag, subst, express, \
+                         transpose, linearize, solve, coeff, sign, jacobian";
 
 pub(crate) struct Context<'a> {
     path: &'a str,
@@ -58,6 +58,10 @@ pub(crate) struct Context<'a> {
     pub symbols: Symbols,
     pub frames: Vec<Frame>,
     values: HashMap<String, Value>,
+    /// Symbols declared small (first order), for `linearize`.
+    pub small: Vec<Atom>,
+    /// Constants declared positive, for `sign`.
+    pub positive: Vec<Atom>,
 }
 
 type R<T> = Result<T, Diagnostic>;
@@ -72,6 +76,8 @@ impl<'a> Context<'a> {
             symbols: Symbols::new(),
             frames: vec![n],
             values: HashMap::new(),
+            small: Vec::new(),
+            positive: Vec::new(),
         }
     }
 
@@ -135,6 +141,23 @@ impl<'a> Context<'a> {
         if !self.symbols.declare(name, decl) {
             return Err(self.diag_string(s, 0, name.len(), format!("`{name}` is declared twice")));
         }
+        Ok(())
+    }
+
+    /// Records a constant symbol, or sin/cos of a constant angle, as positive.
+    pub fn declare_positive(&mut self, s: &Spanned<String>) -> R<()> {
+        let base = self.content_start(s);
+        let ast = self.parse_at(s.get_ref(), base)?;
+        let atom = match &ast.kind {
+            AstKind::Name { name, primes: 0 } => self.symbols.atom(name, 0, ast.span),
+            AstKind::Call { func, args } if func == "sin" || func == "cos" => self.symbols.trig(func, args, ast.span),
+            _ => return Err(self.at(base, ast.span, "list constant symbols or sin/cos of a constant angle")),
+        }
+        .map_err(|e| self.at(base, e.span, e.message))?;
+        if atom.is_time_dependent() {
+            return Err(self.at(base, ast.span, "only constants (or sin/cos of a constant angle) can be declared positive"));
+        }
+        self.positive.push(atom);
         Ok(())
     }
 
@@ -489,17 +512,25 @@ impl<'a> Context<'a> {
                 Ok(Value::Scalar(p.pow(*n)))
             }
             AstKind::Cross(a, b) => self.cross(a, b, base, ast.span),
-            AstKind::Member(v, comp, sp) => {
-                let (v, f) = self.vector(v, base)?;
-                let fr = &self.frames[self.frame_index(&f).expect("frame")];
-                match fr.axes.iter().position(|a| a == comp) {
-                    Some(k) => Ok(Value::Scalar(v.0[k].clone())),
-                    None => err(
-                        *sp,
-                        format!("frame {f} has axes {}, not `{comp}`", fr.axes.join(", ")),
-                    ),
+            AstKind::Member(v, comp, sp) => match self.eval(v, base)? {
+                Value::Vector(v, f) => {
+                    let fr = &self.frames[self.frame_index(&f).expect("frame")];
+                    match fr.axes.iter().position(|a| a == comp) {
+                        Some(k) => Ok(Value::Scalar(v.0[k].clone())),
+                        None => err(*sp, format!("frame {f} has axes {}, not `{comp}`", fr.axes.join(", "))),
+                    }
                 }
-            }
+                Value::Matrix(m) => {
+                    let ax = ["x", "y", "z"];
+                    let pos = |c: &str| ax.iter().position(|a| *a == c);
+                    let (i, j) = (comp.get(0..1).and_then(pos), comp.get(1..2).and_then(pos));
+                    match (i, j, comp.len()) {
+                        (Some(i), Some(j), 2) => Ok(Value::Scalar(m.0[i][j].clone())),
+                        _ => err(*sp, format!("a matrix element is named by two axes such as `xy`, not `{comp}`")),
+                    }
+                }
+                s => err(*sp, format!("{} has no components", s.describe())),
+            },
             AstKind::Assign { name_span, .. } => err(
                 *name_span,
                 "`name = value` is only allowed inside subst(…)".into(),
@@ -621,11 +652,118 @@ impl<'a> Context<'a> {
                 ))
             }
             "subst" => self.subst(args, base, span),
+            "linearize" => self.linearize(args, base, span),
+            "solve" => self.solve(args, base, span),
+            "coeff" => {
+                self.arity(func, args, 2, base, span)?;
+                let x = self.eval(&args[0], base)?;
+                let a = self.symbol_arg(&args[1], base)?;
+                Ok(x.map(&mut |p| coefficient(p, a)))
+            }
+            "jacobian" => {
+                self.arity(func, args, 2, base, span)?;
+                let (v, _) = self.vector(&args[0], base)?;
+                let vars = self.symbol_list(&args[1], base)?;
+                Ok(Value::Matrix(Mat3(std::array::from_fn(|i| std::array::from_fn(|j| coefficient(&v.0[i], vars[j]))))))
+            }
+            "sign" => {
+                self.arity(func, args, 1, base, span)?;
+                let p = self.scalar(&args[0], base)?;
+                match sign_of(&p, &self.positive) {
+                    Some(s) => Ok(Value::Scalar(Poly::int(s))),
+                    None => Err(self.at(
+                        base,
+                        args[0].span,
+                        format!(
+                            "cannot decide the sign of {p}: every term must have the same sign in symbols declared \
+                             under `positive`"
+                        ),
+                    )),
+                }
+            }
             _ => Err(self.at(
                 base,
                 span,
                 format!("unknown function `{func}`; known functions: {FUNCTIONS}"),
             )),
+        }
+    }
+
+    /// A symbol (with primes) as an argument.
+    fn symbol_arg(&self, a: &Ast, base: usize) -> R<Atom> {
+        match &a.kind {
+            AstKind::Name { name, primes } => {
+                self.symbols.atom(name, *primes, a.span).map_err(|e| self.at(base, e.span, e.message))
+            }
+            _ => Err(self.at(base, a.span, "expected a symbol such as omega_x or theta''")),
+        }
+    }
+
+    /// `[a, b, c]`: three symbols.
+    fn symbol_list(&self, a: &Ast, base: usize) -> R<[Atom; 3]> {
+        match &a.kind {
+            AstKind::Vector { items, .. } if items.len() == 3 => Ok([
+                self.symbol_arg(&items[0], base)?,
+                self.symbol_arg(&items[1], base)?,
+                self.symbol_arg(&items[2], base)?,
+            ]),
+            _ => Err(self.at(base, a.span, "expected three symbols in brackets, such as [omega_x, omega_y, omega_z]")),
+        }
+    }
+
+    /// `linearize(x)` or `linearize(x, e_1, e_2)`: first order in the
+    /// declared small symbols (a term with two or more small factors,
+    /// counting derivatives, is dropped).
+    fn linearize(&self, args: &[Ast], base: usize, span: Span) -> R<Value> {
+        let Some((first, rest)) = args.split_first() else {
+            return Err(self.at(base, span, "linearize(x) needs an expression"));
+        };
+        let mut small = Vec::new();
+        for a in rest {
+            let s = self.symbol_arg(a, base)?;
+            if !self.small.contains(&s) {
+                return Err(self.at(
+                    base,
+                    a.span,
+                    format!("`{}` is not declared small; list it under [symbols] small = [...]", s.name()),
+                ));
+            }
+            small.push(s);
+        }
+        if rest.is_empty() {
+            if self.small.is_empty() {
+                return Err(self.at(base, span, "no symbol is declared small: add [symbols] small = [...]"));
+            }
+            small = self.small.clone();
+        }
+        let v = self.eval(first, base)?;
+        Ok(v.map(&mut |p| {
+            Poly::from_terms(p.terms().iter().filter_map(|(m, c)| {
+                let order: i32 = m.factors().iter().filter(|(a, _)| small.contains(&a.base())).map(|f| f.1).sum();
+                (order <= 1).then(|| (m.clone(), c.clone()))
+            }))
+        }))
+    }
+
+    /// `solve(eq, x)`: the value of `x` that makes `eq = 0`, when `x`
+    /// occurs linearly; a vector equation with `[x, y, z]` is solved
+    /// component by component.
+    fn solve(&self, args: &[Ast], base: usize, span: Span) -> R<Value> {
+        self.arity("solve", args, 2, base, span)?;
+        match self.eval(&args[0], base)? {
+            Value::Scalar(p) => {
+                let x = self.symbol_arg(&args[1], base)?;
+                solve_linear(&p, x).map(Value::Scalar).map_err(|m| self.at(base, args[1].span, m))
+            }
+            Value::Vector(v, f) => {
+                let xs = self.symbol_list(&args[1], base)?;
+                let mut out = Vec::new();
+                for k in 0..3 {
+                    out.push(solve_linear(&v.0[k], xs[k]).map_err(|m| self.at(base, args[1].span, m))?);
+                }
+                Ok(Value::Vector(Vec3(out.try_into().expect("three")), f))
+            }
+            v => Err(self.at(base, args[0].span, format!("cannot solve {}", v.describe()))),
         }
     }
 
@@ -694,7 +832,19 @@ impl<'a> Context<'a> {
             }
             let val = self.scalar(value, base)?;
             if !time {
-                v = v.map(&mut |p| p.subst(&mut |a| (a == target).then(|| val.clone())));
+                let mut stuck = false;
+                v = v.map(&mut |p| {
+                    let q = p.subst(&mut |a| (a == target).then(|| val.clone()));
+                    stuck |= q.contains(target);
+                    q
+                });
+                if stuck {
+                    return Err(self.at(
+                        base,
+                        value.span,
+                        format!("`{name}` occurs in a denominator, and this value cannot be divided by; multiply through first"),
+                    ));
+                }
                 continue;
             }
             // A rate or angle: the symbol's derivatives of order ≥ `primes`
@@ -814,6 +964,21 @@ impl<'a> Context<'a> {
                 ));
             }
         };
+        // A single string for a vector step is a vector expression.
+        if let (Value::Vector(v, frame), [text]) = (value, texts.as_slice()) {
+            let base = spans.first().map_or(sp.start, |s| s.0);
+            let ast = self.parse_at(text, base)?;
+            let (w, wf) = self.vector(&ast, base)?;
+            self.same_frame(base, ast.span, frame, &wf)?;
+            return Ok((0..3)
+                .map(|k| Check {
+                    component: axes[k].clone(),
+                    expected_text: format!("({text}).{}", axes[k]),
+                    expected: present(&w.0[k], pres),
+                    difference: &unfold(abbrevs, &v.0[k]) - &unfold(abbrevs, &w.0[k]),
+                })
+                .collect());
+        }
         let derived: Vec<(String, Poly)> = match value {
             Value::Scalar(p)
                 if texts.len() == 1 && matches!(exp.get_ref(), toml::Value::String(_)) =>
@@ -832,7 +997,7 @@ impl<'a> Context<'a> {
                         v.describe(),
                         match v {
                             Value::Scalar(_) => "one string",
-                            Value::Vector(..) => "an array of three strings",
+                            Value::Vector(..) => "an array of three strings or one vector expression",
                             Value::Matrix(_) => "omitted (check components in scalar steps)",
                         }
                     ),
@@ -861,6 +1026,60 @@ impl<'a> Context<'a> {
         }
         Ok(out)
     }
+}
+
+/// The coefficient of `a` (to the first power) in `p`.
+fn coefficient(p: &Poly, a: Atom) -> Poly {
+    Poly::from_terms(p.terms().iter().filter(|(m, _)| m.exponent(a) == 1).map(|(m, c)| (m.without(a, 1), c.clone())))
+}
+
+/// Solves `p = 0` for `x`, where `p = a x + b` with `a` free of `x`. A
+/// factor common to every term (such as sin θ) is divided out first, which
+/// assumes it is not zero.
+fn solve_linear(p: &Poly, x: Atom) -> Result<Poly, String> {
+    if p.terms().iter().any(|(m, _)| m.exponent(x) > 1 || m.exponent(x) < 0) {
+        return Err(format!("`{x}` does not appear linearly in {p}"));
+    }
+    let a = coefficient(p, x);
+    if a.is_zero() {
+        return Err(format!("`{x}` does not appear in {p}"));
+    }
+    let b = p - &(&a * &Poly::atom(x));
+    let common = p.terms().iter().skip(1).fold(p.terms()[0].0.clone(), |g, t| g.gcd(&t.0));
+    let (a, b) = if common.is_one() || common.exponent(x) > 0 {
+        (a, b)
+    } else {
+        let scale = Poly::term(crate::poly::Monomial::one().div(&common), crate::rational::Rational::ONE);
+        (&a * &scale, &b * &scale)
+    };
+    match a.inverse_monomial() {
+        Some(inv) => Ok(-&(&b * &inv)),
+        None => Err(format!(
+            "`{x}` does not appear linearly with a coefficient that can be divided by (found {a}); only numbers and \
+             constant symbols can be divided by"
+        )),
+    }
+}
+
+/// +1 or −1 when every term of `p` has that sign for positive values of
+/// the `positive` constants (even powers of any atom also count as
+/// positive); `None` otherwise.
+fn sign_of(p: &Poly, positive: &[Atom]) -> Option<i64> {
+    if p.is_zero() {
+        return None;
+    }
+    let mut sign = None;
+    for (m, c) in p.terms() {
+        if !m.factors().iter().all(|(a, e)| positive.contains(a) || e % 2 == 0) {
+            return None;
+        }
+        let s = if c.is_negative() { -1 } else { 1 };
+        if sign.is_some_and(|t| t != s) {
+            return None;
+        }
+        sign = Some(s);
+    }
+    sign
 }
 
 /// `pi`, `pi/2`, `k*pi/2`, `k*pi`, `0` as a number of quarter turns.

@@ -192,10 +192,17 @@ pub fn load_str(path: &str, text: &str) -> Result<Derivation, Diagnostic> {
     for (list, decl) in [
         (&raw.symbols.constants, Decl::Constant),
         (&raw.symbols.time, Decl::Time),
+        (&raw.symbols.small, Decl::Time),
     ] {
         for s in list.iter() {
             cx.declare(s, decl.clone())?;
         }
+    }
+    for s in &raw.symbols.small {
+        cx.small.push(Atom::time(s.get_ref(), 0));
+    }
+    for s in &raw.symbols.positive {
+        cx.declare_positive(s)?;
     }
     // Abbreviations: time-dependent names standing for an expression.
     let mut abbreviations = Vec::new();

@@ -32,6 +32,12 @@ pub(crate) struct RawSymbols {
     pub constants: Vec<Spanned<String>>,
     #[serde(default)]
     pub time: Vec<Spanned<String>>,
+    /// Functions of time that are small (first order) for `linearize`.
+    #[serde(default)]
+    pub small: Vec<Spanned<String>>,
+    /// Declared constants known to be positive, for `sign`.
+    #[serde(default)]
+    pub positive: Vec<Spanned<String>>,
 }
 
 #[derive(Debug, Deserialize)]
