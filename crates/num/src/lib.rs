@@ -1,6 +1,57 @@
-//! Numeric side of hdot: bodies, mass properties, particle sums, scenes.
+//! # hdot-num: the numbers behind the equations
 //!
-//! (Work in progress; see `docs/numerics.md`.)
+//! A system of particles at fixed relative positions *is* a rigid body, so
+//! every equation the symbolic side derives must hold for one, to
+//! round-off. This crate makes such bodies and computes what the equations
+//! talk about.
+//!
+//! ## What it owns
+//!
+//! - **Mass properties** ([`inertia`], [`body`], [`cloud`]): the
+//!   [`Inertia`] tensor whose invariant (symmetric, positive
+//!   semi-definite, triangle inequalities, relative tolerance) lives in the
+//!   type; posed [`Primitive`]s with the analytic values of the reference
+//!   table; [`Composite`]s; [`ParticleCloud`]s from code or CSV;
+//!   [`MassProperties`] about G or any point, in any axes; principal
+//!   moments with a canonical basis for repeated moments.
+//! - **Particles and sums** ([`discretize`], [`sums`]): lazy midpoint and
+//!   Gauss–Legendre discretisations (10⁸ particles in the memory of one
+//!   block per thread), deterministic parallel pairwise sums, and the
+//!   kinetic sums H_G, H_O, T, Σ m a, Ḣ_G, Σ m r × a next to the same
+//!   quantities from the rigid-body formulas ([`sums::rigid_kinetics`]).
+//! - **Worked problems** ([`scene`], [`solve`], [`report`]): TOML scenes,
+//!   the loads a motion requires, impulse–momentum, unknown forces and
+//!   couples solved by an SVD that refuses underdetermined and
+//!   inconsistent sets.
+//! - **Convergence and charts** ([`convergence`], [`chart`]): error against
+//!   resolution, observed orders, the cheapest discretisation for a
+//!   tolerance; log–log SVG/PNG charts (shared with `hdot-sim`).
+//!
+//! ## What it does not own, and why
+//!
+//! - No symbolic algebra and no parsing of derivations: that is
+//!   `hdot-sym`. A future `hdot verify` binds a derivation's symbols from
+//!   *this* crate's sums ([`sums::mass_properties`], [`sums::kinetics`],
+//!   [`MassProperties::inertia_about_in`], [`sums::rigid_kinetics`]) and
+//!   compares; keeping the numbers free of the expression types means
+//!   either side can change without the other.
+//! - No time integration: that is `hdot-sim` (which reuses [`chart`]).
+//! - No printing policy beyond [`report::Report`]: the CLI decides formats,
+//!   progress bars and exit codes; the library returns typed errors
+//!   ([`BodyError`], [`CsvError`], [`scene::SceneError`],
+//!   [`solve::SolveError`]) that name the file, line and field.
+//!
+//! ## Example
+//!
+//! ```
+//! use hdot_num::{Body, Discretization, DiscretizedBody, Pose, Primitive, sums};
+//! let disk = Body::try_new(Primitive::Disk { radius: 2.0 }, 3.0, Pose::identity()).unwrap();
+//! let exact = disk.mass_properties();                 // I_z = m r²/2 = 6
+//! let particles = DiscretizedBody::new(&disk, &Discretization::gauss(8, 2));
+//! let summed = sums::mass_properties(&particles).unwrap();
+//! let iz = summed.inertia_g.moments()[2];
+//! assert!((iz - exact.inertia_g.moments()[2]).abs() < 1e-9 * iz);
+//! ```
 
 pub mod body;
 pub mod chart;
