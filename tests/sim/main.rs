@@ -12,3 +12,5 @@ mod exact;
 mod integrate;
 // Stability where methods fail (issue 5, item 4).
 mod stability;
+// scene.rs and run.rs: bad input, model choice (snapshots).
+mod scene;

@@ -25,7 +25,10 @@ impl PrincipalMoments {
     /// assert!(PrincipalMoments::new([0.1, 0.2, 1.0]).is_err()); // 0.1 + 0.2 < 1
     /// ```
     pub fn new(moments: [f64; 3]) -> Result<Self, SimError> {
-        let bad = |message: &str| SimError::BadInertia { moments, message: message.to_string() };
+        let bad = |message: &str| SimError::BadInertia {
+            moments,
+            message: message.to_string(),
+        };
         if moments.iter().any(|i| !(i.is_finite() && *i > 0.0)) {
             return Err(bad("every principal moment must be positive and finite"));
         }
@@ -127,10 +130,16 @@ impl Shape {
     /// Principal moments about the mass centre (reference table).
     pub fn moments(&self) -> [f64; 3] {
         match *self {
-            Shape::Prism { mass, a, b, c } => {
-                [mass * (b * b + c * c) / 12.0, mass * (c * c + a * a) / 12.0, mass * (a * a + b * b) / 12.0]
-            }
-            Shape::Cylinder { mass, radius, length } => {
+            Shape::Prism { mass, a, b, c } => [
+                mass * (b * b + c * c) / 12.0,
+                mass * (c * c + a * a) / 12.0,
+                mass * (a * a + b * b) / 12.0,
+            ],
+            Shape::Cylinder {
+                mass,
+                radius,
+                length,
+            } => {
                 let t = mass * (3.0 * radius * radius + length * length) / 12.0;
                 [t, t, mass * radius * radius / 2.0]
             }
@@ -138,7 +147,11 @@ impl Shape {
                 let t = mass * radius * radius / 4.0;
                 [t, t, 2.0 * t]
             }
-            Shape::Cone { mass, radius, height } => {
+            Shape::Cone {
+                mass,
+                radius,
+                height,
+            } => {
                 let t = 3.0 * mass * radius * radius / 20.0 + 3.0 * mass * height * height / 80.0;
                 [t, t, 3.0 * mass * radius * radius / 10.0]
             }
@@ -150,9 +163,17 @@ impl Shape {
     pub fn validate(&self) -> Result<(), String> {
         let values: Vec<f64> = match *self {
             Shape::Prism { mass, a, b, c } => vec![mass, a, b, c],
-            Shape::Cylinder { mass, radius, length } => vec![mass, radius, length],
+            Shape::Cylinder {
+                mass,
+                radius,
+                length,
+            } => vec![mass, radius, length],
             Shape::Disk { mass, radius } | Shape::Sphere { mass, radius } => vec![mass, radius],
-            Shape::Cone { mass, radius, height } => vec![mass, radius, height],
+            Shape::Cone {
+                mass,
+                radius,
+                height,
+            } => vec![mass, radius, height],
         };
         if values.iter().all(|v| v.is_finite() && *v > 0.0) {
             Ok(())

@@ -97,7 +97,8 @@ pub fn carlson_rf(mut x: f64, mut y: f64, mut z: f64) -> f64 {
         if dx.abs().max(dy.abs()).max(dz.abs()) < 1e-3 {
             let e2 = dx * dy - dz * dz;
             let e3 = dx * dy * dz;
-            return (1.0 - e2 / 10.0 + e3 / 14.0 + e2 * e2 / 24.0 - 3.0 * e2 * e3 / 44.0) / a.sqrt();
+            return (1.0 - e2 / 10.0 + e3 / 14.0 + e2 * e2 / 24.0 - 3.0 * e2 * e3 / 44.0)
+                / a.sqrt();
         }
         let (sx, sy, sz) = (x.sqrt(), y.sqrt(), z.sqrt());
         let lambda = sx * sy + sy * sz + sz * sx;
@@ -116,5 +117,9 @@ pub fn ellip_f(phi: f64, m: f64) -> f64 {
     let r = phi - j * std::f64::consts::PI;
     let (s, c) = r.sin_cos();
     let fr = s * carlson_rf(c * c, 1.0 - m * s * s, 1.0);
-    if j == 0.0 { fr } else { 2.0 * j * ellip_k(m) + fr }
+    if j == 0.0 {
+        fr
+    } else {
+        2.0 * j * ellip_k(m) + fr
+    }
 }

@@ -116,7 +116,9 @@ pub enum SimError {
         h: f64,
     },
     /// An implicit method's iteration did not converge.
-    #[error("implicit iteration did not converge at t = {t} with h = {h}: step too large for fixed-point iteration")]
+    #[error(
+        "implicit iteration did not converge at t = {t} with h = {h}: step too large for fixed-point iteration"
+    )]
     NotConverged {
         /// Time of the step.
         t: f64,

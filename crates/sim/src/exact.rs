@@ -125,7 +125,11 @@ impl TorqueFree {
     /// The exact motion for principal moments `moments` from attitude `q0`
     /// and body angular velocity `w0`. Picks the permanent rotation, the
     /// axisymmetric or the elliptic form, whichever applies.
-    pub fn new(moments: [f64; 3], q0: UnitQuaternion<f64>, w0: Vector3<f64>) -> Result<Self, SimError> {
+    pub fn new(
+        moments: [f64; 3],
+        q0: UnitQuaternion<f64>,
+        w0: Vector3<f64>,
+    ) -> Result<Self, SimError> {
         let i = moments;
         let h = Vector3::new(i[0] * w0.x, i[1] * w0.y, i[2] * w0.z);
         // Permanent rotation: ω ∥ H (ω along a principal axis, or a sphere).
@@ -149,7 +153,11 @@ impl TorqueFree {
     }
 
     /// Forces the elliptic form (for an asymmetric body: what `new` gives).
-    pub fn elliptic(moments: [f64; 3], q0: UnitQuaternion<f64>, w0: Vector3<f64>) -> Result<Elliptic, SimError> {
+    pub fn elliptic(
+        moments: [f64; 3],
+        q0: UnitQuaternion<f64>,
+        w0: Vector3<f64>,
+    ) -> Result<Elliptic, SimError> {
         Elliptic::new(moments, q0, w0)
     }
 }
@@ -210,7 +218,11 @@ impl Axisymmetric {
             * self.q0
             * UnitQuaternion::from_axis_angle(&e, self.spin_rate * t);
         let m = q.inverse() * self.h_space;
-        let w = Vector3::new(m.x / self.moments[0], m.y / self.moments[1], m.z / self.moments[2]);
+        let w = Vector3::new(
+            m.x / self.moments[0],
+            m.y / self.moments[1],
+            m.z / self.moments[2],
+        );
         pack(&q, &w)
     }
 }
@@ -230,13 +242,19 @@ impl Elliptic {
             });
         }
         // H circulates about the largest axis if |H|²/2E > I_mid, else the smallest.
-        let (c, e) = if l2 > two_e * i[mid] { (hi, lo) } else { (lo, hi) };
+        let (c, e) = if l2 > two_e * i[mid] {
+            (hi, lo)
+        } else {
+            (lo, hi)
+        };
         let lab = [e, mid, c];
         let parity = if (e + 1) % 3 == mid { 1.0 } else { -1.0 };
         let (i1, i2, i3) = (i[e], i[mid], i[c]);
         let a1 = ((two_e * i3 - l2) / (i1 * (i3 - i1))).max(0.0).sqrt();
         let a3 = ((l2 - two_e * i1) / (i3 * (i3 - i1))).max(0.0).sqrt() * w0[c].signum();
-        let lambda = ((i3 - i2) * (l2 - two_e * i1) / (i1 * i2 * i3)).max(0.0).sqrt();
+        let lambda = ((i3 - i2) * (l2 - two_e * i1) / (i1 * i2 * i3))
+            .max(0.0)
+            .sqrt();
         let a2 = parity * (i3 - i1) * a3 * a1 / (lambda * i2);
         let m = ((i2 - i1) * (two_e * i3 - l2) / ((i3 - i2) * (l2 - two_e * i1))).clamp(0.0, 1.0);
         let amplitude = (w0[mid] / a2).atan2(w0[e] / a1);
@@ -278,7 +296,11 @@ impl Elliptic {
 
     fn momentum_body(&self, t: f64) -> Vector3<f64> {
         let w = self.omega(t);
-        Vector3::new(self.moments[0] * w.x, self.moments[1] * w.y, self.moments[2] * w.z)
+        Vector3::new(
+            self.moments[0] * w.x,
+            self.moments[1] * w.y,
+            self.moments[2] * w.z,
+        )
     }
 
     /// φ̇ as a function of the elliptic argument u (depends on dn² only).
@@ -333,7 +355,11 @@ impl Elliptic {
     /// The state `[q, ω]` at time t.
     pub fn state(&self, t: f64) -> [f64; 7] {
         let w = self.omega(t);
-        let h = Vector3::new(self.moments[0] * w.x, self.moments[1] * w.y, self.moments[2] * w.z);
+        let h = Vector3::new(
+            self.moments[0] * w.x,
+            self.moments[1] * w.y,
+            self.moments[2] * w.z,
+        );
         let zf = self.frame_rotation(&h, self.phi(t));
         let q = self.c_rot * zf * self.perm.inverse();
         pack(&q, &w)
@@ -362,7 +388,13 @@ impl SteadyTop {
     /// The slow precession rate for given nutation θ and axial spin ω_z, from
     /// `I' cos θ φ̇² − I ω_z φ̇ + W l = 0`; `None` if the spin is too slow
     /// for steady precession.
-    pub fn slow_precession_rate(i_axial: f64, i_trans: f64, weight_arm: f64, theta: f64, omega_z: f64) -> Option<f64> {
+    pub fn slow_precession_rate(
+        i_axial: f64,
+        i_trans: f64,
+        weight_arm: f64,
+        theta: f64,
+        omega_z: f64,
+    ) -> Option<f64> {
         let a = i_trans * theta.cos();
         let b = -i_axial * omega_z;
         let c = weight_arm;
@@ -380,7 +412,8 @@ impl SteadyTop {
 
     /// Residual of §7's relation `W l − (I ω_z − I' φ̇ cos θ) φ̇`, relative to `W l`.
     pub fn residual(&self, i_axial: f64, i_trans: f64, weight_arm: f64) -> f64 {
-        let rhs = (i_axial * self.omega_z - i_trans * self.phi_dot * self.theta.cos()) * self.phi_dot;
+        let rhs =
+            (i_axial * self.omega_z - i_trans * self.phi_dot * self.theta.cos()) * self.phi_dot;
         (weight_arm - rhs).abs() / weight_arm.abs().max(f64::MIN_POSITIVE)
     }
 

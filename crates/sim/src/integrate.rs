@@ -43,8 +43,15 @@ pub enum Method {
 /// # Names and properties
 impl Method {
     /// Every method, in the order of the documentation.
-    pub const ALL: [Method; 7] =
-        [Method::Euler, Method::Rk4, Method::Dopri5, Method::Dop853, Method::Midpoint, Method::Split2, Method::Split4];
+    pub const ALL: [Method; 7] = [
+        Method::Euler,
+        Method::Rk4,
+        Method::Dopri5,
+        Method::Dop853,
+        Method::Midpoint,
+        Method::Split2,
+        Method::Split4,
+    ];
 
     /// Command-line name.
     pub fn name(self) -> &'static str {
@@ -85,11 +92,14 @@ impl fmt::Display for Method {
 impl FromStr for Method {
     type Err = SimError;
     fn from_str(s: &str) -> Result<Self, SimError> {
-        Method::ALL.into_iter().find(|m| m.name() == s).ok_or_else(|| SimError::UnknownName {
-            what: "method",
-            name: s.to_string(),
-            expected: Method::ALL.map(Method::name).join(", "),
-        })
+        Method::ALL
+            .into_iter()
+            .find(|m| m.name() == s)
+            .ok_or_else(|| SimError::UnknownName {
+                what: "method",
+                name: s.to_string(),
+                expected: Method::ALL.map(Method::name).join(", "),
+            })
     }
 }
 
@@ -107,7 +117,9 @@ impl Step {
     pub fn validate(self) -> Result<Self, SimError> {
         match self {
             Step::Fixed(h) if !(h.is_finite() && h > 0.0) => Err(SimError::NonPositiveStep(h)),
-            Step::Tolerance(t) if !(t.is_finite() && t > 0.0) => Err(SimError::NonPositiveTolerance(t)),
+            Step::Tolerance(t) if !(t.is_finite() && t > 0.0) => {
+                Err(SimError::NonPositiveTolerance(t))
+            }
             s => Ok(s),
         }
     }
@@ -133,7 +145,9 @@ pub struct Limits {
 
 impl Default for Limits {
     fn default() -> Self {
-        Limits { max_steps: 100_000_000 }
+        Limits {
+            max_steps: 100_000_000,
+        }
     }
 }
 
@@ -142,7 +156,11 @@ impl Default for Limits {
 pub fn fixed_step_count(span: f64, h: f64) -> u64 {
     let q = span / h;
     let r = q.round();
-    let n = if (q - r).abs() <= 1e-9 * r.max(1.0) { r } else { q.ceil() };
+    let n = if (q - r).abs() <= 1e-9 * r.max(1.0) {
+        r
+    } else {
+        q.ceil()
+    };
     (n as u64).max(1)
 }
 
@@ -200,7 +218,11 @@ where
 
 #[inline]
 fn finite_or<const N: usize>(y: &[f64; N], t: f64, step: u64) -> Result<(), SimError> {
-    if y.iter().all(|v| v.is_finite()) { Ok(()) } else { Err(SimError::NonFinite { t, step }) }
+    if y.iter().all(|v| v.is_finite()) {
+        Ok(())
+    } else {
+        Err(SimError::NonFinite { t, step })
+    }
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -225,10 +247,14 @@ where
     }
     let n = fixed_step_count(span, h);
     if n > limits.max_steps {
-        return Err(SimError::TooManySteps { max_steps: limits.max_steps, t: t0 });
+        return Err(SimError::TooManySteps {
+            max_steps: limits.max_steps,
+            t: t0,
+        });
     }
     let h = span / n as f64;
-    if matches!(method, Method::Split2 | Method::Split4) && sys.strang_step(t0, &y0, 0.0).is_none() {
+    if matches!(method, Method::Split2 | Method::Split4) && sys.strang_step(t0, &y0, 0.0).is_none()
+    {
         return Err(SimError::MethodNotApplicable {
             method: method.name().into(),
             model: "this model".into(),
@@ -272,21 +298,41 @@ where
 }
 
 #[inline]
-fn strang<const N: usize, S: System<N>>(sys: &S, t: f64, y: &[f64; N], h: f64, stats: &mut Stats) -> [f64; N] {
-    let (z, flows) = sys.strang_step(t, y, h).expect("checked before the loop: the model has a splitting");
+fn strang<const N: usize, S: System<N>>(
+    sys: &S,
+    t: f64,
+    y: &[f64; N],
+    h: f64,
+    stats: &mut Stats,
+) -> [f64; N] {
+    let (z, flows) = sys
+        .strang_step(t, y, h)
+        .expect("checked before the loop: the model has a splitting");
     stats.evaluations += flows;
     z
 }
 
 #[inline]
-fn euler_step<const N: usize, S: System<N>>(sys: &S, t: f64, y: &[f64; N], h: f64, stats: &mut Stats) -> [f64; N] {
+fn euler_step<const N: usize, S: System<N>>(
+    sys: &S,
+    t: f64,
+    y: &[f64; N],
+    h: f64,
+    stats: &mut Stats,
+) -> [f64; N] {
     let k = sys.rhs(t, y);
     stats.evaluations += 1;
     std::array::from_fn(|i| y[i] + h * k[i])
 }
 
 #[inline]
-fn rk4_step<const N: usize, S: System<N>>(sys: &S, t: f64, y: &[f64; N], h: f64, stats: &mut Stats) -> [f64; N] {
+fn rk4_step<const N: usize, S: System<N>>(
+    sys: &S,
+    t: f64,
+    y: &[f64; N],
+    h: f64,
+    stats: &mut Stats,
+) -> [f64; N] {
     let k1 = sys.rhs(t, y);
     let y2: [f64; N] = std::array::from_fn(|i| y[i] + 0.5 * h * k1[i]);
     let k2 = sys.rhs(t + 0.5 * h, &y2);
@@ -316,7 +362,10 @@ fn midpoint_step<const N: usize, S: System<N>>(
             sys.rhs(t, y)
         }
     };
-    let scale = y.iter().fold(0.0_f64, |m, v| m.max(v.abs())).max(f64::MIN_POSITIVE);
+    let scale = y
+        .iter()
+        .fold(0.0_f64, |m, v| m.max(v.abs()))
+        .max(f64::MIN_POSITIVE);
     let mut prev = f64::INFINITY;
     let mut converged = false;
     for _ in 0..100 {
@@ -362,13 +411,16 @@ fn dopri5_step<const N: usize, S: System<N>>(
     let mut k = [[0.0; N]; 7];
     k[0] = *k1;
     for s in 1..6 {
-        let ys: [f64; N] = std::array::from_fn(|i| y[i] + h * (0..s).map(|j| a[s - 1][j] * k[j][i]).sum::<f64>());
+        let ys: [f64; N] =
+            std::array::from_fn(|i| y[i] + h * (0..s).map(|j| a[s - 1][j] * k[j][i]).sum::<f64>());
         k[s] = sys.rhs(t + c[s] * h, &ys);
     }
-    let ynew: [f64; N] = std::array::from_fn(|i| y[i] + h * (0..6).map(|j| a[5][j] * k[j][i]).sum::<f64>());
+    let ynew: [f64; N] =
+        std::array::from_fn(|i| y[i] + h * (0..6).map(|j| a[5][j] * k[j][i]).sum::<f64>());
     k[6] = sys.rhs(t + h, &ynew);
     stats.evaluations += 6;
-    let err: [f64; N] = std::array::from_fn(|i| h * (0..7).map(|j| DP5_E[j] * k[j][i]).sum::<f64>());
+    let err: [f64; N] =
+        std::array::from_fn(|i| h * (0..7).map(|j| DP5_E[j] * k[j][i]).sum::<f64>());
     (ynew, k[6], err)
 }
 
@@ -412,7 +464,13 @@ fn dop853_step<const N: usize, S: System<N>>(
 /// DOP853's error norm (Hairer): a fifth-order estimate corrected by the
 /// third-order one, `err = |h| e₅ / √(N (e₅² + 0.01 e₃²))` in scaled norms.
 #[inline]
-fn dop853_error<const N: usize>(y: &[f64; N], ynew: &[f64; N], k: &[[f64; N]; 12], h: f64, tol: f64) -> f64 {
+fn dop853_error<const N: usize>(
+    y: &[f64; N],
+    ynew: &[f64; N],
+    k: &[[f64; N]; 12],
+    h: f64,
+    tol: f64,
+) -> f64 {
     let mut err = 0.0;
     let mut err2 = 0.0;
     for i in 0..N {
@@ -449,14 +507,26 @@ fn initial_step<const N: usize, S: System<N>>(
     let sk: [f64; N] = std::array::from_fn(|i| tol + tol * y[i].abs());
     let dnf: f64 = (0..N).map(|i| (f0[i] / sk[i]).powi(2)).sum();
     let dny: f64 = (0..N).map(|i| (y[i] / sk[i]).powi(2)).sum();
-    let mut h = if dnf <= 1e-10 || dny <= 1e-10 { 1e-6 } else { (dny / dnf).sqrt() * 0.01 };
+    let mut h = if dnf <= 1e-10 || dny <= 1e-10 {
+        1e-6
+    } else {
+        (dny / dnf).sqrt() * 0.01
+    };
     h = h.min(hmax);
     let y1: [f64; N] = std::array::from_fn(|i| y[i] + h * f0[i]);
     let f1 = sys.rhs(t + h, &y1);
     stats.evaluations += 1;
-    let der2 = (0..N).map(|i| ((f1[i] - f0[i]) / sk[i]).powi(2)).sum::<f64>().sqrt() / h;
+    let der2 = (0..N)
+        .map(|i| ((f1[i] - f0[i]) / sk[i]).powi(2))
+        .sum::<f64>()
+        .sqrt()
+        / h;
     let der12 = der2.abs().max(dnf.sqrt());
-    let h1 = if der12 <= 1e-15 { (h * 1e-3).max(1e-6) } else { (0.01 / der12).powf(1.0 / order as f64) };
+    let h1 = if der12 <= 1e-15 {
+        (h * 1e-3).max(1e-6)
+    } else {
+        (0.01 / der12).powf(1.0 / order as f64)
+    };
     (100.0 * h).min(h1).min(hmax)
 }
 
@@ -495,7 +565,10 @@ where
     let mut last_rejected = false;
     loop {
         if stats.steps + stats.rejected >= limits.max_steps {
-            return Err(SimError::TooManySteps { max_steps: limits.max_steps, t });
+            return Err(SimError::TooManySteps {
+                max_steps: limits.max_steps,
+                t,
+            });
         }
         let last = t + 1.01 * h >= t_end;
         if last {

@@ -47,8 +47,13 @@ pub enum Model {
 
 impl Model {
     /// Every model, least first.
-    pub const ALL: [Model; 5] =
-        [Model::FixedAxis, Model::SteadyPrecession, Model::Elliptic, Model::RigidBody, Model::EulerAngles];
+    pub const ALL: [Model; 5] = [
+        Model::FixedAxis,
+        Model::SteadyPrecession,
+        Model::Elliptic,
+        Model::RigidBody,
+        Model::EulerAngles,
+    ];
 
     /// Command-line name.
     pub fn name(self) -> &'static str {
@@ -71,11 +76,14 @@ impl fmt::Display for Model {
 impl FromStr for Model {
     type Err = SimError;
     fn from_str(s: &str) -> Result<Self, SimError> {
-        Model::ALL.into_iter().find(|m| m.name() == s).ok_or_else(|| SimError::UnknownName {
-            what: "model",
-            name: s.to_string(),
-            expected: Model::ALL.map(Model::name).join(", "),
-        })
+        Model::ALL
+            .into_iter()
+            .find(|m| m.name() == s)
+            .ok_or_else(|| SimError::UnknownName {
+                what: "model",
+                name: s.to_string(),
+                expected: Model::ALL.map(Model::name).join(", "),
+            })
     }
 }
 
@@ -121,7 +129,10 @@ fn ser_display<S: serde::Serializer, T: fmt::Display>(v: &T, s: S) -> Result<S::
     s.serialize_str(&v.to_string())
 }
 
-fn ser_opt_display<S: serde::Serializer, T: fmt::Display>(v: &Option<T>, s: S) -> Result<S::Ok, S::Error> {
+fn ser_opt_display<S: serde::Serializer, T: fmt::Display>(
+    v: &Option<T>,
+    s: S,
+) -> Result<S::Ok, S::Error> {
     match v {
         Some(v) => s.serialize_str(&v.to_string()),
         None => s.serialize_none(),
@@ -161,14 +172,30 @@ pub fn plan(scene: &Scene, req: &Request) -> Result<Plan, SimError> {
         step.validate()?;
     }
     let default_step = |m: Method| {
-        req.step.unwrap_or(if m.is_adaptive() { Step::Tolerance(DEFAULT_TOL) } else { Step::Fixed(DEFAULT_DT) })
+        req.step.unwrap_or(if m.is_adaptive() {
+            Step::Tolerance(DEFAULT_TOL)
+        } else {
+            Step::Fixed(DEFAULT_DT)
+        })
     };
-    let integrated = |model: Model, method: Option<Method>, reason: String| -> Result<Plan, SimError> {
-        let method = method.unwrap_or(Method::Dop853);
-        Ok(Plan { model, method: Some(method), step: Some(default_step(method)), t_end, reason })
+    let integrated =
+        |model: Model, method: Option<Method>, reason: String| -> Result<Plan, SimError> {
+            let method = method.unwrap_or(Method::Dop853);
+            Ok(Plan {
+                model,
+                method: Some(method),
+                step: Some(default_step(method)),
+                t_end,
+                reason,
+            })
+        };
+    let closed = |model: Model, reason: &str| Plan {
+        model,
+        method: None,
+        step: None,
+        t_end,
+        reason: reason.to_string(),
     };
-    let closed =
-        |model: Model, reason: &str| Plan { model, method: None, step: None, t_end, reason: reason.to_string() };
     match &scene.kind {
         SceneKind::FixedAxis { .. } => match req.model {
             None | Some(Model::FixedAxis) => Ok(match req.method {
@@ -202,23 +229,29 @@ pub fn plan(scene: &Scene, req: &Request) -> Result<Plan, SimError> {
                     "the body is free: no bearing fixes its axis (a spin about a principal axis is \
                      found by the closed form as a permanent rotation)",
                 )),
-                (Some(Model::SteadyPrecession), _) if closed_model != Model::SteadyPrecession => Err(not_applicable(
-                    Model::SteadyPrecession,
-                    scene,
-                    "the body is not axisymmetric (three distinct moments): its motion is not a steady precession",
-                )),
-                (Some(Model::Elliptic), _) if closed_model != Model::Elliptic => Err(not_applicable(
-                    Model::Elliptic,
-                    scene,
-                    "the elliptic form needs three distinct moments and a motion that is not a permanent rotation; \
+                (Some(Model::SteadyPrecession), _) if closed_model != Model::SteadyPrecession => {
+                    Err(not_applicable(
+                        Model::SteadyPrecession,
+                        scene,
+                        "the body is not axisymmetric (three distinct moments): its motion is not a steady precession",
+                    ))
+                }
+                (Some(Model::Elliptic), _) if closed_model != Model::Elliptic => {
+                    Err(not_applicable(
+                        Model::Elliptic,
+                        scene,
+                        "the elliptic form needs three distinct moments and a motion that is not a permanent rotation; \
                      use steady-precession",
-                )),
+                    ))
+                }
                 (Some(m @ (Model::SteadyPrecession | Model::Elliptic)), _) => {
                     Ok(closed(m, "closed form, as requested"))
                 }
-                (Some(m @ (Model::RigidBody | Model::EulerAngles)), method) => {
-                    integrated(m, method, format!("{m} integration as requested (reference: the closed form)"))
-                }
+                (Some(m @ (Model::RigidBody | Model::EulerAngles)), method) => integrated(
+                    m,
+                    method,
+                    format!("{m} integration as requested (reference: the closed form)"),
+                ),
                 (None, Some(method)) => integrated(
                     Model::RigidBody,
                     Some(method),
@@ -251,11 +284,15 @@ pub fn plan(scene: &Scene, req: &Request) -> Result<Plan, SimError> {
                 scene,
                 "the initial state does not satisfy §7's steady-precession relation (or θ̇ ≠ 0)",
             )),
-            (Some(Model::SteadyPrecession), _) => Ok(closed(Model::SteadyPrecession, "closed form, as requested")),
-            (Some(m), method) => integrated(m, method, format!("{m} integration as requested")),
-            (None, Some(method)) => {
-                integrated(Model::RigidBody, Some(method), format!("integration with {method} as requested"))
+            (Some(Model::SteadyPrecession), _) => {
+                Ok(closed(Model::SteadyPrecession, "closed form, as requested"))
             }
+            (Some(m), method) => integrated(m, method, format!("{m} integration as requested")),
+            (None, Some(method)) => integrated(
+                Model::RigidBody,
+                Some(method),
+                format!("integration with {method} as requested"),
+            ),
             (None, None) if steady.is_some() => Ok(closed(
                 Model::SteadyPrecession,
                 "heavy top started in steady precession (W l = (I ω_z − I' φ̇ cos θ) φ̇ holds, θ̇ = 0): \
@@ -367,7 +404,12 @@ pub struct Output<'a> {
 
 impl Default for Output<'_> {
     fn default() -> Self {
-        Output { stream: None, store: false, memory_budget: 64 << 20, progress: None }
+        Output {
+            stream: None,
+            store: false,
+            memory_budget: 64 << 20,
+            progress: None,
+        }
     }
 }
 
@@ -395,7 +437,10 @@ impl Recorder<'_, '_> {
         if self.out.store {
             self.bytes += row_bytes(row.len());
             if self.bytes > self.out.memory_budget {
-                return Err(SimError::MemoryBudget { needed: self.bytes, budget: self.out.memory_budget });
+                return Err(SimError::MemoryBudget {
+                    needed: self.bytes,
+                    budget: self.out.memory_budget,
+                });
             }
             self.rows.push(row);
         }
@@ -418,7 +463,10 @@ fn check_budget(out: &Output<'_>, plan: &Plan, row_len: usize) -> Result<(), Sim
     };
     let needed = rows.saturating_mul(row_bytes(row_len));
     if needed > out.memory_budget {
-        return Err(SimError::MemoryBudget { needed, budget: out.memory_budget });
+        return Err(SimError::MemoryBudget {
+            needed,
+            budget: out.memory_budget,
+        });
     }
     Ok(())
 }
@@ -438,9 +486,26 @@ fn relative(a: f64, b: f64) -> f64 {
 
 fn free_body(scene: &Scene) -> Option<(FreeBody, [f64; 7])> {
     match &scene.kind {
-        SceneKind::Free { moments, q0, w0 } => Some((FreeBody { moments: moments.get(), gravity: None }, pack(q0, w0))),
-        SceneKind::HeavyTop { moments, weight_arm, q0, w0, .. } => Some((
-            FreeBody { moments: moments.get(), gravity: Some(Gravity { weight_arm: *weight_arm }) },
+        SceneKind::Free { moments, q0, w0 } => Some((
+            FreeBody {
+                moments: moments.get(),
+                gravity: None,
+            },
+            pack(q0, w0),
+        )),
+        SceneKind::HeavyTop {
+            moments,
+            weight_arm,
+            q0,
+            w0,
+            ..
+        } => Some((
+            FreeBody {
+                moments: moments.get(),
+                gravity: Some(Gravity {
+                    weight_arm: *weight_arm,
+                }),
+            },
             pack(q0, w0),
         )),
         SceneKind::FixedAxis { .. } => None,
@@ -454,9 +519,9 @@ pub fn reference_state(scene: &Scene, t: f64) -> Result<([f64; 7], String), SimE
             let exact = TorqueFree::new(moments.get(), *q0, *w0)?;
             Ok((exact.state(t), format!("closed form: {}", exact.form())))
         }
-        SceneKind::HeavyTop { steady: Some(top), .. } => {
-            Ok((top.state(t), "closed form: steady precession (§7)".into()))
-        }
+        SceneKind::HeavyTop {
+            steady: Some(top), ..
+        } => Ok((top.state(t), "closed form: steady precession (§7)".into())),
         SceneKind::HeavyTop { .. } => {
             let (body, y0) = free_body(scene).expect("heavy top");
             let (y, _) = integrate(
@@ -481,7 +546,10 @@ pub fn reference_state(scene: &Scene, t: f64) -> Result<([f64; 7], String), SimE
 
 fn free_drifts(body: &FreeBody, y0: &[f64; 7], y: &[f64; 7]) -> Vec<Drift> {
     vec![
-        Drift { name: "energy", relative: relative(body.energy(y), body.energy(y0)) },
+        Drift {
+            name: "energy",
+            relative: relative(body.energy(y), body.energy(y0)),
+        },
         Drift {
             name: if body.gravity.is_some() { "H_Z" } else { "|H|" },
             relative: relative(body.momentum_invariant(y), body.momentum_invariant(y0)),
@@ -495,7 +563,11 @@ fn precession_check(top: &SteadyTop, y: &[f64; 7], t: f64) -> PrecessionCheck {
     let tau = std::f64::consts::TAU;
     let d = (phi - predicted_phi).rem_euclid(tau);
     let d = if d > std::f64::consts::PI { d - tau } else { d };
-    let simulated = if t > 0.0 { top.phi_dot + d / t } else { top.phi_dot };
+    let simulated = if t > 0.0 {
+        top.phi_dot + d / t
+    } else {
+        top.phi_dot
+    };
     PrecessionCheck {
         predicted: top.phi_dot,
         simulated,
@@ -506,7 +578,15 @@ fn precession_check(top: &SteadyTop, y: &[f64; 7], t: f64) -> PrecessionCheck {
 
 fn shaft_reactions(shaft: &Shaft, w: f64) -> [f64; 7] {
     let r = shaft.reactions(w);
-    [r.bearing_a[0], r.bearing_a[1], r.bearing_b[0], r.bearing_b[1], r.moment_x, r.moment_y, r.moment_z]
+    [
+        r.bearing_a[0],
+        r.bearing_a[1],
+        r.bearing_b[0],
+        r.bearing_b[1],
+        r.moment_x,
+        r.moment_y,
+        r.moment_z,
+    ]
 }
 
 /// Runs a scene as planned.
@@ -533,21 +613,34 @@ pub fn run(scene: &Scene, plan: &Plan, out: &mut Output<'_>) -> Result<Report, S
         _ => 8,
     };
     check_budget(out, plan, row_len)?;
-    let mut rec = Recorder { out, rows: vec![], bytes: 0 };
+    let mut rec = Recorder {
+        out,
+        rows: vec![],
+        bytes: 0,
+    };
     match (&scene.kind, plan.model) {
         (SceneKind::FixedAxis { shaft, y0 }, Model::FixedAxis) => {
             let start = Instant::now();
             let (y, stats) = match (plan.method, plan.step) {
                 (Some(method), Some(step)) => {
                     let active = rec.active();
-                    integrate(shaft, method, step, 0.0, *y0, t_end, Limits::default(), |t, y| {
-                        if active {
-                            let mut row = vec![t, y[0], y[1]];
-                            row.extend_from_slice(&shaft_reactions(shaft, y[1])[..4]);
-                            rec.record(row)?;
-                        }
-                        Ok(())
-                    })?
+                    integrate(
+                        shaft,
+                        method,
+                        step,
+                        0.0,
+                        *y0,
+                        t_end,
+                        Limits::default(),
+                        |t, y| {
+                            if active {
+                                let mut row = vec![t, y[0], y[1]];
+                                row.extend_from_slice(&shaft_reactions(shaft, y[1])[..4]);
+                                rec.record(row)?;
+                            }
+                            Ok(())
+                        },
+                    )?
                 }
                 _ => {
                     let y = shaft.exact(y0, t_end);
@@ -570,10 +663,18 @@ pub fn run(scene: &Scene, plan: &Plan, out: &mut Output<'_>) -> Result<Report, S
             set_stats(&mut report, stats);
         }
         (SceneKind::FixedAxis { .. }, m) => {
-            return Err(not_applicable(m, scene, "only `fixed-axis` describes a shaft"));
+            return Err(not_applicable(
+                m,
+                scene,
+                "only `fixed-axis` describes a shaft",
+            ));
         }
         (_, Model::FixedAxis) => {
-            return Err(not_applicable(Model::FixedAxis, scene, "no bearing fixes the axis of this body"));
+            return Err(not_applicable(
+                Model::FixedAxis,
+                scene,
+                "no bearing fixes the axis of this body",
+            ));
         }
         (_, Model::SteadyPrecession | Model::Elliptic) => {
             let (body, y0) = free_body(scene).expect("free or heavy top");
@@ -594,14 +695,23 @@ pub fn run(scene: &Scene, plan: &Plan, out: &mut Output<'_>) -> Result<Report, S
             let (method, step) = method_step(plan)?;
             let active = rec.active();
             let start = Instant::now();
-            let (y, stats) = integrate(&body, method, step, 0.0, y0, t_end, Limits::default(), |t, y| {
-                if active {
-                    let mut row = vec![t];
-                    row.extend_from_slice(y);
-                    rec.record(row)?;
-                }
-                Ok(())
-            })?;
+            let (y, stats) = integrate(
+                &body,
+                method,
+                step,
+                0.0,
+                y0,
+                t_end,
+                Limits::default(),
+                |t, y| {
+                    if active {
+                        let mut row = vec![t];
+                        row.extend_from_slice(y);
+                        rec.record(row)?;
+                    }
+                    Ok(())
+                },
+            )?;
             report.wall_s = start.elapsed().as_secs_f64();
             finish_free(scene, &body, &y0, &y, t_end, &mut report)?;
             set_stats(&mut report, stats);
@@ -609,19 +719,32 @@ pub fn run(scene: &Scene, plan: &Plan, out: &mut Output<'_>) -> Result<Report, S
         (_, Model::EulerAngles) => {
             let (body, y0) = free_body(scene).expect("free or heavy top");
             let (method, step) = method_step(plan)?;
-            let (phi, theta, psi) = crate::models::euler_angles::angles_from_quaternion(&attitude(&y0));
+            let (phi, theta, psi) =
+                crate::models::euler_angles::angles_from_quaternion(&attitude(&y0));
             let e0 = [phi, theta, psi, y0[4], y0[5], y0[6]];
-            let sys = EulerAngleBody { moments: body.moments, weight_arm: body.gravity.map_or(0.0, |g| g.weight_arm) };
+            let sys = EulerAngleBody {
+                moments: body.moments,
+                weight_arm: body.gravity.map_or(0.0, |g| g.weight_arm),
+            };
             let active = rec.active();
             let start = Instant::now();
-            let (e, stats) = integrate(&sys, method, step, 0.0, e0, t_end, Limits::default(), |t, y| {
-                if active {
-                    let mut row = vec![t];
-                    row.extend_from_slice(y);
-                    rec.record(row)?;
-                }
-                Ok(())
-            })?;
+            let (e, stats) = integrate(
+                &sys,
+                method,
+                step,
+                0.0,
+                e0,
+                t_end,
+                Limits::default(),
+                |t, y| {
+                    if active {
+                        let mut row = vec![t];
+                        row.extend_from_slice(y);
+                        rec.record(row)?;
+                    }
+                    Ok(())
+                },
+            )?;
             report.wall_s = start.elapsed().as_secs_f64();
             let y = to_quaternion_state(&e);
             finish_free(scene, &body, &y0, &y, t_end, &mut report)?;
@@ -664,7 +787,10 @@ fn finish_free(
     report.error = Some(state_distance(y, &reference));
     report.drifts = free_drifts(body, y0, y);
     report.final_state = y.to_vec();
-    if let SceneKind::HeavyTop { steady: Some(top), .. } = &scene.kind {
+    if let SceneKind::HeavyTop {
+        steady: Some(top), ..
+    } = &scene.kind
+    {
         report.precession = Some(precession_check(top, y, t_end));
     }
     Ok(())
@@ -687,9 +813,18 @@ impl fmt::Display for Report {
             None => writeln!(f, "error at T:  0 (this is the reference)")?,
         }
         for d in &self.drifts {
-            writeln!(f, "drift {:<6} {:.3e} (relative)", format!("{}:", d.name), d.relative)?;
+            writeln!(
+                f,
+                "drift {:<6} {:.3e} (relative)",
+                format!("{}:", d.name),
+                d.relative
+            )?;
         }
-        writeln!(f, "evaluations: {} ({} steps, {} rejected)", self.evaluations, self.steps, self.rejected)?;
+        writeln!(
+            f,
+            "evaluations: {} ({} steps, {} rejected)",
+            self.evaluations, self.steps, self.rejected
+        )?;
         writeln!(f, "wall time:   {:.3e} s", self.wall_s)?;
         if let Some(pc) = &self.precession {
             writeln!(
@@ -705,7 +840,11 @@ impl fmt::Display for Report {
                 r[0], r[1], r[2], r[3], r[4], r[5], r[6]
             )?;
         }
-        let state: Vec<String> = self.final_state.iter().map(|v| format!("{v:.12}")).collect();
+        let state: Vec<String> = self
+            .final_state
+            .iter()
+            .map(|v| format!("{v:.12}"))
+            .collect();
         writeln!(f, "state at T:  [{}]", state.join(", "))
     }
 }
@@ -738,7 +877,8 @@ pub struct Row {
 }
 
 /// CSV header of [`Row::csv`].
-pub const CSV_HEADER: &str = "method,step,value,error,wall_s,evaluations,steps,energy_drift,momentum_drift,status";
+pub const CSV_HEADER: &str =
+    "method,step,value,error,wall_s,evaluations,steps,energy_drift,momentum_drift,status";
 
 impl Row {
     /// One CSV line (no newline).
@@ -788,12 +928,18 @@ impl Row {
 /// The heavy-top sweep bundled at build time (`crates/sim/data/`), made by
 /// `hdot work-precision docs/examples/sim-heavy-top.toml`.
 pub fn bundled_heavy_top_data() -> Vec<Row> {
-    include_str!("../data/work-precision-heavy-top.csv").lines().skip(1).filter_map(Row::parse_csv).collect()
+    include_str!("../data/work-precision-heavy-top.csv")
+        .lines()
+        .skip(1)
+        .filter_map(Row::parse_csv)
+        .collect()
 }
 
 /// The successful row of least wall time whose error is at most `tol`.
 pub fn cheapest(rows: &[Row], tol: f64) -> Option<&Row> {
-    rows.iter().filter(|r| r.status == "ok" && r.error <= tol).min_by(|a, b| a.wall_s.total_cmp(&b.wall_s))
+    rows.iter()
+        .filter(|r| r.status == "ok" && r.error <= tol)
+        .min_by(|a, b| a.wall_s.total_cmp(&b.wall_s))
 }
 
 /// Steps and tolerances the sweep tries for a method over `[0, t_end]`.
@@ -843,7 +989,10 @@ pub fn work_precision(
     Ok(rows)
 }
 
-fn timed<T>(min_time: f64, mut f: impl FnMut() -> Result<T, SimError>) -> Result<(T, f64), SimError> {
+fn timed<T>(
+    min_time: f64,
+    mut f: impl FnMut() -> Result<T, SimError>,
+) -> Result<(T, f64), SimError> {
     let start = Instant::now();
     let mut out = f()?;
     let first = start.elapsed().as_secs_f64();
@@ -858,7 +1007,13 @@ fn timed<T>(min_time: f64, mut f: impl FnMut() -> Result<T, SimError>) -> Result
     Ok((out, start.elapsed().as_secs_f64() / reps as f64))
 }
 
-fn sweep_one(scene: &Scene, method: Method, step: Step, t_end: f64, min_time: f64) -> Result<Row, SimError> {
+fn sweep_one(
+    scene: &Scene,
+    method: Method,
+    step: Step,
+    t_end: f64,
+    min_time: f64,
+) -> Result<Row, SimError> {
     let mut row = Row {
         method,
         step,
@@ -872,7 +1027,18 @@ fn sweep_one(scene: &Scene, method: Method, step: Step, t_end: f64, min_time: f6
     };
     match &scene.kind {
         SceneKind::FixedAxis { shaft, y0 } => {
-            let run = || integrate(shaft, method, step, 0.0, *y0, t_end, Limits::default(), |_, _| Ok(()));
+            let run = || {
+                integrate(
+                    shaft,
+                    method,
+                    step,
+                    0.0,
+                    *y0,
+                    t_end,
+                    Limits::default(),
+                    |_, _| Ok(()),
+                )
+            };
             match timed(min_time, run) {
                 Ok(((y, stats), wall)) => {
                     let e = shaft.exact(y0, t_end);
@@ -888,7 +1054,18 @@ fn sweep_one(scene: &Scene, method: Method, step: Step, t_end: f64, min_time: f6
         _ => {
             let (body, y0) = free_body(scene).expect("free or heavy top");
             let (reference, _) = reference_state(scene, t_end)?;
-            let run = || integrate(&body, method, step, 0.0, y0, t_end, Limits::default(), |_, _| Ok(()));
+            let run = || {
+                integrate(
+                    &body,
+                    method,
+                    step,
+                    0.0,
+                    y0,
+                    t_end,
+                    Limits::default(),
+                    |_, _| Ok(()),
+                )
+            };
             match timed(min_time, run) {
                 Ok(((y, stats), wall)) => {
                     row.error = state_distance(&y, &reference);
@@ -908,12 +1085,19 @@ fn sweep_one(scene: &Scene, method: Method, step: Step, t_end: f64, min_time: f6
 
 /// Writes the work-precision chart (error against wall time, log–log, one
 /// line per method) to `<stem>.svg` and `<stem>.png` with the shared helper.
-pub fn write_chart(rows: &[Row], stem: &std::path::Path, title: &str) -> Result<(), hdot_num::chart::ChartError> {
+pub fn write_chart(
+    rows: &[Row],
+    stem: &std::path::Path,
+    title: &str,
+) -> Result<(), hdot_num::chart::ChartError> {
     let series: Vec<hdot_num::chart::Series> = Method::ALL
         .into_iter()
         .filter_map(|m| {
-            let mut pts: Vec<(f64, f64)> =
-                rows.iter().filter(|r| r.method == m && r.status == "ok").map(|r| (r.wall_s, r.error)).collect();
+            let mut pts: Vec<(f64, f64)> = rows
+                .iter()
+                .filter(|r| r.method == m && r.status == "ok")
+                .map(|r| (r.wall_s, r.error))
+                .collect();
             pts.sort_by(|a, b| a.0.total_cmp(&b.0));
             (!pts.is_empty()).then(|| hdot_num::chart::Series::new(m.name(), pts))
         })

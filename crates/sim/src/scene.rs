@@ -170,30 +170,43 @@ impl SceneKind {
 pub fn unit_attitude(q: [f64; 4], field: &str) -> Result<UnitQuaternion<f64>, SimError> {
     let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
     if !(n.is_finite() && (n - 1.0).abs() <= 1e-12) {
-        return Err(SimError::NonUnitAttitude { field: field.to_string(), norm: n });
+        return Err(SimError::NonUnitAttitude {
+            field: field.to_string(),
+            norm: n,
+        });
     }
-    Ok(UnitQuaternion::from_quaternion(Quaternion::new(q[0], q[1], q[2], q[3])))
+    Ok(UnitQuaternion::from_quaternion(Quaternion::new(
+        q[0], q[1], q[2], q[3],
+    )))
 }
 
 /// # Construction
 impl Scene {
     /// Reads and validates a scene file.
     pub fn from_file(path: &Path) -> Result<Scene, SimError> {
-        let text = std::fs::read_to_string(path).map_err(|source| SimError::Io { file: path.to_path_buf(), source })?;
+        let text = std::fs::read_to_string(path).map_err(|source| SimError::Io {
+            file: path.to_path_buf(),
+            source,
+        })?;
         Scene::parse(&text, path)
     }
 
     /// Parses and validates scene text; `file` names it in messages.
     pub fn parse(text: &str, file: &Path) -> Result<Scene, SimError> {
-        let raw: RawScene =
-            toml::from_str(text).map_err(|e| SimError::Parse { file: file.to_path_buf(), message: e.to_string() })?;
+        let raw: RawScene = toml::from_str(text).map_err(|e| SimError::Parse {
+            file: file.to_path_buf(),
+            message: e.to_string(),
+        })?;
         let bad = |field: &str, message: String| SimError::BadField {
             file: file.to_path_buf(),
             field: field.to_string(),
             message,
         };
         if !(raw.t_end.is_finite() && raw.t_end > 0.0) {
-            return Err(bad("t_end", format!("must be positive and finite, got {}", raw.t_end)));
+            return Err(bad(
+                "t_end",
+                format!("must be positive and finite, got {}", raw.t_end),
+            ));
         }
         let initial = raw.initial.unwrap_or_default();
         let finite3 = |v: [f64; 3], field: &str| -> Result<Vector3<f64>, SimError> {
@@ -205,7 +218,9 @@ impl Scene {
         };
         let kind = match raw.kind.as_str() {
             "free" | "heavy-top" => {
-                let body = raw.body.ok_or_else(|| bad("body", "missing table [body]".into()))?;
+                let body = raw
+                    .body
+                    .ok_or_else(|| bad("body", "missing table [body]".into()))?;
                 let (moments_g, mass) = match (body.principal_moments, body.shape) {
                     (Some(m), None) => (m, None),
                     (None, Some(s)) => {
@@ -213,18 +228,28 @@ impl Scene {
                         (s.moments(), Some(s.mass()))
                     }
                     _ => {
-                        return Err(bad("body", "give exactly one of `principal_moments` and `shape`".into()));
+                        return Err(bad(
+                            "body",
+                            "give exactly one of `principal_moments` and `shape`".into(),
+                        ));
                     }
                 };
                 let heavy = raw.kind == "heavy-top";
                 let (moments, weight_arm) = if heavy {
-                    let top = raw.top.ok_or_else(|| bad("top", "missing table [top]".into()))?;
-                    let m = top
-                        .mass
-                        .or(mass)
-                        .ok_or_else(|| bad("top.mass", "needed when the body gives `principal_moments`".into()))?;
+                    let top = raw
+                        .top
+                        .ok_or_else(|| bad("top", "missing table [top]".into()))?;
+                    let m = top.mass.or(mass).ok_or_else(|| {
+                        bad(
+                            "top.mass",
+                            "needed when the body gives `principal_moments`".into(),
+                        )
+                    })?;
                     if !(top.distance.is_finite() && top.distance > 0.0) {
-                        return Err(bad("top.distance", format!("must be positive, got {}", top.distance)));
+                        return Err(bad(
+                            "top.distance",
+                            format!("must be positive, got {}", top.distance),
+                        ));
                     }
                     if !(m.is_finite() && m > 0.0 && top.g.is_finite() && top.g > 0.0) {
                         return Err(bad("top", "mass and g must be positive".into()));
@@ -236,7 +261,8 @@ impl Scene {
                 } else {
                     (moments_g, 0.0)
                 };
-                let moments = PrincipalMoments::new(moments).map_err(|e| bad("body", e.to_string()))?;
+                let moments =
+                    PrincipalMoments::new(moments).map_err(|e| bad("body", e.to_string()))?;
                 let i = moments.get();
                 let (q0, w0, steady) = if let Some(s) = initial.steady_precession {
                     if !heavy {
@@ -246,15 +272,25 @@ impl Scene {
                         ));
                     }
                     if (i[0] - i[1]).abs() > 1e-12 * i[0] {
-                        return Err(bad("body", "steady precession needs I_1 = I_2 (symmetric top)".into()));
+                        return Err(bad(
+                            "body",
+                            "steady precession needs I_1 = I_2 (symmetric top)".into(),
+                        ));
                     }
                     if !(s.theta > 0.0 && s.theta < std::f64::consts::PI) {
-                        return Err(bad("initial.steady_precession.theta", "must lie in (0, π)".into()));
+                        return Err(bad(
+                            "initial.steady_precession.theta",
+                            "must lie in (0, π)".into(),
+                        ));
                     }
                     let phi_dot =
-                        SteadyTop::slow_precession_rate(i[2], i[0], weight_arm, s.theta, s.spin).ok_or_else(|| {
-                            bad("initial.steady_precession.spin", "too slow for a steady precession at this θ".into())
-                        })?;
+                        SteadyTop::slow_precession_rate(i[2], i[0], weight_arm, s.theta, s.spin)
+                            .ok_or_else(|| {
+                                bad(
+                                    "initial.steady_precession.spin",
+                                    "too slow for a steady precession at this θ".into(),
+                                )
+                            })?;
                     let top = SteadyTop {
                         phi0: 0.0,
                         theta: s.theta,
@@ -264,17 +300,26 @@ impl Scene {
                         omega_z: s.spin,
                     };
                     let y = top.state(0.0);
-                    (crate::models::free::attitude(&y), Vector3::new(y[4], y[5], y[6]), Some(top))
+                    (
+                        crate::models::free::attitude(&y),
+                        Vector3::new(y[4], y[5], y[6]),
+                        Some(top),
+                    )
                 } else {
                     let q0 = match (initial.attitude, initial.euler_angles) {
-                        (Some(q), None) => unit_attitude(q, &format!("{}: initial.attitude", file.display()))?,
+                        (Some(q), None) => {
+                            unit_attitude(q, &format!("{}: initial.attitude", file.display()))?
+                        }
                         (None, Some(e)) => {
                             let e = finite3(e, "initial.euler_angles")?;
                             quaternion_from_angles(e.x, e.y, e.z)
                         }
                         (None, None) => UnitQuaternion::identity(),
                         _ => {
-                            return Err(bad("initial", "give at most one of `attitude` and `euler_angles`".into()));
+                            return Err(bad(
+                                "initial",
+                                "give at most one of `attitude` and `euler_angles`".into(),
+                            ));
                         }
                     };
                     let w0 = match (initial.angular_momentum, initial.angular_velocity) {
@@ -286,29 +331,51 @@ impl Scene {
                         _ => {
                             return Err(bad(
                                 "initial",
-                                "give exactly one of `angular_momentum` and `angular_velocity`".into(),
+                                "give exactly one of `angular_momentum` and `angular_velocity`"
+                                    .into(),
                             ));
                         }
                     };
-                    let steady = if heavy { detect_steady(i, weight_arm, &q0, &w0) } else { None };
+                    let steady = if heavy {
+                        detect_steady(i, weight_arm, &q0, &w0)
+                    } else {
+                        None
+                    };
                     (q0, w0, steady)
                 };
                 if heavy {
-                    SceneKind::HeavyTop { moments, weight_arm, q0, w0, steady }
+                    SceneKind::HeavyTop {
+                        moments,
+                        weight_arm,
+                        q0,
+                        w0,
+                        steady,
+                    }
                 } else {
                     SceneKind::Free { moments, q0, w0 }
                 }
             }
             "fixed-axis" => {
-                let s = raw.shaft.ok_or_else(|| bad("shaft", "missing table [shaft]".into()))?;
-                let motor = raw.motor.ok_or_else(|| bad("motor", "missing table [motor]".into()))?;
+                let s = raw
+                    .shaft
+                    .ok_or_else(|| bad("shaft", "missing table [shaft]".into()))?;
+                let motor = raw
+                    .motor
+                    .ok_or_else(|| bad("motor", "missing table [motor]".into()))?;
                 if !(s.rotor_moment.is_finite() && s.rotor_moment >= 0.0) {
                     return Err(bad("shaft.rotor_moment", "must be non-negative".into()));
                 }
-                if !(s.bearings[0].is_finite() && s.bearings[1].is_finite() && s.bearings[0] != s.bearings[1]) {
-                    return Err(bad("shaft.bearings", "two distinct finite positions needed".into()));
+                if !(s.bearings[0].is_finite()
+                    && s.bearings[1].is_finite()
+                    && s.bearings[0] != s.bearings[1])
+                {
+                    return Err(bad(
+                        "shaft.bearings",
+                        "two distinct finite positions needed".into(),
+                    ));
                 }
-                let (mut iz, mut ixz, mut iyz, mut m, mut mx, mut my) = (s.rotor_moment, 0.0, 0.0, 0.0, 0.0, 0.0);
+                let (mut iz, mut ixz, mut iyz, mut m, mut mx, mut my) =
+                    (s.rotor_moment, 0.0, 0.0, 0.0, 0.0, 0.0);
                 for (k, p) in s.masses.iter().enumerate() {
                     if !(p.mass.is_finite() && p.mass > 0.0 && p.at.iter().all(|x| x.is_finite())) {
                         return Err(bad(
@@ -325,11 +392,17 @@ impl Scene {
                     my += p.mass * y;
                 }
                 if iz <= 0.0 {
-                    return Err(bad("shaft", "the moment about the axis must be positive".into()));
+                    return Err(bad(
+                        "shaft",
+                        "the moment about the axis must be positive".into(),
+                    ));
                 }
                 let no_load = motor.no_load_speed.unwrap_or(f64::INFINITY);
                 if !(motor.stall_torque.is_finite() && no_load > 0.0 && s.friction >= 0.0) {
-                    return Err(bad("motor", "stall torque finite, no-load speed positive, friction ≥ 0".into()));
+                    return Err(bad(
+                        "motor",
+                        "stall torque finite, no-load speed positive, friction ≥ 0".into(),
+                    ));
                 }
                 let shaft = Shaft {
                     i_z: iz,
@@ -350,16 +423,30 @@ impl Scene {
                 SceneKind::FixedAxis { shaft, y0 }
             }
             other => {
-                return Err(bad("kind", format!("unknown kind `{other}` (expected free, heavy-top or fixed-axis)")));
+                return Err(bad(
+                    "kind",
+                    format!("unknown kind `{other}` (expected free, heavy-top or fixed-axis)"),
+                ));
             }
         };
-        Ok(Scene { name: raw.name, description: raw.description, file: file.to_path_buf(), t_end: raw.t_end, kind })
+        Ok(Scene {
+            name: raw.name,
+            description: raw.description,
+            file: file.to_path_buf(),
+            t_end: raw.t_end,
+            kind,
+        })
     }
 }
 
 /// A heavy top given by attitude and ω is in steady precession when θ̇ = 0,
 /// it is symmetric and §7's relation holds to [`STEADY_TOL`].
-fn detect_steady(i: [f64; 3], weight_arm: f64, q0: &UnitQuaternion<f64>, w0: &Vector3<f64>) -> Option<SteadyTop> {
+fn detect_steady(
+    i: [f64; 3],
+    weight_arm: f64,
+    q0: &UnitQuaternion<f64>,
+    w0: &Vector3<f64>,
+) -> Option<SteadyTop> {
     if (i[0] - i[1]).abs() > 1e-12 * i[0] {
         return None;
     }
@@ -376,6 +463,13 @@ fn detect_steady(i: [f64; 3], weight_arm: f64, q0: &UnitQuaternion<f64>, w0: &Ve
         return None;
     }
     let phi_dot = -wx / theta.sin();
-    let top = SteadyTop { phi0: phi, theta, psi0: psi, phi_dot, psi_dot: w0.z - phi_dot * theta.cos(), omega_z: w0.z };
+    let top = SteadyTop {
+        phi0: phi,
+        theta,
+        psi0: psi,
+        phi_dot,
+        psi_dot: w0.z - phi_dot * theta.cos(),
+        omega_z: w0.z,
+    };
     (top.residual(i[2], i[0], weight_arm) <= STEADY_TOL).then_some(top)
 }

@@ -75,7 +75,11 @@ impl System<6> for EulerAngleBody {
     fn check(&self, t: f64, y: &[f64; 6]) -> Result<(), SimError> {
         let s = y[1].sin();
         if s.is_nan() || s < SIN_THETA_MIN {
-            return Err(SimError::EulerAngleSingularity { t, theta: y[1], sin_theta: s });
+            return Err(SimError::EulerAngleSingularity {
+                t,
+                theta: y[1],
+                sin_theta: s,
+            });
         }
         Ok(())
     }

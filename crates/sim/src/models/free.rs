@@ -53,7 +53,11 @@ pub fn omega(y: &[f64; 7]) -> Vector3<f64> {
 /// Body coordinates of the space vertical `Rᵀ e_Z` for a unit quaternion.
 pub fn vertical_in_body(y: &[f64; 7]) -> [f64; 3] {
     let (w, x, yy, z) = (y[0], y[1], y[2], y[3]);
-    [2.0 * (x * z - w * yy), 2.0 * (yy * z + w * x), 1.0 - 2.0 * (x * x + yy * yy)]
+    [
+        2.0 * (x * z - w * yy),
+        2.0 * (yy * z + w * x),
+        1.0 - 2.0 * (x * x + yy * yy),
+    ]
 }
 
 /// Distance between two states, quaternion sign aligned (q and −q are one

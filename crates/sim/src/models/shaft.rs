@@ -105,7 +105,14 @@ impl Shaft {
         let rax = fx - rbx;
         let rby = (-moment_x - za * fy) / span;
         let ray = fy - rby;
-        Reactions { alpha, moment_x, moment_y, moment_z, bearing_a: [rax, ray], bearing_b: [rbx, rby] }
+        Reactions {
+            alpha,
+            moment_x,
+            moment_y,
+            moment_z,
+            bearing_a: [rax, ray],
+            bearing_b: [rbx, rby],
+        }
     }
 }
 

@@ -1,0 +1,211 @@
+use std::path::Path;
+
+use hdot_sim::run::{self, Model, Output, Request};
+use hdot_sim::scene::Scene;
+use hdot_sim::{Method, SimError, Step};
+
+const FREE: &str = r#"
+name = "test body"
+kind = "free"
+t_end = 10.0
+[body]
+principal_moments = [0.6, 0.8, 1.0]
+[initial]
+attitude = ATTITUDE
+angular_momentum = [1.8, 0.4, -0.9]
+"#;
+
+fn free_with(attitude: &str) -> Result<Scene, SimError> {
+    Scene::parse(&FREE.replace("ATTITUDE", attitude), Path::new("bad.toml"))
+}
+
+macro_rules! rejects {
+    ($($name:ident: $result:expr => $pattern:pat, $says:expr;)*) => {$(
+        #[test]
+        fn $name() {
+            let err = $result.expect_err("must be rejected");
+            assert!(matches!(err, $pattern), "unexpected error {err:?}");
+            let msg = err.to_string();
+            assert!(msg.contains($says), "message `{msg}` lacks `{}`", $says);
+        }
+    )*};
+}
+
+rejects! {
+    zero_step: Step::Fixed(0.0).validate() => SimError::NonPositiveStep(_), "positive";
+    negative_step: Step::Fixed(-1e-3).validate() => SimError::NonPositiveStep(_), "-0.001";
+    nan_step: Step::Fixed(f64::NAN).validate() => SimError::NonPositiveStep(_), "NaN";
+    zero_tolerance: Step::Tolerance(0.0).validate() => SimError::NonPositiveTolerance(_), "tolerance";
+    non_unit_attitude: free_with("[1.0, 1.0, 0.0, 0.0]") => SimError::NonUnitAttitude { .. }, "bad.toml: initial.attitude";
+    nan_attitude: free_with("[nan, 0.0, 0.0, 0.0]") => SimError::NonUnitAttitude { .. }, "NaN";
+    unknown_field: Scene::parse(&FREE.replace("ATTITUDE", "[1.0, 0.0, 0.0, 0.0]\nspin = 3"), Path::new("bad.toml"))
+        => SimError::Parse { .. }, "bad.toml";
+    impossible_inertia: Scene::parse(&FREE.replace("[0.6, 0.8, 1.0]", "[0.1, 0.2, 1.0]").replace("ATTITUDE", "[1.0, 0.0, 0.0, 0.0]"), Path::new("bad.toml"))
+        => SimError::BadField { .. }, "triangle";
+    missing_file: Scene::from_file(Path::new("no/such/scene.toml")) => SimError::Io { .. }, "no/such/scene.toml";
+    unknown_method: "rk5".parse::<Method>() => SimError::UnknownName { .. }, "dop853";
+    unknown_model: "newton".parse::<Model>() => SimError::UnknownName { .. }, "elliptic";
+    fixed_axis_on_a_free_body: run::plan(&free_with("[1.0, 0.0, 0.0, 0.0]").unwrap(), &Request { model: Some(Model::FixedAxis), ..Request::default() })
+        => SimError::ModelNotApplicable { .. }, "no bearing";
+    tolerance_for_a_fixed_step_method: run::plan(&free_with("[1.0, 0.0, 0.0, 0.0]").unwrap(), &Request { method: Some(Method::Rk4), step: Some(Step::Tolerance(1e-6)), ..Request::default() })
+        .and_then(|p| run::run(&free_with("[1.0, 0.0, 0.0, 0.0]").unwrap(), &p, &mut Output::default()))
+        => SimError::MethodNotApplicable { .. }, "--dt";
+    stored_output_over_budget: {
+        let scene = free_with("[1.0, 0.0, 0.0, 0.0]").unwrap();
+        let plan = run::plan(&scene, &Request { method: Some(Method::Rk4), step: Some(Step::Fixed(1e-4)), ..Request::default() }).unwrap();
+        run::run(&scene, &plan, &mut Output { store: true, memory_budget: 1 << 20, ..Output::default() })
+    } => SimError::MemoryBudget { .. }, "--output";
+}
+
+#[test]
+fn stored_output_within_budget_is_kept() {
+    let scene = free_with("[1.0, 0.0, 0.0, 0.0]").unwrap();
+    let plan = run::plan(
+        &scene,
+        &Request {
+            method: Some(Method::Rk4),
+            step: Some(Step::Fixed(0.01)),
+            ..Request::default()
+        },
+    )
+    .unwrap();
+    let report = run::run(
+        &scene,
+        &plan,
+        &mut Output {
+            store: true,
+            ..Output::default()
+        },
+    )
+    .unwrap();
+    let rows = report.trajectory.unwrap();
+    assert_eq!(rows.len(), 1001);
+    assert_eq!(rows.last().unwrap()[0], 10.0);
+}
+
+#[test]
+fn streamed_output_has_one_row_per_step() {
+    let scene = free_with("[1.0, 0.0, 0.0, 0.0]").unwrap();
+    let plan = run::plan(
+        &scene,
+        &Request {
+            method: Some(Method::Split2),
+            step: Some(Step::Fixed(0.1)),
+            ..Request::default()
+        },
+    )
+    .unwrap();
+    let mut buf: Vec<u8> = vec![];
+    run::run(
+        &scene,
+        &plan,
+        &mut Output {
+            stream: Some(&mut buf),
+            ..Output::default()
+        },
+    )
+    .unwrap();
+    let text = String::from_utf8(buf).unwrap();
+    assert_eq!(text.lines().count(), 101);
+    assert!(text.lines().all(|l| l.split(',').count() == 8));
+}
+
+/// The model each bundled scene gets, and why: read in review.
+#[test]
+fn bundled_scenes_choose_the_least_exact_model() {
+    insta::glob!("../../docs/examples", "sim-*.toml", |path| {
+        let scene = Scene::from_file(path).unwrap();
+        let plan = run::plan(&scene, &Request::default()).unwrap();
+        let step = plan
+            .step
+            .map(run::step_label)
+            .unwrap_or_else(|| "none".into());
+        let method = plan
+            .method
+            .map(|m| m.to_string())
+            .unwrap_or_else(|| "none".into());
+        insta::assert_snapshot!(format!(
+            "scene:  {}\nkind:   {}\nmodel:  {}\nmethod: {method} ({step})\nwhy:    {}\n",
+            scene.name,
+            scene.kind.name(),
+            plan.model,
+            plan.reason
+        ));
+    });
+}
+
+/// Every bundled scene simulates with every method (short horizon), and the
+/// error shrinks from the coarse to the fine setting.
+#[test]
+fn bundled_scenes_simulate_with_every_method() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/examples");
+    let mut n = 0;
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_name().unwrap().to_str().unwrap().to_string();
+        if !(name.starts_with("sim-") && name.ends_with(".toml")) {
+            continue;
+        }
+        n += 1;
+        let scene = Scene::from_file(&path).unwrap();
+        let t_end = scene.t_end.min(0.2);
+        for method in Method::ALL {
+            let steps = if method.is_adaptive() {
+                [Step::Tolerance(1e-5), Step::Tolerance(1e-9)]
+            } else {
+                [Step::Fixed(t_end / 4000.0), Step::Fixed(t_end / 16000.0)]
+            };
+            let errors: Vec<f64> = steps
+                .iter()
+                .map(|&step| {
+                    let plan = run::plan(
+                        &scene,
+                        &Request {
+                            method: Some(method),
+                            step: Some(step),
+                            t_end: Some(t_end),
+                            ..Request::default()
+                        },
+                    )
+                    .unwrap();
+                    let r = run::run(&scene, &plan, &mut Output::default())
+                        .unwrap_or_else(|e| panic!("{name} {method}: {e}"));
+                    let scale = r.final_state.iter().map(|v| v * v).sum::<f64>().sqrt();
+                    (r.error.expect("integrated runs have an error"), scale)
+                })
+                .collect::<Vec<_>>()
+                .into_iter()
+                .map(|(e, scale)| e / (1.0 + scale))
+                .collect();
+            // Relative to the state; below 1e-12 round-off of the run dominates.
+            assert!(
+                errors[1] < errors[0] || errors[1] <= 1e-12,
+                "{name} {method}: {errors:?}"
+            );
+        }
+    }
+    assert_eq!(n, 7, "seven bundled scenes");
+}
+
+#[test]
+fn gyroscope_precession_rate_matches_section_7() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../docs/examples/sim-gyroscope-steady-precession.toml");
+    let scene = Scene::from_file(&path).unwrap();
+    let plan = run::plan(
+        &scene,
+        &Request {
+            method: Some(Method::Dop853),
+            step: Some(Step::Tolerance(1e-11)),
+            ..Request::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(plan.model, Model::RigidBody);
+    let report = run::run(&scene, &plan, &mut Output::default()).unwrap();
+    let p = report.precession.expect("steady scene");
+    // Integrated with the Euler equations, compared with §7's relation:
+    // agreement to the integration error, not to a loose physical tolerance.
+    assert!(p.relative_difference <= 1e-7, "{p:?}");
+    assert!(p.nutation_change <= 1e-7, "{p:?}");
+}
