@@ -252,3 +252,19 @@ fn scene_errors_name_file_line_and_field() {
         assert!(e.to_string().starts_with("s.toml:"), "{e}");
     }
 }
+
+#[test]
+fn scene_with_a_csv_cloud_and_a_bad_cloud() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("c.csv"), "x,y,z,m\n1,0,0,2\n-1,0,0,2\n").unwrap();
+    let scene_path = dir.path().join("s.toml");
+    let text = "[[cloud]]\nfile = \"c.csv\"\n";
+    let s = Scene::from_str_at(&scene_path, text).unwrap();
+    let r = s.inertia();
+    assert_eq!(r.props.mass, 4.0);
+    assert_eq!(r.props.inertia_g.moments(), [0.0, 4.0, 4.0]);
+    std::fs::write(dir.path().join("c.csv"), "x,y,z,m\n1,0,0,2\n-1,0,0\n").unwrap();
+    let e = Scene::from_str_at(&scene_path, text).unwrap_err();
+    assert_eq!((e.line, e.field.as_str()), (1, "cloud[0].file"));
+    assert!(e.message.contains("c.csv:3: field `m`"), "{e}");
+}

@@ -412,3 +412,24 @@ pub fn rigid_kinetics(
         moment_o: rbar.cross(&(motion.a_g * m)) + hdot_g,
     }
 }
+
+#[cfg(all(test, feature = "slow-tests"))]
+mod slow {
+    use super::*;
+    use crate::{Body, Discretization, DiscretizedBody, Pose, Primitive};
+
+    /// 10⁸ lazily generated particles: the box's closed-form midpoint sum.
+    #[test]
+    fn hundred_million_particles_without_storing_them() {
+        let (a, m) = (1.5, 2.0);
+        let body = Body::try_new(Primitive::Prism { a, b: a, c: a }, m, Pose::identity()).unwrap();
+        let n = 465; // 465³ ≈ 1.005 × 10⁸
+        let src = DiscretizedBody::new(&body, &Discretization::midpoint(n));
+        assert!(src.len() >= 100_000_000);
+        let mo = moments(&src, Vector3::zeros());
+        let nf = n as f64;
+        let expected = m * a * a / 12.0 * (1.0 - 1.0 / (nf * nf));
+        assert!((mo.mass - m).abs() <= 1e-12 * m);
+        assert!((mo.second[0] - expected).abs() <= 1e-12 * expected);
+    }
+}

@@ -60,13 +60,16 @@ pub fn run(args: ConvergenceArgs) -> anyhow::Result<ExitCode> {
             let pts = sweep(shape, method, args.max_particles);
             let orders = observed_orders(&pts);
             let last = pts.last();
-            let order = orders.iter().rev().flatten().next();
+            let verdict = match (last, orders.iter().rev().flatten().next()) {
+                (Some(p), _) if p.error < 1e-13 => "exact to round-off".to_string(),
+                (_, Some(o)) => format!("observed order {o:.2}"),
+                _ => "-".to_string(),
+            };
             println!(
-                "  {:<18} finest {:>9} particles  error {:>9}  observed order {}",
+                "  {:<18} finest {:>9} particles  error {:>9}  {verdict}",
                 method.to_string(),
                 last.map_or(0, |p| p.particles),
                 last.map_or("-".into(), |p| format!("{:.2e}", p.error)),
-                order.map_or("(exact to round-off)".into(), |o| format!("{o:.2}")),
             );
             sweeps.push((method, pts));
             if let Some(b) = &bar {
