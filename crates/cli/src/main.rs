@@ -41,6 +41,8 @@ enum Command {
     Inertia(cmd::inertia::InertiaArgs),
     /// List the bundled derivations with title and source.
     List(cmd::list::ListArgs),
+    /// Write the lecture notes (LaTeX and Markdown) of every derivation.
+    Notes(cmd::notes::NotesArgs),
 }
 
 fn main() -> ExitCode {
@@ -55,6 +57,7 @@ fn main() -> ExitCode {
         Command::Dynamics(a) => cmd::dynamics::run(a),
         Command::Inertia(a) => cmd::inertia::run(a),
         Command::List(a) => cmd::list::run(a),
+        Command::Notes(a) => cmd::notes::run(a),
     };
     match result {
         Ok(code) => code,

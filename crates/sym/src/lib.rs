@@ -37,6 +37,7 @@ pub mod derivation;
 pub mod diff;
 pub mod expr;
 pub mod frame;
+pub mod notes;
 pub mod parse;
 pub mod poly;
 pub mod present;

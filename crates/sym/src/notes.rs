@@ -108,7 +108,7 @@ pub fn coverage() -> Vec<Coverage> {
         "I_x", "I_y", "I_z", "I_xy", "Ip", "Ip_x", "m", "mass", "a", "b", "r_G", "I_theta",
     ];
     let mut time: Vec<&str> = vec!["x", "omega_x", "omega_y", "omega_z", "omega_1_2"];
-    time.extend(GREEK_NAMES.iter().filter(|g| !time.contains(g)));
+    time.extend(GREEK_NAMES);
     let s = Symbols::parse_decl(&constants, &time);
     let lower: Vec<&str> = GREEK_NAMES
         .iter()
@@ -233,6 +233,7 @@ fn math_width(s: &str) -> f32 {
             }
             ' ' => {}
             '+' | '-' | '=' => w += 2.0,
+            '(' | ')' | ',' => w += 0.6 * scale(script),
             _ => {
                 w += if pending_script { 0.7 } else { scale(script) };
                 pending_script = false;
@@ -279,8 +280,79 @@ fn split_terms(s: &str) -> Vec<String> {
     parts
 }
 
+/// The position of the first `\left(` outside braces and other
+/// parentheses in `s`, and of its matching `\right)`.
+fn outer_parens(s: &str) -> Option<(usize, usize)> {
+    let mut depth = 0i32;
+    let mut open = None;
+    let mut i = 0;
+    while i < s.len() {
+        let rest = &s[i..];
+        if rest.starts_with(r"\left") {
+            if depth == 0 && open.is_none() && rest.starts_with(r"\left(") {
+                open = Some(i);
+            }
+            depth += 1;
+            i += 5;
+            continue;
+        }
+        if rest.starts_with(r"\right") {
+            depth -= 1;
+            if depth == 0
+                && let Some(o) = open
+            {
+                return rest.starts_with(r"\right)").then_some((o, i));
+            }
+            i += 6;
+            continue;
+        }
+        match s.as_bytes()[i] {
+            b'{' => depth += 1,
+            b'}' => depth -= 1,
+            _ => {}
+        }
+        i += 1;
+    }
+    None
+}
+
+/// The pieces a long equation may be broken between: the top-level terms
+/// of `rhs`, and inside a term that is itself too long, the terms of its
+/// first parenthesised sum. Each piece says whether a break before it
+/// falls inside that parenthesis.
+fn pieces(rhs: &str, budget: f32) -> Vec<(String, bool)> {
+    let mut out = Vec::new();
+    for term in split_terms(rhs) {
+        if math_width(&term) > budget
+            && let Some((l, r)) = outer_parens(&term)
+        {
+            let inner = split_terms(&term[l + 6..r]);
+            if inner.len() > 1 {
+                let last = inner.len() - 1;
+                for (k, t) in inner.into_iter().enumerate() {
+                    let mut piece = String::new();
+                    if k == 0 {
+                        piece.push_str(&term[..l]);
+                        piece.push_str(r"\left(");
+                    }
+                    piece.push_str(&t);
+                    if k == last {
+                        piece.push_str(&term[r..]);
+                    }
+                    out.push((piece, k > 0));
+                }
+                continue;
+            }
+        }
+        out.push((term, false));
+    }
+    out
+}
+
 /// The lines of one equation `lhs = rhs` for an `align*`/`aligned` block:
-/// the first `lhs &= …`, continuation lines `&\quad + …`.
+/// the first `lhs &= …`, continuation lines `&\quad + …`. A break inside
+/// parentheses closes the line with `\right.` and opens the next with
+/// `\left.`, so that every line is balanced.
 fn equation_lines(lhs: &str, rhs: &str) -> Vec<String> {
     let budget = (LINE_BUDGET - math_width(lhs)).max(24.0);
     if math_width(rhs) <= budget {
@@ -288,14 +360,19 @@ fn equation_lines(lhs: &str, rhs: &str) -> Vec<String> {
     }
     let mut lines: Vec<String> = Vec::new();
     let mut current = String::new();
-    for term in split_terms(rhs) {
-        if !current.is_empty() && math_width(&current) + math_width(&term) > budget {
-            lines.push(std::mem::take(&mut current));
+    for (piece, inside) in pieces(rhs, budget) {
+        if !current.is_empty() && math_width(&current) + math_width(&piece) > budget {
+            let mut line = std::mem::take(&mut current);
+            if inside {
+                line.push_str(r" \right.");
+                current.push_str(r"\left. ");
+            }
+            lines.push(line);
         }
-        if !current.is_empty() {
+        if !current.is_empty() && !current.ends_with(' ') {
             current.push(' ');
         }
-        current.push_str(&term);
+        current.push_str(&piece);
     }
     lines.push(current);
     lines
@@ -517,24 +594,43 @@ fn latex_section(o: &mut String, d: &Derivation) {
             let _ = writeln!(o, "  \\begin{{itemize}}");
             for (k, f) in d.frames.iter().enumerate().skip(1) {
                 let parent = match &f.parent {
-                    Some((p, _)) => format!(
-                        " (turned from ${}$)",
-                        print::latex_symbol(p, 0)
-                    ),
+                    Some((p, _)) => format!(" (turned from ${}$)", print::latex_symbol(p, 0)),
                     None => String::new(),
                 };
-                let _ = writeln!(
-                    o,
-                    "    \\item{{}} ${}$, axes ${}${parent}: $\\boldsymbol{{\\Omega}} = {}${}",
-                    print::latex_symbol(&f.name, 0),
-                    f.axes
+                let omega = frame_omega(d, k);
+                let axes = f
+                    .axes
+                    .iter()
+                    .map(|a| print::latex_symbol(a, 0))
+                    .collect::<Vec<_>>()
+                    .join(",\\ ");
+                let doc = latex_doc_suffix(&f.doc);
+                let name = print::latex_symbol(&f.name, 0);
+                if math_width(&omega) <= 40.0 {
+                    let _ = writeln!(
+                        o,
+                        "    \\item{{}} ${name}$, axes ${axes}${parent}: \
+                         $\\boldsymbol{{\\Omega}} = {omega}${doc}"
+                    );
+                } else {
+                    let lines: Vec<String> = f
+                        .axes
                         .iter()
-                        .map(|a| print::latex_symbol(a, 0))
-                        .collect::<Vec<_>>()
-                        .join(",\\ "),
-                    frame_omega(d, k),
-                    latex_doc_suffix(&f.doc)
-                );
+                        .zip(&f.omega.0)
+                        .flat_map(|(a, p)| {
+                            equation_lines(
+                                &latex_label("Omega", a),
+                                &print::latex(&Expr::from_poly(p)),
+                            )
+                        })
+                        .collect();
+                    let _ = writeln!(
+                        o,
+                        "    \\item{{}} ${name}$, axes ${axes}${parent}{doc}:\n\
+                         \\begin{{align*}}\n{}\n\\end{{align*}}",
+                        lines.join(" \\\\\n")
+                    );
+                }
             }
             let _ = writeln!(o, "  \\end{{itemize}}");
         }
@@ -554,17 +650,14 @@ fn latex_section(o: &mut String, d: &Derivation) {
             .unwrap_or_default();
         let _ = writeln!(
             o,
-            "Written in the file as \\texttt{{{}}}{frame}.",
+            "{{\\raggedright Written in the file as \\texttt{{{}}}{frame}.\\par}}",
             latex_code(&s.formula)
         );
         let _ = writeln!(o, "\\begin{{align*}}\n{}\n\\end{{align*}}", step_lines(s));
         if s.checks.is_empty() {
             let _ = writeln!(o, "\\emph{{No expectation is stated for this step.}}\n");
         } else if s.checks.iter().all(Check::holds) {
-            let _ = writeln!(
-                o,
-                "$\\checkmark$ Equals the expected (textbook) form.\n"
-            );
+            let _ = writeln!(o, "$\\checkmark$ Equals the expected (textbook) form.\n");
         } else {
             let _ = writeln!(
                 o,
@@ -588,7 +681,10 @@ fn latex_section(o: &mut String, d: &Derivation) {
 }
 
 fn latex_coverage(o: &mut String) {
-    let _ = writeln!(o, "\n\\clearpage\n\\appendix\n\\section{{Printer coverage}}");
+    let _ = writeln!(
+        o,
+        "\n\\clearpage\n\\appendix\n\\section{{Printer coverage}}"
+    );
     let _ = writeln!(o, "\\label{{sec:printer-coverage}}\n");
     let _ = writeln!(
         o,
@@ -783,7 +879,11 @@ fn markdown_section(o: &mut String, n: usize, d: &Derivation) {
         let frame = vector_frame(s)
             .map(|f| format!(", components in frame ${}$", print::latex_symbol(f, 0)))
             .unwrap_or_default();
-        let _ = writeln!(o, "Written in the file as {}{frame}.\n", md_code(&s.formula));
+        let _ = writeln!(
+            o,
+            "Written in the file as {}{frame}.\n",
+            md_code(&s.formula)
+        );
         md_math_block(o, &step_lines(s));
         if s.checks.is_empty() {
             let _ = writeln!(o, "*No expectation is stated for this step.*\n");
@@ -840,17 +940,30 @@ mod tests {
     #[test]
     fn long_sums_break_before_top_level_signs() {
         let parts = split_terms(r"a + \left(b - c\right) d - \frac{1}{2} e^{x - y}");
-        assert_eq!(parts, vec!["a", r"+ \left(b - c\right) d", r"- \frac{1}{2} e^{x - y}"]);
+        assert_eq!(
+            parts,
+            vec!["a", r"+ \left(b - c\right) d", r"- \frac{1}{2} e^{x - y}"]
+        );
         let lines = equation_lines("H_x", &vec!["I_x \\omega_x"; 20].join(" + "));
         assert!(lines.len() > 1);
         assert!(lines[0].starts_with("H_x &= "));
         assert!(lines[1].starts_with(r"&\quad + "));
+        let long = format!(
+            r"\frac{{1}}{{2}} \left({}\right)",
+            vec!["m v_x^{2}"; 30].join(" + ")
+        );
+        let lines = equation_lines("T", &long);
+        assert!(lines.len() > 1);
+        assert!(lines[0].starts_with(r"T &= \frac{1}{2} \left(m v_x^{2} + "));
+        assert!(lines[0].ends_with(r"\right."));
+        assert!(lines[1].starts_with(r"&\quad \left. + m v_x^{2}"));
+        assert!(lines.last().unwrap().ends_with(r"m v_x^{2}\right)"));
     }
 
     #[test]
     fn widths_ignore_decoration() {
         assert_eq!(math_width(r"\dot{\omega}"), 1.0);
-        assert!(math_width(r"\left(a\right)") < 2.0);
+        assert!(math_width(r"\left(a\right)") < 2.5);
     }
 
     #[test]
@@ -858,8 +971,20 @@ mod tests {
         let c = coverage();
         let all: String = c.iter().map(|c| print::latex(&c.expr)).collect();
         for construct in [
-            r"\dot{", r"\ddot{", r"\dddot{", r"\ddddot{", "^{(5)}", r"\frac{", r"\left(",
-            r"\right)", r"\sin^{2}", r"\cos^{3}", r"\mathrm{", "I'", "_{xy}", r"\,",
+            r"\dot{",
+            r"\ddot{",
+            r"\dddot{",
+            r"\ddddot{",
+            "^{(5)}",
+            r"\frac{",
+            r"\left(",
+            r"\right)",
+            r"\sin^{2}",
+            r"\cos^{3}",
+            r"\mathrm{",
+            "I'",
+            "_{xy}",
+            r"\,",
         ] {
             assert!(all.contains(construct), "coverage lacks {construct}: {all}");
         }

@@ -6,5 +6,6 @@ pub mod derive;
 pub mod dynamics;
 pub mod inertia;
 pub mod list;
+pub mod notes;
 pub mod simulate;
 pub mod work_precision;
