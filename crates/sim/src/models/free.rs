@@ -221,3 +221,25 @@ impl System<7> for FreeBody {
         Some((z, flows))
     }
 }
+
+/// Euler's equations alone (§5, no torque): state `ω`, 3 components. The
+/// angular velocity of a torque-free body does not depend on the attitude,
+/// so this is the least system for ω(t); it is what the DOP853 cost target
+/// and the comparison with `ode_solvers` integrate.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EulerEquations {
+    /// Principal moments about G.
+    pub moments: [f64; 3],
+}
+
+impl System<3> for EulerEquations {
+    #[inline]
+    fn rhs(&self, _t: f64, w: &[f64; 3]) -> [f64; 3] {
+        let i = self.moments;
+        [
+            (i[1] - i[2]) * w[1] * w[2] / i[0],
+            (i[2] - i[0]) * w[2] * w[0] / i[1],
+            (i[0] - i[1]) * w[0] * w[1] / i[2],
+        ]
+    }
+}
