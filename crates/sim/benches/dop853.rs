@@ -139,7 +139,7 @@ fn bench(c: &mut Criterion) {
         pack(&q0, &w0),
         exact,
         3e-11,
-        |a, b| state_distance(a, b),
+        state_distance,
     );
 }
 
