@@ -54,7 +54,9 @@ pub fn run(args: WorkPrecisionArgs) -> anyhow::Result<ExitCode> {
         writeln!(f, "{}", r.csv())?;
     }
     run::write_chart(&rows, &stem, &format!("{} (T = {t_end})", scene.name))?;
-    println!(
+    // A closed stdout pipe is not an error: the files are written.
+    let _ = writeln!(
+        std::io::stdout(),
         "wrote {}, {}.svg, {}.png",
         csv.display(),
         stem.display(),
