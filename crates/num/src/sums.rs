@@ -138,65 +138,99 @@ pub struct MomentKernel {
 
 const LANES: usize = 4;
 
+/// Moment sums of one block: `[Σm, Σmx, Σmy, Σmz, Σmxx, Σmyy, Σmzz, Σmxy,
+/// Σmyz, Σmzx]` about `o`.
+///
+/// Independent lanes (one small array per quantity, so that they live in
+/// registers and the compiler can vectorise across lanes), no bounds checks
+/// inside (exact chunks), lanes reduced in a fixed order at the end. No
+/// fused multiply-add: each lane does the same IEEE operations whether the
+/// code runs as SSE2 or AVX2, so the result has the same bits on every
+/// x86-64 and with any number of threads.
+#[inline(always)]
+fn moments_block(o: [f64; 3], b: Block<'_>) -> [f64; 10] {
+    let [ox, oy, oz] = o;
+    let n = b.m.len();
+    let (xs, ys, zs, ms) = (&b.x[..n], &b.y[..n], &b.z[..n], &b.m[..n]);
+    let z = [0.0f64; LANES];
+    let (mut sm, mut sx, mut sy, mut sz) = (z, z, z, z);
+    let (mut sxx, mut syy, mut szz, mut sxy, mut syz, mut szx) = (z, z, z, z, z, z);
+    let chunks = xs
+        .chunks_exact(LANES)
+        .zip(ys.chunks_exact(LANES))
+        .zip(zs.chunks_exact(LANES))
+        .zip(ms.chunks_exact(LANES));
+    for (((x, y), zc), m) in chunks {
+        for l in 0..LANES {
+            let (x, y, z, m) = (x[l] - ox, y[l] - oy, zc[l] - oz, m[l]);
+            let (mx, my, mz) = (m * x, m * y, m * z);
+            sm[l] += m;
+            sx[l] += mx;
+            sy[l] += my;
+            sz[l] += mz;
+            sxx[l] += mx * x;
+            syy[l] += my * y;
+            szz[l] += mz * z;
+            sxy[l] += mx * y;
+            syz[l] += my * z;
+            szx[l] += mz * x;
+        }
+    }
+    for j in n - n % LANES..n {
+        let (x, y, z, m) = (xs[j] - ox, ys[j] - oy, zs[j] - oz, ms[j]);
+        let (mx, my, mz) = (m * x, m * y, m * z);
+        sm[0] += m;
+        sx[0] += mx;
+        sy[0] += my;
+        sz[0] += mz;
+        sxx[0] += mx * x;
+        syy[0] += my * y;
+        szz[0] += mz * z;
+        sxy[0] += mx * y;
+        syz[0] += my * z;
+        szx[0] += mz * x;
+    }
+    let r = |a: [f64; LANES]| (a[0] + a[1]) + (a[2] + a[3]);
+    [
+        r(sm),
+        r(sx),
+        r(sy),
+        r(sz),
+        r(sxx),
+        r(syy),
+        r(szz),
+        r(sxy),
+        r(syz),
+        r(szx),
+    ]
+}
+
+/// [`moments_block`] compiled for AVX2 (same operations, wider registers).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn moments_block_avx2(o: [f64; 3], b: Block<'_>) -> [f64; 10] {
+    moments_block(o, b)
+}
+
+fn moments_block_dispatch(o: [f64; 3], b: Block<'_>) -> [f64; 10] {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") {
+        // SAFETY: the CPU supports AVX2 (checked just above).
+        return unsafe { moments_block_avx2(o, b) };
+    }
+    moments_block(o, b)
+}
+
 impl Kernel for MomentKernel {
     type Acc = Moments;
 
     fn accumulate(&self, acc: &mut Moments, b: Block<'_>) {
-        let (ox, oy, oz) = (self.origin.x, self.origin.y, self.origin.z);
-        // Independent lanes so that the compiler can vectorise; reduced in
-        // a fixed order at the end of the block.
-        let mut s = [[0.0f64; LANES]; 10];
-        let n = b.m.len();
-        let body = n - n % LANES;
-        let mut i = 0;
-        while i < body {
-            #[allow(clippy::needless_range_loop)] // lanes, for vectorisation
-            for l in 0..LANES {
-                let m = b.m[i + l];
-                let x = b.x[i + l] - ox;
-                let y = b.y[i + l] - oy;
-                let z = b.z[i + l] - oz;
-                let (mx, my, mz) = (m * x, m * y, m * z);
-                s[0][l] += m;
-                s[1][l] += mx;
-                s[2][l] += my;
-                s[3][l] += mz;
-                s[4][l] += mx * x;
-                s[5][l] += my * y;
-                s[6][l] += mz * z;
-                s[7][l] += mx * y;
-                s[8][l] += my * z;
-                s[9][l] += mz * x;
-            }
-            i += LANES;
-        }
-        for j in body..n {
-            let m = b.m[j];
-            let x = b.x[j] - ox;
-            let y = b.y[j] - oy;
-            let z = b.z[j] - oz;
-            let (mx, my, mz) = (m * x, m * y, m * z);
-            let v = [
-                m,
-                mx,
-                my,
-                mz,
-                mx * x,
-                my * y,
-                mz * z,
-                mx * y,
-                my * z,
-                mz * x,
-            ];
-            for (k, v) in v.into_iter().enumerate() {
-                s[k][0] += v;
-            }
-        }
-        let r: [f64; 10] = std::array::from_fn(|k| (s[k][0] + s[k][1]) + (s[k][2] + s[k][3]));
+        let o = [self.origin.x, self.origin.y, self.origin.z];
+        let r = moments_block_dispatch(o, b);
         acc.mass += r[0];
         acc.first += Vector3::new(r[1], r[2], r[3]);
-        for k in 0..6 {
-            acc.second[k] += r[4 + k];
+        for (a, v) in acc.second.iter_mut().zip(&r[4..]) {
+            *a += v;
         }
     }
 
