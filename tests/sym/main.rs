@@ -8,6 +8,8 @@
 
 mod algebra;
 mod broken;
+mod chain;
 mod identities;
+mod notes;
 mod snapshots;
 mod strategies;

@@ -37,6 +37,33 @@ pub fn name_of(p: &Path) -> String {
         .map_or_else(String::new, |s| s.to_string_lossy().into_owned())
 }
 
+/// What a command-line argument names: a derivation file, or the generated
+/// scaling family `chain-K`.
+pub enum Target {
+    /// A file.
+    File(PathBuf),
+    /// `chain-K`.
+    Chain(usize),
+}
+
+/// Resolves a file or `chain-K` (see [`resolve`]).
+pub fn target(dir: &Path, arg: &str) -> anyhow::Result<Target> {
+    if let Some(k) = hdot_sym::chain::parse_name(arg)
+        && !dir.join(format!("{arg}.toml")).is_file()
+    {
+        return Ok(Target::Chain(k));
+    }
+    resolve(dir, arg).map(Target::File)
+}
+
+/// Loads what `arg` names.
+pub fn load(dir: &Path, arg: &str) -> anyhow::Result<Result<hdot_sym::derivation::Derivation, hdot_sym::derivation::Diagnostic>> {
+    Ok(match target(dir, arg)? {
+        Target::File(p) => hdot_sym::derivation::load(&p),
+        Target::Chain(k) => hdot_sym::chain::derivation(k),
+    })
+}
+
 /// Resolves `NAME` (a file in `dir`) or `PATH` (an existing file, or
 /// anything containing a path separator or ending in `.toml`).
 pub fn resolve(dir: &Path, arg: &str) -> anyhow::Result<PathBuf> {
@@ -56,8 +83,9 @@ pub fn resolve(dir: &Path, arg: &str) -> anyhow::Result<PathBuf> {
         .iter()
         .map(|p| name_of(p))
         .collect();
-    bail!(
-        "unknown derivation `{arg}`; known: {} (or give a path to a .toml file)",
-        names.join(", ")
+        bail!(
+        "unknown derivation `{arg}`; known: {}, chain-1 … chain-{} (or give a path to a .toml file)",
+        names.join(", "),
+        hdot_sym::chain::MAX_K
     )
 }

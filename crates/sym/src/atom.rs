@@ -67,7 +67,10 @@ fn intern(kind: AtomKind) -> Atom {
     if let Some(a) = w.ids.get(&kind) {
         return *a;
     }
-    let id = Atom(u32::try_from(w.kinds.len()).expect("more than 2^32 atoms"));
+    let n = w.kinds.len();
+    assert!(n < CHUNK * CHUNKS, "more than {} distinct atoms", CHUNK * CHUNKS);
+    let id = Atom(n as u32);
+    publish(n, kind);
     w.kinds.push(kind);
     w.ids.insert(kind, id);
     id
@@ -122,11 +125,25 @@ impl Atom {
     }
 }
 
+/// Atom kinds in chunks that never move once written, so that reading a
+/// kind takes two atomic loads and no lock: this is the hottest call of the
+/// polynomial loops. Capacity: `CHUNKS × CHUNK` atoms.
+const CHUNK: usize = 1024;
+const CHUNKS: usize = 4096;
+type Chunk = [OnceLock<AtomKind>; CHUNK];
+static KINDS: [OnceLock<Box<Chunk>>; CHUNKS] = [const { OnceLock::new() }; CHUNKS];
+
+fn publish(id: usize, kind: AtomKind) {
+    let chunk = KINDS[id / CHUNK].get_or_init(|| Box::new([const { OnceLock::new() }; CHUNK]));
+    let _ = chunk[id % CHUNK].set(kind);
+}
+
 /// # Queries
 impl Atom {
     /// What this atom is.
     pub fn kind(self) -> AtomKind {
-        interner().read().expect("atom interner poisoned").kinds[self.0 as usize]
+        let i = self.0 as usize;
+        *KINDS[i / CHUNK].get().and_then(|c| c[i % CHUNK].get()).expect("atoms are published before their id escapes")
     }
 
     /// The symbol's name (for `sin`/`cos`, the angle's name).

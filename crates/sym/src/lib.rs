@@ -33,6 +33,7 @@
 //!   shape of expressions (parser input, printer output).
 
 pub mod atom;
+pub mod chain;
 pub mod derivation;
 pub mod diff;
 pub mod expr;

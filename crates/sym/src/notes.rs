@@ -505,6 +505,7 @@ const LATEX_PREAMBLE: &str = r"\documentclass[11pt,a4paper]{article}
 \usepackage[margin=2.2cm]{geometry}
 \usepackage[hidelinks]{hyperref}
 \allowdisplaybreaks
+\tracinglostchars=2
 \setlength{\parindent}{0pt}
 \setlength{\parskip}{0.5\baselineskip}
 \newcommand{\hdotstep}[1]{\par\medskip\noindent\textbf{#1}\quad}

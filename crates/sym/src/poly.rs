@@ -148,7 +148,9 @@ impl Monomial {
     /// Factors sorted by [`Atom::sort_key`], for printing.
     pub fn sorted_for_print(&self) -> Vec<(Atom, Exp)> {
         let mut v = self.0.to_vec();
-        v.sort_by_key(|f| f.0.sort_key());
+        if v.len() > 1 {
+            v.sort_by_cached_key(|f| f.0.sort_key());
+        }
         v
     }
 }
@@ -179,11 +181,9 @@ impl Accum {
         if c.is_zero() {
             return;
         }
-        // Find a sin atom with exponent >= 2 and rewrite sin^2 = 1 - cos^2.
-        if let Some(&(s, _)) =
-            m.0.iter()
-                .find(|f| f.1 >= 2 && matches!(f.0.kind(), AtomKind::Sin(_)))
-        {
+                // Find a sin atom with exponent >= 2 and rewrite sin^2 = 1 - cos^2
+        // (the exponent test comes first: it is cheaper than the kind).
+        if let Some(&(s, _)) = m.0.iter().find(|f| f.1 >= 2 && matches!(f.0.kind(), AtomKind::Sin(_))) {
             let AtomKind::Sin(angle) = s.kind() else {
                 unreachable!()
             };
@@ -448,6 +448,24 @@ impl std::ops::Mul for &Poly {
         if self.is_zero() || rhs.is_zero() {
             return Poly::zero();
         }
+        if let Some(c) = rhs.as_constant() {
+            return self.scale(&c);
+        }
+        if let Some(c) = self.as_constant() {
+            return rhs.scale(&c);
+        }
+        // One side a single term free of sin: no two products can coincide
+        // and none needs the sin² rewrite, so no hashing is needed.
+        for (one, many) in [(rhs, self), (self, rhs)] {
+            if let [(m, c)] = one.terms.as_slice()
+                && !m.factors().iter().any(|f| matches!(f.0.kind(), AtomKind::Sin(_)))
+            {
+                let mut terms: Vec<(Monomial, Rational)> =
+                    many.terms.iter().map(|(m2, c2)| (m2.mul(m), c2 * c)).collect();
+                terms.sort_unstable_by(|a, b| a.0.cmp(&b.0));
+                return Poly { terms };
+            }
+        }
         let mut acc = Accum::with_capacity(self.len() * rhs.len());
         for (m1, c1) in &self.terms {
             for (m2, c2) in &rhs.terms {
@@ -475,9 +493,16 @@ impl std::ops::Neg for Poly {
     }
 }
 
+/// Sums many polynomials in one pass (pairwise merging would be quadratic).
 impl std::iter::Sum for Poly {
     fn sum<I: Iterator<Item = Poly>>(iter: I) -> Poly {
-        iter.fold(Poly::zero(), |a, b| &a + &b)
+        let mut acc = Accum::default();
+        for p in iter {
+            for (m, c) in p.terms {
+                acc.push(m, c);
+            }
+        }
+        acc.finish()
     }
 }
 

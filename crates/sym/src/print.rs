@@ -55,9 +55,41 @@ pub fn print(e: &Expr, style: &dyn Style) -> String {
     if e.is_empty() {
         return style.num(&Rational::ZERO);
     }
+    let cached = Cached { inner: style, atoms: Default::default() };
     let mut out = String::new();
-    write(e, e.root(), style, &mut out);
+    write(e, e.root(), &cached, &mut out);
     out
+}
+
+/// Remembers how each atom was written: a long result names the same few
+/// atoms thousands of times.
+struct Cached<'a> {
+    inner: &'a dyn Style,
+    atoms: std::cell::RefCell<rustc_hash::FxHashMap<Atom, String>>,
+}
+
+impl Style for Cached<'_> {
+    fn atom(&self, a: Atom) -> String {
+        self.atoms.borrow_mut().entry(a).or_insert_with(|| self.inner.atom(a)).clone()
+    }
+    fn num(&self, r: &Rational) -> String {
+        self.inner.num(r)
+    }
+    fn mul_sep(&self, left: &Node, right: &Node) -> &'static str {
+        self.inner.mul_sep(left, right)
+    }
+    fn pow(&self, base: &str, base_node: &Node, exp: u32) -> String {
+        self.inner.pow(base, base_node, exp)
+    }
+    fn fraction(&self, num: &str, dens: &[String]) -> String {
+        self.inner.fraction(num, dens)
+    }
+    fn minus(&self) -> &'static str {
+        self.inner.minus()
+    }
+    fn parens(&self) -> (&'static str, &'static str) {
+        self.inner.parens()
+    }
 }
 
 fn paren(e: &Expr, id: Id, style: &dyn Style, out: &mut String) {
@@ -225,8 +257,11 @@ fn primed_base(base: &str) -> Option<char> {
     }
 }
 
-/// The LaTeX of a base name (no derivative marks).
+/// The LaTeX of a base name (no derivative marks); `xbar` is x̄.
 fn latex_base(base: &str) -> String {
+    if let Some(inner) = base.strip_suffix("bar").filter(|b| !b.is_empty()) {
+        return format!(r"\bar{{{}}}", latex_base(inner));
+    }
     if let Some(g) = GREEK.iter().find(|g| g.0 == base) {
         return g.1.to_owned();
     }
@@ -241,6 +276,9 @@ fn latex_base(base: &str) -> String {
 }
 
 fn unicode_base(base: &str) -> String {
+    if let Some(inner) = base.strip_suffix("bar").filter(|b| !b.is_empty()) {
+        return format!("{}\u{304}", unicode_base(inner));
+    }
     if let Some(g) = GREEK.iter().find(|g| g.0 == base) {
         return g.2.to_owned();
     }

@@ -877,7 +877,7 @@ fn json(d: &Derivation) -> serde_json::Value {
                 Value::Matrix(_) => json!({"kind": "matrix"}),
             };
             let comps: Vec<serde_json::Value> = s
-                .components
+                .presented()
                 .iter()
                 .enumerate()
                 .map(|(k, (c, e))| {
@@ -888,13 +888,14 @@ fn json(d: &Derivation) -> serde_json::Value {
                             "difference": ch.difference.to_source(),
                         })
                     });
+                    let canonical = e.to_poly();
                     json!({
                         "component": c,
                         "text": print::print(e, &Unicode),
                         "latex": print::print(e, &Latex),
                         "source": e.to_string(),
-                        "canonical": e.to_poly().to_source(),
-                        "terms": e.to_poly().len(),
+                        "canonical": canonical.to_source(),
+                        "terms": canonical.len(),
                         "check": check,
                     })
                 })

@@ -30,7 +30,7 @@ pub enum FormatArg {
 /// stderr), 2 when the file cannot be read or has an error.
 #[derive(Debug, Args)]
 pub struct DeriveArgs {
-    /// A bundled derivation's name (see `hdot list`) or a path to a .toml file.
+    /// A bundled derivation's name (see `hdot list`), `chain-K` (K = 1…8), or a path to a .toml file.
     #[arg(value_name = "NAME|PATH")]
     target: String,
     /// Output format.
@@ -46,8 +46,7 @@ pub struct DeriveArgs {
 
 pub fn run(args: DeriveArgs) -> anyhow::Result<ExitCode> {
     let dir = catalog::derivations_dir(args.dir.as_deref());
-    let path = catalog::resolve(&dir, &args.target)?;
-    let d = match hdot_sym::derivation::load(&path) {
+    let d = match catalog::load(&dir, &args.target)? {
         Ok(d) => d,
         Err(diag) => {
             eprintln!("{diag}");

@@ -353,6 +353,33 @@ impl<'a> Context<'a> {
         (i, r)
     }
 
+    /// When one frame is an ancestor of the other, turns `v` one rotation
+    /// at a time (vector products only, no matrix products).
+    fn along_chain(&self, mut v: Vec3, from: usize, to: usize) -> Option<Vec3> {
+        let rot = |i: usize| &self.frames[i].parent.as_ref().expect("not a root").1;
+        let ancestors = |mut i: usize| {
+            let mut v = vec![i];
+            while let Some((p, _)) = &self.frames[i].parent {
+                i = self.frame_index(p).expect("parent exists");
+                v.push(i);
+            }
+            v
+        };
+        let up = ancestors(from);
+        if let Some(pos) = up.iter().position(|&i| i == to) {
+            for &i in &up[..pos] {
+                v = rot(i).mul_vec(&v);
+            }
+            return Some(v);
+        }
+        let down = ancestors(to);
+        let pos = down.iter().position(|&i| i == from)?;
+        for &i in down[..pos].iter().rev() {
+            v = rot(i).transpose().mul_vec(&v);
+        }
+        Some(v)
+    }
+
     pub fn eval_step(&self, s: &RawStep) -> R<Value> {
         let base = self.content_start(&s.value);
         let ast = self.parse_at(s.value.get_ref(), base)?;
@@ -634,6 +661,9 @@ impl<'a> Context<'a> {
                 let (v, from) = self.vector(&args[0], base)?;
                 let to = self.frame_arg(&args[1], base)?;
                 let from_i = self.frame_index(&from).expect("frame");
+                if let Some(v) = self.along_chain(v.clone(), from_i, to) {
+                    return Ok(Value::Vector(v, self.frames[to].name.clone()));
+                }
                 let (ra, ma) = self.to_root(from_i);
                 let (rb, mb) = self.to_root(to);
                 if ra != rb {

@@ -101,10 +101,31 @@ pub struct Step {
     pub value: Value,
     /// How to present it.
     pub presentation: Presentation,
-    /// The presented components: (component label, textbook-form tree).
+    /// Names of the axes its components refer to.
+    pub axes: [String; 3],
+    /// The presented components: (component label, textbook-form tree);
+    /// empty for hidden steps (see [`Step::presented`]).
     pub components: Vec<(String, Expr)>,
     /// Expectation checks, one per component, when the file states one.
     pub checks: Vec<Check>,
+}
+
+impl Step {
+    /// The presented components, computed now for a hidden step.
+    pub fn presented(&self) -> Vec<(String, Expr)> {
+        if !self.components.is_empty() {
+            return self.components.clone();
+        }
+        let xyz = &self.axes;
+        match &self.value {
+            Value::Scalar(p) => vec![(String::new(), present(p, &self.presentation))],
+            Value::Vector(v, _) => (0..3).map(|k| (xyz[k].to_owned(), present(&v.0[k], &self.presentation))).collect(),
+            Value::Matrix(m) => (0..3)
+                .flat_map(|i| (0..3).map(move |j| (i, j)))
+                .map(|(i, j)| (format!("{}{}", xyz[i], xyz[j]), present(&m.0[i][j], &self.presentation)))
+                .collect(),
+        }
+    }
 }
 
 /// The outcome of comparing one component with its expectation.
@@ -235,7 +256,10 @@ pub fn load_str(path: &str, text: &str) -> Result<Derivation, Diagnostic> {
         let value = cx.eval_step(s)?;
         let presentation = cx.presentation(s, &abbreviations)?;
         let axes = cx.axes_of(&value);
+        // Only shown steps are presented (hidden ones are printed nowhere
+        // but JSON, which presents them on demand).
         let components: Vec<(String, Expr)> = match &value {
+            _ if !s.show => Vec::new(),
             Value::Scalar(p) => vec![(String::new(), present(p, &presentation))],
             Value::Vector(v, _) => (0..3)
                 .map(|k| (axes[k].clone(), present(&v.0[k], &presentation)))
@@ -260,6 +284,7 @@ pub fn load_str(path: &str, text: &str) -> Result<Derivation, Diagnostic> {
             show: s.show,
             value,
             presentation,
+            axes,
             components,
             checks,
         });
