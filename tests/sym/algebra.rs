@@ -22,7 +22,7 @@ fn poly_scale(p: &Poly, v: &mut dyn FnMut(Atom) -> f64) -> f64 {
             c.to_f64().abs()
                 * m.factors()
                     .iter()
-                    .map(|&(a, e)| v(a).abs().powi(e as i32))
+                    .map(|&(a, e)| v(a).abs().powi(e))
                     .product::<f64>()
         })
         .sum()

@@ -57,7 +57,10 @@ pub fn target(dir: &Path, arg: &str) -> anyhow::Result<Target> {
 }
 
 /// Loads what `arg` names.
-pub fn load(dir: &Path, arg: &str) -> anyhow::Result<Result<hdot_sym::derivation::Derivation, hdot_sym::derivation::Diagnostic>> {
+pub fn load(
+    dir: &Path,
+    arg: &str,
+) -> anyhow::Result<Result<hdot_sym::derivation::Derivation, hdot_sym::derivation::Diagnostic>> {
     Ok(match target(dir, arg)? {
         Target::File(p) => hdot_sym::derivation::load(&p),
         Target::Chain(k) => hdot_sym::chain::derivation(k),
@@ -83,7 +86,7 @@ pub fn resolve(dir: &Path, arg: &str) -> anyhow::Result<PathBuf> {
         .iter()
         .map(|p| name_of(p))
         .collect();
-        bail!(
+    bail!(
         "unknown derivation `{arg}`; known: {}, chain-1 … chain-{} (or give a path to a .toml file)",
         names.join(", "),
         hdot_sym::chain::MAX_K

@@ -33,8 +33,8 @@ pub fn run(args: CheckArgs) -> anyhow::Result<ExitCode> {
             .collect::<anyhow::Result<_>>()?
     };
     println!(
-        "{:<30} {:>7} {:>10}  {}",
-        "derivation", "checks", "time", "result"
+        "{:<30} {:>7} {:>10}  result",
+        "derivation", "checks", "time"
     );
     let (mut failed, mut broken) = (0, 0);
     for p in &paths {

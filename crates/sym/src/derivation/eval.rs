@@ -150,12 +150,24 @@ impl<'a> Context<'a> {
         let ast = self.parse_at(s.get_ref(), base)?;
         let atom = match &ast.kind {
             AstKind::Name { name, primes: 0 } => self.symbols.atom(name, 0, ast.span),
-            AstKind::Call { func, args } if func == "sin" || func == "cos" => self.symbols.trig(func, args, ast.span),
-            _ => return Err(self.at(base, ast.span, "list constant symbols or sin/cos of a constant angle")),
+            AstKind::Call { func, args } if func == "sin" || func == "cos" => {
+                self.symbols.trig(func, args, ast.span)
+            }
+            _ => {
+                return Err(self.at(
+                    base,
+                    ast.span,
+                    "list constant symbols or sin/cos of a constant angle",
+                ));
+            }
         }
         .map_err(|e| self.at(base, e.span, e.message))?;
         if atom.is_time_dependent() {
-            return Err(self.at(base, ast.span, "only constants (or sin/cos of a constant angle) can be declared positive"));
+            return Err(self.at(
+                base,
+                ast.span,
+                "only constants (or sin/cos of a constant angle) can be declared positive",
+            ));
         }
         self.positive.push(atom);
         Ok(())
@@ -544,7 +556,10 @@ impl<'a> Context<'a> {
                     let fr = &self.frames[self.frame_index(&f).expect("frame")];
                     match fr.axes.iter().position(|a| a == comp) {
                         Some(k) => Ok(Value::Scalar(v.0[k].clone())),
-                        None => err(*sp, format!("frame {f} has axes {}, not `{comp}`", fr.axes.join(", "))),
+                        None => err(
+                            *sp,
+                            format!("frame {f} has axes {}, not `{comp}`", fr.axes.join(", ")),
+                        ),
                     }
                 }
                 Value::Matrix(m) => {
@@ -553,7 +568,12 @@ impl<'a> Context<'a> {
                     let (i, j) = (comp.get(0..1).and_then(pos), comp.get(1..2).and_then(pos));
                     match (i, j, comp.len()) {
                         (Some(i), Some(j), 2) => Ok(Value::Scalar(m.0[i][j].clone())),
-                        _ => err(*sp, format!("a matrix element is named by two axes such as `xy`, not `{comp}`")),
+                        _ => err(
+                            *sp,
+                            format!(
+                                "a matrix element is named by two axes such as `xy`, not `{comp}`"
+                            ),
+                        ),
                     }
                 }
                 s => err(*sp, format!("{} has no components", s.describe())),
@@ -694,7 +714,9 @@ impl<'a> Context<'a> {
                 self.arity(func, args, 2, base, span)?;
                 let (v, _) = self.vector(&args[0], base)?;
                 let vars = self.symbol_list(&args[1], base)?;
-                Ok(Value::Matrix(Mat3(std::array::from_fn(|i| std::array::from_fn(|j| coefficient(&v.0[i], vars[j]))))))
+                Ok(Value::Matrix(Mat3(std::array::from_fn(|i| {
+                    std::array::from_fn(|j| coefficient(&v.0[i], vars[j]))
+                }))))
             }
             "sign" => {
                 self.arity(func, args, 1, base, span)?;
@@ -722,9 +744,10 @@ impl<'a> Context<'a> {
     /// A symbol (with primes) as an argument.
     fn symbol_arg(&self, a: &Ast, base: usize) -> R<Atom> {
         match &a.kind {
-            AstKind::Name { name, primes } => {
-                self.symbols.atom(name, *primes, a.span).map_err(|e| self.at(base, e.span, e.message))
-            }
+            AstKind::Name { name, primes } => self
+                .symbols
+                .atom(name, *primes, a.span)
+                .map_err(|e| self.at(base, e.span, e.message)),
             _ => Err(self.at(base, a.span, "expected a symbol such as omega_x or theta''")),
         }
     }
@@ -737,7 +760,11 @@ impl<'a> Context<'a> {
                 self.symbol_arg(&items[1], base)?,
                 self.symbol_arg(&items[2], base)?,
             ]),
-            _ => Err(self.at(base, a.span, "expected three symbols in brackets, such as [omega_x, omega_y, omega_z]")),
+            _ => Err(self.at(
+                base,
+                a.span,
+                "expected three symbols in brackets, such as [omega_x, omega_y, omega_z]",
+            )),
         }
     }
 
@@ -755,21 +782,33 @@ impl<'a> Context<'a> {
                 return Err(self.at(
                     base,
                     a.span,
-                    format!("`{}` is not declared small; list it under [symbols] small = [...]", s.name()),
+                    format!(
+                        "`{}` is not declared small; list it under [symbols] small = [...]",
+                        s.name()
+                    ),
                 ));
             }
             small.push(s);
         }
         if rest.is_empty() {
             if self.small.is_empty() {
-                return Err(self.at(base, span, "no symbol is declared small: add [symbols] small = [...]"));
+                return Err(self.at(
+                    base,
+                    span,
+                    "no symbol is declared small: add [symbols] small = [...]",
+                ));
             }
             small = self.small.clone();
         }
         let v = self.eval(first, base)?;
         Ok(v.map(&mut |p| {
             Poly::from_terms(p.terms().iter().filter_map(|(m, c)| {
-                let order: i32 = m.factors().iter().filter(|(a, _)| small.contains(&a.base())).map(|f| f.1).sum();
+                let order: i32 = m
+                    .factors()
+                    .iter()
+                    .filter(|(a, _)| small.contains(&a.base()))
+                    .map(|f| f.1)
+                    .sum();
                 (order <= 1).then(|| (m.clone(), c.clone()))
             }))
         }))
@@ -783,13 +822,15 @@ impl<'a> Context<'a> {
         match self.eval(&args[0], base)? {
             Value::Scalar(p) => {
                 let x = self.symbol_arg(&args[1], base)?;
-                solve_linear(&p, x).map(Value::Scalar).map_err(|m| self.at(base, args[1].span, m))
+                solve_linear(&p, x)
+                    .map(Value::Scalar)
+                    .map_err(|m| self.at(base, args[1].span, m))
             }
             Value::Vector(v, f) => {
                 let xs = self.symbol_list(&args[1], base)?;
                 let mut out = Vec::new();
-                for k in 0..3 {
-                    out.push(solve_linear(&v.0[k], xs[k]).map_err(|m| self.at(base, args[1].span, m))?);
+                for (c, x) in v.0.iter().zip(xs) {
+                    out.push(solve_linear(c, x).map_err(|m| self.at(base, args[1].span, m))?);
                 }
                 Ok(Value::Vector(Vec3(out.try_into().expect("three")), f))
             }
@@ -1027,7 +1068,8 @@ impl<'a> Context<'a> {
                         v.describe(),
                         match v {
                             Value::Scalar(_) => "one string",
-                            Value::Vector(..) => "an array of three strings or one vector expression",
+                            Value::Vector(..) =>
+                                "an array of three strings or one vector expression",
                             Value::Matrix(_) => "omitted (check components in scalar steps)",
                         }
                     ),
@@ -1060,14 +1102,22 @@ impl<'a> Context<'a> {
 
 /// The coefficient of `a` (to the first power) in `p`.
 fn coefficient(p: &Poly, a: Atom) -> Poly {
-    Poly::from_terms(p.terms().iter().filter(|(m, _)| m.exponent(a) == 1).map(|(m, c)| (m.without(a, 1), c.clone())))
+    Poly::from_terms(
+        p.terms()
+            .iter()
+            .filter(|(m, _)| m.exponent(a) == 1)
+            .map(|(m, c)| (m.without(a, 1), c.clone())),
+    )
 }
 
 /// Solves `p = 0` for `x`, where `p = a x + b` with `a` free of `x`. A
 /// factor common to every term (such as sin θ) is divided out first, which
 /// assumes it is not zero.
 fn solve_linear(p: &Poly, x: Atom) -> Result<Poly, String> {
-    if p.terms().iter().any(|(m, _)| m.exponent(x) > 1 || m.exponent(x) < 0) {
+    if p.terms()
+        .iter()
+        .any(|(m, _)| m.exponent(x) > 1 || m.exponent(x) < 0)
+    {
         return Err(format!("`{x}` does not appear linearly in {p}"));
     }
     let a = coefficient(p, x);
@@ -1075,11 +1125,18 @@ fn solve_linear(p: &Poly, x: Atom) -> Result<Poly, String> {
         return Err(format!("`{x}` does not appear in {p}"));
     }
     let b = p - &(&a * &Poly::atom(x));
-    let common = p.terms().iter().skip(1).fold(p.terms()[0].0.clone(), |g, t| g.gcd(&t.0));
+    let common = p
+        .terms()
+        .iter()
+        .skip(1)
+        .fold(p.terms()[0].0.clone(), |g, t| g.gcd(&t.0));
     let (a, b) = if common.is_one() || common.exponent(x) > 0 {
         (a, b)
     } else {
-        let scale = Poly::term(crate::poly::Monomial::one().div(&common), crate::rational::Rational::ONE);
+        let scale = Poly::term(
+            crate::poly::Monomial::one().div(&common),
+            crate::rational::Rational::ONE,
+        );
         (&a * &scale, &b * &scale)
     };
     match a.inverse_monomial() {
@@ -1100,7 +1157,11 @@ fn sign_of(p: &Poly, positive: &[Atom]) -> Option<i64> {
     }
     let mut sign = None;
     for (m, c) in p.terms() {
-        if !m.factors().iter().all(|(a, e)| positive.contains(a) || e % 2 == 0) {
+        if !m
+            .factors()
+            .iter()
+            .all(|(a, e)| positive.contains(a) || e % 2 == 0)
+        {
             return None;
         }
         let s = if c.is_negative() { -1 } else { 1 };
