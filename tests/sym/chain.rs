@@ -6,7 +6,9 @@ use hdot_sym::{Poly, Symbols, chain};
 fn hdot(k: usize) -> [Poly; 3] {
     let d = chain::derivation(k).unwrap_or_else(|e| panic!("{e}"));
     let s = d.steps.iter().find(|s| s.name == "Hdot").unwrap();
-    let Value::Vector(v, f) = &s.value else { panic!("Ḣ is a vector") };
+    let Value::Vector(v, f) = &s.value else {
+        panic!("Ḣ is a vector")
+    };
     assert_eq!(f, "N");
     v.0.clone()
 }
@@ -15,9 +17,15 @@ fn hdot(k: usize) -> [Poly; 3] {
 /// (reference §6, in body axes) turned by q_1 into N.
 #[test]
 fn chain_1_is_the_fixed_axis_result_turned_into_n() {
-    let s = Symbols::parse_decl(&["I_1x", "I_1y", "I_1z", "I_1xy", "I_1yz", "I_1zx"], &["q_1"]);
+    let s = Symbols::parse_decl(
+        &["I_1x", "I_1y", "I_1z", "I_1xy", "I_1yz", "I_1zx"],
+        &["q_1"],
+    );
     let p = |t: &str| s.poly(t).unwrap();
-    let (mx, my) = (p("-I_1zx*q_1'' + I_1yz*q_1'^2"), p("-I_1yz*q_1'' - I_1zx*q_1'^2"));
+    let (mx, my) = (
+        p("-I_1zx*q_1'' + I_1yz*q_1'^2"),
+        p("-I_1yz*q_1'' - I_1zx*q_1'^2"),
+    );
     let (c, sn) = (p("cos(q_1)"), p("sin(q_1)"));
     let [hx, hy, hz] = hdot(1);
     assert_eq!(hx, &(&c * &mx) - &(&sn * &my));
@@ -31,7 +39,11 @@ fn the_family_grows_with_k_and_every_component_is_canonical() {
     for k in 1..=3 {
         let h = hdot(k);
         let terms: usize = h.iter().map(Poly::len).sum();
-        assert!(terms > last, "chain-{k}: {terms} terms, not more than chain-{}", k - 1);
+        assert!(
+            terms > last,
+            "chain-{k}: {terms} terms, not more than chain-{}",
+            k - 1
+        );
         last = terms;
         for c in &h {
             assert_eq!(hdot_sym::Expr::from_poly(c).to_poly(), *c);

@@ -68,7 +68,11 @@ fn intern(kind: AtomKind) -> Atom {
         return *a;
     }
     let n = w.kinds.len();
-    assert!(n < CHUNK * CHUNKS, "more than {} distinct atoms", CHUNK * CHUNKS);
+    assert!(
+        n < CHUNK * CHUNKS,
+        "more than {} distinct atoms",
+        CHUNK * CHUNKS
+    );
     let id = Atom(n as u32);
     publish(n, kind);
     w.kinds.push(kind);
@@ -143,7 +147,10 @@ impl Atom {
     /// What this atom is.
     pub fn kind(self) -> AtomKind {
         let i = self.0 as usize;
-        *KINDS[i / CHUNK].get().and_then(|c| c[i % CHUNK].get()).expect("atoms are published before their id escapes")
+        *KINDS[i / CHUNK]
+            .get()
+            .and_then(|c| c[i % CHUNK].get())
+            .expect("atoms are published before their id escapes")
     }
 
     /// The symbol's name (for `sin`/`cos`, the angle's name).

@@ -365,7 +365,8 @@ fn equation_lines(lhs: &str, rhs: &str) -> Vec<String> {
             let mut line = std::mem::take(&mut current);
             if inside {
                 line.push_str(r" \right.");
-                current.push_str(r"\left. ");
+                // `{}` keeps the sign that follows binary.
+                current.push_str(r"\left. {} ");
             }
             lines.push(line);
         }
@@ -382,7 +383,12 @@ fn equation_lines(lhs: &str, rhs: &str) -> Vec<String> {
             if k == 0 {
                 format!("{lhs} &= {l}")
             } else {
-                format!(r"&\quad {l}")
+                let sign = if l.starts_with("+ ") || l.starts_with("- ") {
+                    "{} "
+                } else {
+                    ""
+                };
+                format!(r"&\quad {sign}{l}")
             }
         })
         .collect()
@@ -948,7 +954,7 @@ mod tests {
         let lines = equation_lines("H_x", &vec!["I_x \\omega_x"; 20].join(" + "));
         assert!(lines.len() > 1);
         assert!(lines[0].starts_with("H_x &= "));
-        assert!(lines[1].starts_with(r"&\quad + "));
+        assert!(lines[1].starts_with(r"&\quad {} + "));
         let long = format!(
             r"\frac{{1}}{{2}} \left({}\right)",
             vec!["m v_x^{2}"; 30].join(" + ")
@@ -957,7 +963,7 @@ mod tests {
         assert!(lines.len() > 1);
         assert!(lines[0].starts_with(r"T &= \frac{1}{2} \left(m v_x^{2} + "));
         assert!(lines[0].ends_with(r"\right."));
-        assert!(lines[1].starts_with(r"&\quad \left. + m v_x^{2}"));
+        assert!(lines[1].starts_with(r"&\quad \left. {} + m v_x^{2}"));
         assert!(lines.last().unwrap().ends_with(r"m v_x^{2}\right)"));
     }
 

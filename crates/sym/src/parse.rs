@@ -399,7 +399,12 @@ impl Parser {
             let (t, s) = self.bump();
             let name = match t {
                 Tok::Ident(name) | Tok::Int(name) => name,
-                _ => return err(s, "expected a component name after `.` (such as x, y, z or 1, 2, 3)"),
+                _ => {
+                    return err(
+                        s,
+                        "expected a component name after `.` (such as x, y, z or 1, 2, 3)",
+                    );
+                }
             };
             let span = e.span.to(s);
             e = Ast {

@@ -181,9 +181,12 @@ impl Accum {
         if c.is_zero() {
             return;
         }
-                // Find a sin atom with exponent >= 2 and rewrite sin^2 = 1 - cos^2
+        // Find a sin atom with exponent >= 2 and rewrite sin^2 = 1 - cos^2
         // (the exponent test comes first: it is cheaper than the kind).
-        if let Some(&(s, _)) = m.0.iter().find(|f| f.1 >= 2 && matches!(f.0.kind(), AtomKind::Sin(_))) {
+        if let Some(&(s, _)) =
+            m.0.iter()
+                .find(|f| f.1 >= 2 && matches!(f.0.kind(), AtomKind::Sin(_)))
+        {
             let AtomKind::Sin(angle) = s.kind() else {
                 unreachable!()
             };
@@ -458,10 +461,16 @@ impl std::ops::Mul for &Poly {
         // and none needs the sin² rewrite, so no hashing is needed.
         for (one, many) in [(rhs, self), (self, rhs)] {
             if let [(m, c)] = one.terms.as_slice()
-                && !m.factors().iter().any(|f| matches!(f.0.kind(), AtomKind::Sin(_)))
+                && !m
+                    .factors()
+                    .iter()
+                    .any(|f| matches!(f.0.kind(), AtomKind::Sin(_)))
             {
-                let mut terms: Vec<(Monomial, Rational)> =
-                    many.terms.iter().map(|(m2, c2)| (m2.mul(m), c2 * c)).collect();
+                let mut terms: Vec<(Monomial, Rational)> = many
+                    .terms
+                    .iter()
+                    .map(|(m2, c2)| (m2.mul(m), c2 * c))
+                    .collect();
                 terms.sort_unstable_by(|a, b| a.0.cmp(&b.0));
                 return Poly { terms };
             }

@@ -23,7 +23,7 @@
 //! let p = s.poly("I_x*omega_x' - I_y*omega_y*omega_z + I_z*omega_z*omega_y").unwrap();
 //! let keys = ["omega_x", "omega_y", "omega_z"].iter()
 //!     .flat_map(|n| [Atom::time(n, 1), Atom::time(n, 0)]).collect();
-//! let e = present(&p, &Presentation { collect: keys, fold: vec![] });
+//! let e = present(&p, &Presentation { collect: keys, ..Default::default() });
 //! assert_eq!(print::unicode(&e), "I_x ω̇_x − (I_y − I_z) ω_y ω_z");
 //! assert_eq!(e.to_poly(), p);
 //! ```
@@ -43,6 +43,9 @@ pub struct Presentation {
     pub collect: Vec<Atom>,
     /// Abbreviations to fold back in: the abbreviation's atom and its definition.
     pub fold: Vec<(Atom, Poly)>,
+    /// Known factors, such as `A − B` and `A − C`: a bracket that equals their
+    /// product (or one of them) times a monomial is printed as that product.
+    pub factors: Vec<Poly>,
 }
 
 /// Folds the abbreviation `name := def` into `p`. Returns `p` unchanged when
@@ -118,7 +121,7 @@ pub fn present(p: &Poly, pres: &Presentation) -> Expr {
     let mut e = Expr::new();
     let ids: Vec<Id> = groups
         .iter()
-        .map(|(k, q)| group_node(&mut e, k, q))
+        .map(|(k, q)| group_node(&mut e, k, q, &pres.factors))
         .collect();
     e.add(ids);
     e
@@ -134,7 +137,7 @@ fn term_order(a: &[(Atom, i32)], b: &[(Atom, i32)]) -> Ordering {
 type PrintTerm = (Vec<(Atom, i32)>, Monomial, Rational);
 
 /// `key · q` with q factored.
-fn group_node(e: &mut Expr, key: &Monomial, q: &Poly) -> Id {
+fn group_node(e: &mut Expr, key: &Monomial, q: &Poly, known: &[Poly]) -> Id {
     let mut terms: Vec<PrintTerm> = q
         .terms()
         .iter()
@@ -155,9 +158,22 @@ fn group_node(e: &mut Expr, key: &Monomial, q: &Poly) -> Id {
 
     let mut outer = key.mul(&common);
     let mut number = content.abs();
-    let bracket = if terms.len() == 1 {
-        outer = outer.mul(&terms[0].1.div(&common));
+    let mut negative = content.is_negative();
+    let rest = || Poly::from_terms(terms.iter().map(|(_, m, c)| (m.div(&common), c * &inv)));
+    let factored = if terms.len() > 1 {
+        factor_by(&rest(), known)
+    } else {
         None
+    };
+    let bracket: Vec<Id> = if terms.len() == 1 {
+        outer = outer.mul(&terms[0].1.div(&common));
+        Vec::new()
+    } else if let Some((fs, m, c)) = factored {
+        // rest = c · m · Π fs
+        outer = outer.mul(&m);
+        number = &number * &c.abs();
+        negative ^= c.is_negative();
+        fs.iter().map(|f| e.poly_node(f)).collect()
     } else {
         let ids: Vec<Id> = terms
             .iter()
@@ -167,16 +183,15 @@ fn group_node(e: &mut Expr, key: &Monomial, q: &Poly) -> Id {
                 e.term_node(&m.sorted_for_print(), &c)
             })
             .collect();
-        Some(e.add(ids))
+        vec![e.add(ids)]
     };
     if terms.len() == 1 {
         number = terms[0].2.abs();
     }
-    let negative = content.is_negative();
 
     let factors = outer.sorted_for_print();
     let mut ids = Vec::new();
-    if !number.is_one() || (factors.is_empty() && bracket.is_none()) {
+    if !number.is_one() || (factors.is_empty() && bracket.is_empty()) {
         ids.push(e.push(Node::Num(number)));
     }
     // Constant symbols lead; sin/cos (even of a constant angle) follow the rates.
@@ -184,12 +199,37 @@ fn group_node(e: &mut Expr, key: &Monomial, q: &Poly) -> Id {
     for &(a, x) in factors.iter().filter(|f| leading(f.0)) {
         ids.push(e.atom_pow(a, x));
     }
-    if let Some(b) = bracket {
-        ids.push(b);
-    }
+    ids.extend(bracket);
     for &(a, x) in factors.iter().filter(|f| !leading(f.0)) {
         ids.push(e.atom_pow(a, x));
     }
     let m = e.mul(ids);
     if negative { e.push(Node::Neg(m)) } else { m }
+}
+
+/// Writes `p` as `c · m · Π fs` with `fs` all the known factors (or a single
+/// one), `m` a monomial and `c` a number, when that is exact.
+fn factor_by(p: &Poly, known: &[Poly]) -> Option<(Vec<Poly>, Monomial, Rational)> {
+    if known.is_empty() {
+        return None;
+    }
+    let mut candidates: Vec<Vec<Poly>> = vec![known.to_vec()];
+    if known.len() > 1 {
+        candidates.extend(known.iter().map(|f| vec![f.clone()]));
+    }
+    for fs in candidates {
+        let product = fs.iter().fold(Poly::one(), |a, f| &a * f);
+        if product.len() != p.len() || product.is_zero() {
+            continue;
+        }
+        let (m0, c0) = &p.terms()[0];
+        for (m1, c1) in product.terms() {
+            let m = m0.div(m1);
+            let c = c0 * &c1.recip().expect("non-zero coefficient");
+            if &product * &Poly::term(m.clone(), c.clone()) == *p {
+                return Some((fs, m, c));
+            }
+        }
+    }
+    None
 }

@@ -55,7 +55,10 @@ pub fn print(e: &Expr, style: &dyn Style) -> String {
     if e.is_empty() {
         return style.num(&Rational::ZERO);
     }
-    let cached = Cached { inner: style, atoms: Default::default() };
+    let cached = Cached {
+        inner: style,
+        atoms: Default::default(),
+    };
     let mut out = String::new();
     write(e, e.root(), &cached, &mut out);
     out
@@ -70,7 +73,11 @@ struct Cached<'a> {
 
 impl Style for Cached<'_> {
     fn atom(&self, a: Atom) -> String {
-        self.atoms.borrow_mut().entry(a).or_insert_with(|| self.inner.atom(a)).clone()
+        self.atoms
+            .borrow_mut()
+            .entry(a)
+            .or_insert_with(|| self.inner.atom(a))
+            .clone()
     }
     fn num(&self, r: &Rational) -> String {
         self.inner.num(r)

@@ -71,7 +71,7 @@ pub fn latex_label(label: &str, component: &str) -> String {
 
 /// A label with component in Unicode: `ΣM_x`.
 pub fn unicode_label(label: &str, component: &str) -> String {
-        let body: String = label
+    let body: String = label
         .split_whitespace()
         .map(|w| {
             let (b, k) = label_word(w);

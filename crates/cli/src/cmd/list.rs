@@ -34,11 +34,15 @@ pub fn run(args: ListArgs) -> anyhow::Result<ExitCode> {
             }
         }
     }
-        println!(
+    println!(
         "{:<28} Chain of K bodies: Ḣ in the inertial frame (generated scaling family)\n{:<28} source: hdot_sym::chain (K = 1…{})",
         "chain-K",
         "",
         hdot_sym::chain::MAX_K
     );
-    Ok(if failed { ExitCode::from(2) } else { ExitCode::SUCCESS })
+    Ok(if failed {
+        ExitCode::from(2)
+    } else {
+        ExitCode::SUCCESS
+    })
 }

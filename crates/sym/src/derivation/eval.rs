@@ -985,6 +985,14 @@ impl<'a> Context<'a> {
                 pres.collect.push(atom);
             }
         }
+        if let Some(list) = &s.factor {
+            let spans = string_contents(self.text, list.span().start, list.span().end);
+            for (k, item) in list.get_ref().iter().enumerate() {
+                let base = spans.get(k).map_or(list.span().start, |s| s.0);
+                let ast = self.parse_at(item, base)?;
+                pres.factors.push(self.scalar(&ast, base)?);
+            }
+        }
         if let Some(list) = &s.fold {
             let spans = string_contents(self.text, list.span().start, list.span().end);
             for (k, item) in list.get_ref().iter().enumerate() {

@@ -119,10 +119,17 @@ impl Step {
         let xyz = &self.axes;
         match &self.value {
             Value::Scalar(p) => vec![(String::new(), present(p, &self.presentation))],
-            Value::Vector(v, _) => (0..3).map(|k| (xyz[k].to_owned(), present(&v.0[k], &self.presentation))).collect(),
+            Value::Vector(v, _) => (0..3)
+                .map(|k| (xyz[k].to_owned(), present(&v.0[k], &self.presentation)))
+                .collect(),
             Value::Matrix(m) => (0..3)
                 .flat_map(|i| (0..3).map(move |j| (i, j)))
-                .map(|(i, j)| (format!("{}{}", xyz[i], xyz[j]), present(&m.0[i][j], &self.presentation)))
+                .map(|(i, j)| {
+                    (
+                        format!("{}{}", xyz[i], xyz[j]),
+                        present(&m.0[i][j], &self.presentation),
+                    )
+                })
                 .collect(),
         }
     }

@@ -78,6 +78,8 @@ pub(crate) struct RawStep {
     pub expect: Option<Spanned<toml::Value>>,
     pub collect: Option<Spanned<Vec<String>>>,
     pub fold: Option<Spanned<Vec<String>>>,
+    /// Known factors to print brackets as products of: `["A - B", "A - C"]`.
+    pub factor: Option<Spanned<Vec<String>>>,
 }
 
 fn yes() -> bool {
