@@ -16,3 +16,7 @@ mod scenes;
 mod convergence;
 // insta snapshots of the reports.
 mod snapshots;
+// The polynomial tape evaluator.
+mod eval;
+// Derived equations against particle sums (hdot verify).
+mod verify;

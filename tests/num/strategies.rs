@@ -62,3 +62,32 @@ pub fn rigid_body() -> impl Strategy<Value = Body> {
     (primitive(), 0.1..10.0f64, pose())
         .prop_map(|(s, m, p)| Body::try_new(s, m, p).expect("valid by construction"))
 }
+
+/// A body for `hdot verify`'s checks, as particles in world coordinates: a
+/// cloud, or a coarsely discretised posed primitive or composite (the same
+/// sampler as the CLI, driven by a proptest seed).
+pub fn verify_body() -> impl Strategy<Value = ParticleCloud> {
+    any::<u64>().prop_map(|seed| {
+        use rand::SeedableRng;
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+        hdot_num::verify::random_body(&mut rng).expect("valid by construction")
+    })
+}
+
+/// A state for the checks: ω, α, v̄, body axes and an offset to O or P.
+pub fn verify_state() -> impl Strategy<Value = hdot_num::verify::State> {
+    (
+        angular_velocity(),
+        angular_velocity(),
+        vector3(5.0),
+        rotation(),
+        vector3(3.0),
+    )
+        .prop_map(|(omega, alpha, v, axes, offset)| hdot_num::verify::State {
+            omega,
+            alpha,
+            v,
+            axes: axes.to_rotation_matrix(),
+            offset,
+        })
+}

@@ -29,6 +29,8 @@ enum Command {
     Simulate(cmd::simulate::SimulateArgs),
     /// Sweep every method over steps and tolerances; write CSV and chart.
     WorkPrecision(cmd::work_precision::WorkPrecisionArgs),
+    /// Derived equations against particle sums on random bodies and states.
+    Verify(cmd::verify::VerifyArgs),
     /// Run derivations and check their expectations; print a table.
     Check(cmd::check::CheckArgs),
     /// Discretised inertia against analytic: orders, charts, cheapest for --tol.
@@ -51,6 +53,7 @@ fn main() -> ExitCode {
         // -- dispatch (one line each) --
         Command::Simulate(a) => cmd::simulate::run(a),
         Command::WorkPrecision(a) => cmd::work_precision::run(a),
+        Command::Verify(a) => cmd::verify::run(a),
         Command::Check(a) => cmd::check::run(a),
         Command::Convergence(a) => cmd::convergence::run(a),
         Command::Derive(a) => cmd::derive::run(a),

@@ -59,12 +59,14 @@ pub mod cloud;
 pub mod convergence;
 pub mod discretize;
 pub mod error;
+pub mod eval;
 pub mod fsio;
 pub mod inertia;
 pub mod report;
 pub mod scene;
 pub mod solve;
 pub mod sums;
+pub mod verify;
 
 pub use body::{Body, Composite, MassProperties, Part, Pose, Primitive};
 pub use cloud::ParticleCloud;

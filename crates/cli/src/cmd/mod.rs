@@ -8,4 +8,5 @@ pub mod inertia;
 pub mod list;
 pub mod notes;
 pub mod simulate;
+pub mod verify;
 pub mod work_precision;

@@ -1,0 +1,116 @@
+//! The tape evaluator against `Poly::eval` (the slow reference).
+
+use hdot_num::eval::Tape;
+use hdot_sym::{Atom, Poly, Symbols};
+use proptest::prelude::*;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+const CONSTANTS: [&str; 3] = ["a", "b", "c"];
+const TIME: [&str; 3] = ["x", "y", "z"];
+
+fn poly(text: &str) -> Poly {
+    Symbols::parse_decl(&CONSTANTS, &TIME)
+        .poly(text)
+        .unwrap_or_else(|e| panic!("{text}: {e:?}"))
+}
+
+/// A random expression: sums of products of powers, derivatives and
+/// divisions by constants, with rational coefficients.
+fn expression(rng: &mut impl Rng) -> String {
+    let leaves = ["a", "b", "c", "x", "y", "z", "x'", "y''", "2", "3/7"];
+    let mut terms = Vec::new();
+    for _ in 0..rng.gen_range(1..6) {
+        let mut f = Vec::new();
+        for _ in 0..rng.gen_range(1..4) {
+            let leaf = leaves[rng.gen_range(0..leaves.len())];
+            f.push(if rng.gen_bool(0.3) {
+                format!("{leaf}^{}", rng.gen_range(2..4))
+            } else {
+                leaf.to_string()
+            });
+        }
+        let mut t = f.join("*");
+        if rng.gen_bool(0.2) {
+            t = format!("{t}/{}", CONSTANTS[rng.gen_range(0..3)]);
+        }
+        if rng.gen_bool(0.2) {
+            t = format!("({t} - {})^2", leaves[rng.gen_range(0..leaves.len())]);
+        }
+        terms.push(t);
+    }
+    terms.join(" + ")
+}
+
+/// Evaluates `polys` both ways at `point(atom)` and checks the tape agrees
+/// within a tolerance scaled by Σ |terms|.
+fn agree(polys: &[Poly], point: &mut dyn FnMut(Atom) -> f64) -> Result<(), String> {
+    let tape = Tape::compile(polys);
+    let inputs: Vec<f64> = tape.atoms().iter().map(|&a| point(a)).collect();
+    let mut out = vec![0.0; polys.len()];
+    let mut scale = vec![0.0; polys.len()];
+    tape.eval(&inputs, &mut out);
+    tape.eval_abs(&inputs, &mut scale);
+    for (k, p) in polys.iter().enumerate() {
+        let value = |a: Atom| inputs[tape.atoms().iter().position(|&b| b == a).unwrap()];
+        let reference = p.eval(&mut |a| value(a));
+        let tol = 64.0 * f64::EPSILON * scale[k];
+        if (out[k] - reference).abs() > tol {
+            return Err(format!(
+                "output {k}: tape {} vs reference {reference} (tol {tol})",
+                out[k]
+            ));
+        }
+    }
+    Ok(())
+}
+
+#[test]
+fn the_tape_agrees_with_poly_eval_on_random_expressions() {
+    let mut rng = ChaCha8Rng::seed_from_u64(0);
+    for _ in 0..200 {
+        let polys: Vec<Poly> = (0..rng.gen_range(1..4))
+            .map(|_| poly(&expression(&mut rng)))
+            .collect();
+        let mut values = std::collections::HashMap::new();
+        let mut point = |a: Atom| {
+            *values.entry(a).or_insert_with(|| {
+                rng.gen_range(0.5..2.0) * if rng.gen_bool(0.5) { 1.0 } else { -1.0 }
+            })
+        };
+        agree(&polys, &mut point).unwrap();
+    }
+}
+
+#[test]
+fn shared_powers_and_prefixes_are_computed_once() {
+    // x²y, x²y z, x² : one power, one product x²·y, one product ·z.
+    let p = poly("x^2*y + x^2*y*z + x^2");
+    let tape = Tape::compile(std::slice::from_ref(&p));
+    assert_eq!(tape.atoms().len(), 3);
+    assert!(tape.len() <= 3, "{} instructions", tape.len());
+}
+
+#[test]
+fn constants_and_zero_compile() {
+    let tape = Tape::compile(&[poly("0"), poly("5/2")]);
+    assert!(tape.atoms().is_empty());
+    let mut out = [1.0, 0.0];
+    tape.eval(&[], &mut out);
+    assert_eq!(out, [0.0, 2.5]);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 64, rng_seed: proptest::test_runner::RngSeed::Fixed(0), ..ProptestConfig::default() })]
+
+    /// Tape = Poly::eval for any expression and point.
+    #[test]
+    fn tape_equals_reference(seed in any::<u64>(), xs in prop::collection::vec(-3.0..3.0f64, 9)) {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let p = poly(&expression(&mut rng));
+        let mut i = 0;
+        let mut seen = std::collections::HashMap::new();
+        let mut point = |a: Atom| *seen.entry(a).or_insert_with(|| { i += 1; let v: f64 = xs[i % xs.len()]; if v.abs() < 0.1 { 0.5 } else { v } });
+        prop_assert!(agree(&[p], &mut point).is_ok());
+    }
+}
