@@ -49,6 +49,7 @@ import random
 import re
 import subprocess
 import sys
+import threading
 import time
 from pathlib import Path
 
@@ -175,10 +176,91 @@ def hdot_equations(exe, name):
         lambda m: f"Eq(Symbol({m.group(1)!r}), ",
         src,
     )
+    # Executing the export as it stands builds each long sum one `+` at a
+    # time, which is quadratic in SymPy (minutes for chain-6). So execute the
+    # declarations, then build each right-hand side as one Add of its
+    # top-level terms.
+    head, rest = src.split("\nequations = [\n", 1)
+    body, tail = rest.split("\n]\n", 1)
     env: dict = {}
-    exec(compile(src, f"<hdot derive {name} --format sympy>", "exec"), env)
+    exec(head, env)
+    exec(tail.split("\nexpected = [", 1)[0] + "\n" + tail[tail.index("\nlabels = ") :], env)
+    if not env["abbreviations"]:
+        # No abbreviation to unfold by differentiating: build the results
+        # directly on plain symbols (f(t) -> f__d0, f.diff(t, k) -> f__dk,
+        # the names `to_plain_symbols` gives), which is much faster than
+        # creating thousands of Derivative objects.
+        for key, value in list(env.items()):
+            if isinstance(value, AppliedUndef):
+                env[key] = sp.Symbol(f"{value.func.__name__}__d0")
+        env["_d"] = lambda s, k: sp.Symbol(f"{s.name[: -len('__d0')]}__d{k}")
+        body = re.sub(r"(\w+)\.diff\(t\)", r"_d(\1, 1)", body)
+        body = re.sub(r"(\w+)\.diff\(t, (\d+)\)", r"_d(\1, \2)", body)
+    rhs = []
+    for line in body.splitlines():
+        m = re.fullmatch(r"\s*Eq\(Symbol\(.*?\), (.*)\),", line)
+        if m is None:
+            raise ValueError(f"hdot derive {name} --format sympy: unexpected line {line[:80]!r}")
+        rhs.append(eval_sum(m.group(1), env))
+    env["equations"] = [sp.Eq(sp.Symbol(lab), r) for lab, r in zip(env["labels"], rhs)]
     eqs = {lab: eq.rhs for lab, eq in zip(env["labels"], env["equations"])}
     return eqs, env["abbreviations"]
+
+
+def eval_sum(text, env):
+    """Evaluates a printed sum as one Add of its top-level terms."""
+    text = text.strip()
+    sign = 1
+    # -(a + b + ...) around the whole expression
+    while text.startswith("-(") and matching_paren(text, 1) == len(text) - 1:
+        sign, text = -sign, text[2:-1].strip()
+    terms, depth, startpos = [], 0, 0
+    for i, ch in enumerate(text):
+        if ch in "([":
+            depth += 1
+        elif ch in ")]":
+            depth -= 1
+        elif ch in "+-" and depth == 0 and i > 0 and text[i - 1] == " ":
+            terms.append(text[startpos:i])
+            startpos = i
+    terms.append(text[startpos:])
+    values = [eval(t.replace(" ", "") or "0", env) for t in terms]  # noqa: S307 - our own export
+    return sign * sp.Add(*values)
+
+
+def matching_paren(text, open_at):
+    """Index of the parenthesis closing the one at `open_at`."""
+    depth = 0
+    for i in range(open_at, len(text)):
+        depth += {"(": 1, ")": -1}.get(text[i], 0)
+        if depth == 0:
+            return i
+    return -1
+
+
+def deep_call(fn):
+    """Runs `fn` on a thread with a 1 GiB stack and a recursion limit of 10^6
+    (re-raising its exception)."""
+    err = []
+
+    def target():
+        try:
+            fn()
+        except BaseException as e:  # noqa: BLE001 - re-raised below
+            err.append(e)
+
+    old_limit, old_size = sys.getrecursionlimit(), threading.stack_size()
+    sys.setrecursionlimit(1_000_000)
+    threading.stack_size(1 << 30)
+    try:
+        th = threading.Thread(target=target)
+        th.start()
+        th.join()
+    finally:
+        threading.stack_size(old_size)
+        sys.setrecursionlimit(old_limit)
+    if err:
+        raise err[0]
 
 
 def hdot_terms(doc, step):
@@ -336,7 +418,9 @@ def main():
         t_sym, runs, (comps, expanded, sym_abbrevs) = time_sympy(fn, *fargs)
         hd = [unfold(eqs[f"{step}.{c}"], abbrevs) for c in "xyz"]
         comps = [unfold(c, sym_abbrevs) for c in comps]
-        ok, worst = agree(list(zip(hd, comps, expanded)), args.seed)
+        verdict = []
+        deep_call(lambda: verdict.append(agree(list(zip(hd, comps, expanded)), args.seed)))
+        ok, worst = verdict[0]
         terms_h = hdot_terms(doc, step)
         terms_s = sum(len(sp.Add.make_args(e)) for e in expanded)
         rows.append([name, t_proc, t_crit, t_sym, runs,
