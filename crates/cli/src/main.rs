@@ -25,12 +25,6 @@ struct Cli {
 #[derive(Debug, Subcommand)]
 enum Command {
     // -- subcommands (one line each; keep alphabetical within a group) --
-    /// Simulate a scene with the least exact model; report error, drift and cost.
-    Simulate(cmd::simulate::SimulateArgs),
-    /// Sweep every method over steps and tolerances; write CSV and chart.
-    WorkPrecision(cmd::work_precision::WorkPrecisionArgs),
-    /// Derived equations against particle sums on random bodies and states.
-    Verify(cmd::verify::VerifyArgs),
     /// Run derivations and check their expectations; print a table.
     Check(cmd::check::CheckArgs),
     /// Discretised inertia against analytic: orders, charts, cheapest for --tol.
@@ -45,15 +39,18 @@ enum Command {
     List(cmd::list::ListArgs),
     /// Write the lecture notes (LaTeX and Markdown) of every derivation.
     Notes(cmd::notes::NotesArgs),
+    /// Simulate a scene with the least exact model; report error, drift and cost.
+    Simulate(cmd::simulate::SimulateArgs),
+    /// Derived equations against particle sums on random bodies and states.
+    Verify(cmd::verify::VerifyArgs),
+    /// Sweep every method over steps and tolerances; write CSV and chart.
+    WorkPrecision(cmd::work_precision::WorkPrecisionArgs),
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result: anyhow::Result<ExitCode> = match cli.command {
         // -- dispatch (one line each) --
-        Command::Simulate(a) => cmd::simulate::run(a),
-        Command::WorkPrecision(a) => cmd::work_precision::run(a),
-        Command::Verify(a) => cmd::verify::run(a),
         Command::Check(a) => cmd::check::run(a),
         Command::Convergence(a) => cmd::convergence::run(a),
         Command::Derive(a) => cmd::derive::run(a),
@@ -61,6 +58,9 @@ fn main() -> ExitCode {
         Command::Inertia(a) => cmd::inertia::run(a),
         Command::List(a) => cmd::list::run(a),
         Command::Notes(a) => cmd::notes::run(a),
+        Command::Simulate(a) => cmd::simulate::run(a),
+        Command::Verify(a) => cmd::verify::run(a),
+        Command::WorkPrecision(a) => cmd::work_precision::run(a),
     };
     match result {
         Ok(code) => code,

@@ -830,7 +830,8 @@ fn sympy(d: &Derivation) -> String {
     let mut exps = Vec::new();
     let mut labels = Vec::new();
     for s in d.steps.iter().filter(|s| s.show) {
-        let base: String = s.label.split_whitespace().collect();
+        // A Python string: primes (time derivatives) become `dot`.
+        let base: String = s.label.split_whitespace().collect::<String>().replace('\'', "dot");
         for (k, (c, e)) in s.components.iter().enumerate() {
             let lhs = if c.is_empty() {
                 base.clone()
