@@ -831,7 +831,11 @@ fn sympy(d: &Derivation) -> String {
     let mut labels = Vec::new();
     for s in d.steps.iter().filter(|s| s.show) {
         // A Python string: primes (time derivatives) become `dot`.
-        let base: String = s.label.split_whitespace().collect::<String>().replace('\'', "dot");
+        let base: String = s
+            .label
+            .split_whitespace()
+            .collect::<String>()
+            .replace('\'', "dot");
         for (k, (c, e)) in s.components.iter().enumerate() {
             let lhs = if c.is_empty() {
                 base.clone()
