@@ -46,48 +46,39 @@ fn label_word(w: &str) -> (&str, u32) {
     (base, (w.len() - base.len()) as u32)
 }
 
-/// A label such as `Sigma M` with component `x`, in LaTeX: `\Sigma M_{x}`.
-pub fn latex_label(label: &str, component: &str) -> String {
+/// The body of a label (its words written by `symbol`, joined by `sep`)
+/// and whether it already carries a subscript, so that a component must be
+/// attached around parentheses.
+fn label_body(label: &str, symbol: fn(&str, u32) -> String, sep: &str) -> (String, bool) {
     let words: Vec<String> = label
         .split_whitespace()
         .map(|w| {
             let (b, k) = label_word(w);
-            latex_symbol(b, k)
+            symbol(b, k)
         })
         .collect();
-    let body = words.join(" ");
-    match (
-        component.is_empty(),
-        label
-            .split_whitespace()
-            .last()
-            .is_some_and(|w| w.contains('_')),
-    ) {
-        (true, _) => body,
-        (false, false) => format!("{body}_{{{component}}}"),
-        (false, true) => format!(r"\left({body}\right)_{{{component}}}"),
+    let subscripted = label
+        .split_whitespace()
+        .last()
+        .is_some_and(|w| w.contains('_'));
+    (words.join(sep), subscripted)
+}
+
+/// A label such as `Sigma M` with component `x`, in LaTeX: `\Sigma M_{x}`.
+pub fn latex_label(label: &str, component: &str) -> String {
+    match (label_body(label, latex_symbol, " "), component.is_empty()) {
+        ((body, _), true) => body,
+        ((body, false), false) => format!("{body}_{{{component}}}"),
+        ((body, true), false) => format!(r"\left({body}\right)_{{{component}}}"),
     }
 }
 
 /// A label with component in Unicode: `ΣM_x`.
 pub fn unicode_label(label: &str, component: &str) -> String {
-    let body: String = label
-        .split_whitespace()
-        .map(|w| {
-            let (b, k) = label_word(w);
-            unicode_symbol(b, k)
-        })
-        .collect();
-    match (
-        component.is_empty(),
-        label
-            .split_whitespace()
-            .last()
-            .is_some_and(|w| w.contains('_')),
-    ) {
-        (true, _) => body,
-        (false, false) => format!("{body}_{component}"),
-        (false, true) => format!("({body})_{component}"),
+    match (label_body(label, unicode_symbol, ""), component.is_empty()) {
+        ((body, _), true) => body,
+        ((body, false), false) => format!("{body}_{component}"),
+        ((body, true), false) => format!("({body})_{component}"),
     }
 }
 
