@@ -210,3 +210,47 @@ fn gyroscope_precession_rate_matches_section_7() {
     assert!(p.relative_difference <= 1e-7, "{p:?}");
     assert!(p.nutation_change <= 1e-7, "{p:?}");
 }
+
+/// A torque-free body integrated with a method alone runs the
+/// precession-angle model (4 components), says why, and is measured on the
+/// full attitude and ω against the closed form; a heavy top refuses it.
+#[test]
+fn torque_free_integration_uses_the_precession_angle_model() {
+    let scene = free_with("[1.0, 0.0, 0.0, 0.0]").unwrap();
+    let req = Request {
+        method: Some(Method::Dop853),
+        step: Some(Step::Tolerance(1e-10)),
+        ..Request::default()
+    };
+    let plan = run::plan(&scene, &req).unwrap();
+    assert_eq!(plan.model, Model::PrecessionAngle);
+    assert!(
+        plan.reason.contains("one angle φ about H"),
+        "{}",
+        plan.reason
+    );
+    let report = run::run(&scene, &plan, &mut Output::default()).unwrap();
+    assert!(report.error.unwrap() <= 1e-8, "{report:?}");
+    assert_eq!(report.final_state.len(), 7);
+    // The splittings keep the quaternion form (their sub-flows are its own).
+    let split = Request {
+        method: Some(Method::Split2),
+        step: Some(Step::Fixed(0.01)),
+        ..Request::default()
+    };
+    assert_eq!(run::plan(&scene, &split).unwrap().model, Model::RigidBody);
+
+    let top = Scene::from_file(
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/examples/sim-heavy-top.toml"),
+    )
+    .unwrap();
+    let err = run::plan(
+        &top,
+        &Request {
+            model: Some(Model::PrecessionAngle),
+            ..Request::default()
+        },
+    )
+    .unwrap_err();
+    assert!(err.to_string().contains("gravity turns H"), "{err}");
+}

@@ -110,7 +110,7 @@ fn gauss_legendre_20() -> &'static ([f64; 20], [f64; 20]) {
 
 /// The permutation taking the coordinates of a cyclic relabelling
 /// `(p, q, c)` of the body axes to body coordinates (a rotation).
-fn cyclic_perm(c: usize) -> UnitQuaternion<f64> {
+pub(crate) fn cyclic_perm(c: usize) -> UnitQuaternion<f64> {
     let p = (c + 1) % 3;
     let q = (c + 2) % 3;
     let mut m = Matrix3::zeros();

@@ -291,6 +291,8 @@ where
         stats.steps += 1;
         let t_new = if i + 1 == n { t_end } else { t + h };
         finite_or(&y, t_new, stats.steps)?;
+        // The midpoint rule's previous slope stays a good first guess.
+        sys.project(&mut y);
         sys.check(t_new, &y)?;
         observe(t_new, &y)?;
     }
@@ -424,8 +426,28 @@ fn dopri5_step<const N: usize, S: System<N>>(
     (ynew, k[6], err)
 }
 
-/// One DOP853 step; returns `ŷ` and the scaled error norm for the given
-/// tolerance (0 when `tol` is `None`). `f(t + h, ŷ)` is left to the caller.
+/// `y + h Σ c_j k_j` over the non-zero coefficients of one tableau row
+/// (const-sized, so the loops unroll and no zero is multiplied).
+#[inline(always)]
+fn lin<const N: usize, const M: usize>(
+    y: &[f64; N],
+    h: f64,
+    terms: [(f64, &[f64; N]); M],
+) -> [f64; N] {
+    std::array::from_fn(|i| {
+        let mut acc = 0.0;
+        for (c, k) in &terms {
+            acc += c * k[i];
+        }
+        y[i] + h * acc
+    })
+}
+
+/// One DOP853 step from `(t, y)` with `k1 = f(t, y)`. Returns `ŷ` and the
+/// raw error vectors `(Σ e_j k_j, Σ b_j k_j − Σ b̂_j k_j)` of the fifth- and
+/// third-order estimates (not yet multiplied by h); `f(t + h, ŷ)` is left
+/// to the caller. The stages skip the zeros of the tableau (as `dop853.f`
+/// does) and each sum is formed once.
 #[inline]
 fn dop853_step<const N: usize, S: System<N>>(
     sys: &S,
@@ -434,56 +456,160 @@ fn dop853_step<const N: usize, S: System<N>>(
     h: f64,
     k1: &[f64; N],
     stats: &mut Stats,
-) -> ([f64; N], [[f64; N]; 12]) {
+) -> ([f64; N], [f64; N], [f64; N]) {
     let a = &DP8_A;
     let c = &DP8_C;
-    let mut k = [[0.0; N]; 12];
-    k[0] = *k1;
-    for s in 1..12 {
-        let row = &a[s - 1];
-        let ys: [f64; N] = std::array::from_fn(|i| {
-            let mut acc = 0.0;
-            for j in 0..s {
-                acc += row[j] * k[j][i];
-            }
-            y[i] + h * acc
-        });
-        k[s] = sys.rhs(t + c[s] * h, &ys);
-    }
+    let k2 = sys.rhs(t + c[1] * h, &lin(y, h, [(a[0][0], k1)]));
+    let k3 = sys.rhs(t + c[2] * h, &lin(y, h, [(a[1][0], k1), (a[1][1], &k2)]));
+    let k4 = sys.rhs(t + c[3] * h, &lin(y, h, [(a[2][0], k1), (a[2][2], &k3)]));
+    let k5 = sys.rhs(
+        t + c[4] * h,
+        &lin(y, h, [(a[3][0], k1), (a[3][2], &k3), (a[3][3], &k4)]),
+    );
+    let k6 = sys.rhs(
+        t + c[5] * h,
+        &lin(y, h, [(a[4][0], k1), (a[4][3], &k4), (a[4][4], &k5)]),
+    );
+    let k7 = sys.rhs(
+        t + c[6] * h,
+        &lin(
+            y,
+            h,
+            [
+                (a[5][0], k1),
+                (a[5][3], &k4),
+                (a[5][4], &k5),
+                (a[5][5], &k6),
+            ],
+        ),
+    );
+    let k8 = sys.rhs(
+        t + c[7] * h,
+        &lin(
+            y,
+            h,
+            [
+                (a[6][0], k1),
+                (a[6][3], &k4),
+                (a[6][4], &k5),
+                (a[6][5], &k6),
+                (a[6][6], &k7),
+            ],
+        ),
+    );
+    let k9 = sys.rhs(
+        t + c[8] * h,
+        &lin(
+            y,
+            h,
+            [
+                (a[7][0], k1),
+                (a[7][3], &k4),
+                (a[7][4], &k5),
+                (a[7][5], &k6),
+                (a[7][6], &k7),
+                (a[7][7], &k8),
+            ],
+        ),
+    );
+    let k10 = sys.rhs(
+        t + c[9] * h,
+        &lin(
+            y,
+            h,
+            [
+                (a[8][0], k1),
+                (a[8][3], &k4),
+                (a[8][4], &k5),
+                (a[8][5], &k6),
+                (a[8][6], &k7),
+                (a[8][7], &k8),
+                (a[8][8], &k9),
+            ],
+        ),
+    );
+    let k11 = sys.rhs(
+        t + c[10] * h,
+        &lin(
+            y,
+            h,
+            [
+                (a[9][0], k1),
+                (a[9][3], &k4),
+                (a[9][4], &k5),
+                (a[9][5], &k6),
+                (a[9][6], &k7),
+                (a[9][7], &k8),
+                (a[9][8], &k9),
+                (a[9][9], &k10),
+            ],
+        ),
+    );
+    let k12 = sys.rhs(
+        t + h,
+        &lin(
+            y,
+            h,
+            [
+                (a[10][0], k1),
+                (a[10][3], &k4),
+                (a[10][4], &k5),
+                (a[10][5], &k6),
+                (a[10][6], &k7),
+                (a[10][7], &k8),
+                (a[10][8], &k9),
+                (a[10][9], &k10),
+                (a[10][10], &k11),
+            ],
+        ),
+    );
     stats.evaluations += 11;
-    let ynew: [f64; N] = std::array::from_fn(|i| {
-        let mut acc = 0.0;
-        for j in 0..12 {
-            acc += DP8_B[j] * k[j][i];
-        }
-        y[i] + h * acc
-    });
-    (ynew, k)
+    let (b, e) = (&DP8_B, &DP8_E);
+    let mut ynew = [0.0; N];
+    let mut e5 = [0.0; N];
+    let mut e3 = [0.0; N];
+    for i in 0..N {
+        // Stages 2–5 have zero weights in b and e.
+        let bs = b[0] * k1[i]
+            + b[5] * k6[i]
+            + b[6] * k7[i]
+            + b[7] * k8[i]
+            + b[8] * k9[i]
+            + b[9] * k10[i]
+            + b[10] * k11[i]
+            + b[11] * k12[i];
+        e5[i] = e[0] * k1[i]
+            + e[5] * k6[i]
+            + e[6] * k7[i]
+            + e[7] * k8[i]
+            + e[8] * k9[i]
+            + e[9] * k10[i]
+            + e[10] * k11[i]
+            + e[11] * k12[i];
+        e3[i] = bs - DP8_BHH[0] * k1[i] - DP8_BHH[1] * k9[i] - DP8_BHH[2] * k12[i];
+        ynew[i] = y[i] + h * bs;
+    }
+    (ynew, e5, e3)
 }
 
 /// DOP853's error norm (Hairer): a fifth-order estimate corrected by the
-/// third-order one, `err = |h| e₅ / √(N (e₅² + 0.01 e₃²))` in scaled norms.
+/// third-order one, `err = |h| e₅² / √(N (e₅² + 0.01 e₃²))` in scaled
+/// squared norms, with `sc_i = tol (1 + max(|y_i|, |ŷ_i|))`.
 #[inline]
 fn dop853_error<const N: usize>(
     y: &[f64; N],
     ynew: &[f64; N],
-    k: &[[f64; N]; 12],
+    e5: &[f64; N],
+    e3: &[f64; N],
     h: f64,
     tol: f64,
 ) -> f64 {
     let mut err = 0.0;
     let mut err2 = 0.0;
     for i in 0..N {
-        let sk = tol + tol * y[i].abs().max(ynew[i].abs());
-        let mut bsum = 0.0;
-        let mut esum = 0.0;
-        for j in 0..12 {
-            bsum += DP8_B[j] * k[j][i];
-            esum += DP8_E[j] * k[j][i];
-        }
-        let e3 = bsum - DP8_BHH[0] * k[0][i] - DP8_BHH[1] * k[8][i] - DP8_BHH[2] * k[11][i];
-        err2 += (e3 / sk).powi(2);
-        err += (esum / sk).powi(2);
+        let inv = 1.0 / (tol + tol * y[i].abs().max(ynew[i].abs()));
+        err2 += (e3[i] * inv) * (e3[i] * inv);
+        err += (e5[i] * inv) * (e5[i] * inv);
     }
     let mut deno = err + 0.01 * err2;
     if deno <= 0.0 {
@@ -588,8 +714,8 @@ where
                 (ynew, Some(fnew), (s / N as f64).sqrt())
             }
             _ => {
-                let (ynew, k) = dop853_step(sys, t, &y, h, &f, &mut stats);
-                let e = dop853_error(&y, &ynew, &k, h, tol);
+                let (ynew, e5, e3) = dop853_step(sys, t, &y, h, &f, &mut stats);
+                let e = dop853_error(&y, &ynew, &e5, &e3, h, tol);
                 (ynew, None, e)
             }
         };
@@ -600,16 +726,23 @@ where
             last_rejected = true;
             continue;
         }
-        let fac11 = err.powf(expo);
-        let fac = (fac11 / facold.powf(beta) / safe).clamp(1.0 / fac2, 1.0 / fac1);
+        // err^(1/8) by three square roots (DOP853), else powf.
+        let fac11 = if method == Method::Dop853 {
+            err.sqrt().sqrt().sqrt()
+        } else {
+            err.powf(expo)
+        };
+        let pi = if beta == 0.0 { 1.0 } else { facold.powf(beta) };
+        let fac = (fac11 / pi / safe).clamp(1.0 / fac2, 1.0 / fac1);
         let mut hnew = h / fac;
         if err <= 1.0 {
             facold = err.max(1e-4);
             t = if last { t_end } else { t + h };
             y = ynew;
+            let projected = finite_or(&y, t, stats.steps + 1).is_ok() && sys.project(&mut y);
             f = match fnew_opt {
-                Some(fnew) => fnew,
-                None => {
+                Some(fnew) if !projected => fnew,
+                _ => {
                     stats.evaluations += 1;
                     sys.rhs(t, &y)
                 }

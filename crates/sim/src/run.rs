@@ -26,7 +26,7 @@ use serde::Serialize;
 use crate::exact::{SteadyTop, TorqueFree};
 use crate::models::euler_angles::to_quaternion_state;
 use crate::models::free::{attitude, pack, state_distance};
-use crate::models::{EulerAngleBody, FreeBody, Gravity, Shaft};
+use crate::models::{EulerAngleBody, FreeBody, Gravity, PrecessionAngle, Shaft};
 use crate::scene::{Scene, SceneKind};
 use crate::{Limits, Method, SimError, Stats, Step, integrate};
 
@@ -39,6 +39,9 @@ pub enum Model {
     SteadyPrecession,
     /// Closed form of the asymmetric torque-free body (Jacobi elliptic functions).
     Elliptic,
+    /// Torque-free body: Euler's equations plus the angle turned about the
+    /// invariable `H` (4 components), integrated; see [`PrecessionAngle`].
+    PrecessionAngle,
     /// Euler's equations with a unit-quaternion attitude, integrated.
     RigidBody,
     /// Euler's equations with Eulerian angles, integrated.
@@ -47,10 +50,11 @@ pub enum Model {
 
 impl Model {
     /// Every model, least first.
-    pub const ALL: [Model; 5] = [
+    pub const ALL: [Model; 6] = [
         Model::FixedAxis,
         Model::SteadyPrecession,
         Model::Elliptic,
+        Model::PrecessionAngle,
         Model::RigidBody,
         Model::EulerAngles,
     ];
@@ -61,6 +65,7 @@ impl Model {
             Model::FixedAxis => "fixed-axis",
             Model::SteadyPrecession => "steady-precession",
             Model::Elliptic => "elliptic",
+            Model::PrecessionAngle => "precession-angle",
             Model::RigidBody => "rigid-body",
             Model::EulerAngles => "euler-angles",
         }
@@ -247,15 +252,40 @@ pub fn plan(scene: &Scene, req: &Request) -> Result<Plan, SimError> {
                 (Some(m @ (Model::SteadyPrecession | Model::Elliptic)), _) => {
                     Ok(closed(m, "closed form, as requested"))
                 }
-                (Some(m @ (Model::RigidBody | Model::EulerAngles)), method) => integrated(
+                (Some(Model::PrecessionAngle), _) if w0.norm() == 0.0 => Err(not_applicable(
+                    Model::PrecessionAngle,
+                    scene,
+                    "the body is at rest: H = 0 defines no invariable axis",
+                )),
+                (
+                    Some(m @ (Model::PrecessionAngle | Model::RigidBody | Model::EulerAngles)),
+                    method,
+                ) => integrated(
                     m,
                     method,
                     format!("{m} integration as requested (reference: the closed form)"),
                 ),
+                (None, Some(method))
+                    if !matches!(method, Method::Split2 | Method::Split4) && w0.norm() > 0.0 =>
+                {
+                    integrated(
+                        Model::PrecessionAngle,
+                        Some(method),
+                        format!(
+                            "integration with {method} as requested; torque-free, so H is fixed in space and the \
+                             attitude is fixed by body H and one angle φ about H: integrate [ω, φ] (4 components, \
+                             ω projected back onto the conserved energy and |H| after every step) instead of the \
+                             quaternion form (--model rigid-body); reference: the closed form"
+                        ),
+                    )
+                }
                 (None, Some(method)) => integrated(
                     Model::RigidBody,
                     Some(method),
-                    format!("integration with {method} as requested (reference: the closed form)"),
+                    format!(
+                        "integration with {method} as requested (its exact sub-flows are those of the \
+                         quaternion form; reference: the closed form)"
+                    ),
                 ),
                 (None, None) => Ok(closed(
                     closed_model,
@@ -278,6 +308,11 @@ pub fn plan(scene: &Scene, req: &Request) -> Result<Plan, SimError> {
                 m,
                 scene,
                 "a heavy top on a fixed point has three degrees of freedom and a gravity torque",
+            )),
+            (Some(Model::PrecessionAngle), _) => Err(not_applicable(
+                Model::PrecessionAngle,
+                scene,
+                "gravity turns H in space, so the attitude is not fixed by body H and one angle about it",
             )),
             (Some(Model::SteadyPrecession), _) if steady.is_none() => Err(not_applicable(
                 Model::SteadyPrecession,
@@ -689,6 +724,47 @@ pub fn run(scene: &Scene, plan: &Plan, out: &mut Output<'_>) -> Result<Report, S
             report.reference = name;
             report.drifts = free_drifts(&body, &y0, &y);
             report.final_state = y.to_vec();
+        }
+        (SceneKind::Free { moments, q0, w0 }, Model::PrecessionAngle) => {
+            let (body, y0) = free_body(scene).expect("free");
+            let (method, step) = method_step(plan)?;
+            let (sys, z0) = PrecessionAngle::new(moments.get(), q0, w0).ok_or_else(|| {
+                not_applicable(
+                    Model::PrecessionAngle,
+                    scene,
+                    "the body is at rest: H = 0 defines no invariable axis",
+                )
+            })?;
+            let active = rec.active();
+            let start = Instant::now();
+            let (z, stats) = integrate(
+                &sys,
+                method,
+                step,
+                0.0,
+                z0,
+                t_end,
+                Limits::default(),
+                |t, z| {
+                    if active {
+                        let mut row = vec![t];
+                        row.extend_from_slice(&sys.full_state(z));
+                        rec.record(row)?;
+                    }
+                    Ok(())
+                },
+            )?;
+            report.wall_s = start.elapsed().as_secs_f64();
+            let y = sys.full_state(&z);
+            finish_free(scene, &body, &y0, &y, t_end, &mut report)?;
+            set_stats(&mut report, stats);
+        }
+        (_, Model::PrecessionAngle) => {
+            return Err(not_applicable(
+                Model::PrecessionAngle,
+                scene,
+                "only a torque-free body keeps H fixed in space",
+            ));
         }
         (_, Model::RigidBody) => {
             let (body, y0) = free_body(scene).expect("free or heavy top");

@@ -15,6 +15,14 @@ pub trait System<const N: usize> {
         Ok(())
     }
 
+    /// Called after every accepted step, before `check`: a model with
+    /// invariants it keeps exactly may move the state back onto them
+    /// (projection, Hairer–Lubich–Wanner *Geometric Numerical Integration*
+    /// §IV.4). Returns whether it changed the state. Default: no projection.
+    fn project(&self, _y: &mut [f64; N]) -> bool {
+        false
+    }
+
     /// One step of a symmetric second-order (Strang) splitting into exactly
     /// solved sub-flows, and the number of sub-flows it applied; `None` if
     /// the model has no such splitting.

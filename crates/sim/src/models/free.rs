@@ -60,17 +60,54 @@ pub fn vertical_in_body(y: &[f64; 7]) -> [f64; 3] {
     ]
 }
 
-/// Distance between two states, quaternion sign aligned (q and −q are one
-/// attitude): Euclidean norm of the 7-component difference.
-pub fn state_distance(a: &[f64; 7], b: &[f64; 7]) -> f64 {
-    let dot: f64 = (0..4).map(|i| a[i] * b[i]).sum();
-    let s = if dot < 0.0 { -1.0 } else { 1.0 };
-    let mut sum = 0.0;
-    for i in 0..7 {
-        let bi = if i < 4 { s * b[i] } else { b[i] };
-        sum += (a[i] - bi).powi(2);
+/// The error of a state against a reference: the attitude as the angle of
+/// the rotation taking one attitude to the other (radians; each quaternion
+/// renormalised, q and −q are one attitude), the angular velocity as the
+/// Euclidean norm of the difference (rad/s).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StateError {
+    /// Rotation angle between the attitudes, in [0, π].
+    pub attitude: f64,
+    /// `|ω − ω_ref|`.
+    pub omega: f64,
+}
+
+impl StateError {
+    /// `√(attitude² + omega²)`: the one number the targets and the reports use.
+    pub fn combined(&self) -> f64 {
+        self.attitude.hypot(self.omega)
     }
-    sum.sqrt()
+}
+
+/// Attitude angle and ω error of `a` against `b`; NaN if either is not finite.
+///
+/// # Example
+/// ```
+/// use hdot_sim::models::free::{pack, state_error};
+/// use hdot_sim::nalgebra::{UnitQuaternion, Vector3};
+/// let w = Vector3::new(1.0, 2.0, 3.0);
+/// let a = pack(&UnitQuaternion::identity(), &w);
+/// let b = pack(&UnitQuaternion::from_euler_angles(1e-9, 0.0, 0.0), &w);
+/// assert!((state_error(&a, &b).attitude - 1e-9).abs() < 1e-22);
+/// ```
+pub fn state_error(a: &[f64; 7], b: &[f64; 7]) -> StateError {
+    if a.iter().chain(b.iter()).any(|v| !v.is_finite()) {
+        return StateError {
+            attitude: f64::NAN,
+            omega: f64::NAN,
+        };
+    }
+    let omega = ((a[4] - b[4]).powi(2) + (a[5] - b[5]).powi(2) + (a[6] - b[6]).powi(2)).sqrt();
+    StateError {
+        attitude: attitude(a).angle_to(&attitude(b)),
+        omega,
+    }
+}
+
+/// Distance between two states: [`StateError::combined`] of
+/// [`state_error`], `√(angle² + |Δω|²)`.
+pub fn state_distance(a: &[f64; 7], b: &[f64; 7]) -> f64 {
+    state_error(a, b).combined()
 }
 
 /// # Invariants

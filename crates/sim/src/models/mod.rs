@@ -9,8 +9,10 @@
 
 pub mod euler_angles;
 pub mod free;
+pub mod precession;
 pub mod shaft;
 
 pub use euler_angles::EulerAngleBody;
 pub use free::{FreeBody, Gravity};
+pub use precession::PrecessionAngle;
 pub use shaft::Shaft;
