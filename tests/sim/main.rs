@@ -4,6 +4,8 @@
 // Shared named proptest strategies.
 mod strategies;
 
+// The hand-written right-hand sides against the derived equations.
+mod derived;
 // elliptic.rs: identities, special values, series of K.
 mod elliptic;
 // exact.rs: closed forms against the ODE and against each other.
