@@ -10,6 +10,7 @@
 //! | free, spin about a principal axis | `steady-precession` (permanent rotation) | ω is constant |
 //! | free, axisymmetric | `steady-precession` | §9: closed form, θ constant, no integration |
 //! | free, asymmetric | `elliptic` | closed form through Jacobi elliptic functions |
+//! | free, integrated (`--method`, not a splitting) | `precession-angle` | H is fixed in space: ω and one angle about H, ω projected onto E and \|H\| |
 //! | heavy top in steady precession | `steady-precession` | §7's relation holds: θ, φ̇, ψ̇ constant |
 //! | heavy top otherwise | `rigid-body` with the method cheapest for the tolerance | no closed form here; the bundled work-precision data rank the methods |
 //!

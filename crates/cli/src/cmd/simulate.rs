@@ -19,7 +19,7 @@ pub struct SimulateArgs {
     /// Integration method: euler, rk4, dopri5, dop853, midpoint, split2, split4.
     #[arg(long)]
     pub method: Option<String>,
-    /// Model: fixed-axis, steady-precession, elliptic, rigid-body, euler-angles.
+    /// Model: fixed-axis, steady-precession, elliptic, precession-angle, rigid-body, euler-angles.
     #[arg(long)]
     pub model: Option<String>,
     /// Fixed step size.
