@@ -58,6 +58,7 @@ pub fn print(e: &Expr, style: &dyn Style) -> String {
     let cached = Cached {
         inner: style,
         atoms: Default::default(),
+        pows: Default::default(),
     };
     let mut out = String::new();
     write(e, e.root(), &cached, &mut out);
@@ -69,6 +70,26 @@ pub fn print(e: &Expr, style: &dyn Style) -> String {
 struct Cached<'a> {
     inner: &'a dyn Style,
     atoms: std::cell::RefCell<rustc_hash::FxHashMap<Atom, String>>,
+    pows: std::cell::RefCell<rustc_hash::FxHashMap<(Atom, u32), String>>,
+}
+
+impl Cached<'_> {
+    /// Appends the atom's text without copying it out of the cache.
+    fn write_atom(&self, a: Atom, out: &mut String) {
+        let mut atoms = self.atoms.borrow_mut();
+        out.push_str(atoms.entry(a).or_insert_with(|| self.inner.atom(a)));
+    }
+
+    /// Appends `a^exp` (an atom base needs no parentheses).
+    fn write_atom_pow(&self, a: Atom, exp: u32, out: &mut String) {
+        let mut pows = self.pows.borrow_mut();
+        let text = pows.entry((a, exp)).or_insert_with(|| {
+            let mut b = String::new();
+            self.write_atom(a, &mut b);
+            self.inner.pow(&b, &Node::Atom(a), exp)
+        });
+        out.push_str(text);
+    }
 }
 
 impl Style for Cached<'_> {
@@ -99,17 +120,17 @@ impl Style for Cached<'_> {
     }
 }
 
-fn paren(e: &Expr, id: Id, style: &dyn Style, out: &mut String) {
+fn paren(e: &Expr, id: Id, style: &Cached, out: &mut String) {
     let (l, r) = style.parens();
     out.push_str(l);
     write(e, id, style, out);
     out.push_str(r);
 }
 
-fn write(e: &Expr, id: Id, style: &dyn Style, out: &mut String) {
+fn write(e: &Expr, id: Id, style: &Cached, out: &mut String) {
     match e.node(id) {
         Node::Num(r) => out.push_str(&style.num(r)),
-        Node::Atom(a) => out.push_str(&style.atom(*a)),
+        Node::Atom(a) => style.write_atom(*a, out),
         Node::Add(terms) => {
             for (k, &t) in terms.iter().enumerate() {
                 match e.node(t) {
@@ -134,6 +155,13 @@ fn write(e: &Expr, id: Id, style: &dyn Style, out: &mut String) {
                 }
             }
         }
+        Node::Mul(factors)
+            if !factors
+                .iter()
+                .any(|&f| matches!(e.node(f), Node::Pow(_, k) if *k < 0)) =>
+        {
+            write_product(e, factors, style, out)
+        }
         Node::Mul(factors) => {
             let (dens, nums): (Vec<Id>, Vec<Id>) = factors
                 .iter()
@@ -149,6 +177,12 @@ fn write(e: &Expr, id: Id, style: &dyn Style, out: &mut String) {
             out.push_str(style.minus());
             write_under_neg(e, *inner, style, out);
         }
+        Node::Pow(base, exp) if matches!(e.node(*base), Node::Atom(_)) => {
+            let Node::Atom(a) = e.node(*base) else {
+                unreachable!()
+            };
+            style.write_atom_pow(*a, exp.unsigned_abs(), out);
+        }
         Node::Pow(base, exp) => {
             let mut b = String::new();
             match e.node(*base) {
@@ -161,7 +195,7 @@ fn write(e: &Expr, id: Id, style: &dyn Style, out: &mut String) {
     }
 }
 
-fn write_product(e: &Expr, factors: &[Id], style: &dyn Style, out: &mut String) {
+fn write_product(e: &Expr, factors: &[Id], style: &Cached, out: &mut String) {
     for (k, &f) in factors.iter().enumerate() {
         if k > 0 {
             out.push_str(style.mul_sep(e.node(factors[k - 1]), e.node(f)));
@@ -174,7 +208,7 @@ fn write_product(e: &Expr, factors: &[Id], style: &dyn Style, out: &mut String) 
 }
 
 /// `nums / dens`, each denominator a negative power of an atom.
-fn write_fraction(e: &Expr, nums: &[Id], dens: &[Id], style: &dyn Style, out: &mut String) {
+fn write_fraction(e: &Expr, nums: &[Id], dens: &[Id], style: &Cached, out: &mut String) {
     let mut num = String::new();
     if nums.is_empty() {
         num.push_str(&style.num(&Rational::ONE));
@@ -204,7 +238,7 @@ fn write_fraction(e: &Expr, nums: &[Id], dens: &[Id], style: &dyn Style, out: &m
 
 /// After a minus sign: sums and negations need parentheses, a bare number
 /// too (so that `-(3)` stays distinct from the literal `-3` nowhere used).
-fn write_under_neg(e: &Expr, id: Id, style: &dyn Style, out: &mut String) {
+fn write_under_neg(e: &Expr, id: Id, style: &Cached, out: &mut String) {
     match e.node(id) {
         Node::Add(_) | Node::Neg(_) => paren(e, id, style, out),
         _ => write(e, id, style, out),

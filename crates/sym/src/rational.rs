@@ -164,6 +164,16 @@ impl Rational {
     /// Greatest common divisor of two rationals: gcd of numerators over lcm
     /// of denominators (always non-negative).
     pub fn gcd(&self, other: &Rational) -> Rational {
+        if let (Rational::Small(n1, d1), Rational::Small(n2, d2)) = (self, other) {
+            // gcd of numerators over lcm of denominators, in i128 (cannot
+            // overflow: |n| ≤ 2⁶³ and lcm ≤ 2¹²⁶).
+            let n = (*n1 as i128).gcd(&(*n2 as i128));
+            if n == 0 {
+                return Rational::ZERO;
+            }
+            let d = (*d1 as i128).lcm(&(*d2 as i128));
+            return Self::from_i128(n, d);
+        }
         let (a, b) = (self.to_big(), other.to_big());
         let n = a.numer().gcd(b.numer());
         let d = a.denom().lcm(b.denom());
