@@ -74,20 +74,51 @@ pub fn verify_body() -> impl Strategy<Value = ParticleCloud> {
     })
 }
 
-/// A state for the checks: ω, α, v̄, body axes and an offset to O or P.
+/// Eulerian angles (φ, θ, ψ), each in (−π, π).
+pub fn euler_angles() -> impl Strategy<Value = Vector3<f64>> {
+    vector3(std::f64::consts::PI)
+}
+
+/// How many rotated copies make a body axisymmetric (3–6).
+pub fn axisymmetric_fold() -> impl Strategy<Value = usize> {
+    3usize..=6
+}
+
+/// A principal axis index (0–2).
+pub fn principal_axis() -> impl Strategy<Value = usize> {
+    0usize..3
+}
+
+/// A state for the checks: ω, α, v̄, ā, body axes, an offset to O or P,
+/// Eulerian angles, a relative spin (β, β̇, β̈), the fold of an
+/// axisymmetric body, a spin axis and a stretch (see
+/// `hdot_num::verify::State`).
 pub fn verify_state() -> impl Strategy<Value = hdot_num::verify::State> {
     (
-        angular_velocity(),
-        angular_velocity(),
-        vector3(5.0),
-        rotation(),
-        vector3(3.0),
+        (
+            angular_velocity(),
+            angular_velocity(),
+            vector3(5.0),
+            vector3(5.0),
+        ),
+        (rotation(), vector3(3.0), euler_angles(), vector3(5.0)),
+        (axisymmetric_fold(), principal_axis(), 0.1..4.0f64),
     )
-        .prop_map(|(omega, alpha, v, axes, offset)| hdot_num::verify::State {
-            omega,
-            alpha,
-            v,
-            axes: axes.to_rotation_matrix(),
-            offset,
-        })
+        .prop_map(
+            |((omega, alpha, v, a), (axes, offset, angles, spin), (fold, axis, stretch))| {
+                hdot_num::verify::State {
+                    omega,
+                    alpha,
+                    v,
+                    a,
+                    axes: axes.to_rotation_matrix(),
+                    offset,
+                    angles,
+                    spin,
+                    fold,
+                    axis,
+                    stretch,
+                }
+            },
+        )
 }

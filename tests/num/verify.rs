@@ -1,10 +1,13 @@
 //! Derived equations against particle sums, on random bodies and states
-//! (the `hdot verify` checks as properties).
+//! (the `hdot verify` checks as properties), and the same checks failing
+//! when the derived result is perturbed.
 
 use std::path::Path;
 
-use hdot_num::verify::{Comparison, check};
+use hdot_num::verify::{COVERAGE, Comparison, SUPPORTED, check};
+use hdot_sym::atom::AtomKind;
 use hdot_sym::derivation::Derivation;
+use hdot_sym::poly::Poly;
 use proptest::prelude::*;
 
 use crate::strategies::{verify_body, verify_state};
@@ -52,9 +55,158 @@ law!(
 law!(fixed_axis_moments_equal_sum_about_o, "fixed-axis");
 law!(kinetic_energy_equals_sum_of_half_m_v2, "kinetic-energy");
 law!(parallel_axis_equals_inertia_about_p, "parallel-axis");
+law!(
+    gyroscope_moments_equal_sum_of_r_cross_m_a_of_the_rotor,
+    "gyroscope"
+);
+law!(
+    steady_precession_couple_equals_sum_of_r_cross_m_a,
+    "steady-precession"
+);
+law!(
+    non_spinning_frame_moments_equal_sum_of_r_cross_m_a,
+    "gyroscope-axisymmetric-frame"
+);
+law!(
+    torque_free_rates_match_the_solved_and_decomposed_omega,
+    "torque-free-axisymmetric"
+);
+law!(
+    impulse_momentum_matches_the_particle_solve,
+    "impulse-momentum"
+);
+law!(dalembert_force_and_moment_equal_particle_sums, "dalembert");
+law!(
+    h_about_a_point_equals_sum_of_r_cross_m_v,
+    "angular-momentum-about-point"
+);
+law!(plane_motion_h_and_lamina_moment_equal_sums, "plane-motion");
+law!(
+    rotating_frame_velocity_and_acceleration_equal_derivatives_of_the_path,
+    "rotating-frame-kinematics"
+);
+law!(
+    stability_coefficient_matches_the_jacobians_eigenvalues,
+    "principal-axis-stability"
+);
+
+/// `d` with the terms of `step` that contain the symbol `name` (of
+/// derivative order `order`, or inside sin/cos) negated; `name = "*"`
+/// negates the whole step.
+fn mutated(d: &Derivation, step: &str, name: &str, order: u32) -> Derivation {
+    let mut d = d.clone();
+    let s = d
+        .steps
+        .iter_mut()
+        .find(|s| s.name == step)
+        .unwrap_or_else(|| panic!("{} has no step {step}", d.name));
+    let hit = |a: hdot_sym::atom::Atom| {
+        let a = match a.kind() {
+            AtomKind::Sin(x) | AtomKind::Cos(x) => x,
+            _ => a,
+        };
+        name == "*" || (a.name() == name && a.order() == order)
+    };
+    let mut changed = false;
+    s.value = s.value.map(&mut |p: &Poly| {
+        Poly::from_terms(p.terms().iter().map(|(m, c)| {
+            if m.factors().iter().any(|(a, _)| hit(*a)) || (name == "*") {
+                changed = true;
+                (m.clone(), -c.clone())
+            } else {
+                (m.clone(), c.clone())
+            }
+        }))
+    });
+    assert!(changed, "{step} has no term with {name}");
+    d
+}
+
+/// One perturbation per binding: the step, and the symbol whose terms
+/// get the wrong sign (`*`: the whole step).
+const PERTURBATIONS: &[(&str, &str, &str, u32)] = &[
+    ("angular-momentum", "H", "I_xy", 0),
+    ("angular-momentum-about-point", "H_O", "m", 0),
+    ("dalembert", "M_O", "m", 0),
+    ("euler-general", "M", "I_xy", 0),
+    ("euler-principal", "M", "I_z", 0),
+    ("fixed-axis", "M", "I_yz", 0),
+    ("gyroscope", "M", "Ip", 0),
+    ("gyroscope-axisymmetric-frame", "Q", "Omega_3", 0),
+    ("impulse-momentum", "omega", "F_x", 0),
+    ("kinetic-energy", "T", "I_zx", 0),
+    ("parallel-axis", "Ixy_P", "m", 0),
+    ("plane-motion", "H", "I_zx", 0),
+    ("principal-axis-stability", "k_1", "A", 0),
+    ("rotating-frame-kinematics", "a", "x", 1),
+    ("steady-precession", "M_steady", "Ip", 0),
+    ("torque-free-axisymmetric", "spin", "I", 0),
+];
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 16, rng_seed: proptest::test_runner::RngSeed::Fixed(1), ..ProptestConfig::default() })]
+    /// Every binding can fail: a wrong sign on one group of terms (a
+    /// product of inertia, the Coriolis term, the transverse moment…)
+    /// makes some comparison fail on every random body.
+    #[test]
+    fn every_check_fails_when_the_derived_result_is_perturbed(body in verify_body(), state in verify_state()) {
+        for &(name, step, symbol, order) in PERTURBATIONS {
+            let d = mutated(&derivation(name), step, symbol, order);
+            let cs = check(&d, &body, &state).expect("supported").expect("binds");
+            let worst = cs.iter().map(Comparison::relative_error).fold(0.0, f64::max);
+            prop_assert!(
+                cs.iter().any(|c| !c.passes()),
+                "{name}: {step} with −{symbol} still passes (worst {worst:e})"
+            );
+        }
+    }
+
+    /// The verdict steps (constants ±1) fail when negated: the direct side
+    /// is the sign computed from the particle body, not a restatement.
+    #[test]
+    fn verdicts_fail_when_negated(body in verify_body(), state in verify_state()) {
+        for (name, step) in [
+            ("torque-free-axisymmetric", "elongated"),
+            ("torque-free-axisymmetric", "flattened"),
+            ("principal-axis-stability", "sign_largest"),
+            ("principal-axis-stability", "sign_intermediate"),
+            ("principal-axis-stability", "sign_smallest"),
+        ] {
+            let d = mutated(&derivation(name), step, "*", 0);
+            let cs = check(&d, &body, &state).expect("supported").expect("binds");
+            let c = cs.iter().find(|c| c.quantity == step).expect("compared");
+            prop_assert!(!c.passes(), "{name}: −{step} passes: {c:?}");
+        }
+    }
+}
+
+/// The lamina form H = I_z ω k, applied to a body that is not symmetric
+/// about its xy plane, fails: the check sees the missing products.
+#[test]
+fn lamina_form_fails_on_an_unsymmetric_body() {
+    use rand::SeedableRng;
+    let d = derivation("plane-motion");
+    let mut d2 = d.clone();
+    // H := H_lamina, compared on the general body.
+    let lamina = d.steps.iter().find(|s| s.name == "H_lamina").unwrap();
+    let h = d2.steps.iter_mut().find(|s| s.name == "H").unwrap();
+    h.value = lamina.value.clone();
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
+    let mut failed = 0;
+    for _ in 0..20 {
+        let body = hdot_num::verify::random_cloud(&mut rng).unwrap();
+        let state = hdot_num::verify::random_state(&mut rng);
+        let cs = check(&d2, &body, &state).unwrap().unwrap();
+        failed += usize::from(
+            cs.iter()
+                .any(|c| c.quantity.starts_with("H.") && !c.passes()),
+        );
+    }
+    assert_eq!(failed, 20);
+}
 
 #[test]
-fn verify_is_seeded_and_skips_derivations_without_binding() {
+fn verify_is_seeded_and_covers_every_bundled_derivation() {
     let d = derivation("euler-general");
     let a = hdot_num::verify::verify(&d, 5, 7, &mut || {})
         .unwrap()
@@ -64,5 +216,58 @@ fn verify_is_seeded_and_skips_derivations_without_binding() {
         .unwrap();
     assert_eq!(a, b);
     assert!(a.passed && a.bodies == 5);
-    assert!(hdot_num::verify::verify(&derivation("dalembert"), 5, 7, &mut || {}).is_none());
+    // Every bundled derivation has a binding and a coverage entry.
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../derivations");
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .map(|p| p.file_stem().unwrap().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(names, SUPPORTED);
+    let mut covered: Vec<&str> = COVERAGE.iter().map(|c| c.derivation).collect();
+    covered.sort();
+    assert_eq!(covered, SUPPORTED);
+    assert_eq!(PERTURBATIONS.len(), SUPPORTED.len());
+    // A derivation the checks do not know has no binding.
+    let mut other = derivation("dalembert");
+    other.name = "not-a-bundled-derivation".into();
+    assert!(hdot_num::verify::verify(&other, 5, 7, &mut || {}).is_none());
+}
+
+/// Every step of every derivation is either compared, compared with
+/// kinematics, or listed as not compared (with a reason).
+#[test]
+fn coverage_names_every_step() {
+    for c in COVERAGE {
+        let d = derivation(c.derivation);
+        let listed: Vec<&str> = c
+            .compared
+            .iter()
+            .chain(c.kinematic)
+            .chain(c.not_compared)
+            .flat_map(|(steps, _)| steps.split(", "))
+            .collect();
+        for s in &d.steps {
+            let named = listed.iter().any(|l| {
+                *l == s.name
+                    || l.strip_suffix('*')
+                        .is_some_and(|prefix| s.name.starts_with(prefix))
+            });
+            assert!(
+                named,
+                "{}: step {} is not in the coverage",
+                c.derivation, s.name
+            );
+        }
+        for l in &listed {
+            let prefix = l.strip_suffix('*').unwrap_or(l);
+            assert!(
+                d.steps.iter().any(|s| s.name.starts_with(prefix)),
+                "{}: the coverage names {l}, which is not a step",
+                c.derivation
+            );
+        }
+    }
 }

@@ -2,14 +2,16 @@
 //! numeric meaning, evaluated on random bodies and states with its symbols
 //! bound from particle sums, against the direct particle sums of the same
 //! particles. Prints the bodies tried and the largest relative error per
-//! derivation; exit 1 when one fails.
+//! derivation, and under it the steps compared with kinematics rather than
+//! particle sums and the steps not compared (all steps with `--steps`);
+//! exit 1 when one fails.
 
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Args;
-use hdot_num::verify::{TOLERANCE_ULPS, is_supported, verify};
+use hdot_num::verify::{TOLERANCE_ULPS, coverage, is_supported, verify};
 
 use crate::catalog;
 
@@ -28,6 +30,9 @@ pub struct VerifyArgs {
     /// The derivations folder (default: `$HDOT_DERIVATIONS`, then `./derivations`).
     #[arg(long)]
     pub dir: Option<PathBuf>,
+    /// Also list the steps compared with particle sums, and what with.
+    #[arg(long)]
+    pub steps: bool,
 }
 
 /// Runs the checks. Exit 1 when a derivation fails; 2 on bad input.
@@ -95,6 +100,19 @@ pub fn run(args: VerifyArgs) -> anyhow::Result<ExitCode> {
                     "{name:<36} {:>7} {:>12.3e}  {verdict}",
                     o.bodies, o.max_error
                 );
+            }
+        }
+        if let Some(c) = coverage(&name) {
+            if args.steps {
+                for (steps, against) in c.compared {
+                    println!("    {steps}: against {against}");
+                }
+            }
+            for (steps, against) in c.kinematic {
+                println!("    {steps}: kinematics, against {against} (no particle sum)");
+            }
+            for (steps, why) in c.not_compared {
+                println!("    {steps}: not compared, {why}");
             }
         }
     }

@@ -102,9 +102,12 @@ const RESTATES: &str = "restates the symbols (nothing to compare)";
 pub const COVERAGE: &[Coverage] = &[
     Coverage {
         derivation: "angular-momentum",
-        compared: &[("H, T_rot", "Σ m r × v, Σ ½ m v²")],
+        compared: &[
+            ("H, T_rot, H_along_x", "Σ m r × v, Σ ½ m v²"),
+            ("H_principal", "Σ m r × v, body mirrored in three planes"),
+        ],
         kinematic: &[],
-        not_compared: &[],
+        not_compared: &[("omega", RESTATES)],
     },
     Coverage {
         derivation: "angular-momentum-about-point",
@@ -129,19 +132,35 @@ pub const COVERAGE: &[Coverage] = &[
     },
     Coverage {
         derivation: "euler-general",
-        compared: &[("M", "Σ m r × a")],
+        compared: &[
+            ("I_G", "the particle tensor Σ m (|r|² 1 − r rᵀ)"),
+            ("H, M", "Σ m r × v, Σ m r × a"),
+            ("M_principal", "Σ m r × a, body mirrored in three planes"),
+        ],
         kinematic: &[],
         not_compared: &[],
     },
     Coverage {
         derivation: "euler-principal",
-        compared: &[("M, M_transport", "Σ m r × a, principal axes")],
+        compared: &[
+            ("M, M_transport", "Σ m r × a, principal axes"),
+            (
+                "I_G, H",
+                "the particle tensor, Σ m r × v, body mirrored in three planes",
+            ),
+        ],
         kinematic: &[],
-        not_compared: &[],
+        not_compared: &[("omega", RESTATES)],
     },
     Coverage {
         derivation: "fixed-axis",
-        compared: &[("M", "Σ m r × a about O on the axis")],
+        compared: &[
+            ("H, M, M_steady", "Σ m r × v, Σ m r × a about O on the axis"),
+            (
+                "M_symmetric",
+                "Σ m r × a, body mirrored in the xy plane through O",
+            ),
+        ],
         kinematic: &[],
         not_compared: &[],
     },
@@ -157,7 +176,10 @@ pub const COVERAGE: &[Coverage] = &[
     Coverage {
         derivation: "gyroscope-axisymmetric-frame",
         compared: &[
-            ("H, Q", "Σ m r × v, Σ m r × R̈ q in a frame turning with the body but not spinning"),
+            (
+                "H, Q",
+                "Σ m r × v, Σ m r × R̈ q in a frame turning with the body but not spinning",
+            ),
             ("Q_euler", "Σ m r × R̈ q in body axes"),
         ],
         kinematic: &[],
@@ -174,21 +196,33 @@ pub const COVERAGE: &[Coverage] = &[
     },
     Coverage {
         derivation: "kinetic-energy",
-        compared: &[("T, T_O", "Σ ½ m v²")],
+        compared: &[
+            ("T, T_O, H_G", "Σ ½ m v², Σ m r′ × v′"),
+            ("T_principal", "Σ ½ m v², body mirrored in three planes"),
+        ],
         kinematic: &[],
-        not_compared: &[],
+        not_compared: &[("v", RESTATES)],
     },
     Coverage {
         derivation: "parallel-axis",
-        compared: &[("Ix_P … Izx_P", "the particle inertia about P")],
+        compared: &[
+            (
+                "I_P, Ix_P, Iy_P, Iz_P, Ixy_P, Iyz_P, Izx_P",
+                "the particle inertia about P",
+            ),
+            ("H_point", "H_P − H_G, particle sums about P and G"),
+        ],
         kinematic: &[],
-        not_compared: &[],
+        not_compared: &[("d, w", RESTATES)],
     },
     Coverage {
         derivation: "plane-motion",
         compared: &[
             ("H", "Σ m r′ × v′, ω along z"),
-            ("H_lamina, M_lamina", "Σ m r′ × v′, Σ m r′ × a, body mirrored in xy"),
+            (
+                "H_lamina, M_lamina",
+                "Σ m r′ × v′, Σ m r′ × a, body mirrored in xy",
+            ),
         ],
         kinematic: &[],
         not_compared: &[],
@@ -197,10 +231,19 @@ pub const COVERAGE: &[Coverage] = &[
         derivation: "principal-axis-stability",
         compared: &[
             ("M", "Σ m r × a, disturbed spin"),
-            ("L", "central difference of Σ m r × a (exact for a quadratic)"),
-            ("eps3_rate, eps2_acc", "J ε, J² ε with J = −I⁻¹ ∂(ω × Iω)/∂ω from particle sums"),
+            (
+                "L",
+                "central difference of Σ m r × a (exact for a quadratic)",
+            ),
+            (
+                "eps3_rate, eps2_acc",
+                "J ε, J² ε with J = −I⁻¹ ∂(ω × Iω)/∂ω from particle sums",
+            ),
             ("k_1", "−λ²/Ω², λ the largest eigenvalue of J"),
-            ("sign_*", "sign of −λ² for spin about the largest, middle, smallest moment"),
+            (
+                "sign_*",
+                "sign of −λ² for spin about the largest, middle, smallest moment",
+            ),
         ],
         kinematic: &[],
         not_compared: &[],
@@ -215,7 +258,10 @@ pub const COVERAGE: &[Coverage] = &[
         derivation: "steady-precession",
         compared: &[
             ("H, M", "Σ m r × v, Σ m r × R̈ q about O"),
-            ("M_steady, M_right_angle", "the same with θ̇ = φ̈ = ψ̈ = 0 (and θ = π/2)"),
+            (
+                "M_steady, M_right_angle",
+                "the same with θ̇ = φ̈ = ψ̈ = 0 (and θ = π/2)",
+            ),
         ],
         kinematic: &[],
         not_compared: &[],
@@ -223,11 +269,17 @@ pub const COVERAGE: &[Coverage] = &[
     Coverage {
         derivation: "torque-free-axisymmetric",
         compared: &[
-            ("H", "Σ m r × v with ω solved from I ω = H (particle tensor)"),
+            (
+                "H",
+                "Σ m r × v with ω solved from I ω = H (particle tensor)",
+            ),
             ("omega", "the solved ω"),
             ("tan_gamma", "γ = ∠(ω, z) of the solved ω"),
             ("precession, spin", "ω decomposed along Z and z"),
-            ("elongated, flattened", "sign of φ̇ ψ̇ so decomposed, stretched bodies"),
+            (
+                "elongated, flattened",
+                "sign of φ̇ ψ̇ so decomposed, stretched bodies",
+            ),
         ],
         kinematic: &[("kinematics", "Ṙ Rᵀ of the rotation chain")],
         not_compared: &[],
@@ -545,10 +597,10 @@ pub(crate) fn compare_scaled(
         return Err(VerifyError::WrongShape {
             derivation: d.name.clone(),
             step: step.into(),
-            expected: if direct.len() == 1 {
-                "a scalar"
-            } else {
-                "a vector"
+            expected: match direct.len() {
+                1 => "a scalar",
+                3 => "a vector",
+                _ => "a matrix",
             },
         });
     }
@@ -571,19 +623,18 @@ pub(crate) fn compare_scaled(
     let mut scale: Vec<f64> = (0..polys.len())
         .map(|k| scale[k] + direct[k].abs() + extra.get(k).copied().unwrap_or(0.0))
         .collect();
-    // A vector's components are computed to round-off of its size (they
-    // mix under a rotation): each is compared on the largest scale.
-    if polys.len() == 3 {
-        let top = scale.iter().copied().fold(0.0, f64::max);
-        scale.fill(top);
-    }
+    // A vector's (or matrix's) components are computed to round-off of
+    // its size (they mix under a rotation): each is compared on the
+    // largest scale.
+    let top = scale.iter().copied().fold(0.0, f64::max);
+    scale.fill(top);
     let axes = ["x", "y", "z"];
     Ok((0..polys.len())
         .map(|k| Comparison {
-            quantity: if polys.len() == 1 {
-                step.to_string()
-            } else {
-                format!("{step}.{}", axes[k])
+            quantity: match polys.len() {
+                1 => step.to_string(),
+                3 => format!("{step}.{}", axes[k]),
+                _ => format!("{step}.{}{}", axes[k / 3], axes[k % 3]),
             },
             derived: derived[k],
             direct: direct[k],
