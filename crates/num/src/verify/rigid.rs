@@ -374,8 +374,20 @@ pub fn dalembert(
     b.vector(xyz, 2, &state.a);
     b.vector(["h_x", "h_y", "h_z"], 0, &k.h_g);
     b.vector(["h_x", "h_y", "h_z"], 1, &k.hdot_g);
-    let mut out = compare(d, "F", &b, k.force.as_slice())?;
-    out.extend(compare(d, "M_O", &b, k.moment_o.as_slice())?);
+    // The direct sums cancel r̄ × Σ m a′ and Σ m r′ × ā (Σ m r′ = 0); their
+    // magnitudes, bounded with Σ m |r′| ≤ √(m Σ m |r′|²), join the scale.
+    let spread = (mp.mass * 0.5 * mp.inertia_g.trace()).sqrt();
+    let turn = state.alpha.norm() + state.omega.norm_squared();
+    let f_mag = spread * turn;
+    let m_mag = spread * ((mp.center - o).norm() * turn + state.a.norm());
+    let mut out = compare_scaled(d, "F", &b, k.force.as_slice(), &[f_mag; 3])?;
+    out.extend(compare_scaled(
+        d,
+        "M_O",
+        &b,
+        k.moment_o.as_slice(),
+        &[m_mag; 3],
+    )?);
 
     let (c, mp) = principal_body(cloud, &state.axes)?;
     let spin = Motion {
