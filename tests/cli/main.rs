@@ -124,3 +124,39 @@ fn every_command_has_help() {
         assert!(text(&out.stdout).contains("Usage: hdot"), "{cmd}");
     }
 }
+
+#[test]
+fn verify_passes_on_every_bundled_derivation() {
+    let out = hdot(&["verify", "--bodies", "20"]);
+    let so = text(&out.stdout);
+    assert!(out.status.success(), "{so}{}", text(&out.stderr));
+    let results: Vec<&str> = so.lines().skip(1).filter(|l| !l.starts_with(' ')).collect();
+    assert_eq!(results.len(), 16, "{so}");
+    for l in results {
+        assert!(l.trim_end().ends_with("pass"), "{l}");
+    }
+    // Steps that are not compared, and kinematic ones, are said so.
+    assert!(so.contains("rbar: not compared"), "{so}");
+    assert!(so.contains("v, a: kinematics"), "{so}");
+}
+
+#[test]
+fn verify_fails_on_a_wrong_derivation_and_rejects_unknown_names() {
+    // plane-motion with the products of inertia entering with a plus sign.
+    let dir = tempfile::tempdir().unwrap();
+    let f = dir.path().join("plane-motion.toml");
+    let good = std::fs::read_to_string(repo_root().join("derivations/plane-motion.toml")).unwrap();
+    let wrong = good.replace(
+        "value = \"inertia(I_x, I_y, I_z, I_xy, I_yz, I_zx) * angvel(B)\"",
+        "value = \"inertia(I_x, I_y, I_z, -I_xy, -I_yz, -I_zx) * angvel(B)\"",
+    );
+    assert_ne!(good, wrong);
+    std::fs::write(&f, wrong).unwrap();
+    let out = hdot(&["verify", f.to_str().unwrap(), "--bodies", "5"]);
+    assert_eq!(out.status.code(), Some(1));
+    let so = text(&out.stdout);
+    assert!(so.contains("FAIL at H."), "{so}");
+
+    let out = hdot(&["verify", "no-such-derivation"]);
+    assert_eq!(out.status.code(), Some(2));
+}
