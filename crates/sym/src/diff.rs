@@ -48,6 +48,9 @@ impl Poly {
     /// The total time derivative `d/dt`.
     pub fn dt(&self) -> Poly {
         let mut acc = Accum::with_capacity(self.len() * 2);
+        // A long polynomial names a few atoms many times: differentiate
+        // each once (interning the derivative atoms is a table lookup).
+        let mut cache: rustc_hash::FxHashMap<Atom, Vec<(Monomial, Rational)>> = Default::default();
         for (m, c) in self.terms() {
             for &(a, e) in m.factors() {
                 if !a.is_time_dependent() {
@@ -55,8 +58,8 @@ impl Poly {
                 }
                 let rest = m.without(a, 1);
                 let k = c * &Rational::int(i64::from(e));
-                for (dm, dc) in atom_dt(a) {
-                    acc.push(rest.mul(&dm), &k * &dc);
+                for (dm, dc) in cache.entry(a).or_insert_with(|| atom_dt(a)).iter() {
+                    acc.push(rest.mul(dm), &k * dc);
                 }
             }
         }

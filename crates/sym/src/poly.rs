@@ -33,7 +33,7 @@ pub type Exp = i32;
 /// exponents only on constant symbols, at most the first power of any
 /// `sin` atom (in a canonical [`Poly`]).
 #[derive(Clone, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct Monomial(SmallVec<[(Atom, Exp); 4]>);
+pub struct Monomial(SmallVec<[(Atom, Exp); 8]>);
 
 impl Monomial {
     /// The empty product, 1.
@@ -53,9 +53,9 @@ impl Monomial {
     /// Builds a monomial from factors in any order (exponents of repeated
     /// atoms are added).
     pub fn from_factors(factors: impl IntoIterator<Item = (Atom, Exp)>) -> Monomial {
-        let mut v: SmallVec<[(Atom, Exp); 4]> = factors.into_iter().filter(|f| f.1 != 0).collect();
+        let mut v: SmallVec<[(Atom, Exp); 8]> = factors.into_iter().filter(|f| f.1 != 0).collect();
         v.sort_unstable_by_key(|f| f.0);
-        let mut out: SmallVec<[(Atom, Exp); 4]> = SmallVec::with_capacity(v.len());
+        let mut out: SmallVec<[(Atom, Exp); 8]> = SmallVec::with_capacity(v.len());
         for (a, e) in v {
             match out.last_mut() {
                 Some(last) if last.0 == a => last.1 += e,

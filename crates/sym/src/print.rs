@@ -59,6 +59,7 @@ pub fn print(e: &Expr, style: &dyn Style) -> String {
         inner: style,
         atoms: Default::default(),
         pows: Default::default(),
+        nums: Default::default(),
     };
     let mut out = String::new();
     write(e, e.root(), &cached, &mut out);
@@ -71,6 +72,7 @@ struct Cached<'a> {
     inner: &'a dyn Style,
     atoms: std::cell::RefCell<rustc_hash::FxHashMap<Atom, String>>,
     pows: std::cell::RefCell<rustc_hash::FxHashMap<(Atom, u32), String>>,
+    nums: std::cell::RefCell<rustc_hash::FxHashMap<Rational, String>>,
 }
 
 impl Cached<'_> {
@@ -78,6 +80,18 @@ impl Cached<'_> {
     fn write_atom(&self, a: Atom, out: &mut String) {
         let mut atoms = self.atoms.borrow_mut();
         out.push_str(atoms.entry(a).or_insert_with(|| self.inner.atom(a)));
+    }
+
+    /// Appends the number's text (a result repeats the same few numbers).
+    fn write_num(&self, r: &Rational, out: &mut String) {
+        let mut nums = self.nums.borrow_mut();
+        if let Some(text) = nums.get(r) {
+            out.push_str(text);
+        } else {
+            let text = self.inner.num(r);
+            out.push_str(&text);
+            nums.insert(r.clone(), text);
+        }
     }
 
     /// Appends `a^exp` (an atom base needs no parentheses).
@@ -101,7 +115,9 @@ impl Style for Cached<'_> {
             .clone()
     }
     fn num(&self, r: &Rational) -> String {
-        self.inner.num(r)
+        let mut s = String::new();
+        self.write_num(r, &mut s);
+        s
     }
     fn mul_sep(&self, left: &Node, right: &Node) -> &'static str {
         self.inner.mul_sep(left, right)
@@ -129,7 +145,7 @@ fn paren(e: &Expr, id: Id, style: &Cached, out: &mut String) {
 
 fn write(e: &Expr, id: Id, style: &Cached, out: &mut String) {
     match e.node(id) {
-        Node::Num(r) => out.push_str(&style.num(r)),
+        Node::Num(r) => style.write_num(r, out),
         Node::Atom(a) => style.write_atom(*a, out),
         Node::Add(terms) => {
             for (k, &t) in terms.iter().enumerate() {

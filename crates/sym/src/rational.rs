@@ -200,6 +200,12 @@ impl std::ops::Add for &Rational {
     type Output = Rational;
     fn add(self, rhs: &Rational) -> Rational {
         if let (Rational::Small(a, b), Rational::Small(c, d)) = (self, rhs) {
+            if *b == 1
+                && *d == 1
+                && let Some(n) = a.checked_add(*c)
+            {
+                return Rational::Small(n, 1);
+            }
             let (a, b, c, d) = (*a as i128, *b as i128, *c as i128, *d as i128);
             if let (Some(x), Some(y)) = (a.checked_mul(d), c.checked_mul(b))
                 && let (Some(n), Some(den)) = (x.checked_add(y), b.checked_mul(d))
@@ -222,6 +228,13 @@ impl std::ops::Mul for &Rational {
     type Output = Rational;
     fn mul(self, rhs: &Rational) -> Rational {
         if let (Rational::Small(a, b), Rational::Small(c, d)) = (self, rhs) {
+            // Integers (the common case): no gcd to take.
+            if *b == 1
+                && *d == 1
+                && let Some(n) = a.checked_mul(*c)
+            {
+                return Rational::Small(n, 1);
+            }
             // Products of two i64 always fit in i128.
             return Rational::from_i128(*a as i128 * *c as i128, *b as i128 * *d as i128);
         }
