@@ -3,6 +3,7 @@
 //! - `strategies`: the named proptest strategies (random expression trees);
 //! - `algebra`: laws of the algebra that hold for every input (proptest);
 //! - `identities`: one-line `input => expected` identities;
+//! - `presentation`: presented forms expand back to the derived values;
 //! - `snapshots`: every derivation file in every output format (insta);
 //! - `broken`: broken derivation files, each asserting its error's location.
 
@@ -11,5 +12,6 @@ mod broken;
 mod chain;
 mod identities;
 mod notes;
+mod presentation;
 mod snapshots;
 mod strategies;

@@ -12,6 +12,8 @@
 
 use std::fmt;
 
+use smallvec::SmallVec;
+
 use crate::atom::Atom;
 use crate::poly::{Monomial, Poly};
 use crate::rational::Rational;
@@ -112,15 +114,9 @@ impl Expr {
 
     /// Adds the default presentation of `p` and returns its id.
     pub fn poly_node(&mut self, p: &Poly) -> Id {
-        let mut terms: Vec<(Vec<(Atom, i32)>, &Rational)> = p
-            .terms()
-            .iter()
-            .map(|(m, c)| (m.sorted_for_print(), c))
-            .collect();
-        terms.sort_by(|a, b| print_order(&a.0, &b.0));
-        let ids = terms
+        let ids = print_sorted(p.terms(), false)
             .into_iter()
-            .map(|(fs, c)| self.term_node(&fs, c))
+            .map(|(fs, _, c)| self.term_node(&fs, c))
             .collect();
         self.add(ids)
     }
@@ -144,7 +140,73 @@ impl Expr {
     }
 }
 
+/// A term in print order: its factors sorted for printing, and the term.
+pub(crate) type PrintTerm<'a> = (SmallVec<[(Atom, i32); 8]>, &'a Monomial, &'a Rational);
+
+/// `terms` sorted for printing, each with its factors in print order: by
+/// [`print_order`] of the sorted factors, preceded, when `derivative_first`,
+/// by the highest derivative order in the term (descending), which is the
+/// order of terms inside a presented bracket.
+///
+/// The order is computed with integer keys: each distinct atom's print rank
+/// is found once (one sort of the atoms by [`Atom::sort_key`]), so the
+/// comparisons of the term sort compare integers, not names. A key is
+/// `[u32::MAX − top order, (rank, −exp)…]` (without the first entry
+/// unless `derivative_first`) with the factor codes sorted,
+/// which orders lexicographically exactly as the comparisons do, and the
+/// sorted codes are the factors in print order.
+pub(crate) fn print_sorted(
+    terms: &[(Monomial, Rational)],
+    derivative_first: bool,
+) -> Vec<PrintTerm<'_>> {
+    let mut atoms: Vec<Atom> = terms
+        .iter()
+        .flat_map(|(m, _)| m.factors().iter().map(|f| f.0))
+        .collect();
+    atoms.sort_unstable();
+    atoms.dedup();
+    atoms.sort_by_cached_key(|a| a.sort_key());
+    let rank: rustc_hash::FxHashMap<Atom, u64> = atoms
+        .iter()
+        .enumerate()
+        .map(|(k, &a)| (a, k as u64))
+        .collect();
+    let code = |a: Atom, x: i32| (rank[&a] << 32) | (i64::from(i32::MAX) - i64::from(x)) as u64;
+    let mut keyed: Vec<(SmallVec<[u64; 8]>, usize)> = terms
+        .iter()
+        .enumerate()
+        .map(|(i, (m, _))| {
+            let top = if derivative_first {
+                m.factors().iter().map(|f| f.0.order()).max().unwrap_or(0)
+            } else {
+                0
+            };
+            let mut k: SmallVec<[u64; 8]> = SmallVec::with_capacity(m.factors().len() + 1);
+            k.push(u64::from(u32::MAX - top));
+            k.extend(m.factors().iter().map(|&(a, x)| code(a, x)));
+            k[1..].sort_unstable();
+            (k, i)
+        })
+        .collect();
+    keyed.sort_unstable_by(|a, b| a.0.cmp(&b.0));
+    keyed
+        .into_iter()
+        .map(|(k, i)| {
+            let factors = k[1..]
+                .iter()
+                .map(|&c| {
+                    let atom = atoms[(c >> 32) as usize];
+                    let x = i64::from(i32::MAX) - (c & 0xffff_ffff) as i64;
+                    (atom, x as i32)
+                })
+                .collect();
+            (factors, &terms[i].0, &terms[i].1)
+        })
+        .collect()
+}
+
 /// Orders printed terms: by their factors' name keys, then exponents.
+#[cfg(test)]
 pub(crate) fn print_order(a: &[(Atom, i32)], b: &[(Atom, i32)]) -> std::cmp::Ordering {
     let ka = a.iter().map(|f| (f.0.sort_key(), std::cmp::Reverse(f.1)));
     let kb = b.iter().map(|f| (f.0.sort_key(), std::cmp::Reverse(f.1)));

@@ -32,9 +32,7 @@ use std::cmp::Reverse;
 use std::collections::BTreeMap;
 
 use crate::atom::{Atom, AtomKind};
-use smallvec::SmallVec;
-
-use crate::expr::{Expr, Id, Node};
+use crate::expr::{Expr, Id, Node, print_sorted};
 use crate::poly::{Monomial, Poly};
 use crate::rational::Rational;
 
@@ -142,63 +140,9 @@ fn term_order(a: &[(Atom, i32)], b: &[(Atom, i32)]) -> std::cmp::Ordering {
         .then_with(|| crate::expr::print_order(a, b))
 }
 
-/// A term in print order: its factors sorted for printing, and the term.
-type PrintTerm<'a> = (SmallVec<[(Atom, i32); 8]>, &'a Monomial, &'a Rational);
-
-/// `terms` sorted in [`term_order`], each with its factors in print order.
-///
-/// The order is computed with integer keys: each distinct atom's print rank
-/// is found once (one sort of the atoms by [`Atom::sort_key`]), so the
-/// comparisons of the term sort compare integers, not names. A key is
-/// `[u32::MAX − top order, (rank, −exp)…]` with the factor codes sorted,
-/// which orders lexicographically exactly as `term_order` does, and the
-/// sorted codes are the factors in print order.
-fn sorted_terms(terms: &[(Monomial, Rational)]) -> Vec<PrintTerm<'_>> {
-    let mut atoms: Vec<Atom> = terms
-        .iter()
-        .flat_map(|(m, _)| m.factors().iter().map(|f| f.0))
-        .collect();
-    atoms.sort_unstable();
-    atoms.dedup();
-    atoms.sort_by_cached_key(|a| a.sort_key());
-    let rank: rustc_hash::FxHashMap<Atom, u64> = atoms
-        .iter()
-        .enumerate()
-        .map(|(k, &a)| (a, k as u64))
-        .collect();
-    let code = |a: Atom, x: i32| (rank[&a] << 32) | (i64::from(i32::MAX) - i64::from(x)) as u64;
-    let mut keyed: Vec<(SmallVec<[u64; 8]>, usize)> = terms
-        .iter()
-        .enumerate()
-        .map(|(i, (m, _))| {
-            let top = m.factors().iter().map(|f| f.0.order()).max().unwrap_or(0);
-            let mut k: SmallVec<[u64; 8]> = SmallVec::with_capacity(m.factors().len() + 1);
-            k.push(u64::from(u32::MAX - top));
-            k.extend(m.factors().iter().map(|&(a, x)| code(a, x)));
-            k[1..].sort_unstable();
-            (k, i)
-        })
-        .collect();
-    keyed.sort_unstable_by(|a, b| a.0.cmp(&b.0));
-    keyed
-        .into_iter()
-        .map(|(k, i)| {
-            let factors = k[1..]
-                .iter()
-                .map(|&c| {
-                    let atom = atoms[(c >> 32) as usize];
-                    let x = i64::from(i32::MAX) - (c & 0xffff_ffff) as i64;
-                    (atom, x as i32)
-                })
-                .collect();
-            (factors, &terms[i].0, &terms[i].1)
-        })
-        .collect()
-}
-
 /// `key · Σ terms` with the sum factored.
 fn group_node(e: &mut Expr, key: &Monomial, terms: &[(Monomial, Rational)], known: &[Poly]) -> Id {
-    let terms = sorted_terms(terms);
+    let terms = print_sorted(terms, true);
     // Content: rational gcd with the sign of the first printed term, and the
     // common monomial.
     let mut content = terms.iter().fold(Rational::ZERO, |g, t| g.gcd(t.2));
@@ -324,7 +268,7 @@ mod tests {
         );
         let mut checked = 0;
         for p in &polys {
-            let fast: Vec<(Vec<(Atom, i32)>, Monomial)> = sorted_terms(p.terms())
+            let fast: Vec<(Vec<(Atom, i32)>, Monomial)> = print_sorted(p.terms(), true)
                 .into_iter()
                 .map(|t| (t.0.to_vec(), t.1.clone()))
                 .collect();
@@ -333,6 +277,13 @@ mod tests {
                 .iter()
                 .map(|(m, _)| (m.sorted_for_print(), m.clone()))
                 .collect();
+            let mut by_names = slow.clone();
+            by_names.sort_by(|a, b| crate::expr::print_order(&a.0, &b.0));
+            let fast_by_names: Vec<(Vec<(Atom, i32)>, Monomial)> = print_sorted(p.terms(), false)
+                .into_iter()
+                .map(|t| (t.0.to_vec(), t.1.clone()))
+                .collect();
+            assert_eq!(fast_by_names, by_names);
             slow.sort_by(|a, b| term_order(&a.0, &b.0));
             assert_eq!(fast, slow);
             checked += p.len();

@@ -7,8 +7,6 @@
 
 use std::fmt::Write;
 
-use serde_json::json;
-
 use crate::derivation::{Derivation, Step, Value};
 use crate::expr::Expr;
 use crate::print::{self, Latex, Sympy, Unicode, latex_symbol, unicode_symbol};
@@ -862,60 +860,129 @@ fn sympy(d: &Derivation) -> String {
     o
 }
 
-fn json(d: &Derivation) -> serde_json::Value {
-    let steps: Vec<serde_json::Value> = d
+/// The JSON document of a derivation, serialised straight from borrowed
+/// data (a chain-6 document is 5 MB: building a `serde_json::Value` first
+/// would copy all of it). Fields are declared in alphabetical order, the
+/// order the documented output has always had.
+#[derive(serde::Serialize)]
+struct JsonDerivation<'a> {
+    all_hold: bool,
+    assumptions: &'a [String],
+    checks: usize,
+    name: &'a str,
+    path: &'a str,
+    source: &'a str,
+    steps: Vec<JsonStep<'a>>,
+    summary: &'a str,
+    title: &'a str,
+}
+
+#[derive(serde::Serialize)]
+struct JsonStep<'a> {
+    components: Vec<JsonComponent<'a>>,
+    doc: &'a str,
+    formula: &'a str,
+    label: &'a str,
+    name: &'a str,
+    show: bool,
+    value: JsonKind<'a>,
+}
+
+#[derive(serde::Serialize)]
+struct JsonKind<'a> {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    frame: Option<&'a str>,
+    kind: &'static str,
+}
+
+#[derive(serde::Serialize)]
+struct JsonComponent<'a> {
+    canonical: String,
+    check: Option<JsonCheck<'a>>,
+    component: String,
+    latex: String,
+    source: String,
+    terms: usize,
+    text: String,
+}
+
+#[derive(serde::Serialize)]
+struct JsonCheck<'a> {
+    difference: String,
+    expected: &'a str,
+    holds: bool,
+}
+
+fn json(d: &Derivation) -> JsonDerivation<'_> {
+    let steps = d
         .steps
         .iter()
         .map(|s| {
-            let kind = match &s.value {
-                Value::Scalar(_) => json!({"kind": "scalar"}),
-                Value::Vector(_, f) => json!({"kind": "vector", "frame": f}),
-                Value::Matrix(_) => json!({"kind": "matrix"}),
+            let value = match &s.value {
+                Value::Scalar(_) => JsonKind {
+                    frame: None,
+                    kind: "scalar",
+                },
+                Value::Vector(_, f) => JsonKind {
+                    frame: Some(f.as_str()),
+                    kind: "vector",
+                },
+                Value::Matrix(_) => JsonKind {
+                    frame: None,
+                    kind: "matrix",
+                },
             };
-            let comps: Vec<serde_json::Value> = s
+            let values = s.values();
+            let components = s
                 .presented()
-                .iter()
+                .into_iter()
                 .enumerate()
-                .map(|(k, (c, e))| {
-                    let check = s.checks.get(k).map(|ch| {
-                        json!({
-                            "expected": ch.expected_text,
-                            "holds": ch.holds(),
-                            "difference": ch.difference.to_source(),
-                        })
+                .map(|(k, (component, e))| {
+                    let check = s.checks.get(k).map(|ch| JsonCheck {
+                        difference: ch.difference.to_source(),
+                        expected: &ch.expected_text,
+                        holds: ch.holds(),
                     });
-                    let canonical = e.to_poly();
-                    json!({
-                        "component": c,
-                        "text": print::print(e, &Unicode),
-                        "latex": print::print(e, &Latex),
-                        "source": e.to_string(),
-                        "canonical": canonical.to_source(),
-                        "terms": canonical.len(),
-                        "check": check,
-                    })
+                    // The presented form expanded. Presentation is exact, so
+                    // without folded abbreviations that is the value itself
+                    // (tests/sym/presentation.rs checks it for every file).
+                    let (canonical, terms) = if s.presentation.fold.is_empty() {
+                        (values[k].to_source(), values[k].len())
+                    } else {
+                        let p = e.to_poly();
+                        (p.to_source(), p.len())
+                    };
+                    JsonComponent {
+                        canonical,
+                        check,
+                        component,
+                        latex: print::print(&e, &Latex),
+                        source: e.to_string(),
+                        terms,
+                        text: print::print(&e, &Unicode),
+                    }
                 })
                 .collect();
-            json!({
-                "name": s.name,
-                "label": s.label,
-                "doc": s.doc,
-                "formula": s.formula,
-                "show": s.show,
-                "value": kind,
-                "components": comps,
-            })
+            JsonStep {
+                components,
+                doc: &s.doc,
+                formula: &s.formula,
+                label: &s.label,
+                name: &s.name,
+                show: s.show,
+                value,
+            }
         })
         .collect();
-    json!({
-        "name": d.name,
-        "path": d.path,
-        "title": d.title,
-        "source": d.source,
-        "summary": d.summary,
-        "assumptions": d.assumptions,
-        "all_hold": d.all_hold(),
-        "checks": d.check_count(),
-        "steps": steps,
-    })
+    JsonDerivation {
+        all_hold: d.all_hold(),
+        assumptions: &d.assumptions,
+        checks: d.check_count(),
+        name: &d.name,
+        path: &d.path,
+        source: &d.source,
+        steps,
+        summary: &d.summary,
+        title: &d.title,
+    }
 }

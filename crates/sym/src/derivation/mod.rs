@@ -111,6 +111,16 @@ pub struct Step {
 }
 
 impl Step {
+    /// The canonical components, in the order of [`Step::presented`]
+    /// (scalar; x, y, z; a matrix by rows).
+    pub fn values(&self) -> Vec<&Poly> {
+        match &self.value {
+            Value::Scalar(p) => vec![p],
+            Value::Vector(v, _) => v.0.iter().collect(),
+            Value::Matrix(m) => m.0.iter().flatten().collect(),
+        }
+    }
+
     /// The presented components, computed now for a hidden step.
     pub fn presented(&self) -> Vec<(String, Expr)> {
         if !self.components.is_empty() {
