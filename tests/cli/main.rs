@@ -118,7 +118,7 @@ fn out_is_written_whole_or_not_at_all() {
 
 #[test]
 fn every_command_has_help() {
-    for cmd in ["list", "derive", "check"] {
+    for cmd in ["list", "derive", "check", "verify"] {
         let out = hdot(&[cmd, "--help"]);
         assert!(out.status.success(), "{cmd} --help");
         assert!(text(&out.stdout).contains("Usage: hdot"), "{cmd}");
