@@ -40,34 +40,26 @@ fn tensor(i: &crate::Inertia) -> Vec<f64> {
     i.matrix().transpose().as_slice().to_vec()
 }
 
+/// Euler's moment equations on `c` (body axes through G, with its mass
+/// properties `mp`) against Σ m r × a.
 fn euler(
     d: &Derivation,
-    cloud: &ParticleCloud,
+    c: &ParticleCloud,
+    mp: &crate::MassProperties,
     state: &State,
-    axes: &Rotation3<f64>,
-    principal: bool,
     steps: &[&str],
 ) -> Result<Vec<Comparison>, VerifyError> {
-    let (c, mp) = about_g(cloud, axes)?;
     let motion = Motion {
         omega: state.omega,
         alpha: state.alpha,
         ..Motion::default()
     };
-    let k = sums::kinetics(&c, &motion, mp.center, mp.center);
+    let k = sums::kinetics(c, &motion, mp.center, mp.center);
     let mut b = Binding::default();
     b.inertia(&mp.inertia_g);
     b.vector(OMEGA, 0, &state.omega);
     b.vector(OMEGA, 1, &state.alpha);
-    // With principal axes, the products left by the eigensolver (~1e-13 of
-    // the moments) are removed from the direct sum: the derivation assumes
-    // they vanish, and their effect is above round-off.
-    let mut direct = k.hdot_g;
-    if principal {
-        let mut off = *mp.inertia_g.matrix();
-        off.fill_diagonal(0.0);
-        direct -= off * state.alpha + state.omega.cross(&(off * state.omega));
-    }
+    let direct = k.hdot_g;
     let mut out = Vec::new();
     for s in steps {
         out.extend(compare(d, s, &b, direct.as_slice())?);
@@ -75,24 +67,19 @@ fn euler(
     Ok(out)
 }
 
-/// `euler-principal`: `M`, `M_transport` against Σ m r × a in the body's
-/// principal axes.
+/// `euler-principal`: `M`, `M_transport` against Σ m r × a on a body whose
+/// coordinate axes are principal by symmetry (mirrored in the three
+/// coordinate planes), so that the products the derivation drops vanish to
+/// round-off. (Eigenvectors of a general body would leave products of
+/// ~1e-13 of the moments, whose effect on Σ m r × a is above round-off.)
 pub fn euler_principal(
     d: &Derivation,
     cloud: &ParticleCloud,
     state: &State,
 ) -> Result<Vec<Comparison>, VerifyError> {
-    // True eigenvectors (no snapping of nearly repeated moments to a
-    // canonical basis), so that the neglected products are round-off.
-    let axes = cloud
-        .mass_properties()
-        .inertia_g
-        .principal_with_tol(0.0)
-        .axes;
-    let mut out = euler(d, cloud, state, &axes, true, &["M", "M_transport"])?;
-    // I_G and H on a body principal by symmetry (mirrored), where the
-    // neglected products are round-off.
     let (c, mp) = principal_body(cloud, &state.axes)?;
+    let mut out = euler(d, &c, &mp, state, &["M", "M_transport"])?;
+    // I_G and H on the same body.
     let motion = Motion {
         omega: state.omega,
         ..Motion::default()
@@ -112,8 +99,8 @@ pub fn euler_general(
     cloud: &ParticleCloud,
     state: &State,
 ) -> Result<Vec<Comparison>, VerifyError> {
-    let mut out = euler(d, cloud, state, &state.axes, false, &["M"])?;
     let (c, mp) = about_g(cloud, &state.axes)?;
+    let mut out = euler(d, &c, &mp, state, &["M"])?;
     let mut b = Binding::default();
     b.inertia(&mp.inertia_g);
     b.vector(OMEGA, 0, &state.omega);
