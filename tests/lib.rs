@@ -12,7 +12,11 @@ pub fn repo_root() -> PathBuf {
 }
 
 /// The `hdot` binary of this build, built on first use if it is missing
-/// (when only this test package was asked for).
+/// (when only this test package was asked for) or older than the sources
+/// (a binary left by an earlier build would test old code).
+///
+/// `cargo test --workspace` builds the binary first, so this only runs
+/// cargo when a single test package is asked for after an edit.
 pub fn hdot_bin() -> PathBuf {
     static BIN: OnceLock<PathBuf> = OnceLock::new();
     BIN.get_or_init(|| {
@@ -23,7 +27,11 @@ pub fn hdot_bin() -> PathBuf {
             .and_then(Path::parent)
             .expect("target/<profile>");
         let bin = dir.join(format!("hdot{}", std::env::consts::EXE_SUFFIX));
-        if !bin.is_file() {
+        let stale = match std::fs::metadata(&bin).and_then(|m| m.modified()) {
+            Ok(built) => newest_source().is_some_and(|src| src > built),
+            Err(_) => true,
+        };
+        if stale {
             let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
             let profile = if dir.ends_with("release") {
                 vec!["--release"]
@@ -41,4 +49,31 @@ pub fn hdot_bin() -> PathBuf {
         bin
     })
     .clone()
+}
+
+/// The newest modification time of the files the binary is built from:
+/// `Cargo.toml`, `Cargo.lock` and everything under `crates/`.
+fn newest_source() -> Option<std::time::SystemTime> {
+    fn walk(dir: &Path, newest: &mut Option<std::time::SystemTime>) {
+        let Ok(entries) = std::fs::read_dir(dir) else {
+            return;
+        };
+        for entry in entries.flatten() {
+            let path = entry.path();
+            if path.is_dir() {
+                walk(&path, newest);
+            } else if let Ok(t) = entry.metadata().and_then(|m| m.modified()) {
+                *newest = (*newest).max(Some(t));
+            }
+        }
+    }
+    let root = repo_root();
+    let mut newest = None;
+    for f in ["Cargo.toml", "Cargo.lock"] {
+        if let Ok(t) = std::fs::metadata(root.join(f)).and_then(|m| m.modified()) {
+            newest = newest.max(Some(t));
+        }
+    }
+    walk(&root.join("crates"), &mut newest);
+    newest
 }
