@@ -22,8 +22,11 @@
 //! derived equations themselves: `tests/sim/derived.rs` compiles
 //! `derivations/euler-principal.toml`'s moment equations with
 //! `hdot_num::eval::Tape`, solves them for ω̇ and checks the hand-written
-//! right-hand sides at random seeded states to round-off. The hand-written
-//! form stays for speed (a few dozen flops, no tape, no allocation).
+//! right-hand sides at random seeded states to round-off, and the heavy
+//! top's against `derivations/gyroscope.toml`'s moment equations in
+//! Eulerian angles (the angle accelerations that produce its ω̇ give the
+//! derived ΣM_O equal to its gravity torque). The hand-written form stays
+//! for speed (a few dozen flops, no tape, no allocation).
 //!
 //! ## Conventions
 //! State `[q_w, q_x, q_y, q_z, ω_1, ω_2, ω_3]`: `q` turns body axes into
