@@ -52,7 +52,10 @@ pub fn hdot_bin() -> PathBuf {
 }
 
 /// The newest modification time of the files the binary is built from:
-/// `Cargo.toml`, `Cargo.lock` and everything under `crates/`.
+/// `Cargo.toml`, `Cargo.lock`, and each crate's `Cargo.toml` and `src/`,
+/// `data/` and `assets/` folders (not its tests or benches, which the
+/// binary does not contain: editing one would otherwise ask cargo on
+/// every run to rebuild a binary that does not change).
 fn newest_source() -> Option<std::time::SystemTime> {
     fn walk(dir: &Path, newest: &mut Option<std::time::SystemTime>) {
         let Ok(entries) = std::fs::read_dir(dir) else {
@@ -74,6 +77,14 @@ fn newest_source() -> Option<std::time::SystemTime> {
             newest = newest.max(Some(t));
         }
     }
-    walk(&root.join("crates"), &mut newest);
+    let crates = std::fs::read_dir(root.join("crates")).into_iter().flatten();
+    for krate in crates.flatten().map(|e| e.path()) {
+        if let Ok(t) = std::fs::metadata(krate.join("Cargo.toml")).and_then(|m| m.modified()) {
+            newest = newest.max(Some(t));
+        }
+        for dir in ["src", "data", "assets"] {
+            walk(&krate.join(dir), &mut newest);
+        }
+    }
     newest
 }

@@ -159,4 +159,13 @@ fn verify_fails_on_a_wrong_derivation_and_rejects_unknown_names() {
 
     let out = hdot(&["verify", "no-such-derivation"]);
     assert_eq!(out.status.code(), Some(2));
+
+    // Zero bodies would pass without checking anything: refused.
+    let out = hdot(&["verify", "euler-general", "--bodies", "0"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        text(&out.stderr).contains("--bodies"),
+        "{}",
+        text(&out.stderr)
+    );
 }

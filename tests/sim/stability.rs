@@ -238,6 +238,7 @@ fn euler_angles_report_the_singularity_while_quaternions_go_through() {
             |_, _| Ok(()),
         )
         .unwrap_err();
+        let message = err.to_string();
         match err {
             // Reported at the end of the step that reaches or crosses θ = 0.
             SimError::EulerAngleSingularity { t, .. } => {
@@ -245,7 +246,7 @@ fn euler_angles_report_the_singularity_while_quaternions_go_through() {
             }
             other => panic!("{method}: expected the singularity, got {other}"),
         }
-        assert!(err_message_names_theta(method, &euler, e0, step));
+        assert!(message.contains("θ"), "{method}: {message}");
     }
     let exact = TorqueFree::new(body.moments, q0, w0).unwrap();
     let (y, _) = integrate(
@@ -261,21 +262,6 @@ fn euler_angles_report_the_singularity_while_quaternions_go_through() {
     .unwrap();
     // RK4 at h = 0.01 on a rotation of rate 2: error ~ (2h)⁴/120 per unit time.
     assert!(state_distance(&y, &exact.state(1.0)) <= 1e-9);
-}
-
-fn err_message_names_theta(method: Method, sys: &EulerAngleBody, e0: [f64; 6], step: Step) -> bool {
-    let e = integrate(
-        sys,
-        method,
-        step,
-        0.0,
-        e0,
-        1.0,
-        Limits::default(),
-        |_, _| Ok(()),
-    )
-    .unwrap_err();
-    e.to_string().contains("θ")
 }
 
 /// §10: about the intermediate axis A a perturbation grows like e^{σt},

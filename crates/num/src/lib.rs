@@ -26,15 +26,19 @@
 //! - **Convergence and charts** ([`convergence`], [`chart`]): error against
 //!   resolution, observed orders, the cheapest discretisation for a
 //!   tolerance; log–log SVG/PNG charts (shared with `hdot-sim`).
+//! - **Derived results as numbers** ([`eval`], [`verify`]): a derived
+//!   polynomial compiled to a flat f64 tape; `hdot verify`'s checks, which
+//!   bind a derivation's symbols from particle sums of random bodies and
+//!   compare its results with direct sums over the same particles (never
+//!   with the rigid-body formulas of [`sums::rigid_kinetics`], which are
+//!   what is being checked).
 //!
 //! ## What it does not own, and why
 //!
-//! - No symbolic algebra and no parsing of derivations: that is
-//!   `hdot-sym`. A future `hdot verify` binds a derivation's symbols from
-//!   *this* crate's sums ([`sums::mass_properties`], [`sums::kinetics`],
-//!   [`MassProperties::inertia_about_in`], [`sums::rigid_kinetics`]) and
-//!   compares; keeping the numbers free of the expression types means
-//!   either side can change without the other.
+//! - No symbolic algebra: that is `hdot-sym`. This crate reads its
+//!   results (canonical polynomials of a loaded derivation) only in
+//!   [`eval`] and [`verify`]; the bodies, sums and scenes use no
+//!   expression types, so either side can change without the other.
 //! - No time integration: that is `hdot-sim` (which reuses [`chart`]).
 //! - No printing policy beyond [`report::Report`]: the CLI decides formats,
 //!   progress bars and exit codes; the library returns typed errors

@@ -108,6 +108,18 @@ fn gauss_legendre_20() -> &'static ([f64; 20], [f64; 20]) {
     })
 }
 
+/// `R_Z(φ) R_X(θ) R_Z(ψ)`, whose third column is the direction of the
+/// body momentum `hp` given in the cyclic body frame `(p, q, c)`: θ is the
+/// angle between H and the c axis, ψ its azimuth, φ the angle turned about
+/// H. θ by `atan2` (accurate near 0 and π, where `acos` loses digits).
+pub(crate) fn invariable_frame(hp: &Vector3<f64>, phi: f64) -> UnitQuaternion<f64> {
+    let theta = hp.x.hypot(hp.y).atan2(hp.z);
+    let psi = hp.x.atan2(hp.y);
+    UnitQuaternion::from_axis_angle(&Vector3::z_axis(), phi)
+        * UnitQuaternion::from_axis_angle(&Vector3::x_axis(), theta)
+        * UnitQuaternion::from_axis_angle(&Vector3::z_axis(), psi)
+}
+
 /// The permutation taking the coordinates of a cyclic relabelling
 /// `(p, q, c)` of the body axes to body coordinates (a rotation).
 pub(crate) fn cyclic_perm(c: usize) -> UnitQuaternion<f64> {
@@ -336,15 +348,10 @@ impl Elliptic {
         j * self.period_integral + self.g_partial(r)
     }
 
-    /// `R_zf = R_Z(φ) R_X(θ) R_Z(ψ)` in the cyclic frame `(p, q, c)`, from
-    /// the body momentum `h` (body axes) and φ.
+    /// `R_zf` of [`invariable_frame`] from the body momentum `h` (body
+    /// axes) and φ.
     fn frame_rotation(&self, h: &Vector3<f64>, phi: f64) -> UnitQuaternion<f64> {
-        let hp = self.perm.inverse() * h; // coordinates in (p, q, c)
-        let theta = (hp.z / self.l).clamp(-1.0, 1.0).acos();
-        let psi = hp.x.atan2(hp.y);
-        UnitQuaternion::from_axis_angle(&Vector3::z_axis(), phi)
-            * UnitQuaternion::from_axis_angle(&Vector3::x_axis(), theta)
-            * UnitQuaternion::from_axis_angle(&Vector3::z_axis(), psi)
+        invariable_frame(&(self.perm.inverse() * h), phi)
     }
 
     /// The angle turned about `H` since t = 0.

@@ -291,7 +291,8 @@ where
         stats.steps += 1;
         let t_new = if i + 1 == n { t_end } else { t + h };
         finite_or(&y, t_new, stats.steps)?;
-        // The midpoint rule's previous slope stays a good first guess.
+        // Projection moves y by a little: the midpoint rule's previous slope
+        // (k_prev) stays a good first guess and is kept.
         sys.project(&mut y);
         sys.check(t_new, &y)?;
         observe(t_new, &y)?;
@@ -739,7 +740,9 @@ where
             facold = err.max(1e-4);
             t = if last { t_end } else { t + h };
             y = ynew;
-            let projected = finite_or(&y, t, stats.steps + 1).is_ok() && sys.project(&mut y);
+            stats.steps += 1;
+            finite_or(&y, t, stats.steps)?;
+            let projected = sys.project(&mut y);
             f = match fnew_opt {
                 Some(fnew) if !projected => fnew,
                 _ => {
@@ -747,8 +750,6 @@ where
                     sys.rhs(t, &y)
                 }
             };
-            stats.steps += 1;
-            finite_or(&y, t, stats.steps)?;
             sys.check(t, &y)?;
             observe(t, &y)?;
             if last {

@@ -102,22 +102,39 @@ fn euler_equations_reach_2e_9_within_4500_evaluations() {
     assert!(stats.evaluations <= 4500, "{}", stats.evaluations);
 }
 
-/// Why the quaternion form misses the target: at equal cost its attitude
-/// error is an order of magnitude larger, and projecting the precession-angle
-/// form onto the invariants is what brings the error down (without it the
-/// same steps give ~10× the error). Numbers recorded in docs/performance.md.
+/// Why the quaternion form misses the target: at about the same cost
+/// (within 10 % of the evaluations) its error is an order of magnitude
+/// larger than the projected precession-angle form's, and projecting onto
+/// the invariants is what brings the error down (the same form without it,
+/// at the same tolerance, gives several times the error). The claim is the
+/// ratio at equal cost, not the particular numbers (those are in
+/// docs/performance.md).
 #[test]
 fn the_quaternion_form_and_the_unprojected_form_miss_it() {
+    let (p, z0) = precession_form();
+    let (z, best) = dop853(&p, z0, TARGET_TOL);
+    let projected = state_error(&p.full_state(&z), &exact_at_t()).combined();
+
     let (b, y0) = quaternion_form();
     let (y, s) = dop853(&b, y0, 3e-10);
-    let e = state_error(&y, &exact_at_t());
-    assert!(s.evaluations > 4400 && e.combined() > 1e-8, "{s:?} {e:?}");
+    let quaternion = state_error(&y, &exact_at_t()).combined();
+    let cost = s.evaluations as f64 / best.evaluations as f64;
+    assert!((0.9..=1.1).contains(&cost), "{s:?} against {best:?}");
+    assert!(
+        quaternion > 10.0 * projected,
+        "quaternion {quaternion:e}, projected {projected:e}"
+    );
 
-    let (mut p, z0) = precession_form();
-    p.projection = false;
-    let (z, s) = dop853(&p, z0, TARGET_TOL);
-    let e = state_error(&p.full_state(&z), &exact_at_t());
-    assert!(s.evaluations <= 4500 && e.combined() > 5e-9, "{s:?} {e:?}");
+    let mut unprojected = p;
+    unprojected.projection = false;
+    let (z, s) = dop853(&unprojected, z0, TARGET_TOL);
+    let e = state_error(&unprojected.full_state(&z), &exact_at_t()).combined();
+    let cost = s.evaluations as f64 / best.evaluations as f64;
+    assert!((0.9..=1.1).contains(&cost), "{s:?} against {best:?}");
+    assert!(
+        e > 5.0 * projected,
+        "unprojected {e:e}, projected {projected:e}"
+    );
 }
 
 #[test]

@@ -21,9 +21,10 @@ pub struct VerifyArgs {
     /// Derivations to verify (names in the derivations folder, or paths);
     /// all bundled ones when omitted.
     pub names: Vec<String>,
-    /// Random bodies per derivation.
-    #[arg(long, default_value_t = 200)]
-    pub bodies: usize,
+    /// Random bodies per derivation (at least 1: zero would pass without
+    /// checking anything).
+    #[arg(long, default_value_t = 200, value_parser = clap::value_parser!(u64).range(1..))]
+    pub bodies: u64,
     /// Seed of the ChaCha generator.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
@@ -51,7 +52,7 @@ pub fn run(args: VerifyArgs) -> anyhow::Result<ExitCode> {
         .filter(|p| is_supported(&catalog::name_of(p)))
         .count();
     let bar = std::io::stderr().is_terminal().then(|| {
-        let bar = indicatif::ProgressBar::new((checked * args.bodies) as u64);
+        let bar = indicatif::ProgressBar::new(checked as u64 * args.bodies);
         bar.set_style(
             indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} {msg}")
                 .expect("valid template"),
@@ -77,7 +78,7 @@ pub fn run(args: VerifyArgs) -> anyhow::Result<ExitCode> {
                 b.inc(1);
             }
         };
-        match verify(&d, args.bodies, args.seed, &mut tick) {
+        match verify(&d, args.bodies as usize, args.seed, &mut tick) {
             None => println!("{name:<36} {:>7} {:>12}  skipped: no binding", "-", "-"),
             Some(Err(e)) => {
                 println!("{name:<36} {:>7} {:>12}  error: {e}", "-", "-");

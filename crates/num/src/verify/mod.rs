@@ -133,7 +133,7 @@ pub const COVERAGE: &[Coverage] = &[
     Coverage {
         derivation: "euler-general",
         compared: &[
-            ("I_G", "the particle tensor Σ m (|r|² 1 − r rᵀ)"),
+            ("I_G", "the tensor as a map: Σ m r × (e_k × r) per axis"),
             ("H, M", "Σ m r × v, Σ m r × a"),
             ("M_principal", "Σ m r × a, body mirrored in three planes"),
         ],
@@ -142,13 +142,10 @@ pub const COVERAGE: &[Coverage] = &[
     },
     Coverage {
         derivation: "euler-principal",
-        compared: &[
-            ("M, M_transport", "Σ m r × a, principal axes"),
-            (
-                "I_G, H",
-                "the particle tensor, Σ m r × v, body mirrored in three planes",
-            ),
-        ],
+        compared: &[(
+            "M, M_transport, I_G, H",
+            "Σ m r × a, Σ m r × (e_k × r), Σ m r × v; body mirrored in three planes",
+        )],
         kinematic: &[],
         not_compared: &[("omega", RESTATES)],
     },

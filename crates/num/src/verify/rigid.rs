@@ -40,15 +40,33 @@ fn tensor(i: &crate::Inertia) -> Vec<f64> {
     i.matrix().transpose().as_slice().to_vec()
 }
 
+/// The inertia tensor about `center` (with the minus signs), by rows,
+/// measured as a linear map: column k is the particles' angular momentum
+/// Σ m r × (e_k × r) for a unit angular velocity about axis k. Independent
+/// of the moments and products the binding reads from [`crate::Inertia`].
+fn tensor_from_momenta(c: &ParticleCloud, center: Vector3<f64>) -> Vec<f64> {
+    let columns = [Vector3::x(), Vector3::y(), Vector3::z()].map(|e| {
+        let unit = Motion {
+            omega: e,
+            ..Motion::default()
+        };
+        sums::kinetics(c, &unit, center, center).h_g
+    });
+    (0..3)
+        .flat_map(|row| columns.iter().map(move |col| col[row]))
+        .collect()
+}
+
 /// Euler's moment equations on `c` (body axes through G, with its mass
-/// properties `mp`) against Σ m r × a.
+/// properties `mp`) against Σ m r × a, and then `I_G` (against
+/// [`tensor_from_momenta`]) and `H` (against Σ m r × v) on the same sums.
 fn euler(
     d: &Derivation,
     c: &ParticleCloud,
     mp: &crate::MassProperties,
     state: &State,
     steps: &[&str],
-) -> Result<Vec<Comparison>, VerifyError> {
+) -> Result<(Vec<Comparison>, Binding, Motion), VerifyError> {
     let motion = Motion {
         omega: state.omega,
         alpha: state.alpha,
@@ -59,12 +77,13 @@ fn euler(
     b.inertia(&mp.inertia_g);
     b.vector(OMEGA, 0, &state.omega);
     b.vector(OMEGA, 1, &state.alpha);
-    let direct = k.hdot_g;
     let mut out = Vec::new();
     for s in steps {
-        out.extend(compare(d, s, &b, direct.as_slice())?);
+        out.extend(compare(d, s, &b, k.hdot_g.as_slice())?);
     }
-    Ok(out)
+    out.extend(compare(d, "I_G", &b, &tensor_from_momenta(c, mp.center))?);
+    out.extend(compare(d, "H", &b, k.h_g.as_slice())?);
+    Ok((out, b, motion))
 }
 
 /// `euler-principal`: `M`, `M_transport` against Σ m r × a on a body whose
@@ -78,19 +97,7 @@ pub fn euler_principal(
     state: &State,
 ) -> Result<Vec<Comparison>, VerifyError> {
     let (c, mp) = principal_body(cloud, &state.axes)?;
-    let mut out = euler(d, &c, &mp, state, &["M", "M_transport"])?;
-    // I_G and H on the same body.
-    let motion = Motion {
-        omega: state.omega,
-        ..Motion::default()
-    };
-    let k = sums::kinetics(&c, &motion, mp.center, mp.center);
-    let mut b = Binding::default();
-    b.inertia(&mp.inertia_g);
-    b.vector(OMEGA, 0, &state.omega);
-    out.extend(compare(d, "I_G", &b, &tensor(&mp.inertia_g))?);
-    out.extend(compare(d, "H", &b, k.h_g.as_slice())?);
-    Ok(out)
+    Ok(euler(d, &c, &mp, state, &["M", "M_transport"])?.0)
 }
 
 /// `euler-general`: `M` against Σ m r × a in random body axes.
@@ -100,19 +107,7 @@ pub fn euler_general(
     state: &State,
 ) -> Result<Vec<Comparison>, VerifyError> {
     let (c, mp) = about_g(cloud, &state.axes)?;
-    let mut out = euler(d, &c, &mp, state, &["M"])?;
-    let mut b = Binding::default();
-    b.inertia(&mp.inertia_g);
-    b.vector(OMEGA, 0, &state.omega);
-    b.vector(OMEGA, 1, &state.alpha);
-    let motion = Motion {
-        omega: state.omega,
-        alpha: state.alpha,
-        ..Motion::default()
-    };
-    let k = sums::kinetics(&c, &motion, mp.center, mp.center);
-    out.extend(compare(d, "I_G", &b, &tensor(&mp.inertia_g))?);
-    out.extend(compare(d, "H", &b, k.h_g.as_slice())?);
+    let (mut out, mut b, motion) = euler(d, &c, &mp, state, &["M"])?;
     // M_principal on a body principal by symmetry.
     let (c, mp) = principal_body(cloud, &state.axes)?;
     let k = sums::kinetics(&c, &motion, mp.center, mp.center);
@@ -174,7 +169,7 @@ pub fn fixed_axis(
     );
     let k = sums::kinetics(&c, &motion, mp.center, origin);
     let mut b = Binding::default();
-    b.inertia(&mp.inertia_about(&origin));
+    b.inertia(&sums::moments(&c, origin).inertia());
     b.set("omega", 0, w, w.abs());
     b.set("omega", 1, wdot, wdot.abs());
     let mut out = compare(d, "M", &b, k.moment_o.as_slice())?;
@@ -201,7 +196,8 @@ pub fn fixed_axis(
     bs.inertia(&i_sym);
     bs.set("omega", 0, w, w.abs());
     bs.set("omega", 1, wdot, wdot.abs());
-    // The ω² terms cancel in z and are absent from I_z α.
+    // The ω² terms cancel in x and y (mirror pairs) and vanish in z
+    // particle by particle; the derived form has none of them.
     let cancelled = 0.5 * i_sym.trace() * (wdot.abs() + w * w);
     out.extend(compare_scaled(
         d,
@@ -383,11 +379,7 @@ pub fn dalembert(
         ..Motion::default()
     };
     let k = sums::kinetics(&c, &spin, mp.center, mp.center);
-    let [ix, iy, iz] = mp.inertia_g.moments();
-    let size = 0.5 * mp.inertia_g.trace();
-    for (n, v) in [("I_x", ix), ("I_y", iy), ("I_z", iz)] {
-        b.set(n, 0, v, size);
-    }
+    b.inertia(&mp.inertia_g);
     b.vector(OMEGA, 0, &state.omega);
     b.vector(OMEGA, 1, &state.alpha);
     out.extend(compare(d, "Hdot_G", &b, k.hdot_g.as_slice())?);
@@ -421,8 +413,9 @@ pub fn plane_motion(
     let k = sums::kinetics(&lamina, &motion, mp.center, mp.center);
     b.inertia(&mp.inertia_g);
     out.extend(compare(d, "H_lamina", &b, k.h_g.as_slice())?);
-    // The ω² terms of the direct sum cancel in z (they are absent from
-    // the derived I_z ω̇): their magnitude, Σ m |r′|² ω², joins the scale.
+    // The ω² terms of the direct sum cancel in x and y (mirror pairs) and
+    // vanish in z particle by particle (the derived form has none): their
+    // magnitude, Σ m |r′|² ω², joins the scale.
     let cancelled = 0.5 * mp.inertia_g.trace() * (wdot.abs() + w * w);
     out.extend(compare_scaled(
         d,

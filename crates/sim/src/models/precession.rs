@@ -45,7 +45,7 @@
 use nalgebra::{UnitQuaternion, Vector3};
 
 use crate::System;
-use crate::exact::cyclic_perm;
+use crate::exact::{cyclic_perm, invariable_frame};
 use crate::models::free::pack;
 
 /// Euler's equations plus the angle turned about the invariable `H`.
@@ -109,14 +109,8 @@ impl PrecessionAngle {
     /// `R_Z(φ) R_X(θ) R_Z(ψ)` from body `H` and `φ`.
     fn frame(&self, h: &Vector3<f64>, phi: f64) -> UnitQuaternion<f64> {
         let c = self.axis;
-        let (p, q) = ((c + 1) % 3, (c + 2) % 3);
-        let (hp, hq, hc) = (h[p], h[q], h[c]);
-        let theta = hc.atan2((hp * hp + hq * hq).sqrt());
-        let theta = std::f64::consts::FRAC_PI_2 - theta;
-        let psi = hp.atan2(hq);
-        UnitQuaternion::from_axis_angle(&Vector3::z_axis(), phi)
-            * UnitQuaternion::from_axis_angle(&Vector3::x_axis(), theta)
-            * UnitQuaternion::from_axis_angle(&Vector3::z_axis(), psi)
+        let hp = Vector3::new(h[(c + 1) % 3], h[(c + 2) % 3], h[c]);
+        invariable_frame(&hp, phi)
     }
 
     /// The attitude (body → space) of a state.
