@@ -87,3 +87,22 @@ fn the_caret_snippet_reads_like_a_compiler_error() {
     let err = load_str("d.toml", text).unwrap_err();
     insta::assert_snapshot!(err.to_string());
 }
+
+/// `linearize` treats a small angle as first order: sin ε → ε, cos ε → 1,
+/// so `sin ε · ε` is second order and dropped.
+#[test]
+fn linearize_expands_sines_and_cosines_of_small_angles() {
+    let text = r#"
+title = "small angles"
+source = "test"
+[symbols]
+constants = ["A"]
+small = ["e"]
+[[step]]
+name = "x"
+value = "linearize(A*cos(e) + A*sin(e) + sin(e)*e + cos(e)*e)"
+expect = "A + A*e + e"
+"#;
+    let d = load_str("small.toml", text).unwrap();
+    assert!(d.all_hold(), "{:?}", d.failures());
+}

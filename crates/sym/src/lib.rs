@@ -17,8 +17,8 @@
 //! ## The path of data
 //!
 //! derivation file (TOML) → [`derivation::load`] (parses, resolves names,
-//! reports errors at file:line:column) → [`derivation::run`] (evaluates the
-//! steps on canonical [`Poly`] values, checks expectations) →
+//! reports errors at file:line:column, evaluates the steps on canonical
+//! [`Poly`] values, checks expectations) →
 //! [`present`] (textbook form as an [`Expr`] tree) → [`print`] / [`render`]
 //! (Unicode, LaTeX, Markdown, SymPy, JSON).
 //!

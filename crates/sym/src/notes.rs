@@ -74,15 +74,6 @@ const LINE_BUDGET: f32 = 58.0;
 
 // ------------------------------------------------------------- coverage --
 
-/// Greek names the printer knows (`print.rs`, `GREEK`), each of which the
-/// coverage appendix prints; a test keeps this list in step with the
-/// printer's table.
-pub const GREEK_NAMES: &[&str] = &[
-    "alpha", "beta", "gamma", "delta", "epsilon", "zeta", "eta", "theta", "kappa", "lambda", "mu",
-    "nu", "xi", "pi", "rho", "sigma", "tau", "phi", "chi", "psi", "omega", "Gamma", "Delta",
-    "Theta", "Lambda", "Pi", "Sigma", "Phi", "Psi", "Omega",
-];
-
 /// One entry of the printer-coverage appendix.
 #[derive(Clone, Debug)]
 pub struct Coverage {
@@ -108,18 +99,10 @@ pub fn coverage() -> Vec<Coverage> {
         "I_x", "I_y", "I_z", "I_xy", "Ip", "Ip_x", "m", "mass", "a", "b", "r_G", "I_theta",
     ];
     let mut time: Vec<&str> = vec!["x", "omega_x", "omega_y", "omega_z", "omega_1_2"];
-    time.extend(GREEK_NAMES);
+    time.extend(crate::print::greek_names());
     let s = Symbols::parse_decl(&constants, &time);
-    let lower: Vec<&str> = GREEK_NAMES
-        .iter()
-        .copied()
-        .filter(|g| g.starts_with(|c: char| c.is_ascii_lowercase()))
-        .collect();
-    let upper: Vec<&str> = GREEK_NAMES
-        .iter()
-        .copied()
-        .filter(|g| g.starts_with(|c: char| c.is_ascii_uppercase()))
-        .collect();
+    let (upper, lower): (Vec<&str>, Vec<&str>) =
+        crate::print::greek_names().partition(|g| g.starts_with(|c: char| c.is_ascii_uppercase()));
     let greek_lower = lower.join(" + ");
     let greek_upper = upper.join(" + ");
     let greek_dotted = format!("{}'' + {}'", lower.join("' + "), upper.join("' + "));

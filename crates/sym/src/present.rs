@@ -1,6 +1,6 @@
 //! Presentation: turning a canonical polynomial into the textbook's form.
 //!
-//! Two steps, both exact (the presented tree expands back to the input):
+//! Three steps, all exact (the presented tree expands back to the input):
 //!
 //! 1. **Fold abbreviations.** For ω_z := ψ̇ + φ̇ cos θ, an atom of the
 //!    definition that occurs linearly with a constant coefficient (ψ̇) is
@@ -10,7 +10,12 @@
 //!    ω, ω̇, or the inertia ones, I, I′): each group's coefficient is
 //!    factored (rational content, common monomial, sign pulled out so that
 //!    the bracket starts with a plus) and printed as
-//!    `[number] [constants] [bracket] [time-dependent factors]`.
+//!    `[number] [constant symbols] [bracket] [rates, sin and cos]` (sin and
+//!    cos follow the bracket even of a constant angle).
+//! 3. **Factor by known factors** (a step's `factor` list, such as A − B
+//!    and A − C): a bracket equal to their product, or to one of them,
+//!    times a monomial and a number is printed as that product; the
+//!    product is checked by canonical equality, never assumed.
 //!
 //! Groups are ordered by the position of their atoms in the collect list;
 //! terms inside a bracket by highest derivative first, then by name. The
@@ -243,23 +248,19 @@ fn factor_by(p: &Poly, known: &[Poly]) -> Option<(Vec<Poly>, Monomial, Rational)
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::derivation::Value;
 
-    /// The integer keys of `sorted_terms` order the terms exactly as the
-    /// name-based `term_order`, on chain-3's Ḣ (295 terms: rates of orders
+    /// The integer keys of `print_sorted` order the terms exactly as the
+    /// name-based `term_order` (and, without the derivative key, as
+    /// `print_order`), on chain-3's Ḣ (295 terms: rates of orders
     /// 1 and 2, sines and cosines, powers) and a hand-made mix with
     /// negative exponents.
     #[test]
-    fn sorted_terms_agrees_with_term_order() {
+    fn print_sorted_agrees_with_the_name_orders() {
         let d = crate::chain::derivation(3).expect("chain-3 derives");
         let mut polys: Vec<Poly> = d
             .steps
             .iter()
-            .flat_map(|s| match &s.value {
-                Value::Scalar(p) => vec![p.clone()],
-                Value::Vector(v, _) => v.0.to_vec(),
-                Value::Matrix(m) => m.0.iter().flatten().cloned().collect(),
-            })
+            .flat_map(|s| s.values().into_iter().cloned())
             .collect();
         let s = crate::Symbols::parse_decl(&["A", "B", "m"], &["theta", "phi", "psi"]);
         polys.push(

@@ -106,38 +106,8 @@ impl Cached<'_> {
     }
 }
 
-impl Style for Cached<'_> {
-    fn atom(&self, a: Atom) -> String {
-        self.atoms
-            .borrow_mut()
-            .entry(a)
-            .or_insert_with(|| self.inner.atom(a))
-            .clone()
-    }
-    fn num(&self, r: &Rational) -> String {
-        let mut s = String::new();
-        self.write_num(r, &mut s);
-        s
-    }
-    fn mul_sep(&self, left: &Node, right: &Node) -> &'static str {
-        self.inner.mul_sep(left, right)
-    }
-    fn pow(&self, base: &str, base_node: &Node, exp: u32) -> String {
-        self.inner.pow(base, base_node, exp)
-    }
-    fn fraction(&self, num: &str, dens: &[String]) -> String {
-        self.inner.fraction(num, dens)
-    }
-    fn minus(&self) -> &'static str {
-        self.inner.minus()
-    }
-    fn parens(&self) -> (&'static str, &'static str) {
-        self.inner.parens()
-    }
-}
-
 fn paren(e: &Expr, id: Id, style: &Cached, out: &mut String) {
-    let (l, r) = style.parens();
+    let (l, r) = style.inner.parens();
     out.push_str(l);
     write(e, id, style, out);
     out.push_str(r);
@@ -152,7 +122,7 @@ fn write(e: &Expr, id: Id, style: &Cached, out: &mut String) {
                 match e.node(t) {
                     Node::Neg(inner) if k > 0 => {
                         out.push(' ');
-                        out.push_str(style.minus());
+                        out.push_str(style.inner.minus());
                         out.push(' ');
                         write_under_neg(e, *inner, style, out);
                     }
@@ -171,26 +141,19 @@ fn write(e: &Expr, id: Id, style: &Cached, out: &mut String) {
                 }
             }
         }
-        Node::Mul(factors)
-            if !factors
-                .iter()
-                .any(|&f| matches!(e.node(f), Node::Pow(_, k) if *k < 0)) =>
-        {
-            write_product(e, factors, style, out)
-        }
         Node::Mul(factors) => {
-            let (dens, nums): (Vec<Id>, Vec<Id>) = factors
-                .iter()
-                .partition(|&&f| matches!(e.node(f), Node::Pow(_, k) if *k < 0));
-            if dens.is_empty() {
-                write_product(e, &nums, style, out);
-            } else {
+            let is_denominator = |f: &Id| matches!(e.node(*f), Node::Pow(_, k) if *k < 0);
+            if factors.iter().any(is_denominator) {
+                let (dens, nums): (Vec<Id>, Vec<Id>) =
+                    factors.iter().partition(|f| is_denominator(f));
                 write_fraction(e, &nums, &dens, style, out);
+            } else {
+                write_product(e, factors, style, out);
             }
         }
         Node::Pow(_, k) if *k < 0 => write_fraction(e, &[], &[id], style, out),
         Node::Neg(inner) => {
-            out.push_str(style.minus());
+            out.push_str(style.inner.minus());
             write_under_neg(e, *inner, style, out);
         }
         Node::Pow(base, exp) if matches!(e.node(*base), Node::Atom(_)) => {
@@ -206,7 +169,7 @@ fn write(e: &Expr, id: Id, style: &Cached, out: &mut String) {
                 Node::Num(r) if r.is_integer() => write(e, *base, style, &mut b),
                 _ => paren(e, *base, style, &mut b),
             }
-            out.push_str(&style.pow(&b, e.node(*base), exp.unsigned_abs()));
+            out.push_str(&style.inner.pow(&b, e.node(*base), exp.unsigned_abs()));
         }
     }
 }
@@ -214,7 +177,7 @@ fn write(e: &Expr, id: Id, style: &Cached, out: &mut String) {
 fn write_product(e: &Expr, factors: &[Id], style: &Cached, out: &mut String) {
     for (k, &f) in factors.iter().enumerate() {
         if k > 0 {
-            out.push_str(style.mul_sep(e.node(factors[k - 1]), e.node(f)));
+            out.push_str(style.inner.mul_sep(e.node(factors[k - 1]), e.node(f)));
         }
         match e.node(f) {
             Node::Add(_) | Node::Mul(_) | Node::Neg(_) => paren(e, f, style, out),
@@ -227,7 +190,7 @@ fn write_product(e: &Expr, factors: &[Id], style: &Cached, out: &mut String) {
 fn write_fraction(e: &Expr, nums: &[Id], dens: &[Id], style: &Cached, out: &mut String) {
     let mut num = String::new();
     if nums.is_empty() {
-        num.push_str(&style.num(&Rational::ONE));
+        style.write_num(&Rational::ONE, &mut num);
     } else {
         write_product(e, nums, style, &mut num);
     }
@@ -245,11 +208,11 @@ fn write_fraction(e: &Expr, nums: &[Id], dens: &[Id], style: &Cached, out: &mut 
             if *k == -1 {
                 b
             } else {
-                style.pow(&b, e.node(*base), k.unsigned_abs())
+                style.inner.pow(&b, e.node(*base), k.unsigned_abs())
             }
         })
         .collect();
-    out.push_str(&style.fraction(&num, &dens));
+    out.push_str(&style.inner.fraction(&num, &dens));
 }
 
 /// After a minus sign: sums and negations need parentheses, a bare number
@@ -262,6 +225,12 @@ fn write_under_neg(e: &Expr, id: Id, style: &Cached, out: &mut String) {
 }
 
 // ---------------------------------------------------------------- names --
+
+/// The Greek names the printers know (`omega` → ω / `\omega`), in the
+/// order of their table.
+pub fn greek_names() -> impl Iterator<Item = &'static str> {
+    GREEK.iter().map(|g| g.0)
+}
 
 const GREEK: &[(&str, &str, &str)] = &[
     ("alpha", r"\alpha", "α"),

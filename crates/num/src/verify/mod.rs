@@ -46,7 +46,7 @@ pub mod rigid;
 use std::collections::HashMap;
 
 use hdot_sym::atom::{Atom, AtomKind};
-use hdot_sym::derivation::{Derivation, Value};
+use hdot_sym::derivation::Derivation;
 use hdot_sym::poly::Poly;
 use nalgebra::{Rotation3, Vector3};
 use rand::SeedableRng;
@@ -562,12 +562,7 @@ fn components(d: &Derivation, step: &str) -> Result<Vec<Poly>, VerifyError> {
             derivation: d.name.clone(),
             step: step.into(),
         })?;
-    let polys: Vec<&Poly> = match &s.value {
-        Value::Scalar(p) => vec![p],
-        Value::Vector(v, _) => v.0.iter().collect(),
-        Value::Matrix(m) => m.0.iter().flatten().collect(),
-    };
-    Ok(polys.into_iter().map(|p| d.unfold(p)).collect())
+    Ok(s.values().into_iter().map(|p| d.unfold(p)).collect())
 }
 
 /// Evaluates `step` under `b` and compares component `k` with `direct[k]`.

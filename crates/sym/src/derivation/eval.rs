@@ -6,7 +6,7 @@ use toml::Spanned;
 
 use super::raw::{RawFrame, RawStep, string_contents};
 use super::{Abbreviation, Check, Diagnostic, unfold};
-use crate::atom::Atom;
+use crate::atom::{Atom, AtomKind};
 use crate::frame::Frame;
 use crate::parse::{Ast, AstKind, Span, parse};
 use crate::poly::Poly;
@@ -802,6 +802,13 @@ impl<'a> Context<'a> {
         }
         let v = self.eval(first, base)?;
         Ok(v.map(&mut |p| {
+            // A small angle: sin ε = ε + O(ε³) and cos ε = 1 + O(ε²), whose
+            // remainders are dropped with the other higher-order terms.
+            let p = p.subst(&mut |a| match a.kind() {
+                AtomKind::Sin(q) if small.contains(&q) => Some(Poly::atom(q)),
+                AtomKind::Cos(q) if small.contains(&q) => Some(Poly::one()),
+                _ => None,
+            });
             Poly::from_terms(p.terms().iter().filter_map(|(m, c)| {
                 let order: i32 = m
                     .factors()

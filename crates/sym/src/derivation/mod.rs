@@ -126,22 +126,31 @@ impl Step {
         if !self.components.is_empty() {
             return self.components.clone();
         }
-        let xyz = &self.axes;
-        match &self.value {
-            Value::Scalar(p) => vec![(String::new(), present(p, &self.presentation))],
-            Value::Vector(v, _) => (0..3)
-                .map(|k| (xyz[k].to_owned(), present(&v.0[k], &self.presentation)))
-                .collect(),
-            Value::Matrix(m) => (0..3)
-                .flat_map(|i| (0..3).map(move |j| (i, j)))
-                .map(|(i, j)| {
-                    (
-                        format!("{}{}", xyz[i], xyz[j]),
-                        present(&m.0[i][j], &self.presentation),
-                    )
-                })
-                .collect(),
-        }
+        present_components(&self.value, &self.axes, &self.presentation)
+    }
+}
+
+/// Each component of `value` presented, with its label: empty for a
+/// scalar, the axis name for a vector, two axis names for a matrix entry.
+fn present_components(
+    value: &Value,
+    axes: &[String; 3],
+    presentation: &Presentation,
+) -> Vec<(String, Expr)> {
+    match value {
+        Value::Scalar(p) => vec![(String::new(), present(p, presentation))],
+        Value::Vector(v, _) => (0..3)
+            .map(|k| (axes[k].clone(), present(&v.0[k], presentation)))
+            .collect(),
+        Value::Matrix(m) => (0..3)
+            .flat_map(|i| (0..3).map(move |j| (i, j)))
+            .map(|(i, j)| {
+                (
+                    format!("{}{}", axes[i], axes[j]),
+                    present(&m.0[i][j], presentation),
+                )
+            })
+            .collect(),
     }
 }
 
@@ -275,21 +284,10 @@ pub fn load_str(path: &str, text: &str) -> Result<Derivation, Diagnostic> {
         let axes = cx.axes_of(&value);
         // Only shown steps are presented (hidden ones are printed nowhere
         // but JSON, which presents them on demand).
-        let components: Vec<(String, Expr)> = match &value {
-            _ if !s.show => Vec::new(),
-            Value::Scalar(p) => vec![(String::new(), present(p, &presentation))],
-            Value::Vector(v, _) => (0..3)
-                .map(|k| (axes[k].clone(), present(&v.0[k], &presentation)))
-                .collect(),
-            Value::Matrix(m) => (0..3)
-                .flat_map(|i| (0..3).map(move |j| (i, j)))
-                .map(|(i, j)| {
-                    (
-                        format!("{}{}", axes[i], axes[j]),
-                        present(&m.0[i][j], &presentation),
-                    )
-                })
-                .collect(),
+        let components = if s.show {
+            present_components(&value, &axes, &presentation)
+        } else {
+            Vec::new()
         };
         let checks = cx.checks(s, &value, &abbreviations, &presentation, &axes)?;
         cx.bind(s.name.get_ref(), value.clone());
