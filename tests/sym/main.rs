@@ -11,6 +11,7 @@ mod algebra;
 mod broken;
 mod chain;
 mod identities;
+mod laurent;
 mod notes;
 mod presentation;
 mod snapshots;

@@ -248,10 +248,10 @@ impl Expr {
                     .fold(Poly::one(), |acc, i| &acc * &vals[i.0 as usize]),
                 Node::Neg(i) => -&vals[i.0 as usize],
                 Node::Pow(i, e) if *e >= 0 => vals[i.0 as usize].pow(e.unsigned_abs()),
-                // Negative powers are of constant monomials (the invariant);
-                // anything else has no polynomial value and expands to zero.
+                // Negative powers are of divisors (the invariant); anything
+                // else has no polynomial value and expands to zero.
                 Node::Pow(i, e) => vals[i.0 as usize]
-                    .inverse_monomial()
+                    .inverse_divisor()
                     .map_or_else(Poly::zero, |p| p.pow(e.unsigned_abs())),
             };
             vals.push(v);

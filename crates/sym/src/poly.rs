@@ -1,10 +1,40 @@
 //! The canonical form: a polynomial in atoms with exact rational
-//! coefficients, with `sin²` of every angle rewritten as `1 − cos²`.
+//! coefficients, with `sin²` of every angle rewritten as `1 − cos²`, and
+//! with denominators that are powers of constants, of `sin θ` and of
+//! `cos θ` (the pivots of rigid-body equations: `I′ sin θ`, `cos θ`, …).
 //!
-//! Every symbolic result in hdot is held in this form. Because the
-//! rewriting leaves at most the first power of each `sin`, the
-//! representation is unique: two expressions are equal exactly when their
-//! [`Poly`] values are identical (`==`). There is no heuristic simplify.
+//! Every symbolic result in hdot is held in this form, and two expressions
+//! are equal exactly when their [`Poly`] values are identical (`==`).
+//! There is no heuristic simplify.
+//!
+//! # Why the form is unique
+//!
+//! Without trigonometric denominators a [`Poly`] is an element of
+//! `A[s, c]/(s² + c² − 1)` for each angle (s = sin θ, c = cos θ, A the
+//! polynomials in everything else, constants allowed to negative powers),
+//! written in the basis `{cᵏ, s cᵏ}`: the rewriting `s² → 1 − c²` leaves
+//! at most the first power of each `s`, and those monomials are linearly
+//! independent, so the representation is unique.
+//!
+//! With division by `s` and `c`, a value is `N / (sᵃ cᵇ)` per angle, with
+//! `N` in that basis. The form chosen is the one with the **smallest**
+//! `a` and `b`: `N` is not divisible by `s` when `a > 0`, nor by `c` when
+//! `b > 0`. It is unique because `s` and `c` are coprime in a strong sense:
+//! modulo `s` we have `c² = 1`, so `c` is a unit there, and therefore
+//! `s | N cᵏ` implies `s | N` (likewise with the roles exchanged, since
+//! `s² = 1` modulo `c`). If `N₁/(s^a₁ c^b₁) = N₂/(s^a₂ c^b₂)` with both
+//! reduced and `a₁ > a₂`, then `s^(a₁−a₂)` divides `N₁ c^b₂`, so `s | N₁`,
+//! contradicting reduction; hence `a₁ = a₂`, likewise `b₁ = b₂`, and
+//! `N₁ = N₂` in the integral domain. The argument holds for each angle with
+//! the others' atoms in the coefficient ring, which stays an integral domain.
+//!
+//! Divisibility is decided exactly on the basis: writing
+//! `N = Σ_R R (p_R(c) + s q_R(c))` over the distinct monomials `R` of the
+//! other atoms, `c | N` iff every term has a factor `c`, and `s | N` iff
+//! every `p_R` vanishes at `c = ±1` (then `p_R = (1 − c²) r_R` and
+//! `N / s = Σ_R R (s r_R(c) + q_R(c))`). A polynomial with no
+//! trigonometric denominator is untouched by this reduction, so the hot
+//! loops of the derivations without division pay nothing for it.
 //!
 //! ```
 //! use hdot_sym::{Poly, Symbols};
@@ -19,19 +49,20 @@ use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
 
 use crate::atom::{Atom, AtomKind};
+use crate::limits;
 use crate::rational::Rational;
 
 /// An exponent. Negative exponents occur only on constant symbols
-/// (`H_G/Ip` is `H_G·Ip⁻¹`), so that results such as φ̇ = H_G/I′ stay
-/// polynomials in everything that varies: a Laurent monomial in the
-/// constants, a plain monomial in the rest. The form remains unique.
+/// (`H_G/Ip` is `H_G·Ip⁻¹`) and on `sin`/`cos` atoms (`1/sin θ`), so
+/// that results such as φ̇ = H_G/I′ or φ̈ = (…)/sin θ stay polynomials in
+/// every time-dependent symbol. The form remains unique (module doc).
 pub type Exp = i32;
 
 /// A product of atoms with non-zero exponents, sorted by atom id.
 ///
 /// Invariant: sorted strictly by atom, no zero exponents, negative
-/// exponents only on constant symbols, at most the first power of any
-/// `sin` atom (in a canonical [`Poly`]).
+/// exponents only on constant symbols and trigonometric atoms, at most the
+/// first power of any `sin` atom (in a canonical [`Poly`]).
 #[derive(Clone, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Monomial(SmallVec<[(Atom, Exp); 8]>);
 
@@ -58,7 +89,7 @@ impl Monomial {
         let mut out: SmallVec<[(Atom, Exp); 8]> = SmallVec::with_capacity(v.len());
         for (a, e) in v {
             match out.last_mut() {
-                Some(last) if last.0 == a => last.1 += e,
+                Some(last) if last.0 == a => last.1 = limits::add_exponents(last.1, e),
                 _ => out.push((a, e)),
             }
         }
@@ -102,7 +133,7 @@ impl Monomial {
                     j += 1;
                 }
                 std::cmp::Ordering::Equal => {
-                    let e = a[i].1 + b[j].1;
+                    let e = limits::add_exponents(a[i].1, b[j].1);
                     if e != 0 {
                         out.push((a[i].0, e));
                     }
@@ -145,6 +176,16 @@ impl Monomial {
         self.mul(&Monomial(other.0.iter().map(|&(a, e)| (a, -e)).collect()))
     }
 
+    /// True when some `sin` or `cos` atom has a negative exponent.
+    pub fn has_trig_denominator(&self) -> bool {
+        self.0.iter().any(|f| f.1 < 0 && is_trig(f.0))
+    }
+
+    /// The same monomial with every exponent negated.
+    pub fn recip(&self) -> Monomial {
+        Monomial(self.0.iter().map(|&(a, e)| (a, -e)).collect())
+    }
+
     /// Factors sorted by [`Atom::sort_key`], for printing.
     pub fn sorted_for_print(&self) -> Vec<(Atom, Exp)> {
         let mut v = self.0.to_vec();
@@ -155,25 +196,40 @@ impl Monomial {
     }
 }
 
+/// What may be divided by, for error messages.
+pub const DIVISOR_RULE: &str = "only division by a non-zero number and by products and powers of constant symbols, \
+                                sin and cos of angles is allowed";
+
+fn is_trig(a: Atom) -> bool {
+    matches!(a.kind(), AtomKind::Sin(_) | AtomKind::Cos(_))
+}
+
 /// A canonical polynomial: terms sorted by monomial, no zero coefficients.
 ///
 /// Invariant: canonical (see the module doc), so `==` is mathematical
-/// equality.
+/// equality. `trig_den` records whether some term has a negative power of
+/// `sin` or `cos` (it is a function of `terms`, kept so that arithmetic
+/// on polynomials without trigonometric denominators skips the reduction).
 #[derive(Clone, Default, PartialEq, Eq, Hash)]
 pub struct Poly {
     terms: Vec<(Monomial, Rational)>,
+    trig_den: bool,
 }
 
-/// Accumulates terms, applying `sin² = 1 − cos²` on the way in.
+/// Accumulates terms, applying `sin² = 1 − cos²` on the way in and, when
+/// a term has a trigonometric denominator, reducing the result to the
+/// smallest denominators (module doc) in [`Accum::finish`].
 #[derive(Default)]
 pub(crate) struct Accum {
     map: FxHashMap<Monomial, Rational>,
+    trig_den: bool,
 }
 
 impl Accum {
     pub(crate) fn with_capacity(n: usize) -> Accum {
         Accum {
             map: FxHashMap::with_capacity_and_hasher(n, Default::default()),
+            trig_den: false,
         }
     }
 
@@ -181,6 +237,7 @@ impl Accum {
         if c.is_zero() {
             return;
         }
+        self.trig_den |= m.has_trig_denominator();
         // Find a sin atom with exponent >= 2 and rewrite sin^2 = 1 - cos^2
         // (the exponent test comes first: it is cheaper than the kind).
         if let Some(&(s, _)) =
@@ -213,10 +270,135 @@ impl Accum {
     }
 
     pub(crate) fn finish(self) -> Poly {
+        if !limits::allow_terms(self.map.len()) {
+            return Poly::zero();
+        }
         let mut terms: Vec<_> = self.map.into_iter().collect();
+        if self.trig_den {
+            return Poly::reduce_trig(terms);
+        }
         terms.sort_unstable_by(|a, b| a.0.cmp(&b.0));
-        Poly { terms }
+        Poly {
+            terms,
+            trig_den: false,
+        }
     }
+}
+
+/// # The reduction of trigonometric denominators (module doc)
+impl Poly {
+    /// Canonical form of terms that may hold negative powers of `sin` and
+    /// `cos`, each already free of `sin²` where its exponent is ≥ 2.
+    fn reduce_trig(terms: Vec<(Monomial, Rational)>) -> Poly {
+        // The denominator D: for every trig atom, its most negative exponent.
+        let mut den: Vec<(Atom, Exp)> = Vec::new();
+        for (m, _) in &terms {
+            for &(a, e) in m.factors() {
+                if e < 0 && is_trig(a) {
+                    match den.iter_mut().find(|d| d.0 == a) {
+                        Some(d) => d.1 = d.1.max(-e),
+                        None => den.push((a, -e)),
+                    }
+                }
+            }
+        }
+        // N = P · D, in the sin² = 1 − cos² normal form with no trig
+        // denominator left.
+        let d = Monomial::from_factors(den.iter().copied());
+        let mut acc = Accum::with_capacity(terms.len());
+        for (m, c) in terms {
+            acc.push(m.mul(&d), c);
+        }
+        debug_assert!(!acc.trig_den);
+        let mut n = acc.finish().terms;
+        // Divide N by each sin and cos of D as often as it divides.
+        for (a, k) in &mut den {
+            while *k > 0 {
+                let divided = match a.kind() {
+                    AtomKind::Cos(_) => divide_by_cos(&n, *a),
+                    AtomKind::Sin(angle) => {
+                        divide_by_sin(&n, *a, Atom::cos(angle).expect("angle"))
+                    }
+                    AtomKind::Var { .. } => unreachable!("only trig atoms are in D"),
+                };
+                match divided {
+                    Some(q) => {
+                        n = q;
+                        *k -= 1;
+                    }
+                    None => break,
+                }
+            }
+        }
+        // P = N / D′ with D′ what is left of D.
+        let rest = Monomial::from_factors(den.iter().map(|&(a, k)| (a, -k)));
+        let trig_den = !rest.is_one();
+        let mut terms: Vec<_> = n.into_iter().map(|(m, c)| (m.mul(&rest), c)).collect();
+        terms.sort_unstable_by(|a, b| a.0.cmp(&b.0));
+        Poly { terms, trig_den }
+    }
+}
+
+/// `n / cos θ` when every term has a factor `cos θ` (terms in normal form,
+/// no trig denominator).
+fn divide_by_cos(n: &[(Monomial, Rational)], cos: Atom) -> Option<Vec<(Monomial, Rational)>> {
+    if n.iter().any(|(m, _)| m.exponent(cos) < 1) {
+        return None;
+    }
+    Some(
+        n.iter()
+            .map(|(m, c)| (m.without(cos, 1), c.clone()))
+            .collect(),
+    )
+}
+
+/// `n / sin θ` when it divides: writing `n = Σ_R R (p_R(c) + s q_R(c))`,
+/// every `p_R` must vanish at `c = ±1`; then `p_R = (1 − c²) r_R` and the
+/// quotient is `Σ_R R (s r_R(c) + q_R(c))`.
+fn divide_by_sin(
+    n: &[(Monomial, Rational)],
+    sin: Atom,
+    cos: Atom,
+) -> Option<Vec<(Monomial, Rational)>> {
+    // p_R as coefficient lists by power of c, keyed by R.
+    let mut p: FxHashMap<Monomial, Vec<Rational>> = FxHashMap::default();
+    let mut out: Vec<(Monomial, Rational)> = Vec::with_capacity(n.len());
+    for (m, c) in n {
+        if m.exponent(sin) == 1 {
+            out.push((m.without(sin, 1), c.clone()));
+            continue;
+        }
+        let j = m.exponent(cos) as usize;
+        let r = m.without(cos, j as Exp);
+        let coeffs = p.entry(r).or_default();
+        if coeffs.len() <= j {
+            coeffs.resize(j + 1, Rational::ZERO);
+        }
+        coeffs[j] = &coeffs[j] + c;
+    }
+    for (r, coeffs) in p {
+        let at_one: Rational = coeffs.iter().fold(Rational::ZERO, |s, c| &s + c);
+        let at_minus_one = coeffs.iter().enumerate().fold(Rational::ZERO, |s, (j, c)| {
+            if j % 2 == 0 { &s + c } else { &s - c }
+        });
+        if !at_one.is_zero() || !at_minus_one.is_zero() {
+            return None;
+        }
+        // p_j = r_j − r_{j−2}: r_j = p_j + r_{j−2} for j ≤ deg − 2.
+        let deg = coeffs.len() - 1;
+        let mut q: Vec<Rational> = Vec::with_capacity(deg.saturating_sub(1));
+        for j in 0..deg.saturating_sub(1) {
+            let prev = if j >= 2 { q[j - 2].clone() } else { Rational::ZERO };
+            q.push(&coeffs[j] + &prev);
+        }
+        for (j, c) in q.into_iter().enumerate() {
+            if !c.is_zero() {
+                let m = r.mul(&Monomial::from_factors([(sin, 1), (cos, j as Exp)]));
+                out.push((m, c));
+            }
+        }
+    }
+    Some(out)
 }
 
 /// # Construction
@@ -238,6 +420,7 @@ impl Poly {
         } else {
             Poly {
                 terms: vec![(Monomial::one(), c)],
+                trig_den: false,
             }
         }
     }
@@ -251,6 +434,7 @@ impl Poly {
     pub fn atom(a: Atom) -> Poly {
         Poly {
             terms: vec![(Monomial::atom(a, 1), Rational::ONE)],
+            trig_den: false,
         }
     }
 
@@ -325,10 +509,77 @@ impl Poly {
         if !constants {
             return None;
         }
-        let inv = Monomial(m.0.iter().map(|&(a, e)| (a, -e)).collect());
         Some(Poly {
-            terms: vec![(inv, c.recip()?)],
+            terms: vec![(m.recip(), c.recip()?)],
+            trig_den: false,
         })
+    }
+
+    /// The inverse of a *divisor*: a non-zero number times powers of
+    /// constants, of `sin θ` and of `cos θ` (`I′ sin θ`, `cos² θ`, and
+    /// `1 − cos² θ`, which is how `sin² θ` is held). `None` for anything
+    /// else — a sum such as `J + I′ sin² θ`, or a time-dependent symbol.
+    ///
+    /// ```
+    /// use hdot_sym::Symbols;
+    /// let s = Symbols::parse_decl(&["Ip"], &["theta"]);
+    /// let d = s.poly("Ip*(1 - cos(theta)^2)").unwrap(); // I′ sin²θ
+    /// let q = &s.poly("Ip*sin(theta)").unwrap() * &d.inverse_divisor().unwrap();
+    /// assert_eq!(q, s.poly("sin(theta)").unwrap().inverse_divisor().unwrap());
+    /// ```
+    pub fn inverse_divisor(&self) -> Option<Poly> {
+        if self.is_zero() {
+            return None;
+        }
+        let allowed = |a: Atom| matches!(a.kind(), AtomKind::Var { time: false, .. }) || is_trig(a);
+        if self.atoms().into_iter().any(|a| !allowed(a)) {
+            return None;
+        }
+        // Repeatedly: take out the monomial common to all terms, then one
+        // factor sin θ (sin²θ is held as 1 − cos²θ), until a number is left.
+        let mut inv = Poly::one();
+        let mut rest = self.clone();
+        loop {
+            let g = rest
+                .terms
+                .iter()
+                .skip(1)
+                .fold(rest.terms[0].0.clone(), |g, t| g.gcd(&t.0));
+            if !g.is_one() {
+                inv = &inv * &Poly::term(g.recip(), Rational::ONE);
+                rest = Poly::from_terms(rest.terms.iter().map(|(m, c)| (m.div(&g), c.clone())));
+            }
+            if let Some(c) = rest.as_constant() {
+                return Some(inv.scale(&c.recip()?));
+            }
+            let angles = rest.atoms().into_iter().filter_map(|a| match a.kind() {
+                AtomKind::Sin(q) | AtomKind::Cos(q) => Some(q),
+                AtomKind::Var { .. } => None,
+            });
+            let mut divided = false;
+            for q in angles {
+                let (sin, cos) = (Atom::sin(q).expect("angle"), Atom::cos(q).expect("angle"));
+                if let Some(t) = divide_by_sin(&rest.terms, sin, cos) {
+                    rest = Poly::from_terms(t);
+                    inv = &inv * &Poly::term(Monomial::atom(sin, -1), Rational::ONE);
+                    divided = true;
+                    break;
+                }
+            }
+            if !divided {
+                return None;
+            }
+        }
+    }
+
+    /// `self / d` for a divisor `d` accepted by [`Poly::inverse_divisor`].
+    pub fn div_exact(&self, d: &Poly) -> Option<Poly> {
+        Some(self * &d.inverse_divisor()?)
+    }
+
+    /// True when some term holds a negative power of `sin` or `cos`.
+    pub fn has_trig_denominator(&self) -> bool {
+        self.trig_den
     }
 
     /// Every atom that occurs, sorted by id, without repeats.
@@ -343,9 +594,10 @@ impl Poly {
         v
     }
 
-    /// True when `a` occurs in some term.
+    /// True when `a` occurs in some term (to any power, negative ones
+    /// included).
     pub fn contains(&self, a: Atom) -> bool {
-        self.terms.iter().any(|t| t.0.exponent(a) > 0)
+        self.terms.iter().any(|t| t.0.exponent(a) != 0)
     }
 
     /// Evaluates in `f64` with `value` giving each atom's value.
@@ -371,11 +623,20 @@ impl Poly {
         }
         Poly {
             terms: self.terms.iter().map(|(m, k)| (m.clone(), k * c)).collect(),
+            trig_den: self.trig_den,
         }
     }
 
-    /// `self^n`, by repeated squaring.
+    /// `self^n`, by repeated squaring. Within a [`limits::scope`] an
+    /// exponent or coefficient over budget trips the scope first.
     pub fn pow(&self, mut n: u32) -> Poly {
+        if limits::tripped() || !limits::allow_exponent(u64::from(n)) {
+            return Poly::zero();
+        }
+        let bits = self.terms.iter().map(|t| t.1.bits()).max().unwrap_or(0);
+        if !limits::allow_bits(bits.saturating_mul(u64::from(n))) {
+            return Poly::zero();
+        }
         let mut base = self.clone();
         let mut acc = Poly::one();
         while n > 0 {
@@ -399,7 +660,11 @@ impl Poly {
 impl std::ops::Add for &Poly {
     type Output = Poly;
     fn add(self, rhs: &Poly) -> Poly {
-        // Merge two sorted term lists; no reduction is needed.
+        if limits::tripped() {
+            return Poly::zero();
+        }
+        // Merge two sorted term lists; no reduction is needed unless a
+        // trigonometric denominator is involved.
         let (a, b) = (&self.terms, &rhs.terms);
         let mut out = Vec::with_capacity(a.len() + b.len());
         let (mut i, mut j) = (0, 0);
@@ -425,7 +690,16 @@ impl std::ops::Add for &Poly {
         }
         out.extend_from_slice(&a[i..]);
         out.extend_from_slice(&b[j..]);
-        Poly { terms: out }
+        if !limits::allow_terms(out.len()) {
+            return Poly::zero();
+        }
+        if self.trig_den || rhs.trig_den {
+            return Poly::reduce_trig(out);
+        }
+        Poly {
+            terms: out,
+            trig_den: false,
+        }
     }
 }
 
@@ -441,6 +715,7 @@ impl std::ops::Neg for &Poly {
     fn neg(self) -> Poly {
         Poly {
             terms: self.terms.iter().map(|(m, c)| (m.clone(), -c)).collect(),
+            trig_den: self.trig_den,
         }
     }
 }
@@ -448,7 +723,7 @@ impl std::ops::Neg for &Poly {
 impl std::ops::Mul for &Poly {
     type Output = Poly;
     fn mul(self, rhs: &Poly) -> Poly {
-        if self.is_zero() || rhs.is_zero() {
+        if self.is_zero() || rhs.is_zero() || limits::tripped() {
             return Poly::zero();
         }
         if let Some(c) = rhs.as_constant() {
@@ -457,10 +732,16 @@ impl std::ops::Mul for &Poly {
         if let Some(c) = self.as_constant() {
             return rhs.scale(&c);
         }
+        if !limits::allow_product(self.len(), rhs.len()) {
+            return Poly::zero();
+        }
         // One side a single term free of sin: no two products can coincide
-        // and none needs the sin² rewrite, so no hashing is needed.
+        // and none needs the sin² rewrite, so no hashing is needed (unless
+        // a trigonometric denominator needs reducing).
         for (one, many) in [(rhs, self), (self, rhs)] {
-            if let [(m, c)] = one.terms.as_slice()
+            if !self.trig_den
+                && !rhs.trig_den
+                && let [(m, c)] = one.terms.as_slice()
                 && !m
                     .factors()
                     .iter()
@@ -472,7 +753,10 @@ impl std::ops::Mul for &Poly {
                     .map(|(m2, c2)| (m2.mul(m), c2 * c))
                     .collect();
                 terms.sort_unstable_by(|a, b| a.0.cmp(&b.0));
-                return Poly { terms };
+                return Poly {
+                    terms,
+                    trig_den: false,
+                };
             }
         }
         let mut acc = Accum::with_capacity(self.len() * rhs.len());

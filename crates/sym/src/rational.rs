@@ -143,13 +143,30 @@ impl Rational {
         }
     }
 
-    /// `self^n` for a non-negative exponent.
-    pub fn pow(&self, n: u32) -> Rational {
+    /// `self^n` for a non-negative exponent, by repeated squaring.
+    pub fn pow(&self, mut n: u32) -> Rational {
+        let mut base = self.clone();
         let mut acc = Rational::ONE;
-        for _ in 0..n {
-            acc = &acc * self;
+        while n > 0 {
+            if n & 1 == 1 {
+                acc = &acc * &base;
+            }
+            n >>= 1;
+            if n > 0 {
+                base = &base * &base;
+            }
         }
         acc
+    }
+
+    /// Bits of the larger of numerator and denominator (0 for zero).
+    pub fn bits(&self) -> u64 {
+        match self {
+            Rational::Small(n, d) => {
+                u64::from(64 - n.unsigned_abs().leading_zeros()).max(u64::from(64 - d.unsigned_abs().leading_zeros()))
+            }
+            Rational::Big(b) => b.numer().bits().max(b.denom().bits()),
+        }
     }
 
     /// The multiplicative inverse, `None` for zero.

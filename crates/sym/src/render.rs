@@ -931,6 +931,14 @@ fn json(d: &Derivation) -> JsonDerivation<'_> {
                     frame: None,
                     kind: "matrix",
                 },
+                Value::List { .. } => JsonKind {
+                    frame: None,
+                    kind: "list",
+                },
+                Value::Array(_) => JsonKind {
+                    frame: None,
+                    kind: "array",
+                },
             };
             let values = s.values();
             let components = s

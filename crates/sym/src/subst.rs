@@ -41,7 +41,7 @@ impl Poly {
                     // A constant in a denominator: only an invertible
                     // replacement can stand there; otherwise the atom stays
                     // (callers detect it, e.g. "I occurs in a denominator").
-                    match r.inverse_monomial() {
+                    match r.inverse_divisor() {
                         Some(inv) => inv.pow(e.unsigned_abs()),
                         None => Poly::term(
                             crate::poly::Monomial::atom(a, e),

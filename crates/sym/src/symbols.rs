@@ -132,13 +132,12 @@ impl Symbols {
         .expect("order-0 symbol"))
     }
 
-    /// A divisor `/d`: a non-zero number, or a product of constant symbols
-    /// (each becomes a negative power). Returns the factor nodes.
+    /// A divisor `/d` (see [`Poly::inverse_divisor`]): each factor becomes
+    /// a negative power. Returns the factor nodes.
     fn lower_divisor(&self, d: &Ast, e: &mut Expr) -> Result<Vec<Id>, ParseError> {
         let fail = || ParseError {
             span: d.span,
-            message: "only division by a non-zero number or by constant symbols is allowed"
-                .to_owned(),
+            message: crate::poly::DIVISOR_RULE.to_owned(),
         };
         // `/I` and `/I^2` keep their written shape.
         match &d.kind {
@@ -164,7 +163,7 @@ impl Symbols {
         }
         let mut tmp = Expr::new();
         self.lower(d, &mut tmp)?;
-        let inv = tmp.to_poly().inverse_monomial().ok_or_else(fail)?;
+        let inv = tmp.to_poly().inverse_divisor().ok_or_else(fail)?;
         let (m, c) = &inv.terms()[0];
         let mut ids = Vec::new();
         if !c.is_one() {

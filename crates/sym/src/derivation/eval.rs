@@ -1,56 +1,24 @@
-//! Evaluation of derivation-file expressions to canonical values.
+//! The evaluator: derivation-file expressions to canonical values.
+//!
+//! Arithmetic, vectors, frames and names are evaluated here; every named
+//! function is an operation of the registry in [`super::ops`], one file
+//! each.
 
 use std::collections::HashMap;
 
 use toml::Spanned;
 
+use super::ops::{self, Call};
 use super::raw::{RawFrame, RawStep, string_contents};
+pub use super::value::Value;
 use super::{Abbreviation, Check, Diagnostic, unfold};
-use crate::atom::{Atom, AtomKind};
+use crate::atom::Atom;
 use crate::frame::Frame;
 use crate::parse::{Ast, AstKind, Span, parse};
 use crate::poly::Poly;
 use crate::present::{Presentation, present};
 use crate::symbols::{Decl, Symbols};
 use crate::vector::{Mat3, Vec3};
-
-/// The value of a step: a scalar, a vector in a named frame, or a matrix.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Value {
-    /// A scalar expression.
-    Scalar(Poly),
-    /// A vector and the frame its components are expressed in.
-    Vector(Vec3, String),
-    /// A 3×3 matrix (an inertia tensor, a rotation).
-    Matrix(Mat3),
-}
-
-impl Value {
-    fn describe(&self) -> String {
-        match self {
-            Value::Scalar(_) => "a scalar".into(),
-            Value::Vector(_, f) => format!("a vector (in frame {f})"),
-            Value::Matrix(_) => "a matrix".into(),
-        }
-    }
-
-    /// Applies `f` to every component.
-    pub fn map(&self, f: &mut dyn FnMut(&Poly) -> Poly) -> Value {
-        match self {
-            Value::Scalar(p) => Value::Scalar(f(p)),
-            Value::Vector(v, fr) => {
-                Value::Vector(Vec3([f(&v.0[0]), f(&v.0[1]), f(&v.0[2])]), fr.clone())
-            }
-            Value::Matrix(m) => Value::Matrix(Mat3(std::array::from_fn(|i| {
-                std::array::from_fn(|j| f(&m.0[i][j]))
-            }))),
-        }
-    }
-}
-
-/// Functions the expression language knows, for error messages.
-const FUNCTIONS: &str = "sin, cos, dt, dt_rel, cross, dot, angvel, inertia, principal, diag, subst, express, \
-                         transpose, linearize, solve, coeff, sign, jacobian";
 
 pub(crate) struct Context<'a> {
     path: &'a str,
@@ -62,9 +30,11 @@ pub(crate) struct Context<'a> {
     pub small: Vec<Atom>,
     /// Constants declared positive, for `sign`.
     pub positive: Vec<Atom>,
+    /// Abbreviations declared so far, in order.
+    pub abbrevs: Vec<Abbreviation>,
 }
 
-type R<T> = Result<T, Diagnostic>;
+pub(crate) type R<T> = Result<T, Diagnostic>;
 
 impl<'a> Context<'a> {
     pub fn new(path: &'a str, text: &'a str) -> Context<'a> {
@@ -78,7 +48,19 @@ impl<'a> Context<'a> {
             values: HashMap::new(),
             small: Vec::new(),
             positive: Vec::new(),
+            abbrevs: Vec::new(),
         }
+    }
+
+    /// `p` with every abbreviation (and its derivatives) replaced by its
+    /// definition.
+    pub fn unfold(&self, p: &Poly) -> Poly {
+        unfold(&self.abbrevs, p)
+    }
+
+    /// The frame called `name` (it exists: values only name known frames).
+    pub fn frame(&self, name: &str) -> &Frame {
+        &self.frames[self.frame_index(name).expect("frame exists")]
     }
 
     fn diag(&self, start: usize, end: usize, msg: impl Into<String>) -> Diagnostic {
@@ -110,7 +92,7 @@ impl<'a> Context<'a> {
         self.diag(base + from, base + to, msg)
     }
 
-    fn at(&self, base: usize, span: Span, msg: impl Into<String>) -> Diagnostic {
+    pub(crate) fn at(&self, base: usize, span: Span, msg: impl Into<String>) -> Diagnostic {
         self.diag(base + span.start, base + span.end, msg)
     }
 
@@ -184,7 +166,7 @@ impl<'a> Context<'a> {
         self.scalar(&ast, base)
     }
 
-    fn scalar(&self, ast: &Ast, base: usize) -> R<Poly> {
+    pub(crate) fn scalar(&self, ast: &Ast, base: usize) -> R<Poly> {
         match self.eval(ast, base)? {
             Value::Scalar(p) => Ok(p),
             v => Err(self.at(
@@ -195,7 +177,7 @@ impl<'a> Context<'a> {
         }
     }
 
-    fn vector(&self, ast: &Ast, base: usize) -> R<(Vec3, String)> {
+    pub(crate) fn vector(&self, ast: &Ast, base: usize) -> R<(Vec3, String)> {
         match self.eval(ast, base)? {
             Value::Vector(v, f) => Ok((v, f)),
             v => Err(self.at(
@@ -206,11 +188,11 @@ impl<'a> Context<'a> {
         }
     }
 
-    fn frame_index(&self, name: &str) -> Option<usize> {
+    pub(crate) fn frame_index(&self, name: &str) -> Option<usize> {
         self.frames.iter().position(|f| f.name == name)
     }
 
-    fn frame_arg(&self, ast: &Ast, base: usize) -> R<usize> {
+    pub(crate) fn frame_arg(&self, ast: &Ast, base: usize) -> R<usize> {
         if let AstKind::Name { name, primes: 0 } = &ast.kind
             && let Some(i) = self.frame_index(name)
         {
@@ -224,7 +206,13 @@ impl<'a> Context<'a> {
         ))
     }
 
-    pub fn add_frame(&mut self, f: &RawFrame) -> R<()> {
+    /// Adds a frame built by [`Context::frame_of`].
+    pub fn push_frame(&mut self, frame: Frame) {
+        self.frames.push(frame);
+    }
+
+    /// Builds the frame a `[[frame]]` table declares (not yet added).
+    pub fn frame_of(&self, f: &RawFrame) -> R<Frame> {
         let name = f.name.get_ref();
         if self.frame_index(name).is_some() || self.symbols.get(name).is_some() {
             return Err(self.diag_string(
@@ -336,11 +324,10 @@ impl<'a> Context<'a> {
                 ));
             }
         }
-        self.frames.push(frame);
-        Ok(())
+        Ok(frame)
     }
 
-    fn three_scalars(&self, items: &[Ast], span: Span, base: usize) -> R<Vec3> {
+    pub(crate) fn three_scalars(&self, items: &[Ast], span: Span, base: usize) -> R<Vec3> {
         if items.len() != 3 {
             return Err(self.at(
                 base,
@@ -356,7 +343,7 @@ impl<'a> Context<'a> {
     }
 
     /// The matrix taking components in frame `i` to its root frame, and the root.
-    fn to_root(&self, mut i: usize) -> (usize, Mat3) {
+    pub(crate) fn to_root(&self, mut i: usize) -> (usize, Mat3) {
         let mut r = Mat3::identity();
         while let Some((p, m)) = &self.frames[i].parent {
             r = m.mul(&r);
@@ -367,7 +354,7 @@ impl<'a> Context<'a> {
 
     /// When one frame is an ancestor of the other, turns `v` one rotation
     /// at a time (vector products only, no matrix products).
-    fn along_chain(&self, mut v: Vec3, from: usize, to: usize) -> Option<Vec3> {
+    pub(crate) fn along_chain(&self, mut v: Vec3, from: usize, to: usize) -> Option<Vec3> {
         let rot = |i: usize| &self.frames[i].parent.as_ref().expect("not a root").1;
         let ancestors = |mut i: usize| {
             let mut v = vec![i];
@@ -415,7 +402,7 @@ impl<'a> Context<'a> {
         }
     }
 
-    fn same_frame(&self, base: usize, span: Span, a: &str, b: &str) -> R<()> {
+    pub(crate) fn same_frame(&self, base: usize, span: Span, a: &str, b: &str) -> R<()> {
         if a == b {
             Ok(())
         } else {
@@ -429,7 +416,7 @@ impl<'a> Context<'a> {
         }
     }
 
-    fn eval(&self, ast: &Ast, base: usize) -> R<Value> {
+    pub(crate) fn eval(&self, ast: &Ast, base: usize) -> R<Value> {
         let err = |span: Span, m: String| -> R<Value> { Err(self.at(base, span, m)) };
         match &ast.kind {
             AstKind::Num(r) => Ok(Value::Scalar(Poly::constant(r.clone()))),
@@ -498,6 +485,29 @@ impl<'a> Context<'a> {
                             Value::Vector(a.add(&b), fa)
                         }
                         (Value::Matrix(a), Value::Matrix(b)) => Value::Matrix(a.add(&b)),
+                        (
+                            Value::List {
+                                items: a,
+                                labels: la,
+                            },
+                            Value::List {
+                                items: b,
+                                labels: lb,
+                            },
+                        ) if a.len() == b.len() => Value::List {
+                            items: a.iter().zip(&b).map(|(x, y)| x + y).collect(),
+                            labels: if la == lb { la } else { Vec::new() },
+                        },
+                        (Value::Array(a), Value::Array(b))
+                            if a.len() == b.len() && a.iter().zip(&b).all(|(x, y)| x.len() == y.len()) =>
+                        {
+                            Value::Array(
+                                a.iter()
+                                    .zip(&b)
+                                    .map(|(x, y)| x.iter().zip(y).map(|(p, q)| p + q).collect())
+                                    .collect(),
+                            )
+                        }
                         (a, b) => {
                             return err(
                                 it.span,
@@ -514,11 +524,13 @@ impl<'a> Context<'a> {
                 for it in &items[1..] {
                     if let AstKind::Recip(d) = &it.kind {
                         let p = self.scalar(d, base)?;
-                        let Some(inv) = p.inverse_monomial() else {
-                            return err(
-                                d.span,
-                                "only division by a non-zero number or by constant symbols is allowed".into(),
-                            );
+                        let Some(inv) = p.inverse_divisor() else {
+                            let what = if p.is_zero() {
+                                "division by zero".to_owned()
+                            } else {
+                                format!("cannot divide by {}", crate::expr::Expr::from_poly(&p))
+                            };
+                            return err(d.span, format!("{what}: {}", crate::poly::DIVISOR_RULE));
                         };
                         acc = acc.map(&mut |x| x * &inv);
                         continue;
@@ -529,6 +541,15 @@ impl<'a> Context<'a> {
                         (Value::Scalar(s), v) | (v, Value::Scalar(s)) => v.map(&mut |x| &s * x),
                         (Value::Matrix(m), Value::Vector(v, f)) => Value::Vector(m.mul_vec(&v), f),
                         (Value::Matrix(a), Value::Matrix(b)) => Value::Matrix(a.mul(&b)),
+                        (Value::Array(a), Value::List { items, .. })
+                            if a.iter().all(|r| r.len() == items.len()) =>
+                        {
+                            Value::list(
+                                a.iter()
+                                    .map(|r| r.iter().zip(&items).map(|(p, q)| p * q).sum())
+                                    .collect(),
+                            )
+                        }
                         (Value::Vector(..), Value::Vector(..)) => {
                             return err(
                                 it.span,
@@ -576,6 +597,29 @@ impl<'a> Context<'a> {
                         ),
                     }
                 }
+                Value::List { items, labels } => {
+                    let k = comp.parse::<usize>().ok().filter(|k| (1..=items.len()).contains(k));
+                    match k {
+                        Some(k) => Ok(Value::Scalar(items[k - 1].clone())),
+                        None => {
+                            let named = if labels.is_empty() {
+                                String::new()
+                            } else {
+                                format!(
+                                    " (the values of {})",
+                                    labels.iter().map(|a| a.to_string()).collect::<Vec<_>>().join(", ")
+                                )
+                            };
+                            err(
+                                *sp,
+                                format!(
+                                    "a list's items are numbered 1 to {}{named}, not `{comp}`",
+                                    items.len()
+                                ),
+                            )
+                        }
+                    }
+                }
                 s => err(*sp, format!("{} has no components", s.describe())),
             },
             AstKind::Assign { name_span, .. } => err(
@@ -586,163 +630,32 @@ impl<'a> Context<'a> {
         }
     }
 
-    fn cross(&self, a: &Ast, b: &Ast, base: usize, span: Span) -> R<Value> {
+    pub(crate) fn cross(&self, a: &Ast, b: &Ast, base: usize, span: Span) -> R<Value> {
         let (x, fx) = self.vector(a, base)?;
         let (y, fy) = self.vector(b, base)?;
         self.same_frame(base, span, &fx, &fy)?;
         Ok(Value::Vector(x.cross(&y), fx))
     }
 
-    fn arity(&self, func: &str, args: &[Ast], n: usize, base: usize, span: Span) -> R<()> {
-        if args.len() == n {
-            Ok(())
-        } else {
-            Err(self.at(
-                base,
-                span,
-                format!(
-                    "`{func}` takes {n} argument{}, found {}",
-                    if n == 1 { "" } else { "s" },
-                    args.len()
-                ),
-            ))
-        }
-    }
-
     fn call(&self, func: &str, args: &[Ast], base: usize, span: Span) -> R<Value> {
-        match func {
-            "sin" | "cos" => {
-                let a = self
-                    .symbols
-                    .trig(func, args, span)
-                    .map_err(|e| self.at(base, e.span, e.message))?;
-                Ok(Value::Scalar(Poly::atom(a)))
-            }
-            "dt" | "dt_rel" => {
-                self.arity(func, args, 1, base, span)?;
-                Ok(match self.eval(&args[0], base)? {
-                    Value::Vector(v, f) if func == "dt" => {
-                        let fr = &self.frames[self.frame_index(&f).expect("frame")];
-                        Value::Vector(fr.dt(&v), f)
-                    }
-                    v => v.map(&mut |p| p.dt()),
-                })
-            }
-            "cross" => {
-                self.arity(func, args, 2, base, span)?;
-                self.cross(&args[0], &args[1], base, span)
-            }
-            "dot" => {
-                self.arity(func, args, 2, base, span)?;
-                let (x, fx) = self.vector(&args[0], base)?;
-                let (y, fy) = self.vector(&args[1], base)?;
-                self.same_frame(base, span, &fx, &fy)?;
-                Ok(Value::Scalar(x.dot(&y)))
-            }
-            "angvel" => {
-                self.arity(func, args, 1, base, span)?;
-                let i = self.frame_arg(&args[0], base)?;
-                Ok(Value::Vector(
-                    self.frames[i].omega.clone(),
-                    self.frames[i].name.clone(),
-                ))
-            }
-            "inertia" => {
-                self.arity(func, args, 6, base, span)?;
-                let s: Vec<Poly> = args
-                    .iter()
-                    .map(|a| self.scalar(a, base))
-                    .collect::<R<_>>()?;
-                let [ix, iy, iz, pxy, pyz, pzx]: [Poly; 6] = s.try_into().expect("six");
-                Ok(Value::Matrix(Mat3::inertia([ix, iy, iz], [pxy, pyz, pzx])))
-            }
-            "principal" | "diag" => {
-                self.arity(func, args, 3, base, span)?;
-                let s: Vec<Poly> = args
-                    .iter()
-                    .map(|a| self.scalar(a, base))
-                    .collect::<R<_>>()?;
-                let [a, b, c]: [Poly; 3] = s.try_into().expect("three");
-                Ok(Value::Matrix(Mat3::principal([a, b, c])))
-            }
-            "transpose" => {
-                self.arity(func, args, 1, base, span)?;
-                match self.eval(&args[0], base)? {
-                    Value::Matrix(m) => Ok(Value::Matrix(m.transpose())),
-                    v => Err(self.at(
-                        base,
-                        args[0].span,
-                        format!("expected a matrix, found {}", v.describe()),
-                    )),
-                }
-            }
-            "express" => {
-                self.arity(func, args, 2, base, span)?;
-                let (v, from) = self.vector(&args[0], base)?;
-                let to = self.frame_arg(&args[1], base)?;
-                let from_i = self.frame_index(&from).expect("frame");
-                if let Some(v) = self.along_chain(v.clone(), from_i, to) {
-                    return Ok(Value::Vector(v, self.frames[to].name.clone()));
-                }
-                let (ra, ma) = self.to_root(from_i);
-                let (rb, mb) = self.to_root(to);
-                if ra != rb {
-                    return Err(self.at(
-                        base,
-                        span,
-                        format!(
-                            "no chain of rotations relates frames {from} and {}",
-                            self.frames[to].name
-                        ),
-                    ));
-                }
-                Ok(Value::Vector(
-                    mb.transpose().mul_vec(&ma.mul_vec(&v)),
-                    self.frames[to].name.clone(),
-                ))
-            }
-            "subst" => self.subst(args, base, span),
-            "linearize" => self.linearize(args, base, span),
-            "solve" => self.solve(args, base, span),
-            "coeff" => {
-                self.arity(func, args, 2, base, span)?;
-                let x = self.eval(&args[0], base)?;
-                let a = self.symbol_arg(&args[1], base)?;
-                Ok(x.map(&mut |p| coefficient(p, a)))
-            }
-            "jacobian" => {
-                self.arity(func, args, 2, base, span)?;
-                let (v, _) = self.vector(&args[0], base)?;
-                let vars = self.symbol_list(&args[1], base)?;
-                Ok(Value::Matrix(Mat3(std::array::from_fn(|i| {
-                    std::array::from_fn(|j| coefficient(&v.0[i], vars[j]))
-                }))))
-            }
-            "sign" => {
-                self.arity(func, args, 1, base, span)?;
-                let p = self.scalar(&args[0], base)?;
-                match sign_of(&p, &self.positive) {
-                    Some(s) => Ok(Value::Scalar(Poly::int(s))),
-                    None => Err(self.at(
-                        base,
-                        args[0].span,
-                        format!(
-                            "cannot decide the sign of {p}: every term must have the same sign in symbols declared \
-                             under `positive`"
-                        ),
-                    )),
-                }
-            }
-            _ => Err(self.at(
+        let Some(op) = ops::find(func) else {
+            return Err(self.at(
                 base,
                 span,
-                format!("unknown function `{func}`; known functions: {FUNCTIONS}"),
-            )),
-        }
+                format!("unknown function `{func}`; known functions: {}", ops::names()),
+            ));
+        };
+        (op.eval)(&Call {
+            cx: self,
+            func,
+            args,
+            base,
+            span,
+        })
     }
 
     /// A symbol (with primes) as an argument.
-    fn symbol_arg(&self, a: &Ast, base: usize) -> R<Atom> {
+    pub(crate) fn symbol_arg(&self, a: &Ast, base: usize) -> R<Atom> {
         match &a.kind {
             AstKind::Name { name, primes } => self
                 .symbols
@@ -750,221 +663,6 @@ impl<'a> Context<'a> {
                 .map_err(|e| self.at(base, e.span, e.message)),
             _ => Err(self.at(base, a.span, "expected a symbol such as omega_x or theta''")),
         }
-    }
-
-    /// `[a, b, c]`: three symbols.
-    fn symbol_list(&self, a: &Ast, base: usize) -> R<[Atom; 3]> {
-        match &a.kind {
-            AstKind::Vector { items, .. } if items.len() == 3 => Ok([
-                self.symbol_arg(&items[0], base)?,
-                self.symbol_arg(&items[1], base)?,
-                self.symbol_arg(&items[2], base)?,
-            ]),
-            _ => Err(self.at(
-                base,
-                a.span,
-                "expected three symbols in brackets, such as [omega_x, omega_y, omega_z]",
-            )),
-        }
-    }
-
-    /// `linearize(x)` or `linearize(x, e_1, e_2)`: first order in the
-    /// declared small symbols (a term with two or more small factors,
-    /// counting derivatives, is dropped).
-    fn linearize(&self, args: &[Ast], base: usize, span: Span) -> R<Value> {
-        let Some((first, rest)) = args.split_first() else {
-            return Err(self.at(base, span, "linearize(x) needs an expression"));
-        };
-        let mut small = Vec::new();
-        for a in rest {
-            let s = self.symbol_arg(a, base)?;
-            if !self.small.contains(&s) {
-                return Err(self.at(
-                    base,
-                    a.span,
-                    format!(
-                        "`{}` is not declared small; list it under [symbols] small = [...]",
-                        s.name()
-                    ),
-                ));
-            }
-            small.push(s);
-        }
-        if rest.is_empty() {
-            if self.small.is_empty() {
-                return Err(self.at(
-                    base,
-                    span,
-                    "no symbol is declared small: add [symbols] small = [...]",
-                ));
-            }
-            small = self.small.clone();
-        }
-        let v = self.eval(first, base)?;
-        Ok(v.map(&mut |p| {
-            // A small angle: sin ε = ε + O(ε³) and cos ε = 1 + O(ε²), whose
-            // remainders are dropped with the other higher-order terms.
-            let p = p.subst(&mut |a| match a.kind() {
-                AtomKind::Sin(q) if small.contains(&q) => Some(Poly::atom(q)),
-                AtomKind::Cos(q) if small.contains(&q) => Some(Poly::one()),
-                _ => None,
-            });
-            Poly::from_terms(p.terms().iter().filter_map(|(m, c)| {
-                let order: i32 = m
-                    .factors()
-                    .iter()
-                    .filter(|(a, _)| small.contains(&a.base()))
-                    .map(|f| f.1)
-                    .sum();
-                (order <= 1).then(|| (m.clone(), c.clone()))
-            }))
-        }))
-    }
-
-    /// `solve(eq, x)`: the value of `x` that makes `eq = 0`, when `x`
-    /// occurs linearly; a vector equation with `[x, y, z]` is solved
-    /// component by component.
-    fn solve(&self, args: &[Ast], base: usize, span: Span) -> R<Value> {
-        self.arity("solve", args, 2, base, span)?;
-        match self.eval(&args[0], base)? {
-            Value::Scalar(p) => {
-                let x = self.symbol_arg(&args[1], base)?;
-                solve_linear(&p, x)
-                    .map(Value::Scalar)
-                    .map_err(|m| self.at(base, args[1].span, m))
-            }
-            Value::Vector(v, f) => {
-                let xs = self.symbol_list(&args[1], base)?;
-                let mut out = Vec::new();
-                for (c, x) in v.0.iter().zip(xs) {
-                    out.push(solve_linear(c, x).map_err(|m| self.at(base, args[1].span, m))?);
-                }
-                Ok(Value::Vector(Vec3(out.try_into().expect("three")), f))
-            }
-            v => Err(self.at(base, args[0].span, format!("cannot solve {}", v.describe()))),
-        }
-    }
-
-    /// `subst(x, a = e, b' = 0, theta = pi/2, …)`.
-    fn subst(&self, args: &[Ast], base: usize, span: Span) -> R<Value> {
-        let Some((first, rules)) = args.split_first() else {
-            return Err(self.at(
-                base,
-                span,
-                "subst(x, name = value, …) needs an expression and at least one rule",
-            ));
-        };
-        let mut v = self.eval(first, base)?;
-        if rules.is_empty() {
-            return Err(self.at(
-                base,
-                span,
-                "subst(x, name = value, …) needs at least one rule",
-            ));
-        }
-        for r in rules {
-            let AstKind::Assign {
-                name,
-                primes,
-                name_span,
-                value,
-            } = &r.kind
-            else {
-                return Err(self.at(base, r.span, "expected a rule `name = value`"));
-            };
-            let Some(decl) = self.symbols.get(name) else {
-                return Err(self.at(
-                    base,
-                    *name_span,
-                    format!("cannot substitute for `{name}`: it is not a declared symbol"),
-                ));
-            };
-            let target = self
-                .symbols
-                .atom(name, *primes, *name_span)
-                .map_err(|e| self.at(base, e.span, e.message))?;
-            let time = !matches!(decl, Decl::Constant);
-            if let Some(turns) = quarter_turns(value) {
-                if *primes > 0 {
-                    return Err(self.at(
-                        base,
-                        value.span,
-                        "a multiple of pi is an angle, not a rate",
-                    ));
-                }
-                let mut failed = false;
-                v = v.map(&mut |p| {
-                    p.subst_quarter_turns(target, turns).unwrap_or_else(|| {
-                        failed = true;
-                        p.clone()
-                    })
-                });
-                if failed {
-                    return Err(self.at(
-                        base,
-                        *name_span,
-                        format!("`{name}` occurs outside sin/cos, so it cannot be set to a multiple of pi"),
-                    ));
-                }
-                continue;
-            }
-            let val = self.scalar(value, base)?;
-            if !time {
-                let mut stuck = false;
-                v = v.map(&mut |p| {
-                    let q = p.subst(&mut |a| (a == target).then(|| val.clone()));
-                    stuck |= q.contains(target);
-                    q
-                });
-                if stuck {
-                    return Err(self.at(
-                        base,
-                        value.span,
-                        format!("`{name}` occurs in a denominator, and this value cannot be divided by; multiply through first"),
-                    ));
-                }
-                continue;
-            }
-            // A rate or angle: the symbol's derivatives of order ≥ `primes`
-            // follow by differentiating the value.
-            let angle = val.as_atom().filter(|a| a.is_angle());
-            let mut failed = false;
-            v = v.map(&mut |p| {
-                p.subst(&mut |a| match a.kind() {
-                    crate::AtomKind::Var { .. }
-                        if a.base() == target.base() && a.order() >= *primes =>
-                    {
-                        Some(val.dt_n(a.order() - primes))
-                    }
-                    crate::AtomKind::Sin(q) | crate::AtomKind::Cos(q)
-                        if q == target && *primes == 0 =>
-                    {
-                        match angle {
-                            Some(w) => {
-                                let is_sin = matches!(a.kind(), crate::AtomKind::Sin(_));
-                                Some(Poly::atom(
-                                    if is_sin { Atom::sin(w) } else { Atom::cos(w) }
-                                        .expect("angle"),
-                                ))
-                            }
-                            None => {
-                                failed = true;
-                                None
-                            }
-                        }
-                    }
-                    _ => None,
-                })
-            });
-            if failed {
-                return Err(self.at(
-                    base,
-                    value.span,
-                    format!("`{name}` occurs inside sin/cos: substitute another angle symbol or a multiple of pi/2"),
-                ));
-            }
-        }
-        Ok(v)
     }
 
     /// The presentation of a step: atoms to collect by, abbreviations to fold.
@@ -1074,6 +772,14 @@ impl<'a> Context<'a> {
             Value::Vector(v, _) if texts.len() == 3 => {
                 (0..3).map(|k| (axes[k].clone(), v.0[k].clone())).collect()
             }
+            Value::List { items, .. }
+                if texts.len() == items.len() && matches!(exp.get_ref(), toml::Value::Array(_)) =>
+            {
+                super::component_labels(value, axes)
+                    .into_iter()
+                    .zip(items.iter().cloned())
+                    .collect()
+            }
             v => {
                 return Err(self.diag(
                     sp.start,
@@ -1085,7 +791,9 @@ impl<'a> Context<'a> {
                             Value::Scalar(_) => "one string",
                             Value::Vector(..) =>
                                 "an array of three strings or one vector expression",
-                            Value::Matrix(_) => "omitted (check components in scalar steps)",
+                            Value::List { .. } => "an array of as many strings as the list has items",
+                            Value::Matrix(_) | Value::Array(_) =>
+                                "omitted (check components in scalar steps)",
                         }
                     ),
                 ));
@@ -1115,119 +823,3 @@ impl<'a> Context<'a> {
     }
 }
 
-/// The coefficient of `a` (to the first power) in `p`.
-fn coefficient(p: &Poly, a: Atom) -> Poly {
-    Poly::from_terms(
-        p.terms()
-            .iter()
-            .filter(|(m, _)| m.exponent(a) == 1)
-            .map(|(m, c)| (m.without(a, 1), c.clone())),
-    )
-}
-
-/// Solves `p = 0` for `x`, where `p = a x + b` with `a` free of `x`. A
-/// factor common to every term (such as sin θ) is divided out first, which
-/// assumes it is not zero.
-fn solve_linear(p: &Poly, x: Atom) -> Result<Poly, String> {
-    if p.terms()
-        .iter()
-        .any(|(m, _)| m.exponent(x) > 1 || m.exponent(x) < 0)
-    {
-        return Err(format!("`{x}` does not appear linearly in {p}"));
-    }
-    let a = coefficient(p, x);
-    if a.is_zero() {
-        return Err(format!("`{x}` does not appear in {p}"));
-    }
-    let b = p - &(&a * &Poly::atom(x));
-    let common = p
-        .terms()
-        .iter()
-        .skip(1)
-        .fold(p.terms()[0].0.clone(), |g, t| g.gcd(&t.0));
-    let (a, b) = if common.is_one() || common.exponent(x) > 0 {
-        (a, b)
-    } else {
-        let scale = Poly::term(
-            crate::poly::Monomial::one().div(&common),
-            crate::rational::Rational::ONE,
-        );
-        (&a * &scale, &b * &scale)
-    };
-    match a.inverse_monomial() {
-        Some(inv) => Ok(-&(&b * &inv)),
-        None => Err(format!(
-            "`{x}` does not appear linearly with a coefficient that can be divided by (found {a}); only numbers and \
-             constant symbols can be divided by"
-        )),
-    }
-}
-
-/// +1 or −1 when every term of `p` has that sign for positive values of
-/// the `positive` constants (even powers of any atom also count as
-/// positive); `None` otherwise.
-fn sign_of(p: &Poly, positive: &[Atom]) -> Option<i64> {
-    if p.is_zero() {
-        return None;
-    }
-    let mut sign = None;
-    for (m, c) in p.terms() {
-        if !m
-            .factors()
-            .iter()
-            .all(|(a, e)| positive.contains(a) || e % 2 == 0)
-        {
-            return None;
-        }
-        let s = if c.is_negative() { -1 } else { 1 };
-        if sign.is_some_and(|t| t != s) {
-            return None;
-        }
-        sign = Some(s);
-    }
-    sign
-}
-
-/// `pi`, `pi/2`, `k*pi/2`, `k*pi`, `0` as a number of quarter turns.
-fn quarter_turns(ast: &Ast) -> Option<i64> {
-    use crate::rational::Rational;
-    fn walk(a: &Ast) -> Option<(Rational, bool)> {
-        match &a.kind {
-            AstKind::Name { name, primes: 0 } if name == "pi" => Some((Rational::ONE, true)),
-            AstKind::Num(r) => Some((r.clone(), false)),
-            AstKind::Neg(x) => walk(x).map(|(r, p)| (-r, p)),
-            AstKind::Mul(items) => {
-                let mut acc = Rational::ONE;
-                let mut has_pi = false;
-                for it in items {
-                    let (r, p) = match &it.kind {
-                        AstKind::Recip(d) => {
-                            let (r, p) = walk(d)?;
-                            if p {
-                                return None;
-                            }
-                            (r.recip()?, false)
-                        }
-                        _ => walk(it)?,
-                    };
-                    if p && has_pi {
-                        return None;
-                    }
-                    has_pi |= p;
-                    acc = &acc * &r;
-                }
-                Some((acc, has_pi))
-            }
-            _ => None,
-        }
-    }
-    let (r, has_pi) = walk(ast)?;
-    if !has_pi {
-        return None;
-    }
-    let q = &r * &Rational::int(2);
-    if !q.is_integer() {
-        return None;
-    }
-    q.parts().0.parse().ok()
-}

@@ -31,17 +31,20 @@
 
 mod error;
 mod eval;
+pub mod ops;
 mod raw;
+mod value;
 
 use std::collections::HashMap;
 use std::path::Path;
 
 pub use error::Diagnostic;
-pub use eval::Value;
+pub use value::Value;
 
 use crate::atom::Atom;
 use crate::expr::Expr;
 use crate::frame::Frame;
+pub use crate::limits::Limits;
 use crate::poly::Poly;
 use crate::present::{Presentation, present};
 use crate::symbols::{Decl, Symbols};
@@ -112,13 +115,9 @@ pub struct Step {
 
 impl Step {
     /// The canonical components, in the order of [`Step::presented`]
-    /// (scalar; x, y, z; a matrix by rows).
+    /// (scalar; x, y, z; a matrix or array by rows; a list in order).
     pub fn values(&self) -> Vec<&Poly> {
-        match &self.value {
-            Value::Scalar(p) => vec![p],
-            Value::Vector(v, _) => v.0.iter().collect(),
-            Value::Matrix(m) => m.0.iter().flatten().collect(),
-        }
+        self.value.components()
     }
 
     /// The presented components, computed now for a hidden step.
@@ -130,28 +129,39 @@ impl Step {
     }
 }
 
-/// Each component of `value` presented, with its label: empty for a
-/// scalar, the axis name for a vector, two axis names for a matrix entry.
+/// The label of each component of `value`: empty for a scalar, the axis
+/// name for a vector, two axis names for a matrix entry, the unknown's
+/// source name for a solved list (`theta''`), the position (1, 2, …) for an
+/// unlabelled list and `ij` for an array entry.
+pub(crate) fn component_labels(value: &Value, axes: &[String; 3]) -> Vec<String> {
+    match value {
+        Value::Scalar(_) => vec![String::new()],
+        Value::Vector(..) => axes.to_vec(),
+        Value::Matrix(_) => (0..9).map(|k| format!("{}{}", axes[k / 3], axes[k % 3])).collect(),
+        Value::List { items, labels } if labels.len() == items.len() => {
+            labels.iter().map(|a| a.to_string()).collect()
+        }
+        Value::List { items, .. } => (1..=items.len()).map(|k| k.to_string()).collect(),
+        Value::Array(rows) => rows
+            .iter()
+            .enumerate()
+            .flat_map(|(i, r)| (0..r.len()).map(move |j| format!("{}{}", i + 1, j + 1)))
+            .collect(),
+    }
+}
+
+/// Each component of `value` presented, with its label (see
+/// [`component_labels`]).
 fn present_components(
     value: &Value,
     axes: &[String; 3],
     presentation: &Presentation,
 ) -> Vec<(String, Expr)> {
-    match value {
-        Value::Scalar(p) => vec![(String::new(), present(p, presentation))],
-        Value::Vector(v, _) => (0..3)
-            .map(|k| (axes[k].clone(), present(&v.0[k], presentation)))
-            .collect(),
-        Value::Matrix(m) => (0..3)
-            .flat_map(|i| (0..3).map(move |j| (i, j)))
-            .map(|(i, j)| {
-                (
-                    format!("{}{}", axes[i], axes[j]),
-                    present(&m.0[i][j], presentation),
-                )
-            })
-            .collect(),
-    }
+    component_labels(value, axes)
+        .into_iter()
+        .zip(value.components())
+        .map(|(l, p)| (l, present(p, presentation)))
+        .collect()
 }
 
 /// The outcome of comparing one component with its expectation.
@@ -227,9 +237,41 @@ pub fn load(path: &Path) -> Result<Derivation, Diagnostic> {
     load_str(&shown, &text)
 }
 
-/// Loads, runs and checks a derivation given as text; `path` names it in messages.
+/// Loads, runs and checks a derivation given as text; `path` names it in
+/// messages. Runs under the default [`Limits`] (a file's `[limits]` table
+/// overrides them).
 pub fn load_str(path: &str, text: &str) -> Result<Derivation, Diagnostic> {
+    load_str_with(path, text, Limits::DEFAULT)
+}
+
+/// [`load_str`] under `limits` (a file's `[limits]` table overrides them).
+pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivation, Diagnostic> {
     let raw = raw::parse(path, text)?;
+    let limits = match &raw.limits {
+        None => limits,
+        Some(l) => Limits {
+            max_terms: l.max_terms.unwrap_or(limits.max_terms),
+            max_work: l.max_work.unwrap_or(limits.max_work),
+            max_exponent: l.max_exponent.unwrap_or(limits.max_exponent),
+            max_bits: l.max_bits.unwrap_or(limits.max_bits),
+        },
+    };
+    // Runs `f` under the limits; a limit exceeded becomes an error at `at`.
+    let limited = |cx: &eval::Context<'_>, at: &toml::Spanned<String>, what: &str, f: &mut dyn FnMut() -> Result<(), Diagnostic>| {
+        match crate::limits::scope(limits, f) {
+            Ok(r) => r,
+            Err(e) => Err(cx.diag_string(
+                at,
+                0,
+                at.get_ref().len(),
+                format!(
+                    "{what}: {e}; raise the limit with `{}` under [limits] in the file (or the command's --{} option)",
+                    e.setting(),
+                    e.setting().replace('_', "-")
+                ),
+            )),
+        }
+    };
     let name = Path::new(path)
         .file_stem()
         .map_or_else(|| path.to_owned(), |s| s.to_string_lossy().into_owned());
@@ -254,18 +296,29 @@ pub fn load_str(path: &str, text: &str) -> Result<Derivation, Diagnostic> {
     // Abbreviations: time-dependent names standing for an expression.
     let mut abbreviations = Vec::new();
     for a in &raw.abbreviations {
-        let def = cx.scalar_in(&a.value)?;
+        let mut def = Poly::zero();
+        limited(&cx, &a.name, "this abbreviation", &mut || {
+            def = cx.scalar_in(&a.value)?;
+            Ok(())
+        })?;
         cx.declare(&a.name, Decl::Abbrev(def.clone()))?;
-        abbreviations.push(Abbreviation {
+        let abbreviation = Abbreviation {
             name: a.name.get_ref().clone(),
             atom: Atom::time(a.name.get_ref(), 0),
             definition: def,
             doc: a.doc.clone(),
-        });
+        };
+        cx.abbrevs.push(abbreviation.clone());
+        abbreviations.push(abbreviation);
     }
     // Frames.
     for f in &raw.frames {
-        cx.add_frame(f)?;
+        let mut cx_frame = None;
+        limited(&cx, &f.name, "this frame", &mut || {
+            cx_frame = Some(cx.frame_of(f)?);
+            Ok(())
+        })?;
+        cx.push_frame(cx_frame.expect("built"));
     }
     // Steps.
     let mut steps = Vec::new();
@@ -279,17 +332,23 @@ pub fn load_str(path: &str, text: &str) -> Result<Derivation, Diagnostic> {
                 "a step of this name is already defined",
             ));
         }
-        let value = cx.eval_step(s)?;
-        let presentation = cx.presentation(s, &abbreviations)?;
-        let axes = cx.axes_of(&value);
-        // Only shown steps are presented (hidden ones are printed nowhere
-        // but JSON, which presents them on demand).
-        let components = if s.show {
-            present_components(&value, &axes, &presentation)
-        } else {
-            Vec::new()
-        };
-        let checks = cx.checks(s, &value, &abbreviations, &presentation, &axes)?;
+        let mut out = None;
+        limited(&cx, &s.name, &format!("step `{}`", s.name.get_ref()), &mut || {
+            let value = cx.eval_step(s)?;
+            let presentation = cx.presentation(s, &abbreviations)?;
+            let axes = cx.axes_of(&value);
+            // Only shown steps are presented (hidden ones are printed nowhere
+            // but JSON, which presents them on demand).
+            let components = if s.show {
+                present_components(&value, &axes, &presentation)
+            } else {
+                Vec::new()
+            };
+            let checks = cx.checks(s, &value, &abbreviations, &presentation, &axes)?;
+            out = Some((value, presentation, axes, components, checks));
+            Ok(())
+        })?;
+        let (value, presentation, axes, components, checks) = out.expect("evaluated");
         cx.bind(s.name.get_ref(), value.clone());
         steps.push(Step {
             name: s.name.get_ref().clone(),

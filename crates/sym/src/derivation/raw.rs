@@ -23,6 +23,18 @@ pub(crate) struct RawFile {
     pub frames: Vec<RawFrame>,
     #[serde(default, rename = "step")]
     pub steps: Vec<RawStep>,
+    /// Resource limits for this file (crate::limits).
+    pub limits: Option<RawLimits>,
+}
+
+/// `[limits]`: overrides of [`crate::limits::Limits`].
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawLimits {
+    pub max_terms: Option<usize>,
+    pub max_work: Option<u64>,
+    pub max_exponent: Option<u32>,
+    pub max_bits: Option<u64>,
 }
 
 #[derive(Debug, Default, Deserialize)]

@@ -1,0 +1,65 @@
+//! `linearize(x)`: first order in the symbols declared small.
+
+use super::{Call, Op};
+use crate::atom::AtomKind;
+use crate::derivation::eval::R;
+use crate::derivation::value::Value;
+use crate::poly::Poly;
+
+pub(crate) const LINEARIZE: Op = Op {
+    names: &["linearize"],
+    signature: "linearize(x), linearize(x, e_1)",
+    doc: "keep terms of first order in the symbols declared `small` (an undeclared one is an error); a small angle \
+          counts as first order under sin and cos (sin ε → ε, cos ε → 1)",
+    eval,
+};
+
+/// First order in the declared small symbols (a term with two or more
+/// small factors, counting derivatives, is dropped).
+fn eval(c: &Call<'_, '_>) -> R<Value> {
+    if c.args.is_empty() {
+        return c.err(c.span, "linearize(x) needs an expression");
+    }
+    let mut small = Vec::new();
+    for (i, a) in c.args.iter().enumerate().skip(1) {
+        let s = c.symbol(i)?;
+        if !c.cx.small.contains(&s) {
+            return c.err(
+                a.span,
+                format!(
+                    "`{}` is not declared small; list it under [symbols] small = [...]",
+                    s.name()
+                ),
+            );
+        }
+        small.push(s);
+    }
+    if c.args.len() == 1 {
+        if c.cx.small.is_empty() {
+            return c.err(
+                c.span,
+                "no symbol is declared small: add [symbols] small = [...]",
+            );
+        }
+        small = c.cx.small.clone();
+    }
+    let v = c.value(0)?;
+    Ok(v.map(&mut |p| {
+        // A small angle: sin ε = ε + O(ε³) and cos ε = 1 + O(ε²), whose
+        // remainders are dropped with the other higher-order terms.
+        let p = p.subst(&mut |a| match a.kind() {
+            AtomKind::Sin(q) if small.contains(&q) => Some(Poly::atom(q)),
+            AtomKind::Cos(q) if small.contains(&q) => Some(Poly::one()),
+            _ => None,
+        });
+        Poly::from_terms(p.terms().iter().filter_map(|(m, c)| {
+            let order: i32 = m
+                .factors()
+                .iter()
+                .filter(|(a, _)| small.contains(&a.base()))
+                .map(|f| f.1)
+                .sum();
+            (order <= 1).then(|| (m.clone(), c.clone()))
+        }))
+    }))
+}

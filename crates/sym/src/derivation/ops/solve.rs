@@ -1,0 +1,123 @@
+//! `solve(eq, x)` and `solve(eqs, [x, y, …])`: linear equations solved
+//! exactly, dividing only by what the canonical form can divide by.
+
+use super::mass_matrix::system;
+use super::{Call, Op};
+use crate::derivation::eval::R;
+use crate::derivation::value::Value;
+use crate::expr::Expr;
+use crate::poly::{Monomial, Poly};
+use crate::rational::Rational;
+use crate::vector::Vec3;
+
+pub(crate) const SOLVE: Op = Op {
+    names: &["solve"],
+    signature: "solve(eq, x), solve(eqs, [x, y, …])",
+    doc: "the values of the unknowns that make the equations (a scalar, a vector or a `list`) zero, when they occur \
+          linearly and the coefficient matrix's determinant can be divided by (numbers, constants, sin and cos: \
+          otherwise use `mass_matrix`/`forcing`); a factor common to all terms of an equation is divided out first. \
+          A vector equation in three unknowns gives a vector; otherwise one unknown gives a scalar and several a \
+          list labelled by the unknowns (θ̈ = …)",
+    eval,
+};
+
+fn eval(c: &Call<'_, '_>) -> R<Value> {
+    let (m, f, unknowns, listed, v) = system(c)?;
+    // Divide each equation by the monomial common to all its terms (such
+    // as sin θ or θ̇), assumed not zero: it cannot change the solution.
+    let mut m = m;
+    let mut f = f;
+    for (row, fi) in m.iter_mut().zip(f.iter_mut()) {
+        let terms: Vec<&Monomial> = row
+            .iter()
+            .chain(std::iter::once(&*fi))
+            .flat_map(|p| p.terms().iter().map(|t| &t.0))
+            .collect();
+        let Some(first) = terms.first() else { continue };
+        let g = terms.iter().skip(1).fold((*first).clone(), |g, t| g.gcd(t));
+        if !g.is_one() {
+            let inv = Poly::term(g.recip(), Rational::ONE);
+            for p in row.iter_mut().chain(std::iter::once(fi)) {
+                *p = &*p * &inv;
+            }
+        }
+    }
+    let x = solve_system(&m, &f).map_err(|msg| c.cx.at(c.base, c.args[0].span, msg))?;
+    Ok(match v {
+        Value::Vector(_, frame) if unknowns.len() == 3 && unknowns.iter().all(|u| u.order() == 0) => {
+            Value::Vector(Vec3(x.try_into().expect("three")), frame)
+        }
+        _ if !listed => Value::Scalar(x.into_iter().next().expect("one unknown")),
+        _ => Value::List {
+            items: x,
+            labels: unknowns,
+        },
+    })
+}
+
+/// `M x = f` by Cramer's rule, when `det M` can be divided by.
+pub(crate) fn solve_system(m: &[Vec<Poly>], f: &[Poly]) -> Result<Vec<Poly>, String> {
+    let n = m.len();
+    if n > 16 {
+        return Err(format!("{n} unknowns: at most 16 can be solved for"));
+    }
+    let det = determinant(m);
+    if det.is_zero() {
+        return Err("the equations do not determine the unknowns: their coefficient matrix is singular".into());
+    }
+    let Some(inv) = det.inverse_divisor() else {
+        let what = if n == 1 { "the coefficient" } else { "the determinant of the coefficients" };
+        return Err(format!(
+            "{what} is {}, which cannot be divided by ({}); write the equations in mass-matrix form with \
+             mass_matrix(…) and forcing(…) instead",
+            Expr::from_poly(&det),
+            crate::poly::DIVISOR_RULE
+        ));
+    };
+    Ok((0..n)
+        .map(|j| {
+            let mj: Vec<Vec<Poly>> = m
+                .iter()
+                .zip(f)
+                .map(|(row, fi)| {
+                    let mut r = row.clone();
+                    r[j] = fi.clone();
+                    r
+                })
+                .collect();
+            &determinant(&mj) * &inv
+        })
+        .collect())
+}
+
+/// The determinant by Laplace expansion along the rows, memoised on the
+/// set of columns left (2ⁿ minors).
+pub(crate) fn determinant(m: &[Vec<Poly>]) -> Poly {
+    let n = m.len();
+    let mut memo: std::collections::HashMap<u32, Poly> = std::collections::HashMap::new();
+    fn minor(m: &[Vec<Poly>], row: usize, cols: u32, memo: &mut std::collections::HashMap<u32, Poly>) -> Poly {
+        if row == m.len() {
+            return Poly::one();
+        }
+        if let Some(p) = memo.get(&cols) {
+            return p.clone();
+        }
+        let mut acc = Poly::zero();
+        let mut sign = 1;
+        for j in 0..m.len() {
+            if cols & (1 << j) == 0 {
+                continue;
+            }
+            if !m[row][j].is_zero() {
+                let sub = minor(m, row + 1, cols & !(1 << j), memo);
+                let t = &m[row][j] * &sub;
+                acc = if sign > 0 { &acc + &t } else { &acc - &t };
+            }
+            sign = -sign;
+        }
+        memo.insert(cols, acc.clone());
+        acc
+    }
+    minor(m, 0, (1u32 << n) - 1, &mut memo)
+}
+
