@@ -198,3 +198,25 @@ fn partial_derivatives_of_the_tops_kinetic_energy() {
     );
     let _ = Expr::from_poly(&t);
 }
+
+/// The function table of docs/derivation-format.md is the registry's.
+#[test]
+fn docs_list_every_operation_of_the_registry() {
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/derivation-format.md");
+    let doc = std::fs::read_to_string(&path).unwrap();
+    let (begin, end) = ("<!-- ops:begin -->\n", "<!-- ops:end -->");
+    let a = doc.find(begin).expect("ops:begin marker") + begin.len();
+    let b = doc.find(end).expect("ops:end marker");
+    let table = hdot_sym::derivation::ops::docs_table();
+    if doc[a..b] != table {
+        if std::env::var_os("HDOT_UPDATE_DOCS").is_some() {
+            std::fs::write(&path, format!("{}{}{}", &doc[..a], table, &doc[b..])).unwrap();
+        } else {
+            panic!(
+                "docs/derivation-format.md's function table differs from the registry; rerun with \
+                 HDOT_UPDATE_DOCS=1 to regenerate it:\n{table}"
+            );
+        }
+    }
+}

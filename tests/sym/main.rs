@@ -10,6 +10,7 @@
 mod algebra;
 mod broken;
 mod chain;
+mod equations_of_motion;
 mod identities;
 mod laurent;
 mod notes;

@@ -18,7 +18,7 @@
 //! are not enforced, but an exponent that would overflow still panics
 //! rather than wrap: exact arithmetic never silently wraps.
 
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
 use std::fmt;
 
 /// The budget of one computation (one derivation step, by default).
@@ -126,6 +126,18 @@ struct Active {
 
 thread_local! {
     static ACTIVE: RefCell<Vec<Active>> = const { RefCell::new(Vec::new()) };
+    /// The innermost scope's `max_exponent` (`u32::MAX` outside any scope),
+    /// kept apart because it is read on every exponent addition.
+    static MAX_EXPONENT: Cell<u32> = const { Cell::new(u32::MAX) };
+}
+
+fn sync_max_exponent() {
+    let m = ACTIVE.with(|a| {
+        a.borrow()
+            .last()
+            .map_or(u32::MAX, |s| s.limits.max_exponent)
+    });
+    MAX_EXPONENT.with(|c| c.set(m));
 }
 
 /// Runs `f` under `limits`; the first limit exceeded is returned as the
@@ -138,11 +150,13 @@ pub fn scope<T>(limits: Limits, f: impl FnOnce() -> T) -> Result<T, LimitError> 
             error: None,
         })
     });
+    sync_max_exponent();
     // Pop the scope even if `f` unwinds.
     struct Pop;
     impl Drop for Pop {
         fn drop(&mut self) {
             ACTIVE.with(|a| a.borrow_mut().pop());
+            sync_max_exponent();
         }
     }
     let pop = Pop;
@@ -177,11 +191,14 @@ fn limits() -> Option<Limits> {
     ACTIVE.with(|a| a.borrow().last().map(|s| s.limits))
 }
 
-/// Checks a product of `n` by `m` terms before it is formed; false (and
-/// the scope tripped) when it is over budget.
-pub(crate) fn allow_product(n: usize, m: usize) -> bool {
+/// Checks a product of `n` by `m` terms before it is formed, each term
+/// product weighing `weight` (more for long coefficients); false (and the
+/// scope tripped) when it is over budget.
+pub(crate) fn allow_product(n: usize, m: usize, weight: u64) -> bool {
     let Some(l) = limits() else { return true };
-    let needed = (n as u64).saturating_mul(m as u64);
+    let needed = (n as u64)
+        .saturating_mul(m as u64)
+        .saturating_mul(weight.max(1));
     if needed > l.max_work {
         trip(LimitError::Work {
             needed,
@@ -209,13 +226,19 @@ pub(crate) fn allow_terms(n: usize) -> bool {
 /// The sum of two exponents, checked: within the scope's limit, and never
 /// wrapping. Outside a scope an overflow panics (it would otherwise give a
 /// wrong answer); inside one it trips the scope and saturates.
+#[inline]
 pub(crate) fn add_exponents(a: i32, b: i32) -> i32 {
-    let sum = a.checked_add(b);
-    match (sum, limits()) {
-        (Some(s), None) => s,
-        (None, None) => panic!("exponent overflow: {a} + {b} does not fit in 32 bits"),
-        (Some(s), Some(l)) if s.unsigned_abs() <= l.max_exponent => s,
-        (_, Some(l)) => {
+    match a.checked_add(b) {
+        Some(s) if s.unsigned_abs() <= MAX_EXPONENT.with(Cell::get) => s,
+        sum => exponent_over(a, b, sum),
+    }
+}
+
+#[cold]
+fn exponent_over(a: i32, b: i32, sum: Option<i32>) -> i32 {
+    match limits() {
+        None => panic!("exponent overflow: {a} + {b} does not fit in 32 bits"),
+        Some(l) => {
             trip(LimitError::Exponent {
                 limit: l.max_exponent,
             });
@@ -267,7 +290,7 @@ mod tests {
                 assert!(allow_terms(3));
                 assert!(!allow_terms(4));
                 assert!(tripped());
-                assert!(!allow_product(10, 10_000_000_000));
+                assert!(!allow_product(10, 10_000_000_000, 1));
                 7
             },
         );

@@ -316,9 +316,7 @@ impl Poly {
             while *k > 0 {
                 let divided = match a.kind() {
                     AtomKind::Cos(_) => divide_by_cos(&n, *a),
-                    AtomKind::Sin(angle) => {
-                        divide_by_sin(&n, *a, Atom::cos(angle).expect("angle"))
-                    }
+                    AtomKind::Sin(angle) => divide_by_sin(&n, *a, Atom::cos(angle).expect("angle")),
                     AtomKind::Var { .. } => unreachable!("only trig atoms are in D"),
                 };
                 match divided {
@@ -388,7 +386,11 @@ fn divide_by_sin(
         let deg = coeffs.len() - 1;
         let mut q: Vec<Rational> = Vec::with_capacity(deg.saturating_sub(1));
         for j in 0..deg.saturating_sub(1) {
-            let prev = if j >= 2 { q[j - 2].clone() } else { Rational::ZERO };
+            let prev = if j >= 2 {
+                q[j - 2].clone()
+            } else {
+                Rational::ZERO
+            };
             q.push(&coeffs[j] + &prev);
         }
         for (j, c) in q.into_iter().enumerate() {
@@ -637,6 +639,13 @@ impl Poly {
         if !limits::allow_bits(bits.saturating_mul(u64::from(n))) {
             return Poly::zero();
         }
+        // A sum of k terms to the n-th power has up to C(n + k − 1, k − 1)
+        // terms: known before any multiplication.
+        let k = self.len() as f64;
+        let ln_terms = ln_binomial(f64::from(n) + k - 1.0, k - 1.0);
+        if self.len() > 1 && !limits::allow_terms(ln_terms.exp().min(1e18) as usize) {
+            return Poly::zero();
+        }
         let mut base = self.clone();
         let mut acc = Poly::one();
         while n > 0 {
@@ -655,6 +664,20 @@ impl Poly {
     pub fn to_source(&self) -> String {
         crate::expr::Expr::from_poly(self).to_string()
     }
+}
+
+/// ln C(n, k) for real arguments, by Stirling's series (relative error far
+/// below what a budget check needs).
+fn ln_binomial(n: f64, k: f64) -> f64 {
+    fn ln_gamma1(x: f64) -> f64 {
+        // ln Γ(x + 1) = ln x!
+        if x < 1.0 {
+            return 0.0;
+        }
+        let x1 = x + 1.0;
+        (x1 - 0.5) * x1.ln() - x1 + 0.5 * (2.0 * std::f64::consts::PI).ln() + 1.0 / (12.0 * x1)
+    }
+    ln_gamma1(n) - ln_gamma1(k) - ln_gamma1(n - k)
 }
 
 impl std::ops::Add for &Poly {
@@ -732,7 +755,21 @@ impl std::ops::Mul for &Poly {
         if let Some(c) = self.as_constant() {
             return rhs.scale(&c);
         }
-        if !limits::allow_product(self.len(), rhs.len()) {
+        // Long coefficients make each term product dearer.
+        let words = |p: &Poly| {
+            p.terms
+                .iter()
+                .map(|t| t.1.bits())
+                .max()
+                .unwrap_or(0)
+                .div_ceil(64)
+        };
+        let weight = if self.len().min(rhs.len()) > 1 {
+            words(self) * words(rhs)
+        } else {
+            1
+        };
+        if !limits::allow_product(self.len(), rhs.len(), weight) {
             return Poly::zero();
         }
         // One side a single term free of sin: no two products can coincide

@@ -162,9 +162,8 @@ impl Rational {
     /// Bits of the larger of numerator and denominator (0 for zero).
     pub fn bits(&self) -> u64 {
         match self {
-            Rational::Small(n, d) => {
-                u64::from(64 - n.unsigned_abs().leading_zeros()).max(u64::from(64 - d.unsigned_abs().leading_zeros()))
-            }
+            Rational::Small(n, d) => u64::from(64 - n.unsigned_abs().leading_zeros())
+                .max(u64::from(64 - d.unsigned_abs().leading_zeros())),
             Rational::Big(b) => b.numer().bits().max(b.denom().bits()),
         }
     }

@@ -499,7 +499,8 @@ impl<'a> Context<'a> {
                             labels: if la == lb { la } else { Vec::new() },
                         },
                         (Value::Array(a), Value::Array(b))
-                            if a.len() == b.len() && a.iter().zip(&b).all(|(x, y)| x.len() == y.len()) =>
+                            if a.len() == b.len()
+                                && a.iter().zip(&b).all(|(x, y)| x.len() == y.len()) =>
                         {
                             Value::Array(
                                 a.iter()
@@ -598,7 +599,10 @@ impl<'a> Context<'a> {
                     }
                 }
                 Value::List { items, labels } => {
-                    let k = comp.parse::<usize>().ok().filter(|k| (1..=items.len()).contains(k));
+                    let k = comp
+                        .parse::<usize>()
+                        .ok()
+                        .filter(|k| (1..=items.len()).contains(k));
                     match k {
                         Some(k) => Ok(Value::Scalar(items[k - 1].clone())),
                         None => {
@@ -607,7 +611,11 @@ impl<'a> Context<'a> {
                             } else {
                                 format!(
                                     " (the values of {})",
-                                    labels.iter().map(|a| a.to_string()).collect::<Vec<_>>().join(", ")
+                                    labels
+                                        .iter()
+                                        .map(|a| a.to_string())
+                                        .collect::<Vec<_>>()
+                                        .join(", ")
                                 )
                             };
                             err(
@@ -642,7 +650,10 @@ impl<'a> Context<'a> {
             return Err(self.at(
                 base,
                 span,
-                format!("unknown function `{func}`; known functions: {}", ops::names()),
+                format!(
+                    "unknown function `{func}`; known functions: {}",
+                    ops::names()
+                ),
             ));
         };
         (op.eval)(&Call {
@@ -791,7 +802,8 @@ impl<'a> Context<'a> {
                             Value::Scalar(_) => "one string",
                             Value::Vector(..) =>
                                 "an array of three strings or one vector expression",
-                            Value::List { .. } => "an array of as many strings as the list has items",
+                            Value::List { .. } =>
+                                "an array of as many strings as the list has items",
                             Value::Matrix(_) | Value::Array(_) =>
                                 "omitted (check components in scalar steps)",
                         }
@@ -822,4 +834,3 @@ impl<'a> Context<'a> {
         Ok(out)
     }
 }
-

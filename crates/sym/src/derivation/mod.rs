@@ -137,7 +137,9 @@ pub(crate) fn component_labels(value: &Value, axes: &[String; 3]) -> Vec<String>
     match value {
         Value::Scalar(_) => vec![String::new()],
         Value::Vector(..) => axes.to_vec(),
-        Value::Matrix(_) => (0..9).map(|k| format!("{}{}", axes[k / 3], axes[k % 3])).collect(),
+        Value::Matrix(_) => (0..9)
+            .map(|k| format!("{}{}", axes[k / 3], axes[k % 3]))
+            .collect(),
         Value::List { items, labels } if labels.len() == items.len() => {
             labels.iter().map(|a| a.to_string()).collect()
         }
@@ -257,7 +259,10 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
         },
     };
     // Runs `f` under the limits; a limit exceeded becomes an error at `at`.
-    let limited = |cx: &eval::Context<'_>, at: &toml::Spanned<String>, what: &str, f: &mut dyn FnMut() -> Result<(), Diagnostic>| {
+    let limited = |cx: &eval::Context<'_>,
+                   at: &toml::Spanned<String>,
+                   what: &str,
+                   f: &mut dyn FnMut() -> Result<(), Diagnostic>| {
         match crate::limits::scope(limits, f) {
             Ok(r) => r,
             Err(e) => Err(cx.diag_string(
@@ -333,21 +338,26 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
             ));
         }
         let mut out = None;
-        limited(&cx, &s.name, &format!("step `{}`", s.name.get_ref()), &mut || {
-            let value = cx.eval_step(s)?;
-            let presentation = cx.presentation(s, &abbreviations)?;
-            let axes = cx.axes_of(&value);
-            // Only shown steps are presented (hidden ones are printed nowhere
-            // but JSON, which presents them on demand).
-            let components = if s.show {
-                present_components(&value, &axes, &presentation)
-            } else {
-                Vec::new()
-            };
-            let checks = cx.checks(s, &value, &abbreviations, &presentation, &axes)?;
-            out = Some((value, presentation, axes, components, checks));
-            Ok(())
-        })?;
+        limited(
+            &cx,
+            &s.name,
+            &format!("step `{}`", s.name.get_ref()),
+            &mut || {
+                let value = cx.eval_step(s)?;
+                let presentation = cx.presentation(s, &abbreviations)?;
+                let axes = cx.axes_of(&value);
+                // Only shown steps are presented (hidden ones are printed nowhere
+                // but JSON, which presents them on demand).
+                let components = if s.show {
+                    present_components(&value, &axes, &presentation)
+                } else {
+                    Vec::new()
+                };
+                let checks = cx.checks(s, &value, &abbreviations, &presentation, &axes)?;
+                out = Some((value, presentation, axes, components, checks));
+                Ok(())
+            },
+        )?;
         let (value, presentation, axes, components, checks) = out.expect("evaluated");
         cx.bind(s.name.get_ref(), value.clone());
         steps.push(Step {

@@ -29,5 +29,8 @@ fn eval(c: &Call<'_, '_>) -> R<Value> {
             format!("no chain of rotations relates frames {from} and {to_name}"),
         );
     }
-    Ok(Value::Vector(mb.transpose().mul_vec(&ma.mul_vec(&v)), to_name))
+    Ok(Value::Vector(
+        mb.transpose().mul_vec(&ma.mul_vec(&v)),
+        to_name,
+    ))
 }

@@ -26,7 +26,10 @@ pub(crate) const FORCING: Op = Op {
 /// The equations `eqs = 0` as `M u = f`: `M[i][j]` the coefficient of
 /// `u_j` in equation `i`, `f = −(eqs at u = 0)`. An error message when an
 /// unknown does not occur linearly.
-pub(crate) fn linear_system(eqs: &[Poly], unknowns: &[Atom]) -> Result<(Vec<Vec<Poly>>, Vec<Poly>), String> {
+pub(crate) fn linear_system(
+    eqs: &[Poly],
+    unknowns: &[Atom],
+) -> Result<(Vec<Vec<Poly>>, Vec<Poly>), String> {
     for (i, e) in eqs.iter().enumerate() {
         for (m, _) in e.terms() {
             let present: Vec<Atom> = unknowns
@@ -46,7 +49,9 @@ pub(crate) fn linear_system(eqs: &[Poly], unknowns: &[Atom]) -> Result<(Vec<Vec<
                 ));
             }
             if let Some(&u) = present.iter().find(|&&u| m.exponent(u) < 0) {
-                return Err(format!("`{u}` occurs in a denominator{which}: the equations are not linear in it"));
+                return Err(format!(
+                    "`{u}` occurs in a denominator{which}: the equations are not linear in it"
+                ));
             }
             if present.len() > 1 {
                 return Err(format!(
@@ -75,8 +80,22 @@ pub(crate) fn linear_system(eqs: &[Poly], unknowns: &[Atom]) -> Result<(Vec<Vec<
     Ok((m, f))
 }
 
+/// The equations of a call `op(eqs, [u…])` as `M u = f`.
+pub(crate) struct System {
+    /// The coefficients, by equation then unknown.
+    pub m: Vec<Vec<Poly>>,
+    /// The right-hand sides.
+    pub f: Vec<Poly>,
+    /// The unknowns, in the order given.
+    pub unknowns: Vec<Atom>,
+    /// Whether the unknowns were given in brackets.
+    pub listed: bool,
+    /// The equations' value as written (a scalar, vector or list).
+    pub value: Value,
+}
+
 /// The equations and unknowns of a call `op(eqs, [u…])`, as M and f.
-pub(crate) fn system(c: &Call<'_, '_>) -> R<(Vec<Vec<Poly>>, Vec<Poly>, Vec<Atom>, bool, Value)> {
+pub(crate) fn system(c: &Call<'_, '_>) -> R<System> {
     c.arity(2)?;
     let v = c.value(0)?;
     let Some(eqs) = v.equations() else {
@@ -110,16 +129,21 @@ pub(crate) fn system(c: &Call<'_, '_>) -> R<(Vec<Vec<Poly>>, Vec<Poly>, Vec<Atom
             );
         }
     }
-    let (m, f) = linear_system(&eqs, &unknowns).map_err(|msg| c.cx.at(c.base, c.args[1].span, msg))?;
-    Ok((m, f, unknowns, listed, v))
+    let (m, f) =
+        linear_system(&eqs, &unknowns).map_err(|msg| c.cx.at(c.base, c.args[1].span, msg))?;
+    Ok(System {
+        m,
+        f,
+        unknowns,
+        listed,
+        value: v,
+    })
 }
 
 fn mass_matrix(c: &Call<'_, '_>) -> R<Value> {
-    let (m, ..) = system(c)?;
-    Ok(Value::Array(m))
+    Ok(Value::Array(system(c)?.m))
 }
 
 fn forcing(c: &Call<'_, '_>) -> R<Value> {
-    let (_, f, ..) = system(c)?;
-    Ok(Value::list(f))
+    Ok(Value::list(system(c)?.f))
 }

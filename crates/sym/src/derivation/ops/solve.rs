@@ -22,7 +22,13 @@ pub(crate) const SOLVE: Op = Op {
 };
 
 fn eval(c: &Call<'_, '_>) -> R<Value> {
-    let (m, f, unknowns, listed, v) = system(c)?;
+    let super::mass_matrix::System {
+        m,
+        f,
+        unknowns,
+        listed,
+        value: v,
+    } = system(c)?;
     // Divide each equation by the monomial common to all its terms (such
     // as sin θ or θ̇), assumed not zero: it cannot change the solution.
     let mut m = m;
@@ -44,7 +50,9 @@ fn eval(c: &Call<'_, '_>) -> R<Value> {
     }
     let x = solve_system(&m, &f).map_err(|msg| c.cx.at(c.base, c.args[0].span, msg))?;
     Ok(match v {
-        Value::Vector(_, frame) if unknowns.len() == 3 && unknowns.iter().all(|u| u.order() == 0) => {
+        Value::Vector(_, frame)
+            if unknowns.len() == 3 && unknowns.iter().all(|u| u.order() == 0) =>
+        {
             Value::Vector(Vec3(x.try_into().expect("three")), frame)
         }
         _ if !listed => Value::Scalar(x.into_iter().next().expect("one unknown")),
@@ -63,10 +71,17 @@ pub(crate) fn solve_system(m: &[Vec<Poly>], f: &[Poly]) -> Result<Vec<Poly>, Str
     }
     let det = determinant(m);
     if det.is_zero() {
-        return Err("the equations do not determine the unknowns: their coefficient matrix is singular".into());
+        return Err(
+            "the equations do not determine the unknowns: their coefficient matrix is singular"
+                .into(),
+        );
     }
     let Some(inv) = det.inverse_divisor() else {
-        let what = if n == 1 { "the coefficient" } else { "the determinant of the coefficients" };
+        let what = if n == 1 {
+            "the coefficient"
+        } else {
+            "the determinant of the coefficients"
+        };
         return Err(format!(
             "{what} is {}, which cannot be divided by ({}); write the equations in mass-matrix form with \
              mass_matrix(…) and forcing(…) instead",
@@ -95,7 +110,12 @@ pub(crate) fn solve_system(m: &[Vec<Poly>], f: &[Poly]) -> Result<Vec<Poly>, Str
 pub(crate) fn determinant(m: &[Vec<Poly>]) -> Poly {
     let n = m.len();
     let mut memo: std::collections::HashMap<u32, Poly> = std::collections::HashMap::new();
-    fn minor(m: &[Vec<Poly>], row: usize, cols: u32, memo: &mut std::collections::HashMap<u32, Poly>) -> Poly {
+    fn minor(
+        m: &[Vec<Poly>],
+        row: usize,
+        cols: u32,
+        memo: &mut std::collections::HashMap<u32, Poly>,
+    ) -> Poly {
         if row == m.len() {
             return Poly::one();
         }
@@ -120,4 +140,3 @@ pub(crate) fn determinant(m: &[Vec<Poly>]) -> Poly {
     }
     minor(m, 0, (1u32 << n) - 1, &mut memo)
 }
-

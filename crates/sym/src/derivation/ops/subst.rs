@@ -44,11 +44,10 @@ fn eval(c: &Call<'_, '_>) -> R<Value> {
                 format!("cannot substitute for `{name}`: it is not a declared symbol"),
             );
         };
-        let target = c
-            .cx
-            .symbols
-            .atom(name, *primes, *name_span)
-            .map_err(|e| c.cx.at(c.base, e.span, e.message))?;
+        let target =
+            c.cx.symbols
+                .atom(name, *primes, *name_span)
+                .map_err(|e| c.cx.at(c.base, e.span, e.message))?;
         let time = !matches!(decl, Decl::Constant);
         if let Some(turns) = quarter_turns(value) {
             if *primes > 0 {
@@ -64,7 +63,9 @@ fn eval(c: &Call<'_, '_>) -> R<Value> {
             if failed {
                 return c.err(
                     *name_span,
-                    format!("`{name}` occurs outside sin/cos, so it cannot be set to a multiple of pi"),
+                    format!(
+                        "`{name}` occurs outside sin/cos, so it cannot be set to a multiple of pi"
+                    ),
                 );
             }
             // A sin or cos that becomes 0 cannot leave a denominator.

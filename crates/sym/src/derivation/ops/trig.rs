@@ -13,10 +13,9 @@ pub(crate) const SIN_COS: Op = Op {
 };
 
 fn eval(c: &Call<'_, '_>) -> R<Value> {
-    let a = c
-        .cx
-        .symbols
-        .trig(c.func, c.args, c.span)
-        .map_err(|e| c.cx.at(c.base, e.span, e.message))?;
+    let a =
+        c.cx.symbols
+            .trig(c.func, c.args, c.span)
+            .map_err(|e| c.cx.at(c.base, e.span, e.message))?;
     Ok(Value::Scalar(Poly::atom(a)))
 }
