@@ -6,6 +6,8 @@ mod strategies;
 
 // The hand-written right-hand sides against the derived equations.
 mod derived;
+// models/derived.rs: equations of motion from derivation files, integrated.
+mod derived_model;
 // elliptic.rs: identities, special values, series of K.
 mod elliptic;
 // exact.rs: closed forms against the ODE and against each other.

@@ -145,6 +145,20 @@ pub enum SimError {
         budget: u64,
     },
     /// Writing streamed output failed.
+    /// A derived model cannot be built from its derivation and scene.
+    #[error("derived model: {message}")]
+    Derived {
+        /// What is wrong, naming the file, step or field.
+        message: String,
+    },
+    /// The coordinates of a derived model break down.
+    #[error("coordinate singularity at t = {t}: {why}")]
+    CoordinateSingularity {
+        /// When.
+        t: f64,
+        /// What vanished.
+        why: String,
+    },
     #[error("writing output: {0}")]
     Output(#[source] std::io::Error),
 }

@@ -4,13 +4,18 @@
 //!   point under gravity (heavy top): unit quaternion + body angular velocity.
 //! * [`euler_angles`]: the same body with Eulerian angles (φ, θ, ψ), for
 //!   comparison; singular at θ = 0 and θ = π.
+//! * [`derived`]: the equations of motion a derivation file derived
+//!   (solved accelerations or mass-matrix form), compiled and integrated in
+//!   its own coordinates.
 //! * [`shaft`]: rotation about a fixed axis, one degree of freedom, with the
 //!   bearing reactions of §6.
 
+pub mod derived;
 pub mod euler_angles;
 pub mod free;
 pub mod precession;
 pub mod shaft;
+pub mod time_function;
 
 pub use euler_angles::EulerAngleBody;
 pub use free::{FreeBody, Gravity};

@@ -1,0 +1,574 @@
+//! Equations of motion taken from a derivation file: the accelerations a
+//! derivation solved for (`solve(eqs, [q1'', …])`), or its mass-matrix
+//! form M(q) q̈ = f(q, q̇, t) (`mass_matrix`, `forcing`), compiled with
+//! `hdot-num`'s [`Tape`] and integrated as `y = (q, q̇)`.
+//!
+//! What is integrated is exactly what was derived: the polynomials of the
+//! steps, with abbreviations expanded, evaluated at the state. Each atom of
+//! the compiled equations gets its value from one [`Source`]: a
+//! coordinate or its rate (from the state), sin or cos of a coordinate,
+//! a constant (from the scene), or an applied input given as a function of
+//! time (from the scene, see [`TimeFunction`]).
+//!
+//! A coordinate singularity — a `sin q` or `cos q` that the equations
+//! divide by coming near zero (Eulerian angles at θ = 0, π) — is reported
+//! by [`System::check`] instead of being integrated through; so is a mass
+//! matrix that cannot be factorised.
+//!
+//! The attitude of a frame of the derivation (its rotation from N through
+//! the chain of `parent`/`rotation` frames) and its angular velocity are
+//! evaluated from the derivation's own frames ([`DerivedModel::attitude`],
+//! [`DerivedModel::angular_velocity`]), so a derived run can be compared
+//! with a built-in model on the attitude matrix and ω.
+
+use std::cell::RefCell;
+use std::collections::BTreeMap;
+
+use hdot_num::eval::Tape;
+use hdot_sym::atom::{Atom, AtomKind};
+use hdot_sym::derivation::{Derivation, Value};
+use hdot_sym::poly::Poly;
+use hdot_sym::vector::Mat3;
+use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
+
+use crate::{SimError, System};
+
+pub use super::time_function::TimeFunction;
+
+/// Which steps of the derivation hold the equations of motion.
+#[derive(Debug, Clone, PartialEq)]
+pub enum EquationsSpec {
+    /// A step whose value is a list of accelerations labelled by the
+    /// unknowns (`solve(eqs, [q1'', q2'', …])`).
+    Explicit {
+        /// The step's name.
+        step: String,
+    },
+    /// Two steps: M (an n × n array, `mass_matrix(…)`) and f (a list,
+    /// `forcing(…)`), with the coordinates in the order of their columns.
+    MassMatrix {
+        /// The step holding M.
+        mass_matrix: String,
+        /// The step holding f.
+        forcing: String,
+        /// The coordinates q (not their accelerations), in column order.
+        coordinates: Vec<String>,
+    },
+}
+
+/// Everything a scene says about a derived model.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DerivedSpec {
+    /// Where the equations are.
+    pub equations: EquationsSpec,
+    /// Values of the derivation's constants.
+    pub constants: BTreeMap<String, f64>,
+    /// Time symbols that are applied inputs, as functions of t.
+    pub inputs: BTreeMap<String, TimeFunction>,
+    /// Steps whose values should stay constant along the motion (each is
+    /// reported as a drift), in addition to those the derivation marks.
+    pub conserved: Vec<String>,
+}
+
+/// Where the value of one atom of the compiled equations comes from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Source {
+    /// `y[i]`: coordinate i.
+    Coordinate(usize),
+    /// `y[n + i]`: the rate of coordinate i.
+    Rate(usize),
+    /// sin of coordinate i.
+    SinOf(usize),
+    /// cos of coordinate i.
+    CosOf(usize),
+    /// A constant (or sin/cos of a constant angle).
+    Value(f64),
+    /// Applied input k at time t.
+    Input(usize),
+    /// sin of applied input k.
+    SinInput(usize),
+    /// cos of applied input k.
+    CosInput(usize),
+}
+
+/// A compiled set of polynomials and the source of each of its inputs.
+#[derive(Debug, Clone)]
+struct Compiled {
+    tape: Tape,
+    sources: Vec<Source>,
+}
+
+/// A quantity to report as a drift: a step's components.
+#[derive(Debug, Clone)]
+pub struct Conserved {
+    /// The step's name.
+    pub name: String,
+    compiled: Compiled,
+}
+
+#[derive(Debug, Clone)]
+enum Form {
+    Explicit(Compiled),
+    MassMatrix { m: Compiled, f: Compiled },
+}
+
+/// A trigonometric atom the equations divide by.
+#[derive(Debug, Clone, PartialEq)]
+struct Divisor {
+    coordinate: usize,
+    sin: bool,
+}
+
+/// The derived equations of motion, compiled.
+#[derive(Debug)]
+pub struct DerivedModel {
+    coordinates: Vec<Atom>,
+    form: Form,
+    inputs: Vec<(String, TimeFunction)>,
+    divisors: Vec<Divisor>,
+    conserved: Vec<Conserved>,
+    /// The derivation's frames, in order (`None` where the frame's motion
+    /// is not a function of the coordinates).
+    frames: Vec<Option<FrameChain>>,
+    scratch: RefCell<(Vec<f64>, Vec<f64>)>,
+}
+
+#[derive(Debug, Clone)]
+struct FrameChain {
+    name: String,
+    parent: Option<usize>,
+    rotation: Compiled,
+    omega: Compiled,
+}
+
+fn err(message: impl Into<String>) -> SimError {
+    SimError::Derived {
+        message: message.into(),
+    }
+}
+
+/// # Construction
+impl DerivedModel {
+    /// Compiles the equations `spec` names in `d`.
+    pub fn new(d: &Derivation, spec: &DerivedSpec) -> Result<DerivedModel, SimError> {
+        let step = |name: &str| {
+            d.steps.iter().find(|s| s.name == name).ok_or_else(|| {
+                err(format!(
+                    "{}: no step named `{name}` (steps: {})",
+                    d.path,
+                    d.steps
+                        .iter()
+                        .map(|s| s.name.as_str())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ))
+            })
+        };
+        let (coordinates, outputs): (Vec<Atom>, Vec<Vec<Poly>>) = match &spec.equations {
+            EquationsSpec::Explicit { step: name } => {
+                let s = step(name)?;
+                let Value::List { items, labels } = &s.value else {
+                    return Err(err(format!(
+                        "{}: step `{name}` is {}, not accelerations solved for (write it as solve(eqs, [q1'', q2'', …]), \
+                         or name a mass_matrix and forcing step)",
+                        d.path,
+                        s.value.describe()
+                    )));
+                };
+                if labels.len() != items.len() || labels.iter().any(|a| a.order() != 2 || !a.is_time_dependent()) {
+                    return Err(err(format!(
+                        "{}: step `{name}` must be solved for second derivatives of time symbols ([q1'', q2'', …])",
+                        d.path
+                    )));
+                }
+                (labels.iter().map(|a| a.base()).collect(), vec![items.clone()])
+            }
+            EquationsSpec::MassMatrix {
+                mass_matrix,
+                forcing,
+                coordinates,
+            } => {
+                let (sm, sf) = (step(mass_matrix)?, step(forcing)?);
+                let n = coordinates.len();
+                let m = match &sm.value {
+                    Value::Array(rows) if rows.len() == n && rows.iter().all(|r| r.len() == n) => {
+                        rows.iter().flatten().cloned().collect::<Vec<_>>()
+                    }
+                    Value::Matrix(m) if n == 3 => m.0.iter().flatten().cloned().collect(),
+                    v => {
+                        return Err(err(format!(
+                            "{}: step `{mass_matrix}` is {}, not an {n}×{n} mass matrix",
+                            d.path,
+                            v.describe()
+                        )));
+                    }
+                };
+                let f = match &sf.value {
+                    Value::List { items, .. } if items.len() == n => items.clone(),
+                    Value::Vector(v, _) if n == 3 => v.0.to_vec(),
+                    v => {
+                        return Err(err(format!(
+                            "{}: step `{forcing}` is {}, not a forcing list of {n}",
+                            d.path,
+                            v.describe()
+                        )));
+                    }
+                };
+                let coords = coordinates
+                    .iter()
+                    .map(|c| match d.symbols.get(c) {
+                        Some(hdot_sym::Decl::Time) => Ok(Atom::time(c, 0)),
+                        _ => Err(err(format!("{}: `{c}` is not a time symbol of the derivation", d.path))),
+                    })
+                    .collect::<Result<Vec<_>, _>>()?;
+                (coords, vec![m, f])
+            }
+        };
+        let n = coordinates.len();
+        if n == 0 || n > MAX_DOF {
+            return Err(err(format!(
+                "{}: {n} coordinates; a derived model has 1 to {MAX_DOF}",
+                d.path
+            )));
+        }
+        let inputs: Vec<(String, TimeFunction)> =
+            spec.inputs.iter().map(|(k, v)| (k.clone(), v.clone())).collect();
+        let cx = Resolver {
+            d,
+            spec,
+            coordinates: &coordinates,
+            inputs: &inputs,
+        };
+        let unfold = |v: &[Poly]| v.iter().map(|p| d.unfold(p)).collect::<Vec<_>>();
+        let mut divisors = Vec::new();
+        let mut compiled = Vec::new();
+        for out in &outputs {
+            let polys = unfold(out);
+            for p in &polys {
+                for (m, _) in p.terms() {
+                    for &(a, e) in m.factors() {
+                        if e >= 0 {
+                            continue;
+                        }
+                        let (q, sin) = match a.kind() {
+                            AtomKind::Sin(q) => (q, true),
+                            AtomKind::Cos(q) => (q, false),
+                            _ => continue,
+                        };
+                        if let Some(i) = coordinates.iter().position(|&c| c == q) {
+                            let dv = Divisor { coordinate: i, sin };
+                            if !divisors.contains(&dv) {
+                                divisors.push(dv);
+                            }
+                        }
+                    }
+                }
+            }
+            compiled.push(cx.compile(&polys)?);
+        }
+        let form = match compiled.len() {
+            1 => Form::Explicit(compiled.remove(0)),
+            _ => {
+                let f = compiled.remove(1);
+                Form::MassMatrix {
+                    m: compiled.remove(0),
+                    f,
+                }
+            }
+        };
+        let mut conserved = Vec::new();
+        for name in &spec.conserved {
+            let s = step(name)?;
+            let polys = unfold(&s.values().into_iter().cloned().collect::<Vec<_>>());
+            conserved.push(Conserved {
+                name: name.clone(),
+                compiled: cx.compile(&polys)?,
+            });
+        }
+        // Frames whose motion is a function of the coordinates (not given
+        // by free angular-velocity symbols) get an attitude.
+        let frames = d
+            .frames
+            .iter()
+            .map(|f| {
+                let (parent, rotation) = match &f.parent {
+                    Some((p, r)) => (d.frames.iter().position(|g| &g.name == p), r.clone()),
+                    None => (None, Mat3::identity()),
+                };
+                let rot: Vec<Poly> = rotation.0.iter().flatten().cloned().collect();
+                let omega: Vec<Poly> = f.omega.0.iter().map(|p| d.unfold(p)).collect();
+                match (cx.compile(&rot), cx.compile(&omega)) {
+                    (Ok(rotation), Ok(omega)) => Some(FrameChain {
+                        name: f.name.clone(),
+                        parent,
+                        rotation,
+                        omega,
+                    }),
+                    _ => None,
+                }
+            })
+            .collect();
+        Ok(DerivedModel {
+            coordinates,
+            form,
+            inputs,
+            divisors,
+            conserved,
+            frames,
+            scratch: RefCell::new((Vec::new(), Vec::new())),
+        })
+    }
+}
+
+/// The largest number of coordinates a derived model takes.
+pub const MAX_DOF: usize = 6;
+
+struct Resolver<'a> {
+    d: &'a Derivation,
+    spec: &'a DerivedSpec,
+    coordinates: &'a [Atom],
+    inputs: &'a [(String, TimeFunction)],
+}
+
+impl Resolver<'_> {
+    fn compile(&self, polys: &[Poly]) -> Result<Compiled, SimError> {
+        let tape = Tape::compile(polys);
+        let sources = tape
+            .atoms()
+            .iter()
+            .map(|&a| self.source(a))
+            .collect::<Result<_, _>>()?;
+        Ok(Compiled { tape, sources })
+    }
+
+    fn source(&self, a: Atom) -> Result<Source, SimError> {
+        let coord = |q: Atom| self.coordinates.iter().position(|&c| c == q);
+        let input = |q: Atom| self.inputs.iter().position(|(n, _)| n == q.name());
+        let constant = |q: Atom| -> Result<f64, SimError> {
+            self.spec.constants.get(q.name()).copied().ok_or_else(|| {
+                err(format!(
+                    "{}: the constant `{}` has no value: give it under the scene's constants",
+                    self.d.path,
+                    q.name()
+                ))
+            })
+        };
+        Ok(match a.kind() {
+            AtomKind::Var { time: false, .. } => Source::Value(constant(a)?),
+            AtomKind::Var { order: 0, .. } if coord(a).is_some() => Source::Coordinate(coord(a).expect("checked")),
+            AtomKind::Var { order: 1, .. } if coord(a.base()).is_some() => {
+                Source::Rate(coord(a.base()).expect("checked"))
+            }
+            AtomKind::Var { order: 0, .. } if input(a).is_some() => Source::Input(input(a).expect("checked")),
+            AtomKind::Var { .. } => {
+                return Err(err(format!(
+                    "{}: `{a}` is neither a coordinate, its rate, nor an input given as a function of t: \
+                     the equations of motion must be in q and q̇ (coordinates: {})",
+                    self.d.path,
+                    self.coordinates
+                        .iter()
+                        .map(|c| c.name())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                )));
+            }
+            AtomKind::Sin(q) | AtomKind::Cos(q) => {
+                let sin = matches!(a.kind(), AtomKind::Sin(_));
+                if let Some(i) = coord(q) {
+                    if sin { Source::SinOf(i) } else { Source::CosOf(i) }
+                } else if let Some(k) = input(q) {
+                    if sin { Source::SinInput(k) } else { Source::CosInput(k) }
+                } else if !q.is_time_dependent() {
+                    let v = constant(q)?;
+                    Source::Value(if sin { v.sin() } else { v.cos() })
+                } else {
+                    return Err(err(format!(
+                        "{}: `{a}` depends on `{}`, which is neither a coordinate nor an input",
+                        self.d.path,
+                        q.name()
+                    )));
+                }
+            }
+        })
+    }
+}
+
+/// # Queries
+impl DerivedModel {
+    /// The coordinates q, in state order (`y = (q, q̇)`).
+    pub fn coordinates(&self) -> &[Atom] {
+        &self.coordinates
+    }
+
+    /// The number of coordinates.
+    pub fn dof(&self) -> usize {
+        self.coordinates.len()
+    }
+
+    /// The quantities reported as drifts.
+    pub fn conserved(&self) -> &[Conserved] {
+        &self.conserved
+    }
+
+    /// The initial state from values of q and q̇ by coordinate name
+    /// (`theta`, `theta'`); every one must be given.
+    pub fn initial_state(&self, values: &BTreeMap<String, f64>) -> Result<Vec<f64>, SimError> {
+        let n = self.dof();
+        let mut y = vec![0.0; 2 * n];
+        for (i, q) in self.coordinates.iter().enumerate() {
+            for (k, key) in [q.name().to_string(), format!("{}'", q.name())].into_iter().enumerate() {
+                let v = values.get(&key).copied().ok_or_else(|| {
+                    err(format!(
+                        "the initial value of `{key}` is missing (give every coordinate and its rate: {})",
+                        self.coordinates
+                            .iter()
+                            .map(|c| format!("{0}, {0}'", c.name()))
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ))
+                })?;
+                if !v.is_finite() {
+                    return Err(err(format!("the initial value of `{key}` is not finite ({v})")));
+                }
+                y[k * n + i] = v;
+            }
+        }
+        for key in values.keys() {
+            let base = key.trim_end_matches('\'');
+            if !self.coordinates.iter().any(|c| c.name() == base) || key.len() - base.len() > 1 {
+                return Err(err(format!(
+                    "initial value for `{key}`, which is not a coordinate or its rate"
+                )));
+            }
+        }
+        Ok(y)
+    }
+
+    fn inputs_for(&self, c: &Compiled, t: f64, y: &[f64], into: &mut Vec<f64>) {
+        let n = self.dof();
+        into.clear();
+        into.extend(c.sources.iter().map(|s| match *s {
+            Source::Coordinate(i) => y[i],
+            Source::Rate(i) => y[n + i],
+            Source::SinOf(i) => y[i].sin(),
+            Source::CosOf(i) => y[i].cos(),
+            Source::Value(v) => v,
+            Source::Input(k) => self.inputs[k].1.eval(t),
+            Source::SinInput(k) => self.inputs[k].1.eval(t).sin(),
+            Source::CosInput(k) => self.inputs[k].1.eval(t).cos(),
+        }));
+    }
+
+    fn eval(&self, c: &Compiled, t: f64, y: &[f64], out: &mut [f64]) {
+        let mut scratch = self.scratch.borrow_mut();
+        let (inputs, tmp) = &mut *scratch;
+        self.inputs_for(c, t, y, inputs);
+        c.tape.eval_with(inputs, tmp, out, false);
+    }
+
+    /// The accelerations q̈ at `(t, y)`; `None` when the mass matrix cannot
+    /// be factorised there.
+    pub fn accelerations(&self, t: f64, y: &[f64], qdd: &mut [f64]) -> Option<()> {
+        let n = self.dof();
+        match &self.form {
+            Form::Explicit(c) => {
+                self.eval(c, t, y, qdd);
+                Some(())
+            }
+            Form::MassMatrix { m, f } => {
+                let mut mm = vec![0.0; n * n];
+                self.eval(m, t, y, &mut mm);
+                self.eval(f, t, y, qdd);
+                let lu = DMatrix::from_row_slice(n, n, &mm).lu();
+                let x = lu.solve(&DVector::from_column_slice(qdd))?;
+                qdd.copy_from_slice(x.as_slice());
+                Some(())
+            }
+        }
+    }
+
+    /// The values of a conserved quantity at `(t, y)`.
+    pub fn conserved_value(&self, q: &Conserved, t: f64, y: &[f64]) -> Vec<f64> {
+        let mut out = vec![0.0; q.compiled.tape.outputs()];
+        self.eval(&q.compiled, t, y, &mut out);
+        out
+    }
+
+    /// Why the equations break down at `(t, y)`, if they do: a divisor
+    /// `sin q`/`cos q` below `1e-9` in size, or a mass matrix with a
+    /// reciprocal condition number below `1e-13`.
+    pub fn singularity(&self, t: f64, y: &[f64]) -> Option<String> {
+        for dv in &self.divisors {
+            let q = y[dv.coordinate];
+            let v = if dv.sin { q.sin() } else { q.cos() };
+            if v.abs() < 1e-9 {
+                let name = self.coordinates[dv.coordinate].name();
+                return Some(format!(
+                    "{}({name}) = {v:.3e}, and the equations divide by it (a coordinate singularity: at {name} = {q:.6}, \
+                     the coordinates cannot describe the motion)",
+                    if dv.sin { "sin" } else { "cos" }
+                ));
+            }
+        }
+        if let Form::MassMatrix { m, .. } = &self.form {
+            let n = self.dof();
+            let mut mm = vec![0.0; n * n];
+            self.eval(m, t, y, &mut mm);
+            let sv = DMatrix::from_row_slice(n, n, &mm).singular_values();
+            let (lo, hi) = (sv.min(), sv.max());
+            if !(lo > 1e-13 * hi) {
+                return Some(format!(
+                    "the mass matrix is singular (singular values from {lo:.3e} to {hi:.3e})"
+                ));
+            }
+        }
+        None
+    }
+
+    /// The rotation matrix of frame `name` relative to N (columns: its
+    /// axes in N's), evaluated from the derivation's chain of rotations.
+    pub fn attitude(&self, name: &str, t: f64, y: &[f64]) -> Option<Matrix3<f64>> {
+        let mut i = self.frames.iter().position(|f| f.as_ref().is_some_and(|f| f.name == name))?;
+        let mut r = Matrix3::identity();
+        loop {
+            let f = self.frames[i].as_ref()?;
+            let mut m = [0.0; 9];
+            self.eval(&f.rotation, t, y, &mut m);
+            r = Matrix3::from_row_slice(&m) * r;
+            match f.parent {
+                Some(p) => i = p,
+                None => return Some(r),
+            }
+        }
+    }
+
+    /// The angular velocity of frame `name` relative to N, in its own axes.
+    pub fn angular_velocity(&self, name: &str, t: f64, y: &[f64]) -> Option<Vector3<f64>> {
+        let f = self.frames.iter().flatten().find(|f| f.name == name)?;
+        let mut w = [0.0; 3];
+        self.eval(&f.omega, t, y, &mut w);
+        Some(Vector3::from(w))
+    }
+}
+
+/// The model as an ODE on `y = (q, q̇)` with `N = 2 × dof` components.
+pub struct DerivedSystem<'a, const N: usize>(pub &'a DerivedModel);
+
+impl<const N: usize> System<N> for DerivedSystem<'_, N> {
+    fn rhs(&self, t: f64, y: &[f64; N]) -> [f64; N] {
+        let n = N / 2;
+        let mut dy = [0.0; N];
+        dy[..n].copy_from_slice(&y[n..]);
+        if self.0.accelerations(t, y, &mut dy[n..]).is_none() {
+            dy[n..].fill(f64::NAN);
+        }
+        dy
+    }
+
+    fn check(&self, t: f64, y: &[f64; N]) -> Result<(), SimError> {
+        match self.0.singularity(t, y) {
+            Some(why) => Err(SimError::CoordinateSingularity { t, why }),
+            None => Ok(()),
+        }
+    }
+}
