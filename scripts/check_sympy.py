@@ -45,6 +45,8 @@ def textbook():
     Ixy, Iyz, Izx = Symbol("I_xy"), Symbol("I_yz"), Symbol("I_zx")
     wx, wy, wz = (Function(n)(t) for n in ("omega_x", "omega_y", "omega_z"))
     w = Function("omega")(t)
+    ph, th, ps = (Function(n)(t) for n in ("phi", "theta", "psi"))
+    I, Ip, m, g, l = (Symbol(n) for n in ("I", "Ip", "m", "g", "l"))
     a = w.diff(t)
     d = lambda f: f.diff(t)  # noqa: E731
     return {
@@ -59,6 +61,14 @@ def textbook():
         ("fixed-axis", "M.z"): Iz * a,
         # Section 5's general form from section 1: M = dH/dt + w x H.
         ("euler-general", "M_principal.x"): Ix * d(wx) - (Iy - Iz) * wy * wz,
+        # The heavy top from its Lagrangian (Goldstein §5.7), written out here:
+        # I' θ'' = I' φ'² sin θ cos θ − I ω_z φ' sin θ + m g l sin θ.
+        ("heavy-top", "accelerations.theta''"): (
+            Ip * d(ph)**2 * sin(th) * cos(th) - I * (d(ps) + d(ph) * cos(th)) * d(ph) * sin(th)
+            + m * g * l * sin(th)) / Ip,
+        ("heavy-top", "accelerations_lagrange.theta''"): (
+            Ip * d(ph)**2 * sin(th) * cos(th) - I * (d(ps) + d(ph) * cos(th)) * d(ph) * sin(th)
+            + m * g * l * sin(th)) / Ip,
     }
 
 

@@ -5,7 +5,9 @@
 
 use std::collections::BTreeMap;
 
-use hdot_sim::models::derived::{DerivedModel, DerivedSpec, DerivedSystem, EquationsSpec, TimeFunction};
+use hdot_sim::models::derived::{
+    DerivedModel, DerivedSpec, DerivedSystem, EquationsSpec, TimeFunction,
+};
 use hdot_sim::models::euler_angles::quaternion_from_angles;
 use hdot_sim::models::free::{attitude, omega, pack};
 use hdot_sim::models::{FreeBody, Gravity};
@@ -73,7 +75,9 @@ const G: f64 = 9.81;
 const L: f64 = 0.05;
 
 fn derivation() -> Derivation {
-    load_str("top.toml", TOP).map_err(|e| e.to_string()).unwrap()
+    load_str("top.toml", TOP)
+        .map_err(|e| e.to_string())
+        .unwrap()
 }
 
 fn spec(equations: EquationsSpec) -> DerivedSpec {
@@ -120,7 +124,14 @@ fn run(model: &DerivedModel, y0: [f64; 6], t_end: f64, tol: f64) -> [f64; 6] {
 fn initial() -> ([f64; 6], BTreeMap<String, f64>) {
     let y0 = [0.3, 0.6, -0.2, 0.5, -1.0, 80.0];
     let names = ["phi", "theta", "psi", "phi'", "theta'", "psi'"];
-    (y0, names.iter().zip(y0).map(|(n, v)| (n.to_string(), v)).collect())
+    (
+        y0,
+        names
+            .iter()
+            .zip(y0)
+            .map(|(n, v)| (n.to_string(), v))
+            .collect(),
+    )
 }
 
 #[test]
@@ -137,15 +148,29 @@ fn derived_heavy_top_agrees_with_the_built_in_quaternion_top() {
     // own frames at t = 0.
     let r0 = model.attitude("R", 0.0, &y0).unwrap();
     let q0 = quaternion_from_angles(y0[0], y0[1], y0[2]);
-    assert!((r0 - q0.to_rotation_matrix().into_inner()).norm() < 1e-15, "z-y-z convention");
+    assert!(
+        (r0 - q0.to_rotation_matrix().into_inner()).norm() < 1e-15,
+        "z-y-z convention"
+    );
     let w0 = model.angular_velocity("R", 0.0, &y0).unwrap();
     let top = FreeBody {
         moments: [IP, IP, I],
-        gravity: Some(Gravity { weight_arm: M * G * L }),
+        gravity: Some(Gravity {
+            weight_arm: M * G * L,
+        }),
     };
     let z0 = pack(&q0, &Vector3::new(w0[0], w0[1], w0[2]));
-    let (z, _) = integrate(&top, Method::Dop853, Step::Tolerance(tol), 0.0, z0, t_end, Limits::default(), |_, _| Ok(()))
-        .unwrap();
+    let (z, _) = integrate(
+        &top,
+        Method::Dop853,
+        Step::Tolerance(tol),
+        0.0,
+        z0,
+        t_end,
+        Limits::default(),
+        |_, _| Ok(()),
+    )
+    .unwrap();
 
     let r_derived = model.attitude("R", t_end, &y).unwrap();
     let r_builtin = attitude(&z).to_rotation_matrix().into_inner();
@@ -155,7 +180,11 @@ fn derived_heavy_top_agrees_with_the_built_in_quaternion_top() {
     // Both runs are within their tolerance of the truth; the error grows
     // with the spin's phase (|ω| T ≈ 40 rad).
     let bound = 100.0 * tol * w_scale * t_end;
-    assert!((r_derived - r_builtin).norm() < bound, "attitude {:.3e}", (r_derived - r_builtin).norm());
+    assert!(
+        (r_derived - r_builtin).norm() < bound,
+        "attitude {:.3e}",
+        (r_derived - r_builtin).norm()
+    );
     assert!(
         (w_derived - w_builtin).norm() < bound * w_scale,
         "ω {:.3e} (|ω| {w_scale})",
@@ -175,11 +204,23 @@ fn mass_matrix_form_integrates_like_the_explicit_form_and_conserves_energy() {
     let yb = run(&b, y0, 0.3, 1e-12);
     for k in 0..6 {
         let scale = 1.0 + y0[k].abs() + ya[k].abs();
-        assert!((ya[k] - yb[k]).abs() < 1e-8 * scale, "component {k}: {} vs {}", ya[k], yb[k]);
+        assert!(
+            (ya[k] - yb[k]).abs() < 1e-8 * scale,
+            "component {k}: {} vs {}",
+            ya[k],
+            yb[k]
+        );
     }
     let e = &a.conserved()[0];
-    let (e0, e1) = (a.conserved_value(e, 0.0, &y0)[0], a.conserved_value(e, 0.3, &ya)[0]);
-    assert!((e1 - e0).abs() < 1e-9 * e0.abs(), "energy drift {}", (e1 - e0) / e0);
+    let (e0, e1) = (
+        a.conserved_value(e, 0.0, &y0)[0],
+        a.conserved_value(e, 0.3, &ya)[0],
+    );
+    assert!(
+        (e1 - e0).abs() < 1e-9 * e0.abs(),
+        "energy drift {}",
+        (e1 - e0) / e0
+    );
 }
 
 #[test]
@@ -195,10 +236,17 @@ time = ["psi", "M_z"]
 name = "acc"
 value = "solve(I*psi'' - M_z, [psi''])"
 "#;
-    let d = load_str("rotor.toml", text).map_err(|e| e.to_string()).unwrap();
+    let d = load_str("rotor.toml", text)
+        .map_err(|e| e.to_string())
+        .unwrap();
     let mut s = spec(explicit());
-    s.constants = [("I".to_string(), 2.0), ("M_0".to_string(), 3.0)].into_iter().collect();
-    s.inputs.insert("M_z".into(), TimeFunction::parse("M_0*cos(t)", &s.constants).unwrap());
+    s.constants = [("I".to_string(), 2.0), ("M_0".to_string(), 3.0)]
+        .into_iter()
+        .collect();
+    s.inputs.insert(
+        "M_z".into(),
+        TimeFunction::parse("M_0*cos(t)", &s.constants).unwrap(),
+    );
     s.conserved.clear();
     let model = DerivedModel::new(&d, &s).unwrap();
     let (y, _) = integrate(
@@ -233,7 +281,9 @@ fn the_coordinate_singularity_is_reported_not_integrated() {
         |_, _| Ok(()),
     );
     match r {
-        Err(SimError::CoordinateSingularity { why, .. }) => assert!(why.contains("sin(theta)"), "{why}"),
+        Err(SimError::CoordinateSingularity { why, .. }) => {
+            assert!(why.contains("sin(theta)"), "{why}")
+        }
         other => panic!("expected a singularity, got {other:?}"),
     }
 }
@@ -243,15 +293,44 @@ fn bad_specifications_are_errors_naming_what_is_wrong() {
     let d = derivation();
     let mut s = spec(explicit());
     s.constants.remove("Ip");
-    assert!(DerivedModel::new(&d, &s).unwrap_err().to_string().contains("`Ip` has no value"));
+    assert!(
+        DerivedModel::new(&d, &s)
+            .unwrap_err()
+            .to_string()
+            .contains("`Ip` has no value")
+    );
     let s = spec(EquationsSpec::Explicit { step: "M".into() });
-    assert!(DerivedModel::new(&d, &s).unwrap_err().to_string().contains("not accelerations"));
-    let s = spec(EquationsSpec::Explicit { step: "nope".into() });
-    assert!(DerivedModel::new(&d, &s).unwrap_err().to_string().contains("no step named `nope`"));
+    assert!(
+        DerivedModel::new(&d, &s)
+            .unwrap_err()
+            .to_string()
+            .contains("not accelerations")
+    );
+    let s = spec(EquationsSpec::Explicit {
+        step: "nope".into(),
+    });
+    assert!(
+        DerivedModel::new(&d, &s)
+            .unwrap_err()
+            .to_string()
+            .contains("no step named `nope`")
+    );
     let model = DerivedModel::new(&d, &spec(explicit())).unwrap();
     let (_, mut named) = initial();
     named.remove("theta'");
-    assert!(model.initial_state(&named).unwrap_err().to_string().contains("`theta'` is missing"));
+    assert!(
+        model
+            .initial_state(&named)
+            .unwrap_err()
+            .to_string()
+            .contains("`theta'` is missing")
+    );
     named.insert("theta'".into(), f64::NAN);
-    assert!(model.initial_state(&named).unwrap_err().to_string().contains("not finite"));
+    assert!(
+        model
+            .initial_state(&named)
+            .unwrap_err()
+            .to_string()
+            .contains("not finite")
+    );
 }

@@ -47,6 +47,6 @@ fn every_presented_component_expands_to_its_value() {
         }
     }
     compared += assert_exact(&hdot_sym::chain::derivation(3).unwrap());
-    assert_eq!(files, 16);
+    assert!(files >= 16, "only {files} derivation files");
     assert!(compared > 100, "only {compared} components compared");
 }

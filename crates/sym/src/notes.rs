@@ -382,7 +382,7 @@ fn step_lines(s: &Step) -> String {
     let lines: Vec<String> = s
         .components
         .iter()
-        .flat_map(|(c, e)| equation_lines(&latex_label(&s.label, c), &print::latex(e)))
+        .flat_map(|(c, e)| equation_lines(&crate::render::step_lhs_latex(s, c), &print::latex(e)))
         .collect();
     lines.join(" \\\\\n")
 }
@@ -421,7 +421,7 @@ fn vector_frame(s: &Step) -> Option<&str> {
 
 fn failed_check_math(s: &Step, c: &Check) -> (String, String, String) {
     (
-        latex_label(&s.label, &c.component),
+        crate::render::step_lhs_latex(s, &c.component),
         print::latex(&c.expected),
         print::latex(&Expr::from_poly(&c.difference)),
     )

@@ -71,6 +71,36 @@ pub fn latex_label(label: &str, component: &str) -> String {
     }
 }
 
+/// The unknown a component of a solved list is the value of (θ̈ in
+/// θ̈ = …), when the step is one.
+fn unknown_of(s: &Step, component: &str) -> Option<Expr> {
+    let Value::List { labels, .. } = &s.value else {
+        return None;
+    };
+    let a = labels.iter().find(|a| a.to_string() == component)?;
+    let mut e = Expr::new();
+    e.push(crate::expr::Node::Atom(*a));
+    Some(e)
+}
+
+/// The left side of component `component` of step `s` in LaTeX: the
+/// unknown for a solved list (`\ddot{\theta}`), else the label with the
+/// component.
+pub fn step_lhs_latex(s: &Step, component: &str) -> String {
+    match unknown_of(s, component) {
+        Some(e) => print::latex(&e),
+        None => latex_label(&s.label, component),
+    }
+}
+
+/// [`step_lhs_latex`] in Unicode (`θ̈`, `ΣM_x`).
+pub fn step_lhs_unicode(s: &Step, component: &str) -> String {
+    match unknown_of(s, component) {
+        Some(e) => print::unicode(&e),
+        None => unicode_label(&s.label, component),
+    }
+}
+
 /// A label with component in Unicode: `ΣM_x`.
 pub fn unicode_label(label: &str, component: &str) -> String {
     match (label_body(label, unicode_symbol, ""), component.is_empty()) {
@@ -160,12 +190,7 @@ fn unicode(d: &Derivation) -> String {
             let _ = writeln!(o, "   (components in frame {f})");
         }
         for (c, e) in &s.components {
-            let _ = writeln!(
-                o,
-                "   {} = {}",
-                unicode_label(&s.label, c),
-                print::unicode(e)
-            );
+            let _ = writeln!(o, "   {} = {}", step_lhs_unicode(s, c), print::unicode(e));
         }
         write_checks_unicode(&mut o, s);
     }
@@ -192,7 +217,7 @@ fn write_checks_unicode(o: &mut String, s: &Step) {
         let _ = writeln!(
             o,
             "   ✗ {}: expected {}; derived − expected = {}",
-            unicode_label(&s.label, &c.component),
+            step_lhs_unicode(s, &c.component),
             print::unicode(&c.expected),
             print::unicode(&Expr::from_poly(&c.difference))
         );
@@ -651,7 +676,7 @@ pub fn latex_step(s: &Step) -> String {
     let lines: Vec<String> = s
         .components
         .iter()
-        .map(|(c, e)| format!("  {} &= {}", latex_label(&s.label, c), print::latex(e)))
+        .map(|(c, e)| format!("  {} &= {}", step_lhs_latex(s, c), print::latex(e)))
         .collect();
     o.push_str(&lines.join(" \\\\\n"));
     o.push_str("\n\\end{align*}\n");
@@ -700,7 +725,7 @@ fn markdown(d: &Derivation) -> String {
         let lines: Vec<String> = s
             .components
             .iter()
-            .map(|(c, e)| format!("{} &= {}", latex_label(&s.label, c), print::latex(e)))
+            .map(|(c, e)| format!("{} &= {}", step_lhs_latex(s, c), print::latex(e)))
             .collect();
         let _ = writeln!(
             o,
@@ -825,20 +850,27 @@ fn sympy(d: &Derivation) -> String {
             .split_whitespace()
             .collect::<String>()
             .replace('\'', "dot");
+        // Solved values are equations for their unknowns: θ̈ = … has the
+        // left side theta.diff(t, 2).
+        let unknowns = match &s.value {
+            Value::List { labels, .. } if !labels.is_empty() => labels.clone(),
+            _ => Vec::new(),
+        };
         for (k, (c, e)) in s.components.iter().enumerate() {
-            let lhs = if c.is_empty() {
-                base.clone()
-            } else {
-                format!("{base}_{c}")
+            let lhs = match unknowns.get(k) {
+                Some(&a) => {
+                    let mut x = Expr::new();
+                    x.push(crate::expr::Node::Atom(a));
+                    print::print(&x, &style)
+                }
+                None if c.is_empty() => format!("Symbol('{base}')"),
+                None => format!("Symbol('{base}_{}')", c.replace('\'', "dot")),
             };
-            labels.push(format!("'{}.{}'", s.name, c));
-            eqs.push(format!(
-                "    Eq(Symbol('{lhs}'), {}),",
-                print::print(e, &style)
-            ));
+            labels.push(format!("'{}.{}'", s.name, c.replace('\'', "\\'")));
+            eqs.push(format!("    Eq({lhs}, {}),", print::print(e, &style)));
             match s.checks.get(k) {
                 Some(ch) => exps.push(format!(
-                    "    Eq(Symbol('{lhs}'), {}),",
+                    "    Eq({lhs}, {}),",
                     print::print(&ch.expected, &style)
                 )),
                 None => exps.push("    None,".into()),

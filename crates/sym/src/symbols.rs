@@ -169,7 +169,7 @@ impl Symbols {
         if !c.is_one() {
             ids.push(e.num(c));
         }
-        for &(a, k) in m.factors() {
+        for (a, k) in m.sorted_for_print() {
             ids.push(e.atom_pow(a, k));
         }
         Ok(ids)

@@ -175,13 +175,20 @@ impl DerivedModel {
                         s.value.describe()
                     )));
                 };
-                if labels.len() != items.len() || labels.iter().any(|a| a.order() != 2 || !a.is_time_dependent()) {
+                if labels.len() != items.len()
+                    || labels
+                        .iter()
+                        .any(|a| a.order() != 2 || !a.is_time_dependent())
+                {
                     return Err(err(format!(
                         "{}: step `{name}` must be solved for second derivatives of time symbols ([q1'', q2'', …])",
                         d.path
                     )));
                 }
-                (labels.iter().map(|a| a.base()).collect(), vec![items.clone()])
+                (
+                    labels.iter().map(|a| a.base()).collect(),
+                    vec![items.clone()],
+                )
             }
             EquationsSpec::MassMatrix {
                 mass_matrix,
@@ -218,7 +225,10 @@ impl DerivedModel {
                     .iter()
                     .map(|c| match d.symbols.get(c) {
                         Some(hdot_sym::Decl::Time) => Ok(Atom::time(c, 0)),
-                        _ => Err(err(format!("{}: `{c}` is not a time symbol of the derivation", d.path))),
+                        _ => Err(err(format!(
+                            "{}: `{c}` is not a time symbol of the derivation",
+                            d.path
+                        ))),
                     })
                     .collect::<Result<Vec<_>, _>>()?;
                 (coords, vec![m, f])
@@ -231,8 +241,11 @@ impl DerivedModel {
                 d.path
             )));
         }
-        let inputs: Vec<(String, TimeFunction)> =
-            spec.inputs.iter().map(|(k, v)| (k.clone(), v.clone())).collect();
+        let inputs: Vec<(String, TimeFunction)> = spec
+            .inputs
+            .iter()
+            .map(|(k, v)| (k.clone(), v.clone()))
+            .collect();
         let cx = Resolver {
             d,
             spec,
@@ -355,11 +368,15 @@ impl Resolver<'_> {
         };
         Ok(match a.kind() {
             AtomKind::Var { time: false, .. } => Source::Value(constant(a)?),
-            AtomKind::Var { order: 0, .. } if coord(a).is_some() => Source::Coordinate(coord(a).expect("checked")),
+            AtomKind::Var { order: 0, .. } if coord(a).is_some() => {
+                Source::Coordinate(coord(a).expect("checked"))
+            }
             AtomKind::Var { order: 1, .. } if coord(a.base()).is_some() => {
                 Source::Rate(coord(a.base()).expect("checked"))
             }
-            AtomKind::Var { order: 0, .. } if input(a).is_some() => Source::Input(input(a).expect("checked")),
+            AtomKind::Var { order: 0, .. } if input(a).is_some() => {
+                Source::Input(input(a).expect("checked"))
+            }
             AtomKind::Var { .. } => {
                 return Err(err(format!(
                     "{}: `{a}` is neither a coordinate, its rate, nor an input given as a function of t: \
@@ -375,9 +392,17 @@ impl Resolver<'_> {
             AtomKind::Sin(q) | AtomKind::Cos(q) => {
                 let sin = matches!(a.kind(), AtomKind::Sin(_));
                 if let Some(i) = coord(q) {
-                    if sin { Source::SinOf(i) } else { Source::CosOf(i) }
+                    if sin {
+                        Source::SinOf(i)
+                    } else {
+                        Source::CosOf(i)
+                    }
                 } else if let Some(k) = input(q) {
-                    if sin { Source::SinInput(k) } else { Source::CosInput(k) }
+                    if sin {
+                        Source::SinInput(k)
+                    } else {
+                        Source::CosInput(k)
+                    }
                 } else if !q.is_time_dependent() {
                     let v = constant(q)?;
                     Source::Value(if sin { v.sin() } else { v.cos() })
@@ -416,7 +441,10 @@ impl DerivedModel {
         let n = self.dof();
         let mut y = vec![0.0; 2 * n];
         for (i, q) in self.coordinates.iter().enumerate() {
-            for (k, key) in [q.name().to_string(), format!("{}'", q.name())].into_iter().enumerate() {
+            for (k, key) in [q.name().to_string(), format!("{}'", q.name())]
+                .into_iter()
+                .enumerate()
+            {
                 let v = values.get(&key).copied().ok_or_else(|| {
                     err(format!(
                         "the initial value of `{key}` is missing (give every coordinate and its rate: {})",
@@ -428,7 +456,9 @@ impl DerivedModel {
                     ))
                 })?;
                 if !v.is_finite() {
-                    return Err(err(format!("the initial value of `{key}` is not finite ({v})")));
+                    return Err(err(format!(
+                        "the initial value of `{key}` is not finite ({v})"
+                    )));
                 }
                 y[k * n + i] = v;
             }
@@ -516,7 +546,7 @@ impl DerivedModel {
             self.eval(m, t, y, &mut mm);
             let sv = DMatrix::from_row_slice(n, n, &mm).singular_values();
             let (lo, hi) = (sv.min(), sv.max());
-            if !(lo > 1e-13 * hi) {
+            if lo.is_nan() || lo <= 1e-13 * hi {
                 return Some(format!(
                     "the mass matrix is singular (singular values from {lo:.3e} to {hi:.3e})"
                 ));
@@ -528,7 +558,10 @@ impl DerivedModel {
     /// The rotation matrix of frame `name` relative to N (columns: its
     /// axes in N's), evaluated from the derivation's chain of rotations.
     pub fn attitude(&self, name: &str, t: f64, y: &[f64]) -> Option<Matrix3<f64>> {
-        let mut i = self.frames.iter().position(|f| f.as_ref().is_some_and(|f| f.name == name))?;
+        let mut i = self
+            .frames
+            .iter()
+            .position(|f| f.as_ref().is_some_and(|f| f.name == name))?;
         let mut r = Matrix3::identity();
         loop {
             let f = self.frames[i].as_ref()?;

@@ -65,7 +65,9 @@ fn check(a: &Ast, constants: &BTreeMap<String, f64>) -> Result<(), String> {
         AstKind::Name { name, .. } => at(format!(
             "unknown name `{name}`: an input is a function of `t`, `pi` and the scene's constants"
         )),
-        AstKind::Add(items) | AstKind::Mul(items) => items.iter().try_for_each(|i| check(i, constants)),
+        AstKind::Add(items) | AstKind::Mul(items) => {
+            items.iter().try_for_each(|i| check(i, constants))
+        }
         AstKind::Neg(x) | AstKind::Recip(x) | AstKind::Pow(x, _) => check(x, constants),
         AstKind::Call { func, args } if FUNCTIONS.contains(&func.as_str()) && args.len() == 1 => {
             check(&args[0], constants)
@@ -119,7 +121,15 @@ mod tests {
         let t = 0.7f64;
         let want = 2.0 * (1.0 - (-t / 2.0).exp()) + (std::f64::consts::PI * t).sin().powi(2);
         assert!((f.eval(t) - want).abs() <= 4.0 * f64::EPSILON * want.abs());
-        assert!(TimeFunction::parse("omega*t", &c).unwrap_err().contains("unknown name `omega`"));
-        assert!(TimeFunction::parse("atan(t)", &c).unwrap_err().contains("`atan`"));
+        assert!(
+            TimeFunction::parse("omega*t", &c)
+                .unwrap_err()
+                .contains("unknown name `omega`")
+        );
+        assert!(
+            TimeFunction::parse("atan(t)", &c)
+                .unwrap_err()
+                .contains("`atan`")
+        );
     }
 }
