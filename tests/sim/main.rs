@@ -12,6 +12,10 @@ mod derived_model;
 mod elliptic;
 // exact.rs: closed forms against the ODE and against each other.
 mod exact;
+// exact.rs near the separatrix against the double-double Taylor reference.
+mod exact_separatrix;
+// Test support: a 32-digit Taylor integrator of the torque-free body.
+mod reference;
 // integrate.rs: orders, invariants, step control.
 mod integrate;
 // Stability where methods fail (issue 5, item 4).

@@ -4,9 +4,11 @@
 //! Parameter convention: `m = k²` (the "parameter"), as in Abramowitz &
 //! Stegun ch. 16–17.
 //!
-//! * [`ellip_k`]: `K(m) = π / (2 AGM(1, √(1−m)))`.
-//! * [`sncndn`]: sn, cn, dn by the descending Landen transformation driven by
-//!   the arithmetic–geometric mean (A&S 16.4).
+//! * [`ellip_k`], [`ellip_k_c`]: `K(m) = π / (2 AGM(1, √(1−m)))`.
+//! * [`Jacobi`] (and [`sncndn`]): sn, cn, dn by the descending Landen
+//!   transformation driven by the arithmetic–geometric mean (A&S 16.4) for
+//!   `m ≤ 1/2` and the ascending one (A&S 16.14) above, carrying `1 − m`
+//!   separately so that parameters within 1e-300 of 1 keep their digits.
 //! * [`ellip_f`]: `F(φ | m)` through Carlson's symmetric integral `R_F`
 //!   (duplication theorem), extended to every real φ by quasi-periodicity.
 //!
@@ -39,32 +41,120 @@ pub fn agm(mut a: f64, mut b: f64) -> f64 {
 }
 
 /// Complete elliptic integral of the first kind `K(m)`, `0 ≤ m < 1`.
-/// Returns `+∞` at `m = 1`.
+/// Returns `+∞` at `m = 1`. Near `m = 1` prefer [`ellip_k_c`], which takes
+/// the complementary parameter `1 − m` itself.
 pub fn ellip_k(m: f64) -> f64 {
     debug_assert!((0.0..=1.0).contains(&m), "parameter m = {m} outside [0, 1]");
-    if m >= 1.0 {
-        return f64::INFINITY;
-    }
-    FRAC_PI_2 / agm(1.0, (1.0 - m).sqrt())
+    ellip_k_c(1.0 - m)
 }
 
-/// Jacobi elliptic functions `(sn, cn, dn)(u | m)` for `0 ≤ m ≤ 1`.
+/// `K` from the complementary parameter `m_c = 1 − m` (accurate for every
+/// `m_c`, including the tiny values `1 − m` cannot carry): `π / (2 AGM(1, √m_c))`.
+pub fn ellip_k_c(mc: f64) -> f64 {
+    if mc <= 0.0 {
+        return f64::INFINITY;
+    }
+    FRAC_PI_2 / agm(1.0, mc.sqrt())
+}
+
+/// Jacobi elliptic functions `(sn, cn, dn)(u | m)` for `0 ≤ m ≤ 1`. Near
+/// `m = 1` use [`Jacobi`] with the complementary parameter.
 pub fn sncndn(u: f64, m: f64) -> (f64, f64, f64) {
     debug_assert!((0.0..=1.0).contains(&m), "parameter m = {m} outside [0, 1]");
-    if m < f64::EPSILON {
-        // The series in m would start at m·(u − sin u cos u)/4: below round-off.
-        let (s, c) = u.sin_cos();
-        return (s, c, 1.0);
+    Jacobi::new(m, 1.0 - m).eval(u)
+}
+
+/// The Jacobi elliptic functions for one parameter, given as the pair
+/// `(m, m_c = 1 − m)` so that both can be carried to full relative
+/// accuracy (the distance of a torque-free motion from its separatrix lives
+/// in `m_c`, which may be far below the spacing of doubles near 1).
+///
+/// * `m ≤ 1/2`: descending Landen transformation driven by the AGM (A&S
+///   16.4); every ratio `c_n / a_n` is at most 0.18, so the `asin` steps are
+///   well conditioned.
+/// * `m > 1/2`: `u` is reduced to `[0, K/2]` by the half- and quarter-period
+///   relations (A&S 16.8: `sn(K − s) = cd s`, `cn(K − s) = k' sd s`,
+///   `dn(K − s) = k' nd s`), then the ascending Landen (Gauss)
+///   transformation (A&S 16.14) drives `m_c` to below 1e-12 (it squares
+///   roughly every step) where the first-order hyperbolic forms (A&S 16.15)
+///   are exact to round-off. Every step multiplies, divides or adds
+///   positive numbers (the one difference `dn² − √μ₁` is at least half its
+///   first term on `[0, K/4]`), so relative accuracy is kept.
+/// * `m_c = 0`: the separatrix, `sn = tanh`, `cn = dn = sech`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Jacobi {
+    /// Parameter `m`.
+    pub m: f64,
+    /// Complementary parameter `1 − m`.
+    pub mc: f64,
+    /// Quarter period `K` (∞ on the separatrix).
+    pub k: f64,
+}
+
+impl Jacobi {
+    /// The functions of parameter `m`, `m_c = 1 − m` (both in `[0, 1]`;
+    /// `m_c` is trusted where it is small, `m` where it is small).
+    pub fn new(m: f64, mc: f64) -> Jacobi {
+        Jacobi {
+            m,
+            mc,
+            k: ellip_k_c(mc),
+        }
     }
-    if m > 1.0 - f64::EPSILON {
-        let sech = 1.0 / u.cosh();
-        return (u.tanh(), sech, sech);
+
+    /// `(sn, cn, dn)(u)`.
+    pub fn eval(&self, u: f64) -> (f64, f64, f64) {
+        let (m, mc) = (self.m, self.mc);
+        if mc <= 0.0 {
+            let sech = 1.0 / u.cosh();
+            return (u.tanh(), sech, sech);
+        }
+        if m < f64::EPSILON {
+            // The series in m would start at m·(u − sin u cos u)/4: below round-off.
+            let (s, c) = u.sin_cos();
+            return (s, c, 1.0);
+        }
+        if m <= 0.5 {
+            return descending(u, m, mc);
+        }
+        let k = self.k;
+        // u = 2K n + r, |r| ≤ K: sn, cn change sign with n, dn does not.
+        let n = (u / (2.0 * k)).round();
+        let r = u - 2.0 * k * n;
+        let flip = if n.rem_euclid(2.0) == 1.0 { -1.0 } else { 1.0 };
+        let sgn = if r < 0.0 { -1.0 } else { 1.0 };
+        let r = r.abs();
+        let (sn, cn, dn) = if r <= 0.5 * k {
+            ascending(r, m, mc)
+        } else {
+            let (s, c, d) = ascending(k - r, m, mc);
+            let kp = mc.sqrt();
+            (c / d, kp * s / d, kp / d)
+        };
+        (flip * sgn * sn, flip * cn, dn)
     }
+
+    /// The argument `u ∈ [−2K, 2K]` with the given `(sn, cn, dn)` (which
+    /// must satisfy the identities), from Carlson's `R_F`:
+    /// `F(φ|m) = sin φ R_F(cos² φ, dn², 1)`; the squares come straight from
+    /// the values, so `u` is as accurate as they are even where
+    /// `dF/dφ = 1/dn` is large.
+    pub fn arg(&self, sn: f64, cn: f64, dn: f64) -> f64 {
+        let f = sn * carlson_rf(cn * cn, dn * dn, 1.0);
+        if cn >= 0.0 {
+            f
+        } else {
+            sn.signum() * 2.0 * self.k - f
+        }
+    }
+}
+
+fn descending(u: f64, m: f64, mc: f64) -> (f64, f64, f64) {
     // Descending Landen: a_n, c_n of the AGM sequence starting at (1, √(1−m)).
     let mut a = [0.0_f64; MAX_AGM + 1];
     let mut c = [0.0_f64; MAX_AGM + 1];
     a[0] = 1.0;
-    let mut b = (1.0 - m).sqrt();
+    let mut b = mc.sqrt();
     c[0] = m.sqrt();
     let mut n = 0;
     while n < MAX_AGM && c[n].abs() > f64::EPSILON * a[n] {
@@ -80,8 +170,36 @@ pub fn sncndn(u: f64, m: f64) -> (f64, f64, f64) {
     }
     let (sn, cn) = phi.sin_cos();
     // dn² = 1 − m sn² = (1 − m) + m cn²: two non-negative terms, no cancellation.
-    let dn = ((1.0 - m) + m * cn * cn).sqrt();
+    let dn = (mc + m * cn * cn).sqrt();
     (sn, cn, dn)
+}
+
+/// `(sn, cn, dn)(v | m)` for `0 ≤ v ≤ K(m)/2`, `m ≥ 1/2`, by the ascending
+/// Landen transformation; see [`Jacobi`].
+fn ascending(v: f64, m: f64, mc: f64) -> (f64, f64, f64) {
+    if mc < 1e-12 {
+        // A&S 16.15: first order in m_c; the next term is O(m_c² e^{4v}),
+        // below round-off for v ≤ K/2 (e^{2v} ≤ 4/√m_c).
+        let (sh, ch) = (v.sinh(), v.cosh());
+        let (th, sech) = (sh / ch, 1.0 / ch);
+        let q = 0.25 * mc;
+        return (
+            th + q * (sh * ch - v) * sech * sech,
+            sech - q * (sh * ch - v) * th * sech,
+            sech + q * (sh * ch + v) * th * sech,
+        );
+    }
+    let k = m.sqrt();
+    // √μ₁ = (1 − k)/(1 + k) with 1 − k = m_c/(1 + k): no cancellation.
+    let s1 = mc / ((1.0 + k) * (1.0 + k));
+    let mu1 = s1 * s1;
+    let mu = 4.0 * k / ((1.0 + k) * (1.0 + k));
+    let (s, c, d) = ascending(v / (1.0 + s1), mu, mu1);
+    (
+        (1.0 + s1) * s * c / d,
+        (1.0 + s1) / mu * (d * d - s1) / d,
+        (1.0 - s1) / mu * (d * d + s1) / d,
+    )
 }
 
 /// Carlson's symmetric elliptic integral of the first kind
@@ -112,14 +230,20 @@ pub fn carlson_rf(mut x: f64, mut y: f64, mut z: f64) -> f64 {
 /// Incomplete elliptic integral of the first kind `F(φ | m)` for every real
 /// φ and `0 ≤ m < 1`; it inverts the amplitude: `sn(F(φ|m) | m) = sin φ`.
 pub fn ellip_f(phi: f64, m: f64) -> f64 {
+    ellip_f_c(phi, 1.0 - m)
+}
+
+/// [`ellip_f`] with the complementary parameter `m_c = 1 − m` given
+/// (`1 − m sin² φ = cos² φ + m_c sin² φ`, two non-negative terms).
+pub fn ellip_f_c(phi: f64, mc: f64) -> f64 {
     // φ = jπ + r with |r| ≤ π/2; F(jπ + r) = 2jK + F(r).
     let j = (phi / std::f64::consts::PI).round();
     let r = phi - j * std::f64::consts::PI;
     let (s, c) = r.sin_cos();
-    let fr = s * carlson_rf(c * c, 1.0 - m * s * s, 1.0);
+    let fr = s * carlson_rf(c * c, c * c + mc * s * s, 1.0);
     if j == 0.0 {
         fr
     } else {
-        2.0 * j * ellip_k(m) + fr
+        2.0 * j * ellip_k_c(mc) + fr
     }
 }

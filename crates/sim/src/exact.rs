@@ -15,12 +15,10 @@ use std::sync::OnceLock;
 use nalgebra::{Matrix3, Rotation3, Unit, UnitQuaternion, Vector3};
 
 use crate::SimError;
-use crate::elliptic::{ellip_f, ellip_k, sncndn};
+use crate::dd::Dd;
+use crate::elliptic::Jacobi;
 use crate::models::euler_angles::quaternion_from_angles;
 use crate::models::free::pack;
-
-/// Relative tolerance under which two moments count as equal.
-pub const SYMMETRY_TOL: f64 = 1e-12;
 
 /// The exact torque-free motion from a given initial state.
 #[derive(Debug, Clone)]
@@ -65,16 +63,38 @@ pub struct Elliptic {
     lambda: f64,
     /// Parameter `m = k²`.
     pub m: f64,
+    /// Complementary parameter `1 − m` (0 on the separatrix), computed from
+    /// the components, not as a difference.
+    pub mc: f64,
+    jacobi: Jacobi,
     u0: f64,
-    /// `G(2K)`: the φ-integral over one period of dn².
-    period_integral: f64,
+    /// Period `2K` of the φ̇ integrand in u (∞ on the separatrix).
     period: f64,
+    /// Panels of `[0, 2K]` chosen from the integrand (start, ∫ up to start).
+    panels: Vec<(f64, f64)>,
+    /// `G(2K)`: the φ-integral over one period.
+    period_integral: f64,
     g_u0: f64,
     l: f64,
-    two_e: f64,
     /// Constant rotation `R₀ P R_zf(0)ᵀ` and the axis permutation `P`.
     c_rot: UnitQuaternion<f64>,
     perm: UnitQuaternion<f64>,
+}
+
+/// `L² − 2E I_j = Σ_i I_i (I_i − I_j) ω_i²` in double-double: the term
+/// `i = j` vanishes, the differences of moments and the products are exact,
+/// so the sign and the leading digits are right however close the motion
+/// is to the separatrix (`j` intermediate) or to a permanent rotation.
+pub fn momentum_energy_gap(moments: [f64; 3], w: &Vector3<f64>, j: usize) -> Dd {
+    let mut s = Dd::ZERO;
+    for i in 0..3 {
+        if i == j {
+            continue;
+        }
+        let d = Dd::diff(moments[i], moments[j]);
+        s = s + d.scale(moments[i]) * Dd::prod(w[i], w[i]);
+    }
+    s
 }
 
 fn gauss_legendre_20() -> &'static ([f64; 20], [f64; 20]) {
@@ -143,12 +163,18 @@ impl TorqueFree {
         w0: Vector3<f64>,
     ) -> Result<Self, SimError> {
         let i = moments;
-        let h = Vector3::new(i[0] * w0.x, i[1] * w0.y, i[2] * w0.z);
-        // Permanent rotation: ω ∥ H (ω along a principal axis, or a sphere).
-        if h.cross(&w0).norm() <= 4.0 * f64::EPSILON * h.norm() * w0.norm() {
+        // Permanent rotation: ω ∥ H exactly (ω along a principal axis, or a
+        // sphere). A spin merely close to an axis is not permanent: near the
+        // intermediate axis it flips, so the elliptic form takes it.
+        let nonzero = (0..3).filter(|&k| w0[k] != 0.0).count();
+        if nonzero <= 1 || (i[0] == i[1] && i[1] == i[2]) {
             return Ok(TorqueFree::Permanent { q0, omega: w0 });
         }
-        let close = |a: f64, b: f64| (a - b).abs() <= SYMMETRY_TOL * a.max(b);
+        // Only exactly equal moments make the body axisymmetric: nearly
+        // equal ones are an elliptic motion with m → 0, which the elliptic
+        // form evaluates to round-off (treating them as equal would err by
+        // the relative difference of the moments times |ω| t).
+        let close = |a: f64, b: f64| a.total_cmp(&b).is_eq();
         let axis = if close(i[0], i[1]) {
             Some(2)
         } else if close(i[1], i[2]) {
@@ -243,7 +269,6 @@ impl Elliptic {
     fn new(moments: [f64; 3], q0: UnitQuaternion<f64>, w0: Vector3<f64>) -> Result<Self, SimError> {
         let i = moments;
         let l2: f64 = (0..3).map(|k| (i[k] * w0[k]).powi(2)).sum();
-        let two_e: f64 = (0..3).map(|k| i[k] * w0[k] * w0[k]).sum();
         let mut idx = [0usize, 1, 2];
         idx.sort_by(|&a, &b| i[a].total_cmp(&i[b]));
         let (lo, mid, hi) = (idx[0], idx[1], idx[2]);
@@ -253,41 +278,60 @@ impl Elliptic {
                 message: "the elliptic solution needs three distinct moments".into(),
             });
         }
-        // H circulates about the largest axis if |H|²/2E > I_mid, else the smallest.
-        let (c, e) = if l2 > two_e * i[mid] {
-            (hi, lo)
-        } else {
-            (lo, hi)
-        };
+        // H circulates about the largest axis if L² > 2E I_mid, else the
+        // smallest; the sign of L² − 2E I_mid comes from the components.
+        let d_mid = momentum_energy_gap(i, &w0, mid);
+        let (c, e) = if d_mid.hi >= 0.0 { (hi, lo) } else { (lo, hi) };
         let lab = [e, mid, c];
         let parity = if (e + 1) % 3 == mid { 1.0 } else { -1.0 };
         let (i1, i2, i3) = (i[e], i[mid], i[c]);
-        let a1 = ((two_e * i3 - l2) / (i1 * (i3 - i1))).max(0.0).sqrt();
-        let a3 = ((l2 - two_e * i1) / (i3 * (i3 - i1))).max(0.0).sqrt() * w0[c].signum();
-        let lambda = ((i3 - i2) * (l2 - two_e * i1) / (i1 * i2 * i3))
-            .max(0.0)
-            .sqrt();
-        let a2 = parity * (i3 - i1) * a3 * a1 / (lambda * i2);
-        let m = ((i2 - i1) * (two_e * i3 - l2) / ((i3 - i2) * (l2 - two_e * i1))).clamp(0.0, 1.0);
-        let amplitude = (w0[mid] / a2).atan2(w0[e] / a1);
-        let u0 = ellip_f(amplitude, m);
-        let k = ellip_k(m);
+        // D_j = L² − 2E I_j; D_1 and −D_3 have the sign of I_3 − I_1.
+        let d1 = momentum_energy_gap(i, &w0, e);
+        let d3 = momentum_energy_gap(i, &w0, c);
+        let (i31, i32) = (Dd::diff(i3, i1).to_f64(), Dd::diff(i3, i2).to_f64());
+        let a1 = (-(d3.to_f64()) / (i1 * i31)).max(0.0).sqrt();
+        let a3 = (d1.to_f64() / (i3 * i31)).max(0.0).sqrt() * w0[c].signum();
+        let lambda = (i32 * d1.to_f64() / (i1 * i2 * i3)).max(0.0).sqrt();
+        // m = (I₂−I₁)(−D₃) / ((I₃−I₂) D₁), 1 − m = (I₃−I₁) D₂ / ((I₃−I₂) D₁):
+        // both ratios of accurately known quantities.
+        let den = Dd::diff(i3, i2) * d1;
+        let m = ((Dd::diff(i2, i1) * (-d3)) / den).to_f64().clamp(0.0, 1.0);
+        let mc = ((Dd::diff(i3, i1) * d_mid) / den).to_f64().clamp(0.0, 1.0);
+        // On the separatrix cn = dn > 0: the branch is chosen by a₁'s sign.
+        let a1 = if mc == 0.0 { a1 * w0[e].signum() } else { a1 };
+        let a2 = parity * i31 * a3 * a1 / (lambda * i2);
+        let jacobi = Jacobi::new(m, mc);
+        // u₀ from the initial (sn, cn, dn), each a ratio of a component to
+        // its amplitude; see `Jacobi::arg`.
+        let ratio = |w: f64, a: f64| {
+            if a == 0.0 {
+                0.0
+            } else {
+                (w / a).clamp(-1.0, 1.0)
+            }
+        };
+        let (sn0, cn0, dn0) = (ratio(w0[mid], a2), ratio(w0[e], a1), ratio(w0[c], a3).abs());
+        let u0 = jacobi.arg(sn0, cn0, dn0);
         let mut s = Elliptic {
             moments,
             lab,
             amp: [a1, a2, a3],
             lambda,
             m,
+            mc,
+            jacobi,
             u0,
+            period: 2.0 * jacobi.k,
+            panels: vec![],
             period_integral: 0.0,
-            period: 2.0 * k,
             g_u0: 0.0,
             l: l2.sqrt(),
-            two_e,
             c_rot: UnitQuaternion::identity(),
             perm: cyclic_perm(c),
         };
-        s.period_integral = s.g_partial(s.period);
+        if s.period.is_finite() {
+            s.build_panels();
+        }
         s.g_u0 = s.g(u0);
         // R(t) = C R_zf(t) Pᵀ with C = R₀ P R_zf(0)ᵀ.
         let zf0 = s.frame_rotation(&s.momentum_body(0.0), 0.0);
@@ -298,7 +342,7 @@ impl Elliptic {
     /// Angular velocity (body components) at time t.
     pub fn omega(&self, t: f64) -> Vector3<f64> {
         let u = self.u0 + self.lambda * t;
-        let (sn, cn, dn) = sncndn(u, self.m);
+        let (sn, cn, dn) = self.jacobi.eval(u);
         let mut w = Vector3::zeros();
         w[self.lab[0]] = self.amp[0] * cn;
         w[self.lab[1]] = self.amp[1] * sn;
@@ -315,43 +359,122 @@ impl Elliptic {
         )
     }
 
-    /// φ̇ as a function of the elliptic argument u (depends on dn² only).
-    fn phi_rate(&self, u: f64) -> f64 {
-        let (_, _, dn) = sncndn(u, self.m);
-        let c = self.lab[2];
-        let mc = self.moments[c] * self.amp[2] * dn;
-        self.l * (self.two_e - mc * mc / self.moments[c]) / (self.l * self.l - mc * mc)
+    /// The two constants of `φ̇ = L/I₂ + C cn² / (A cn² + B sn²)`:
+    /// `(A, B, C)` with `A = I₁² a₁²`, `B = I₂² a₂²`,
+    /// `C = L I₁ (I₂ − I₁) a₁² / I₂`. (From `φ̇ = L (2E − I₃ω₃²)/(L² − I₃²ω₃²)`
+    /// with both differences written as the sums of the other two axes.)
+    fn rate_constants(&self) -> (f64, f64, f64) {
+        let (i1, i2) = (self.moments[self.lab[0]], self.moments[self.lab[1]]);
+        let (a1, a2) = (self.amp[0], self.amp[1]);
+        (
+            i1 * i1 * a1 * a1,
+            i2 * i2 * a2 * a2,
+            self.l * i1 * Dd::diff(i2, i1).to_f64() * a1 * a1 / i2,
+        )
     }
 
-    /// `∫₀^r φ̇(v) dv` for `0 ≤ r ≤ 2K` by composite Gauss–Legendre.
-    fn g_partial(&self, r: f64) -> f64 {
+    /// φ̇ as a function of the elliptic argument u (depends on cn², sn²).
+    fn phi_rate(&self, u: f64) -> f64 {
+        let (sn, cn, _) = self.jacobi.eval(u);
+        let (a, b, c) = self.rate_constants();
+        let i2 = self.moments[self.lab[1]];
+        let den = a * cn * cn + b * sn * sn;
+        self.l / i2 + if den == 0.0 { 0.0 } else { c * cn * cn / den }
+    }
+
+    fn gl(&self, a: f64, b: f64) -> f64 {
         let (x, w) = gauss_legendre_20();
-        let panel = self.period / 16.0;
-        let n = (r / panel).ceil().max(1.0) as usize;
-        let width = r / n as f64;
-        let mut sum = 0.0;
-        for p in 0..n {
-            let mid = (p as f64 + 0.5) * width;
-            let mut s = 0.0;
-            for j in 0..20 {
-                s += w[j] * self.phi_rate(mid + 0.5 * width * x[j]);
-            }
-            sum += 0.5 * width * s;
+        let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
+        let mut s = 0.0;
+        for j in 0..20 {
+            s += w[j] * self.phi_rate(mid + half * x[j]);
         }
-        sum
+        half * s
+    }
+
+    /// Splits `[0, 2K]` into panels on which 20-point Gauss–Legendre
+    /// agrees with its two halves to round-off: the panels crowd where
+    /// the integrand turns fast (the flips near the separatrix) and stay
+    /// wide where it is flat (the slow passage near the intermediate axis).
+    fn build_panels(&mut self) {
+        let scale = self.l / self.moments[self.lab[0]].min(self.moments[self.lab[1]]);
+        let mut out = vec![];
+        let first = 16;
+        let width = self.period / first as f64;
+        let mut stack: Vec<(f64, f64, u32)> = (0..first)
+            .rev()
+            .map(|p| (p as f64 * width, (p + 1) as f64 * width, 0))
+            .collect();
+        while let Some((a, b, depth)) = stack.pop() {
+            let whole = self.gl(a, b);
+            let m = 0.5 * (a + b);
+            let halves = self.gl(a, m) + self.gl(m, b);
+            if (whole - halves).abs() <= 2.0 * f64::EPSILON * scale * (b - a) || depth >= 40 {
+                out.push((a, b, halves));
+            } else {
+                stack.push((m, b, depth + 1));
+                stack.push((a, m, depth + 1));
+            }
+        }
+        let mut cum = 0.0;
+        self.panels = out
+            .iter()
+            .map(|&(a, _, v)| {
+                let start = (a, cum);
+                cum += v;
+                start
+            })
+            .collect();
+        self.period_integral = cum;
+    }
+
+    /// `∫₀^r φ̇(v) dv` for `0 ≤ r ≤ 2K`.
+    fn g_partial(&self, r: f64) -> f64 {
+        let p = self.panels.partition_point(|&(a, _)| a <= r).max(1) - 1;
+        let (a, cum) = self.panels[p];
+        cum + self.gl(a, r)
     }
 
     /// `G(u) = ∫₀^u φ̇(v) dv` for every real u.
     fn g(&self, u: f64) -> f64 {
+        if !self.period.is_finite() {
+            return self.g_separatrix(u);
+        }
         let j = (u / self.period).floor();
         let r = u - j * self.period;
         j * self.period_integral + self.g_partial(r)
     }
 
+    /// On the separatrix `cn = dn = sech u`, `sn = tanh u` and with
+    /// `τ = tanh u` the integral is elementary:
+    /// `∫ sech² / (A sech² + B tanh²) du = ∫ dτ / (A − (A − B) τ²)`.
+    fn g_separatrix(&self, u: f64) -> f64 {
+        let (a, b, c) = self.rate_constants();
+        let i2 = self.moments[self.lab[1]];
+        let tau = u.tanh();
+        let part = if a > b {
+            let kappa = ((a - b) / a).sqrt();
+            (kappa * tau).atanh() / (a * kappa)
+        } else if a < b {
+            let kappa = ((b - a) / a).sqrt();
+            (kappa * tau).atan() / (a * kappa)
+        } else {
+            tau / a
+        };
+        self.l / i2 * u + c * part
+    }
+
     /// `R_zf` of [`invariable_frame`] from the body momentum `h` (body
     /// axes) and φ.
+    ///
+    /// The components are permuted by index, not by rotating with `P`:
+    /// the quaternion product would add round-off of `ε |H|` to the two
+    /// small components when `H` is near the `c` axis, and the azimuth ψ
+    /// would then be wrong by `ε / θ`.
     fn frame_rotation(&self, h: &Vector3<f64>, phi: f64) -> UnitQuaternion<f64> {
-        invariable_frame(&(self.perm.inverse() * h), phi)
+        let c = self.lab[2];
+        let hp = Vector3::new(h[(c + 1) % 3], h[(c + 2) % 3], h[c]);
+        invariable_frame(&hp, phi)
     }
 
     /// The angle turned about `H` since t = 0.

@@ -33,6 +33,7 @@
 //! space axes, `ω` is in body principal axes. Space Z is up.
 
 pub mod body;
+pub mod dd;
 pub mod elliptic;
 mod error;
 pub mod exact;
