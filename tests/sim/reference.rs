@@ -28,11 +28,8 @@ impl DdState {
     /// `[q, ω]` rounded to f64.
     pub fn to_f64(self) -> [f64; 7] {
         let mut y = [0.0; 7];
-        for k in 0..4 {
-            y[k] = self.q[k].to_f64();
-        }
-        for k in 0..3 {
-            y[4 + k] = self.w[k].to_f64();
+        for (dst, src) in y.iter_mut().zip(self.q.iter().chain(self.w.iter())) {
+            *dst = src.to_f64();
         }
         y
     }
