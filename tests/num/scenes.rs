@@ -1,5 +1,5 @@
 //! Bundled worked problems against their textbook answers, each derived
-//! here by hand from the reference sheet's formulas; and the rank checks.
+//! here by hand from the formulas of docs/equations.md; and the rank checks.
 
 use std::path::{Path, PathBuf};
 

@@ -222,6 +222,10 @@ fn verify_is_seeded_and_covers_every_bundled_derivation() {
         .unwrap()
         .map(|e| e.unwrap().path())
         .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .filter(|p| {
+            p.file_name()
+                .is_some_and(|n| n != hdot_sym::course::MANIFEST_FILE)
+        })
         .map(|p| p.file_stem().unwrap().to_string_lossy().into_owned())
         .collect();
     names.sort();

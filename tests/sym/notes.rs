@@ -1,11 +1,16 @@
-//! The lecture notes (`hdot notes`): the committed copies in `docs/notes/`
-//! are regenerated from `derivations/` and must match byte for byte; the
-//! LaTeX holds only characters pdflatex can typeset; the printer-coverage
-//! appendix covers every Greek name of the printer.
+//! The lecture notes and slides (`hdot notes`): the committed copies in
+//! `docs/notes/` are regenerated from `derivations/` (arranged by
+//! `derivations/notes.toml`) and must match byte for byte; chapters follow
+//! the course; the LaTeX holds only characters pdflatex can typeset and no
+//! raw notation in prose; sources are self-contained; a lecturer's own
+//! files make notes with or without a manifest; the printer-coverage test
+//! document covers every Greek name of the printer.
 
 use std::path::{Path, PathBuf};
 
+use hdot_sym::course::{self, MANIFEST_FILE};
 use hdot_sym::derivation::{Derivation, load_str};
+use hdot_sym::document::{Course, Document};
 use hdot_sym::notes;
 use hdot_sym::render::latex_text;
 
@@ -20,6 +25,7 @@ fn derivations() -> Vec<Derivation> {
         .unwrap()
         .map(|e| e.unwrap().path())
         .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .filter(|p| p.file_name().unwrap() != MANIFEST_FILE)
         .collect();
     files.sort();
     files
@@ -30,6 +36,14 @@ fn derivations() -> Vec<Derivation> {
             load_str(&shown, &std::fs::read_to_string(p).unwrap()).unwrap_or_else(|e| panic!("{e}"))
         })
         .collect()
+}
+
+/// The bundled notes: the derivations arranged by the bundled manifest.
+fn bundled() -> Document {
+    let ds = derivations();
+    let text = std::fs::read_to_string(root().join("derivations").join(MANIFEST_FILE)).unwrap();
+    let c = course::parse("derivations/notes.toml", &text, &ds).unwrap_or_else(|e| panic!("{e}"));
+    c.document(&ds)
 }
 
 fn assert_up_to_date(file: &str, fresh: &str) {
@@ -54,26 +68,35 @@ fn assert_up_to_date(file: &str, fresh: &str) {
 
 #[test]
 fn committed_markdown_notes_are_up_to_date() {
-    assert_up_to_date(
-        notes::MARKDOWN_FILE,
-        &notes::markdown_document(&derivations()),
-    );
+    assert_up_to_date(notes::MARKDOWN_FILE, &notes::markdown_document(&bundled()));
 }
 
 #[test]
 fn committed_latex_notes_are_up_to_date() {
-    assert_up_to_date(notes::LATEX_FILE, &notes::latex_document(&derivations()));
+    assert_up_to_date(notes::LATEX_FILE, &notes::latex_document(&bundled()));
+}
+
+#[test]
+fn committed_slides_are_up_to_date() {
+    assert_up_to_date(notes::SLIDES_FILE, &notes::slides_document(&bundled()));
 }
 
 #[test]
 fn every_derivation_has_a_section_in_both_documents() {
     let ds = derivations();
-    let tex = notes::latex_document(&ds);
-    let md = notes::markdown_document(&ds);
+    let doc = bundled();
+    let tex = notes::latex_document(&doc);
+    let md = notes::markdown_document(&doc);
+    let slides = notes::slides_document(&doc);
     for d in &ds {
         assert!(
             tex.contains(&latex_text(&d.title)),
             "{} not in the LaTeX",
+            d.title
+        );
+        assert!(
+            slides.contains(&latex_text(&d.title)),
+            "{} not in the slides",
             d.title
         );
         assert!(
@@ -87,42 +110,320 @@ fn every_derivation_has_a_section_in_both_documents() {
             d.name
         );
     }
-    assert!(tex.contains(r"\section{Printer coverage}"));
+    // The printer-coverage appendix is a test document, not in the notes.
+    assert!(!tex.contains("Printer coverage") && !md.contains("Printer coverage"));
 }
 
+/// The chapters come in the order of the course, each derivation once.
+#[test]
+fn chapters_follow_the_course() {
+    let doc = bundled();
+    let titles: Vec<String> = doc
+        .chapters
+        .iter()
+        .map(|c| c.title.to_lowercase())
+        .collect();
+    let order = [
+        "angular momentum",
+        "kinetic energy",
+        "transport theorem",
+        "euler's equations",
+        "fixed axis",
+        "gyroscope",
+        "torque-free",
+        "stability",
+        "impulse",
+    ];
+    let mut at = 0;
+    for want in order {
+        let k = titles[at..]
+            .iter()
+            .position(|t| t.contains(want))
+            .unwrap_or_else(|| panic!("no chapter `{want}` after chapter {at} in {titles:?}"));
+        at += k + 1;
+    }
+    let mut names: Vec<&str> = doc
+        .chapters
+        .iter()
+        .flat_map(|c| c.sections.iter().map(|s| s.name.as_str()))
+        .collect();
+    let n = names.len();
+    names.sort_unstable();
+    names.dedup();
+    assert_eq!(names.len(), n, "a derivation appears twice");
+    assert_eq!(n, derivations().len(), "a derivation is missing");
+    assert!(
+        !doc.chapters
+            .iter()
+            .any(|c| c.title == "Further derivations"),
+        "the manifest leaves a bundled derivation out"
+    );
+}
+
+/// Every generated LaTeX (notes, slides, fragments, the coverage test
+/// document) holds only characters pdflatex can typeset.
 #[test]
 fn latex_holds_only_characters_pdflatex_can_typeset() {
-    let tex = notes::latex_document(&derivations());
-    for (k, line) in tex.lines().enumerate() {
-        for c in line.chars() {
+    let doc = bundled();
+    let mut texts = vec![
+        ("notes", notes::latex_document(&doc)),
+        ("slides", notes::slides_document(&doc)),
+        ("coverage", notes::coverage_document()),
+    ];
+    for d in derivations() {
+        texts.push(("fragment", notes::latex_fragment(&d)));
+    }
+    for (what, tex) in texts {
+        for (k, line) in tex.lines().enumerate() {
+            for c in line.chars() {
+                assert!(
+                    c.is_ascii() || (('À'..='ÿ').contains(&c) && c.is_alphabetic()),
+                    "{what} line {}: character {c:?} (U+{:04X}) in {line}",
+                    k + 1,
+                    c as u32
+                );
+            }
             assert!(
-                c.is_ascii() || (('À'..='ÿ').contains(&c) && c.is_alphabetic()),
-                "line {}: character {c:?} (U+{:04X}) in {line}",
-                k + 1,
-                c as u32
+                !line.contains("[U+"),
+                "{what} line {}: unmapped character in {line}",
+                k + 1
             );
         }
+    }
+}
+
+/// Prose in the notes has no raw notation: no literal underscore outside
+/// code and file names, no Σ set apart from the letter it sums.
+#[test]
+fn prose_is_typeset() {
+    let tex = notes::latex_document(&bundled());
+    for (k, line) in tex.lines().enumerate() {
+        let prose: String = strip_code(line);
         assert!(
-            !line.contains("[U+"),
-            "line {}: unmapped character in {line}",
+            !prose.contains(r"\_"),
+            "line {}: literal underscore in prose: {line}",
+            k + 1
+        );
+        assert!(
+            !prose.contains(r"$\Sigma$M") && !prose.contains(r"$\Sigma$F"),
+            "line {}: Σ apart from its letter: {line}",
             k + 1
         );
     }
 }
 
-/// Every Greek name the printer knows is printed by the coverage appendix
-/// (and so goes through the LaTeX compile).
+/// The line without its `\texttt{…}` groups.
+fn strip_code(line: &str) -> String {
+    let mut out = String::new();
+    let mut rest = line;
+    while let Some(i) = rest.find(r"\texttt{") {
+        out.push_str(&rest[..i]);
+        let mut depth = 0;
+        let mut end = rest.len();
+        for (j, c) in rest[i + 7..].char_indices() {
+            match c {
+                '{' => depth += 1,
+                '}' => {
+                    depth -= 1;
+                    if depth == 0 {
+                        end = i + 7 + j + 1;
+                        break;
+                    }
+                }
+                _ => {}
+            }
+        }
+        rest = &rest[end..];
+    }
+    out.push_str(rest);
+    out
+}
+
+/// Sources cite what a reader has: textbook sections and the project's
+/// own equation reference, whose cited sections exist.
+#[test]
+fn sources_are_self_contained() {
+    let reference = std::fs::read_to_string(root().join("docs/equations.md")).unwrap();
+    for d in derivations() {
+        let lower = d.source.to_lowercase();
+        assert!(
+            !lower.contains("reference sheet") && !lower.contains("shared/"),
+            "{}: source cites a file outside the project: {}",
+            d.path,
+            d.source
+        );
+        let Some((_, cited)) = d.source.split_once("(docs/equations.md)") else {
+            panic!(
+                "{}: source does not cite docs/equations.md: {}",
+                d.path, d.source
+            );
+        };
+        let numbers: Vec<&str> = cited
+            .split('§')
+            .skip(1)
+            .map(|s| {
+                s.trim_start()
+                    .split(|c: char| !c.is_ascii_digit())
+                    .next()
+                    .unwrap()
+            })
+            .collect();
+        assert!(!numbers.is_empty(), "{}: no section cited", d.path);
+        for n in numbers {
+            assert!(
+                reference.contains(&format!("\n## {n}. ")),
+                "{}: docs/equations.md has no §{n}",
+                d.path
+            );
+        }
+    }
+}
+
+/// The printer-coverage test document prints every Greek name the printer
+/// knows (and so goes through the LaTeX compile of scripts/build_notes).
 #[test]
 fn coverage_includes_every_greek_name_of_the_printer() {
     let names: Vec<&str> = hdot_sym::print::greek_names().collect();
     assert!(names.len() >= 20, "{names:?}");
-    let printed: String = notes::coverage()
-        .iter()
-        .map(|c| hdot_sym::print::latex(&c.expr))
-        .collect();
+    let doc = notes::coverage_document();
     for n in names {
         let tex = hdot_sym::print::latex_symbol(n, 0);
-        assert!(printed.contains(&tex), "coverage does not print {tex}");
+        assert!(doc.contains(&tex), "coverage does not print {tex}");
+    }
+}
+
+// ------------------------------------------- a lecturer's own derivations --
+
+/// Two small problems written for this test (not bundled).
+fn own_files() -> Vec<Derivation> {
+    let disk = r#"
+title = "A spinning disk on a massless shaft"
+source = "Written for the notes test"
+summary = "The disk turns with ω_z about its axis; ΣM_G = (Ḣ_G)_Gxyz + ω × H_G."
+[symbols]
+constants = ["I", "Ip"]
+time = ["w_x", "w_y", "w_z"]
+[[frame]]
+name = "B"
+angular_velocity = "[w_x, w_y, w_z]"
+[[step]]
+name = "H"
+value = "principal(Ip, Ip, I) * angvel(B)"
+expect = ["Ip*w_x", "Ip*w_y", "I*w_z"]
+[[step]]
+name = "M"
+label = "Sigma M"
+doc = "transport theorem: $ΣM = Ḣ + ω × H$"
+value = "dt_rel(H) + cross(angvel(B), H)"
+"#;
+    let rod = r#"
+title = "Kinetic energy of a rod turning about its end"
+source = "Written for the notes test"
+[symbols]
+constants = ["m", "L"]
+time = ["theta"]
+[[step]]
+name = "T"
+value = "m*L^2*theta'^2/6"
+"#;
+    vec![
+        load_str("own/disk.toml", disk).unwrap_or_else(|e| panic!("{e}")),
+        load_str("own/rod.toml", rod).unwrap_or_else(|e| panic!("{e}")),
+    ]
+}
+
+#[test]
+fn own_files_without_a_manifest_follow_in_the_order_given() {
+    let ds = own_files();
+    let doc = Course::plain(&ds).document(&ds);
+    let tex = notes::latex_document(&doc);
+    let a = tex.find(r"\section{A spinning disk").unwrap();
+    let b = tex.find(r"\section{Kinetic energy of a rod").unwrap();
+    assert!(a < b);
+    assert!(tex.contains(r"$\Sigma M_{G} = (\dot{H}_{G})_{Gxyz} + \omega \times H_{G}$"));
+    assert!(tex.contains(r"$\Sigma M = \dot{H} + \omega \times H$"));
+}
+
+#[test]
+fn own_files_with_a_manifest_make_chapters_and_show_the_steps_chosen() {
+    let ds = own_files();
+    let manifest = r#"
+title = "Dynamics II"
+author = "A. Lecturer"
+[[chapter]]
+title = "Energy"
+derivations = ["rod"]
+[[chapter]]
+title = "Moments"
+derivations = ["disk"]
+[steps]
+disk = ["M"]
+"#;
+    let c = course::parse("own/notes.toml", manifest, &ds).unwrap_or_else(|e| panic!("{e}"));
+    let doc = c.document(&ds);
+    let tex = notes::latex_document(&doc);
+    assert!(tex.contains(r"\title{Dynamics II}") && tex.contains(r"\author{A. Lecturer}"));
+    let energy = tex.find(r"\section{Energy}").unwrap();
+    let moments = tex.find(r"\section{Moments}").unwrap();
+    let rod = tex.find(r"\subsection{Kinetic energy of a rod").unwrap();
+    let disk = tex.find(r"\subsection{A spinning disk").unwrap();
+    assert!(energy < rod && rod < moments && moments < disk);
+    // Only step M of the disk is shown.
+    let disk_part = &tex[disk..];
+    assert!(disk_part.contains(r"\Sigma M_{x} &="));
+    assert!(!disk_part.contains(r"H_{x} &="));
+    let slides = notes::slides_document(&doc);
+    assert!(slides.contains(r"\section{Energy}") && slides.contains(r"\begin{frame}"));
+}
+
+#[test]
+fn manifest_errors_name_the_line_and_column() {
+    let ds = own_files();
+    let cases = [
+        (
+            "title = \"T\"\n[[chapter]]\ntitle = \"C\"\nderivations = [\"rod\", \"wheel\"]\n",
+            (4, 24),
+            "no derivation `wheel`",
+        ),
+        (
+            "title = \"T\"\n[[chapter]]\ntitle = \"C\"\nderivations = [\"rod\", \"rod\"]\n",
+            (4, 24),
+            "listed twice",
+        ),
+        (
+            "title = \"T\"\n[steps]\ndisk = [\"H\", \"Q\"]\n",
+            (3, 15),
+            "has no step `Q`",
+        ),
+        ("title = \"T\"\nchapters = []\n", (2, 1), "unknown field"),
+    ];
+    for (text, (line, column), message) in cases {
+        let e = course::parse("own/notes.toml", text, &ds).unwrap_err();
+        assert_eq!((e.line, e.column), (line, column), "{text}: {e}");
+        assert!(e.message.contains(message), "{text}: {e}");
+        assert_eq!(e.path, "own/notes.toml");
+    }
+}
+
+/// A fragment is the notes' section of one derivation, ready to `\input`:
+/// no preamble, no hdot macros, no hyperref commands.
+#[test]
+fn fragments_stand_alone() {
+    for d in own_files().iter().chain(derivations().iter()) {
+        let f = notes::latex_fragment(d);
+        for forbidden in [
+            r"\documentclass",
+            r"\begin{document}",
+            r"\texorpdfstring",
+            r"\hdot",
+        ] {
+            assert!(!f.contains(forbidden), "{}: {forbidden}", d.path);
+        }
+        assert!(f.contains(r"\section{"), "{}", d.path);
+        assert_eq!(
+            f.matches(r"\begin{align*}").count(),
+            f.matches(r"\end{align*}").count()
+        );
     }
 }
 
@@ -134,15 +435,20 @@ macro_rules! latex_text_cases {
 
 latex_text_cases! {
     prose_specials: "50% & $5 #1 {a} ~ ^ \\" => r"50\% \& \$5 \#1 \{a\} \textasciitilde{} \textasciicircum{} \textbackslash{}";
+    prose_explicit_math: "so $ΣM_O = (Ḣ_O)_Oxyz$, then" => r"so $\Sigma M_{O} = (\dot{H}_{O})_{Oxyz}$, then";
+    prose_formula_run: "Transport theorem: ΣM_O = (Ḣ_O)_Oxyz + Ω × H_O." => r"Transport theorem: $\Sigma M_{O} = (\dot{H}_{O})_{Oxyz} + \Omega \times H_{O}$.";
+    prose_derivative_words: "ΣF = d(m v̄)/dt here" => r"$\Sigma F = d(m \bar{v})/dt$ here";
+    prose_word_subscript: "ṙ_rel is taken in F" => r"$\dot{r}_{\mathrm{rel}}$ is taken in F";
+    prose_article_stays_text: "a body with I′ sin θ ≠ 0" => r"a body with $I' \sin \theta \neq 0$";
     prose_combining_dots: "ω̇ and θ̈" => r"$\dot{\omega}$ and $\ddot{\theta}$";
-    prose_dotted_subscript: "ω̇_z = ψ̈" => r"$\dot{\omega}_{z}$ = $\ddot{\psi}$";
+    prose_dotted_subscript: "ω̇_z = ψ̈" => r"$\dot{\omega}_{z} = \ddot{\psi}$";
     prose_precomposed_dots: "Ḣ_G and ṙ" => r"$\dot{H}_{G}$ and $\dot{r}$";
-    prose_bars: "m ā at G, ȳ" => r"m $\bar{a}$ at G, $\bar{y}$";
-    prose_operators: "ΣM = r × F · n ≥ 0 ≠ 1" => r"$\Sigma$M = r $\times$ F $\cdot$ n $\geq$ 0 $\neq$ 1";
-    prose_integral_and_subscript: "I_xy = ∫xy dm" => r"$I_{xy}$ = $\int$xy dm";
+    prose_bars: "m ā at G, ȳ" => r"$m \bar{a}$ at G, $\bar{y}$";
+    prose_operators: "ΣM = r × F · n ≥ 0 ≠ 1" => r"$\Sigma M = r \times F \cdot n \geq 0 \neq 1$";
+    prose_integral_and_subscript: "I_xy = ∫xy dm" => r"$I_{xy} = \int xy$ dm";
     prose_code_word_keeps_underscore: "dt_rel(H)" => r"dt\_rel(H)";
-    prose_superscripts: "sin²θ, Rᵀ, 90°" => r"sin$^{2}\theta$, R$^{T}$, 90$^{\circ}$";
-    prose_primes_and_half: "I′ and ½ m v²" => r"I$'$ and $\tfrac{1}{2}$ m v$^{2}$";
+    prose_superscripts: "sin²θ, Rᵀ, 90°" => r"$\sin^{2}\theta$, $R^{T}$, $90^{\circ}$";
+    prose_primes_and_half: "I′ and ½ m v²" => r"$I'$ and $\tfrac{1}{2} m v^{2}$";
     prose_punctuation: "a — b – c … “q” §3" => r"a --- b -- c \ldots{} ``q'' \S{}3";
     prose_latin1_kept: "Poincaré" => "Poincaré";
     prose_unknown_character: "snow ☃" => "snow [U+2603]";

@@ -41,7 +41,9 @@ fn every_presented_component_expands_to_its_value() {
     let mut files = 0;
     for entry in std::fs::read_dir(&dir).unwrap() {
         let path = entry.unwrap().path();
-        if path.extension().is_some_and(|e| e == "toml") {
+        if path.extension().is_some_and(|e| e == "toml")
+            && path.file_name().unwrap() != hdot_sym::course::MANIFEST_FILE
+        {
             compared += assert_exact(&load(&path).unwrap());
             files += 1;
         }

@@ -9,6 +9,9 @@ fn every_derivation_in_every_format() {
     insta::glob!("../../derivations", "*.toml", |path| {
         let text = std::fs::read_to_string(path).unwrap();
         let name = path.file_name().unwrap().to_string_lossy();
+        if name == hdot_sym::course::MANIFEST_FILE {
+            return;
+        }
         let shown = format!("derivations/{name}");
         let d = load_str(&shown, &text).unwrap_or_else(|e| panic!("{e}"));
         assert!(d.all_hold(), "{shown}: {:?}", d.failures());
@@ -22,4 +25,32 @@ fn every_derivation_in_every_format() {
             insta::assert_snapshot!(tag, render(&d, format));
         }
     });
+}
+
+/// The lecture notes and the slides of the bundled derivations, arranged
+/// by `derivations/notes.toml`, as LaTeX snapshots: a presentation change
+/// shows up as a readable diff of what a lecturer compiles.
+#[test]
+fn notes_and_slides_latex() {
+    let root = hdot_tests::repo_root().join("derivations");
+    let mut files: Vec<_> = std::fs::read_dir(&root)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .filter(|p| p.file_name().unwrap() != hdot_sym::course::MANIFEST_FILE)
+        .collect();
+    files.sort();
+    let ds: Vec<_> = files
+        .iter()
+        .map(|p| {
+            let shown = format!("derivations/{}", p.file_name().unwrap().to_string_lossy());
+            load_str(&shown, &std::fs::read_to_string(p).unwrap()).unwrap()
+        })
+        .collect();
+    let manifest = std::fs::read_to_string(root.join(hdot_sym::course::MANIFEST_FILE)).unwrap();
+    let doc = hdot_sym::course::parse("derivations/notes.toml", &manifest, &ds)
+        .unwrap()
+        .document(&ds);
+    insta::assert_snapshot!("notes-latex", hdot_sym::notes::latex_document(&doc));
+    insta::assert_snapshot!("slides-latex", hdot_sym::notes::slides_document(&doc));
 }

@@ -20,12 +20,16 @@ pub fn derivations_dir(explicit: Option<&Path>) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../derivations")
 }
 
-/// Every `*.toml` in `dir`, sorted by name.
+/// Every `*.toml` in `dir` but the notes manifest (`notes.toml`), sorted by name.
 pub fn all(dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
     let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
         .with_context(|| format!("cannot read the derivations folder {}", dir.display()))?
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .filter(|p| {
+            p.file_name()
+                .is_none_or(|n| n != hdot_sym::course::MANIFEST_FILE)
+        })
         .collect();
     v.sort();
     Ok(v)

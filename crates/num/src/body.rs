@@ -203,7 +203,7 @@ impl Primitive {
     }
 
     /// Analytic principal moments `[I_x, I_y, I_z]` about G in the local
-    /// axes, for mass `m` (the table of the reference sheet).
+    /// axes, for mass `m` (the table of `docs/equations.md` §11).
     ///
     /// # Example
     /// ```

@@ -1,6 +1,6 @@
 //! The inertia tensor, with its physical invariants in the type.
 //!
-//! An [`Inertia`] is a 3×3 tensor in the convention of the reference sheet:
+//! An [`Inertia`] is a 3×3 tensor in the convention of `docs/equations.md` §0:
 //! moments on the diagonal, products of inertia with a **minus** sign off
 //! the diagonal,
 //!

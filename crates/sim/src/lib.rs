@@ -10,7 +10,7 @@
 //! model for a scene and the reports and sweeps the CLI prints ([`run`]).
 //!
 //! **Does not own**: deriving the equations (that is `hdot-sym`: this crate
-//! codes the *results* of §5–§10 of the reference sheet, which the symbolic
+//! codes the *results* of §5–§10 of `docs/equations.md`, which the symbolic
 //! crate derives and checks), general numerics (`hdot-num`), the command
 //! line (`hdot`).
 //!

@@ -32,6 +32,10 @@ fn derivation_files() -> Vec<PathBuf> {
         .unwrap_or_else(|e| panic!("cannot read {}: {e}", dir.display()))
         .map(|entry| entry.expect("directory entry").path())
         .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .filter(|p| {
+            p.file_name()
+                .is_some_and(|n| n != hdot_sym::course::MANIFEST_FILE)
+        })
         .collect();
     files.sort();
     files

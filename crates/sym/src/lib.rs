@@ -34,8 +34,10 @@
 
 pub mod atom;
 pub mod chain;
+pub mod course;
 pub mod derivation;
 pub mod diff;
+pub mod document;
 pub mod expr;
 pub mod frame;
 pub mod limits;
@@ -45,6 +47,7 @@ pub mod partial;
 pub mod poly;
 pub mod present;
 pub mod print;
+pub mod prose;
 pub mod rational;
 pub mod render;
 pub mod subst;

@@ -1,26 +1,32 @@
-//! Lecture notes: every derivation, step by step, as one LaTeX document
-//! ([`latex_document`]) and as one Markdown page ([`markdown_document`]).
+//! Lecture notes and slides: a [`Document`] (derivations arranged by a
+//! [`Course`]) rendered as a LaTeX article ([`latex_document`]), as one
+//! Markdown page ([`markdown_document`]), as LaTeX Beamer slides
+//! ([`slides_document`]); one derivation as a LaTeX fragment to `\input`
+//! in a lecturer's own document ([`latex_fragment`]) or as Markdown
+//! ([`markdown_fragment`]) — the same sections `hdot derive` prints.
 //!
-//! Both show the same things for each derivation, in the same order: its
-//! title, source and file; the summary; what is assumed (assumptions,
-//! symbols, abbreviations, frames with their angular velocity Ω); then
-//! every shown step with what it does, the formula as written in the file,
-//! the result in textbook form and whether the expectation holds. An
-//! appendix, *Printer coverage* ([`coverage`]), prints a fixed list of
-//! expressions that together use every construct the LaTeX printer can
-//! emit, so compiling the document proves that each of them typesets.
+//! Every format shows the same things for each derivation, in the same
+//! order: its title, source and file; the summary; what is assumed
+//! (assumptions, symbols, abbreviations, frames with their angular
+//! velocity Ω); then every shown step with what it does, the formula as
+//! written in the file, the result in textbook form and whether the
+//! expectation holds. Prose goes through [`crate::prose`], so notation in
+//! it (ΣM_x, (Ḣ_O)_Oxyz, `$…$`) is typeset as math.
 //!
-//! The LaTeX document needs only packages of Debian's
-//! `texlive-latex-base`, `texlive-latex-recommended` and
-//! `texlive-fonts-recommended` (amsmath, amssymb, geometry, hyperref,
-//! lmodern) and compiles with `pdflatex`. All prose goes through
-//! [`latex_text`], so it holds no character that pdflatex cannot typeset:
-//! apart from ASCII, only the accented letters of Latin-1 are left as they
-//! are.
+//! The LaTeX needs only packages of Debian's `texlive-latex-base`,
+//! `texlive-latex-recommended` and `texlive-fonts-recommended` (amsmath,
+//! amssymb, geometry, hyperref, lmodern, beamer) and compiles with
+//! `pdflatex`; a fragment needs only amsmath and amssymb. The output holds
+//! no character that pdflatex cannot typeset: apart from ASCII, only the
+//! accented letters of Latin-1.
 //!
-//! The output depends only on the derivations (no date, no paths other
-//! than the ones the derivations carry), so a committed copy can be
-//! compared byte for byte with a fresh one.
+//! [`coverage_document`] is a test document, not part of the notes: a
+//! fixed list of expressions that together use every construct the LaTeX
+//! printer can emit, so that compiling it proves each of them typesets.
+//!
+//! The output depends only on the derivations and the course (no date,
+//! no paths other than the ones the derivations carry), so a committed
+//! copy can be compared byte for byte with a fresh one.
 //!
 //! # Example
 //! ```
@@ -40,27 +46,31 @@
 //! expect = ["I*w_x", "I*w_y", "I*w_z"]
 //! "#;
 //! let d = hdot_sym::derivation::load_str("sphere.toml", text).unwrap();
-//! let tex = hdot_sym::notes::latex_document(&[d.clone()]);
+//! let doc = hdot_sym::document::Course::plain(&[d.clone()]).document(&[d.clone()]);
+//! let tex = hdot_sym::notes::latex_document(&doc);
 //! assert!(tex.contains(r"\section{Angular momentum of a sphere}"));
 //! assert!(tex.contains(r"H_{x} &= I w_x"));
+//! assert!(tex.contains(r"$I_{x} = I_{y} = I_{z} = I$"));
 //! assert!(tex.contains(r"\end{document}"));
-//! let md = hdot_sym::notes::markdown_document(&[d]);
+//! let md = hdot_sym::notes::markdown_document(&doc);
 //! assert!(md.contains("$$\n\\begin{aligned}\nH_{x} &= I w_x"));
+//! let slides = hdot_sym::notes::slides_document(&doc);
+//! assert!(slides.contains(r"\documentclass") && slides.contains(r"\begin{frame}"));
+//! let fragment = hdot_sym::notes::latex_fragment(&d);
+//! assert!(!fragment.contains(r"\documentclass") && fragment.contains(r"\section{"));
 //! ```
 
 use std::fmt::Write;
 
-use crate::derivation::{Check, Derivation, Step, Value};
+use crate::document::{Chapter, Document, Equation, Section, StepBlock, Verdict};
 use crate::expr::Expr;
 use crate::print;
-use crate::render::{latex_label, latex_text, unicode_math};
-use crate::symbols::{Decl, Symbols};
+use crate::prose;
+use crate::render::latex_label;
+use crate::symbols::Symbols;
 
 /// The command that regenerates the committed notes in `docs/notes/`.
-pub const REFRESH_COMMAND: &str = "cargo run -p hdot -- notes";
-
-/// Title of the notes.
-pub const TITLE: &str = "Three-dimensional rigid-body kinetics: the derivations of hdot";
+pub const REFRESH_COMMAND: &str = "cargo run -p hdot -- notes --slides";
 
 /// File name of the LaTeX document.
 pub const LATEX_FILE: &str = "hdot-notes.tex";
@@ -68,9 +78,18 @@ pub const LATEX_FILE: &str = "hdot-notes.tex";
 /// File name of the Markdown document.
 pub const MARKDOWN_FILE: &str = "hdot-notes.md";
 
+/// File name of the slides.
+pub const SLIDES_FILE: &str = "hdot-slides.tex";
+
+/// File name of the printer-coverage test document.
+pub const COVERAGE_FILE: &str = "hdot-printer-coverage.tex";
+
 /// Estimated width (in characters of math) beyond which an equation's
 /// right-hand side is broken before a `+` or `−` onto further lines.
 const LINE_BUDGET: f32 = 58.0;
+
+/// The same for slides (a Beamer frame is narrower).
+const SLIDE_BUDGET: f32 = 44.0;
 
 // ------------------------------------------------------------- coverage --
 
@@ -332,12 +351,13 @@ fn pieces(rhs: &str, budget: f32) -> Vec<(String, bool)> {
     out
 }
 
-/// The lines of one equation `lhs = rhs` for an `align*`/`aligned` block:
+/// The lines of one equation `lhs = rhs` for an `align*`/`aligned` block
+/// no wider than `width` (estimated characters of math):
 /// the first `lhs &= …`, continuation lines `&\quad + …`. A break inside
 /// parentheses closes the line with `\right.` and opens the next with
 /// `\left.`, so that every line is balanced.
-fn equation_lines(lhs: &str, rhs: &str) -> Vec<String> {
-    let budget = (LINE_BUDGET - math_width(lhs)).max(24.0);
+fn equation_lines(lhs: &str, rhs: &str, width: f32) -> Vec<String> {
+    let budget = (width - math_width(lhs)).max(24.0);
     if math_width(rhs) <= budget {
         return vec![format!("{lhs} &= {rhs}")];
     }
@@ -377,54 +397,50 @@ fn equation_lines(lhs: &str, rhs: &str) -> Vec<String> {
         .collect()
 }
 
-/// The body of an `align*` (or `aligned`) block for one step.
-fn step_lines(s: &Step) -> String {
-    let lines: Vec<String> = s
-        .components
+// ------------------------------------------------------------- pieces --
+
+fn symbol_list(names: &[String]) -> String {
+    names
         .iter()
-        .flat_map(|(c, e)| equation_lines(&crate::render::step_lhs_latex(s, c), &print::latex(e)))
+        .map(|n| print::latex_symbol(n, 0))
+        .collect::<Vec<_>>()
+        .join(",\\ ")
+}
+
+fn equations_lines(eqs: &[Equation], width: f32) -> Vec<String> {
+    eqs.iter()
+        .flat_map(|e| equation_lines(&e.lhs.latex(), &print::latex(&e.rhs), width))
+        .collect()
+}
+
+/// The body of an `align*` (or `aligned`) block for one step.
+fn step_lines(s: &StepBlock, width: f32) -> String {
+    equations_lines(&s.equations, width).join(" \\\\\n")
+}
+
+fn failure_lines(fails: &[(Equation, Equation)], width: f32) -> String {
+    let lines: Vec<String> = fails
+        .iter()
+        .flat_map(|(exp, diff)| {
+            let mut l = equation_lines(
+                &format!("{}^{{\\text{{expected}}}}", exp.lhs.latex()),
+                &print::latex(&exp.rhs),
+                width,
+            );
+            l.extend(equation_lines(
+                r"\text{difference}",
+                &print::latex(&diff.rhs),
+                width,
+            ));
+            l
+        })
         .collect();
     lines.join(" \\\\\n")
 }
 
-fn coverage_lines(c: &Coverage) -> String {
-    equation_lines(&latex_label(c.label, c.component), &print::latex(&c.expr)).join(" \\\\\n")
-}
-
-// ------------------------------------------------------------- pieces --
-
-fn symbol_list(d: &Derivation, want: fn(&Decl) -> bool) -> Vec<String> {
-    d.symbols
-        .names()
-        .iter()
-        .filter(|n| d.symbols.get(n).is_some_and(want))
-        .map(|n| print::latex_symbol(n, 0))
-        .collect()
-}
-
-fn frame_omega(d: &Derivation, k: usize) -> String {
-    let c: Vec<String> = d.frames[k]
-        .omega
-        .0
-        .iter()
-        .map(|p| print::latex(&Expr::from_poly(p)))
-        .collect();
+fn omega_inline(f: &crate::document::FrameItem) -> String {
+    let c: Vec<String> = f.omega.iter().map(|e| print::latex(&e.rhs)).collect();
     format!(r"\left({}\right)", c.join(",\\ "))
-}
-
-fn vector_frame(s: &Step) -> Option<&str> {
-    match &s.value {
-        Value::Vector(_, f) => Some(f),
-        _ => None,
-    }
-}
-
-fn failed_check_math(s: &Step, c: &Check) -> (String, String, String) {
-    (
-        crate::render::step_lhs_latex(s, &c.component),
-        print::latex(&c.expected),
-        print::latex(&Expr::from_poly(&c.difference)),
-    )
 }
 
 /// Escapes code (a formula as written) for `\texttt`: every character is
@@ -448,259 +464,10 @@ fn latex_code(s: &str) -> String {
             '<' => o.push_str(r"\textless{}"),
             '>' => o.push_str(r"\textgreater{}"),
             c if c.is_ascii() => o.push(c),
-            c => o.push_str(&latex_text(&c.to_string())),
+            c => o.push_str(&prose::latex(&c.to_string())),
         }
     }
     o
-}
-
-/// Plain ASCII for PDF bookmarks: Greek letters by name, other symbols dropped.
-fn bookmark_text(s: &str) -> String {
-    let mut o = String::new();
-    for c in s.chars() {
-        match c {
-            c if c.is_ascii_alphanumeric() || " .,:;()'-/+=".contains(c) => o.push(c),
-            c => {
-                if let Some(m) = unicode_math(c)
-                    && let Some(name) = m.strip_prefix('\\')
-                    && name.chars().all(|c| c.is_ascii_alphabetic())
-                {
-                    o.push_str(name.trim_start_matches("var"));
-                }
-            }
-        }
-    }
-    o
-}
-
-fn latex_heading(cmd: &str, title: &str) -> String {
-    let tex = latex_text(title);
-    let plain = bookmark_text(title);
-    if tex == plain {
-        format!("\\{cmd}{{{tex}}}")
-    } else {
-        format!("\\{cmd}{{\\texorpdfstring{{{tex}}}{{{plain}}}}}")
-    }
-}
-
-// --------------------------------------------------------------- LaTeX --
-
-const LATEX_PREAMBLE: &str = r"\documentclass[11pt,a4paper]{article}
-\usepackage[T1]{fontenc}
-\usepackage[utf8]{inputenc}
-\usepackage{lmodern}
-\usepackage{amsmath}
-\usepackage{amssymb}
-\usepackage[margin=2.2cm]{geometry}
-\usepackage[hidelinks]{hyperref}
-\allowdisplaybreaks
-\tracinglostchars=2
-\setlength{\parindent}{0pt}
-\setlength{\parskip}{0.5\baselineskip}
-\newcommand{\hdotstep}[1]{\par\medskip\noindent\textbf{#1}\quad}
-";
-
-/// The lecture notes as a complete LaTeX document: a section per
-/// derivation, in the order given, and the printer-coverage appendix.
-pub fn latex_document(ds: &[Derivation]) -> String {
-    let mut o = String::new();
-    let _ = writeln!(
-        o,
-        "% Generated by `hdot notes` from the derivation files; do not edit.\n\
-         % Refresh with: {REFRESH_COMMAND}"
-    );
-    o.push_str(LATEX_PREAMBLE);
-    let _ = writeln!(o, "\\title{{{}}}", latex_text(TITLE));
-    let _ = writeln!(o, "\\author{{Generated by \\texttt{{hdot notes}}}}");
-    let _ = writeln!(o, "\\date{{}}\n");
-    let _ = writeln!(o, "\\begin{{document}}\n\\maketitle\n");
-    let _ = writeln!(
-        o,
-        "{}\n",
-        latex_text(
-            "Every equation below is derived by hdot's exact engine from H = [I]ω, \
-             the frames' angular velocities and the transport theorem, and checked \
-             against the textbook form stated in the derivation file. Each section \
-             says what is assumed, shows each step as written in the file and its \
-             result in textbook form, and says whether the result equals the \
-             expected form."
-        )
-    );
-    o.push_str("\\tableofcontents\n");
-    for d in ds {
-        latex_section(&mut o, d);
-    }
-    latex_coverage(&mut o);
-    o.push_str("\n\\end{document}\n");
-    o
-}
-
-fn latex_section(o: &mut String, d: &Derivation) {
-    let _ = writeln!(o, "\n\\clearpage\n{}", latex_heading("section", &d.title));
-    let _ = writeln!(o, "\\label{{sec:{}}}\n", label_key(&d.name));
-    let _ = writeln!(o, "\\textbf{{Source:}} {}\\\\", latex_text(&d.source));
-    let _ = writeln!(o, "\\textbf{{File:}} \\texttt{{{}}}\n", latex_code(&d.path));
-    if !d.summary.trim().is_empty() {
-        let _ = writeln!(o, "{}\n", latex_text(d.summary.trim()));
-    }
-    let _ = writeln!(o, "\\subsection*{{What is assumed}}");
-    if !d.assumptions.is_empty() {
-        let _ = writeln!(o, "\\begin{{itemize}}");
-        for a in &d.assumptions {
-            let _ = writeln!(o, "  \\item{{}} {}", latex_text(a));
-        }
-        let _ = writeln!(o, "\\end{{itemize}}");
-    }
-    let consts = symbol_list(d, |x| matches!(x, Decl::Constant));
-    let time = symbol_list(d, |x| matches!(x, Decl::Time));
-    let mut items = Vec::new();
-    if !consts.is_empty() {
-        items.push(format!("Constants: ${}$.", consts.join(",\\ ")));
-    }
-    if !time.is_empty() {
-        items.push(format!("Functions of time: ${}$.", time.join(",\\ ")));
-    }
-    for a in &d.abbreviations {
-        items.push(format!(
-            "Abbreviation: ${} = {}${}",
-            print::latex_symbol(&a.name, 0),
-            print::latex(&Expr::from_poly(&a.definition)),
-            latex_doc_suffix(&a.doc)
-        ));
-    }
-    if d.frames.len() > 1 {
-        items.push(
-            "Frames, each with its angular velocity $\\boldsymbol{\\Omega}$ relative to the \
-             inertial frame $N$, in the frame's own axes:"
-                .to_owned(),
-        );
-    }
-    if !items.is_empty() {
-        let _ = writeln!(o, "\\begin{{itemize}}");
-        for it in &items {
-            let _ = writeln!(o, "  \\item{{}} {it}");
-        }
-        if d.frames.len() > 1 {
-            let _ = writeln!(o, "  \\begin{{itemize}}");
-            for (k, f) in d.frames.iter().enumerate().skip(1) {
-                let parent = match &f.parent {
-                    Some((p, _)) => format!(" (turned from ${}$)", print::latex_symbol(p, 0)),
-                    None => String::new(),
-                };
-                let omega = frame_omega(d, k);
-                let axes = f
-                    .axes
-                    .iter()
-                    .map(|a| print::latex_symbol(a, 0))
-                    .collect::<Vec<_>>()
-                    .join(",\\ ");
-                let doc = latex_doc_suffix(&f.doc);
-                let name = print::latex_symbol(&f.name, 0);
-                if math_width(&omega) <= 40.0 {
-                    let _ = writeln!(
-                        o,
-                        "    \\item{{}} ${name}$, axes ${axes}${parent}: \
-                         $\\boldsymbol{{\\Omega}} = {omega}${doc}"
-                    );
-                } else {
-                    let lines: Vec<String> = f
-                        .axes
-                        .iter()
-                        .zip(&f.omega.0)
-                        .flat_map(|(a, p)| {
-                            equation_lines(
-                                &latex_label("Omega", a),
-                                &print::latex(&Expr::from_poly(p)),
-                            )
-                        })
-                        .collect();
-                    let _ = writeln!(
-                        o,
-                        "    \\item{{}} ${name}$, axes ${axes}${parent}{doc}:\n\
-                         \\begin{{align*}}\n{}\n\\end{{align*}}",
-                        lines.join(" \\\\\n")
-                    );
-                }
-            }
-            let _ = writeln!(o, "  \\end{{itemize}}");
-        }
-        let _ = writeln!(o, "\\end{{itemize}}");
-    }
-    let _ = writeln!(o, "\\subsection*{{Steps}}");
-    for (n, s) in d.steps.iter().filter(|s| s.show).enumerate() {
-        let _ = writeln!(
-            o,
-            "\\hdotstep{{Step {}: ${}$.}}{}",
-            n + 1,
-            latex_label(&s.label, ""),
-            latex_text(&sentence(&s.doc))
-        );
-        let frame = vector_frame(s)
-            .map(|f| format!(", components in frame ${}$", print::latex_symbol(f, 0)))
-            .unwrap_or_default();
-        let _ = writeln!(
-            o,
-            "{{\\raggedright Written in the file as \\texttt{{{}}}{frame}.\\par}}",
-            latex_code(&s.formula)
-        );
-        let _ = writeln!(o, "\\begin{{align*}}\n{}\n\\end{{align*}}", step_lines(s));
-        if s.checks.is_empty() {
-            let _ = writeln!(o, "\\emph{{No expectation is stated for this step.}}\n");
-        } else if s.checks.iter().all(Check::holds) {
-            let _ = writeln!(o, "$\\checkmark$ Equals the expected (textbook) form.\n");
-        } else {
-            let _ = writeln!(
-                o,
-                "\\textbf{{Does not equal the expected form}} (derived $-$ expected is shown):"
-            );
-            let _ = writeln!(o, "\\begin{{align*}}");
-            let lines: Vec<String> = s
-                .checks
-                .iter()
-                .filter(|c| !c.holds())
-                .flat_map(|c| {
-                    let (lhs, exp, diff) = failed_check_math(s, c);
-                    let mut l = equation_lines(&format!("{lhs}^{{\\text{{expected}}}}"), &exp);
-                    l.extend(equation_lines(r"\text{difference}", &diff));
-                    l
-                })
-                .collect();
-            let _ = writeln!(o, "{}\n\\end{{align*}}\n", lines.join(" \\\\\n"));
-        }
-    }
-}
-
-fn latex_coverage(o: &mut String) {
-    let _ = writeln!(
-        o,
-        "\n\\clearpage\n\\appendix\n\\section{{Printer coverage}}"
-    );
-    let _ = writeln!(o, "\\label{{sec:printer-coverage}}\n");
-    let _ = writeln!(
-        o,
-        "{}\n",
-        latex_text(
-            "These expressions are built in code, not derived: together they use every \
-             construct the LaTeX printer can emit, so that compiling these notes proves \
-             each of them typesets."
-        )
-    );
-    for c in coverage() {
-        let _ = writeln!(
-            o,
-            "\\hdotstep{{}}{}\n\\begin{{align*}}\n{}\n\\end{{align*}}",
-            latex_text(&sentence(&capitalise(c.what))),
-            coverage_lines(&c)
-        );
-    }
-}
-
-fn latex_doc_suffix(doc: &str) -> String {
-    if doc.is_empty() {
-        String::new()
-    } else {
-        format!(" --- {}", latex_text(doc))
-    }
 }
 
 fn label_key(name: &str) -> String {
@@ -727,20 +494,391 @@ fn capitalise(s: &str) -> String {
     }
 }
 
-// ------------------------------------------------------------ Markdown --
+// --------------------------------------------------------------- LaTeX --
 
-/// Escapes Markdown prose so that `*`, `_`, `` ` ``, `$`, `[` and `<` show
-/// as themselves.
-fn md_text(s: &str) -> String {
-    let mut o = String::with_capacity(s.len());
-    for c in s.chars() {
-        if "\\*_`$[]<".contains(c) {
-            o.push('\\');
-        }
-        o.push(c);
+/// Where LaTeX is going: the article (with hyperref), or a fragment to
+/// `\input` in a document we know nothing about.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Target {
+    Article,
+    Fragment,
+}
+
+/// A heading; in the article, with a plain-text PDF bookmark when the
+/// title has math.
+fn latex_heading(cmd: &str, title: &str, target: Target) -> String {
+    let tex = prose::latex(title);
+    let plain = prose::ascii(title);
+    if target == Target::Fragment || tex == plain {
+        format!("\\{cmd}{{{tex}}}")
+    } else {
+        format!("\\{cmd}{{\\texorpdfstring{{{tex}}}{{{plain}}}}}")
     }
+}
+
+const LATEX_PREAMBLE: &str = r"\documentclass[11pt,a4paper]{article}
+\usepackage[T1]{fontenc}
+\usepackage[utf8]{inputenc}
+\usepackage{lmodern}
+\usepackage{amsmath}
+\usepackage{amssymb}
+\usepackage[margin=2.2cm]{geometry}
+\usepackage[hidelinks]{hyperref}
+\allowdisplaybreaks
+\tracinglostchars=2
+\setlength{\parindent}{0pt}
+\setlength{\parskip}{0.5\baselineskip}
+";
+
+fn generated_comment(o: &mut String) {
+    let _ = writeln!(
+        o,
+        "% Generated by `hdot notes` from the derivation files; do not edit.\n\
+         % Refresh with: {REFRESH_COMMAND}"
+    );
+}
+
+/// Whether the document is divided into chapters.
+fn has_chapters(doc: &Document) -> bool {
+    doc.chapters.iter().any(|c| !c.title.is_empty())
+}
+
+/// The lecture notes as a complete LaTeX article: a section per chapter
+/// and a subsection per derivation (a section per derivation when there
+/// are no chapters).
+pub fn latex_document(doc: &Document) -> String {
+    let mut o = String::new();
+    generated_comment(&mut o);
+    o.push_str(LATEX_PREAMBLE);
+    let _ = writeln!(o, "\\title{{{}}}", prose::latex(&doc.title));
+    let _ = writeln!(o, "\\author{{{}}}", prose::latex(&doc.author));
+    let _ = writeln!(o, "\\date{{}}\n");
+    let _ = writeln!(o, "\\begin{{document}}\n\\maketitle\n");
+    if !doc.intro.trim().is_empty() {
+        let _ = writeln!(o, "{}\n", prose::latex(doc.intro.trim()));
+    }
+    o.push_str("\\tableofcontents\n");
+    let chapters = has_chapters(doc);
+    for c in &doc.chapters {
+        if chapters {
+            let _ = writeln!(
+                o,
+                "\n\\clearpage\n{}",
+                latex_heading("section", &c.title, Target::Article)
+            );
+            if !c.intro.trim().is_empty() {
+                let _ = writeln!(o, "{}\n", prose::latex(c.intro.trim()));
+            }
+        }
+        for (k, s) in c.sections.iter().enumerate() {
+            if !chapters || k > 0 {
+                o.push_str("\n\\clearpage");
+            }
+            o.push('\n');
+            latex_section(&mut o, s, if chapters { 1 } else { 0 }, Target::Article);
+        }
+    }
+    o.push_str("\n\\end{document}\n");
     o
 }
+
+/// One derivation as a LaTeX fragment to `\input` in an existing
+/// document: a `\section` with its steps, needing only the packages
+/// amsmath and amssymb (no preamble, no macros of hdot's own). It is the
+/// same section the notes print.
+pub fn latex_fragment(d: &crate::derivation::Derivation) -> String {
+    let mut o = String::new();
+    let _ = writeln!(
+        o,
+        "% {} --- generated by hdot from {}; \\input this file in a document\n\
+         % that loads amsmath and amssymb.",
+        prose::ascii(&d.title),
+        d.path
+    );
+    latex_section(&mut o, &Section::of(d, None), 0, Target::Fragment);
+    o
+}
+
+const LEVELS: [&str; 3] = ["section", "subsection", "subsubsection"];
+
+fn latex_section(o: &mut String, s: &Section, level: usize, target: Target) {
+    let _ = writeln!(o, "{}", latex_heading(LEVELS[level], &s.title, target));
+    let _ = writeln!(o, "\\label{{sec:{}}}\n", label_key(&s.name));
+    let _ = writeln!(o, "\\textbf{{Source:}} {}\\\\", prose::latex(&s.source));
+    let _ = writeln!(o, "\\textbf{{File:}} \\texttt{{{}}}\n", latex_code(&s.path));
+    if !s.summary.is_empty() {
+        let _ = writeln!(o, "{}\n", prose::latex(&s.summary));
+    }
+    let sub = LEVELS[level + 1];
+    let _ = writeln!(o, "\\{sub}*{{What is assumed}}");
+    let mut items: Vec<String> = s.assumptions.iter().map(|a| prose::latex(a)).collect();
+    if !s.constants.is_empty() {
+        items.push(format!("Constants: ${}$.", symbol_list(&s.constants)));
+    }
+    if !s.time.is_empty() {
+        items.push(format!("Functions of time: ${}$.", symbol_list(&s.time)));
+    }
+    for (name, def, doc) in &s.abbreviations {
+        items.push(format!(
+            "Abbreviation: ${} = {}${}",
+            print::latex_symbol(name, 0),
+            print::latex(def),
+            latex_doc_suffix(doc)
+        ));
+    }
+    if !s.frames.is_empty() {
+        items.push(
+            "Frames, each with its angular velocity $\\boldsymbol{\\Omega}$ relative to the \
+             inertial frame $N$, in the frame's own axes:"
+                .to_owned(),
+        );
+    }
+    if !items.is_empty() {
+        let _ = writeln!(o, "\\begin{{itemize}}");
+        for it in &items {
+            let _ = writeln!(o, "  \\item{{}} {it}");
+        }
+        if !s.frames.is_empty() {
+            let _ = writeln!(o, "  \\begin{{itemize}}");
+            for f in &s.frames {
+                let parent = match &f.parent {
+                    Some(p) => format!(" (turned from ${}$)", print::latex_symbol(p, 0)),
+                    None => String::new(),
+                };
+                let omega = omega_inline(f);
+                let axes = symbol_list(&f.axes);
+                let doc = latex_doc_suffix(&f.doc);
+                let name = print::latex_symbol(&f.name, 0);
+                if math_width(&omega) <= 40.0 {
+                    let _ = writeln!(
+                        o,
+                        "    \\item{{}} ${name}$, axes ${axes}${parent}: \
+                         $\\boldsymbol{{\\Omega}} = {omega}${doc}"
+                    );
+                } else {
+                    let _ = writeln!(
+                        o,
+                        "    \\item{{}} ${name}$, axes ${axes}${parent}{doc}:\n\
+                         \\begin{{align*}}\n{}\n\\end{{align*}}",
+                        equations_lines(&f.omega, LINE_BUDGET).join(" \\\\\n")
+                    );
+                }
+            }
+            let _ = writeln!(o, "  \\end{{itemize}}");
+        }
+        let _ = writeln!(o, "\\end{{itemize}}");
+    }
+    let _ = writeln!(o, "\\{sub}*{{Steps}}");
+    for (n, st) in s.steps.iter().enumerate() {
+        let _ = writeln!(
+            o,
+            "\\par\\medskip\\noindent\\textbf{{Step {}: ${}$.}}\\quad {}",
+            n + 1,
+            latex_label(&st.label, ""),
+            prose::latex(&sentence(&st.doc))
+        );
+        let frame = st
+            .frame
+            .as_ref()
+            .map(|f| format!(", components in frame ${}$", print::latex_symbol(f, 0)))
+            .unwrap_or_default();
+        let _ = writeln!(
+            o,
+            "{{\\raggedright Written in the file as \\texttt{{{}}}{frame}.\\par}}",
+            latex_code(&st.formula)
+        );
+        let _ = writeln!(
+            o,
+            "\\begin{{align*}}\n{}\n\\end{{align*}}",
+            step_lines(st, LINE_BUDGET)
+        );
+        match &st.verdict {
+            Verdict::NoExpectation => {
+                let _ = writeln!(o, "\\emph{{No expectation is stated for this step.}}\n");
+            }
+            Verdict::Holds => {
+                let _ = writeln!(o, "$\\checkmark$ Equals the expected (textbook) form.\n");
+            }
+            Verdict::Fails(f) => {
+                let _ = writeln!(
+                    o,
+                    "\\textbf{{Does not equal the expected form}} (derived $-$ expected is shown):"
+                );
+                let _ = writeln!(
+                    o,
+                    "\\begin{{align*}}\n{}\n\\end{{align*}}\n",
+                    failure_lines(f, LINE_BUDGET)
+                );
+            }
+        }
+    }
+}
+
+fn latex_doc_suffix(doc: &str) -> String {
+    if doc.is_empty() {
+        String::new()
+    } else {
+        format!(" --- {}", prose::latex(doc))
+    }
+}
+
+// -------------------------------------------------------------- slides --
+
+const SLIDES_PREAMBLE: &str = r"\documentclass[11pt]{beamer}
+\usepackage[T1]{fontenc}
+\usepackage[utf8]{inputenc}
+\usepackage{lmodern}
+\usepackage{amsmath}
+\usepackage{amssymb}
+\usetheme{default}
+\setbeamertemplate{navigation symbols}{}
+\setbeamertemplate{footline}[frame number]
+\tracinglostchars=2
+";
+
+/// The notes as LaTeX Beamer slides: a title frame, a frame of contents,
+/// then for each derivation a frame with its summary and what is assumed,
+/// and one frame per shown step with its result in textbook form.
+pub fn slides_document(doc: &Document) -> String {
+    let mut o = String::new();
+    generated_comment(&mut o);
+    o.push_str(SLIDES_PREAMBLE);
+    let _ = writeln!(o, "\\title{{{}}}", prose::latex(&doc.title));
+    let _ = writeln!(o, "\\author{{{}}}", prose::latex(&doc.author));
+    let _ = writeln!(o, "\\date{{}}\n");
+    let _ = writeln!(
+        o,
+        "\\begin{{document}}\n\\begin{{frame}}\n\\titlepage\n\\end{{frame}}\n"
+    );
+    if has_chapters(doc) {
+        let _ = writeln!(
+            o,
+            "\\begin{{frame}}{{Contents}}\n\\tableofcontents\n\\end{{frame}}\n"
+        );
+    }
+    for c in &doc.chapters {
+        slides_chapter(&mut o, c);
+    }
+    o.push_str("\\end{document}\n");
+    o
+}
+
+fn frame_title(title: &str) -> String {
+    prose::latex(title)
+}
+
+fn slides_chapter(o: &mut String, c: &Chapter) {
+    if !c.title.is_empty() {
+        let _ = writeln!(o, "\\section{{{}}}", latex_heading_plain(&c.title));
+    }
+    for s in &c.sections {
+        if c.title.is_empty() {
+            let _ = writeln!(o, "\\section{{{}}}", latex_heading_plain(&s.title));
+        }
+        let _ = writeln!(
+            o,
+            "\\begin{{frame}}[t]{{{}}}\n{{\\footnotesize {}\\par}}\\medskip",
+            frame_title(&s.title),
+            prose::latex(&s.source)
+        );
+        if !s.summary.is_empty() {
+            let _ = writeln!(o, "{{\\small {}\\par}}", prose::latex(&s.summary));
+        }
+        if !s.assumptions.is_empty() {
+            let _ = writeln!(o, "\\begin{{itemize}}\\small");
+            for a in &s.assumptions {
+                let _ = writeln!(o, "  \\item {}", prose::latex(a));
+            }
+            let _ = writeln!(o, "\\end{{itemize}}");
+        }
+        let _ = writeln!(o, "\\end{{frame}}\n");
+        for st in &s.steps {
+            let title = if st.doc.trim().is_empty() {
+                format!("${}$", latex_label(&st.label, ""))
+            } else {
+                prose::latex(&sentence(&st.doc))
+            };
+            let _ = writeln!(
+                o,
+                "\\begin{{frame}}[t]{{{}}}\n{{\\footnotesize {}\\par}}",
+                frame_title(&s.title),
+                title
+            );
+            let _ = writeln!(
+                o,
+                "\\begin{{align*}}\n{}\n\\end{{align*}}",
+                step_lines(st, SLIDE_BUDGET)
+            );
+            match &st.verdict {
+                Verdict::NoExpectation => {}
+                Verdict::Holds => {
+                    let _ = writeln!(o, "{{\\footnotesize $\\checkmark$ the textbook form\\par}}");
+                }
+                Verdict::Fails(_) => {
+                    let _ = writeln!(
+                        o,
+                        "{{\\footnotesize\\textbf{{Does not equal the expected form.}}\\par}}"
+                    );
+                }
+            }
+            let _ = writeln!(o, "\\end{{frame}}\n");
+        }
+    }
+}
+
+/// A heading for Beamer's outline (which cannot hold every construct): the
+/// prose as LaTeX, protected.
+fn latex_heading_plain(title: &str) -> String {
+    let tex = prose::latex(title);
+    let plain = prose::ascii(title);
+    if tex == plain {
+        tex
+    } else {
+        format!("\\texorpdfstring{{{tex}}}{{{plain}}}")
+    }
+}
+
+// ------------------------------------------------------------ coverage --
+
+/// The printer-coverage test document: every entry of [`coverage`] in an
+/// `align*` block, as a complete LaTeX article. It is not part of the
+/// notes; `scripts/build_notes` compiles it to prove each construct the
+/// printer can emit typesets.
+pub fn coverage_document() -> String {
+    let mut o = String::new();
+    let _ = writeln!(
+        o,
+        "% Generated by `hdot notes --printer-coverage`; a test document."
+    );
+    o.push_str(LATEX_PREAMBLE);
+    let _ = writeln!(o, "\\begin{{document}}\n\\section*{{Printer coverage}}\n");
+    let _ = writeln!(
+        o,
+        "{}\n",
+        prose::latex(
+            "These expressions are built in code, not derived: together they use every \
+             construct the LaTeX printer can emit, so that compiling this document proves \
+             each of them typesets."
+        )
+    );
+    for c in coverage() {
+        let _ = writeln!(
+            o,
+            "\\par\\medskip\\noindent {}\n\\begin{{align*}}\n{}\n\\end{{align*}}",
+            prose::latex(&sentence(&capitalise(c.what))),
+            equation_lines(
+                &latex_label(c.label, c.component),
+                &print::latex(&c.expr),
+                LINE_BUDGET
+            )
+            .join(" \\\\\n")
+        );
+    }
+    o.push_str("\n\\end{document}\n");
+    o
+}
+
+// ------------------------------------------------------------ Markdown --
 
 /// Inline code that may itself contain backticks.
 fn md_code(s: &str) -> String {
@@ -757,45 +895,61 @@ fn md_anchor(name: &str) -> String {
 
 /// The lecture notes as one Markdown page with `$$` math: the same
 /// content as [`latex_document`], in the same order.
-pub fn markdown_document(ds: &[Derivation]) -> String {
+pub fn markdown_document(doc: &Document) -> String {
     let mut o = String::new();
-    let _ = writeln!(o, "# {}\n", md_text(TITLE));
+    let _ = writeln!(o, "# {}\n", prose::markdown(&doc.title));
     let _ = writeln!(
         o,
         "<!-- Generated by `hdot notes` from the derivation files; do not edit. \
          Refresh with: {REFRESH_COMMAND} -->\n"
     );
-    let _ = writeln!(
-        o,
-        "{}\n",
-        md_text(
-            "Every equation below is derived by hdot's exact engine from H = [I]ω, \
-             the frames' angular velocities and the transport theorem, and checked \
-             against the textbook form stated in the derivation file. Each section \
-             says what is assumed, shows each step as written in the file and its \
-             result in textbook form, and says whether the result equals the \
-             expected form."
-        )
-    );
+    if !doc.author.is_empty() {
+        let _ = writeln!(o, "*{}*\n", prose::markdown(&doc.author));
+    }
+    if !doc.intro.trim().is_empty() {
+        let _ = writeln!(o, "{}\n", prose::markdown(doc.intro.trim()));
+    }
+    let chapters = has_chapters(doc);
     let _ = writeln!(o, "## Contents\n");
-    for (k, d) in ds.iter().enumerate() {
-        let _ = writeln!(
-            o,
-            "{}. [{}](#{})",
-            k + 1,
-            md_text(&d.title),
-            md_anchor(&d.name)
-        );
+    for (i, c) in doc.chapters.iter().enumerate() {
+        if chapters {
+            let _ = writeln!(o, "{}. {}", i + 1, prose::markdown(&c.title));
+        }
+        for (k, s) in c.sections.iter().enumerate() {
+            let indent = if chapters { "   " } else { "" };
+            let _ = writeln!(
+                o,
+                "{indent}{}. [{}](#{})",
+                k + 1,
+                prose::markdown(&s.title),
+                md_anchor(&s.name)
+            );
+        }
     }
-    let _ = writeln!(
-        o,
-        "{}. [Appendix: Printer coverage](#printer-coverage)\n",
-        ds.len() + 1
-    );
-    for (k, d) in ds.iter().enumerate() {
-        markdown_section(&mut o, k + 1, d);
+    o.push('\n');
+    for (i, c) in doc.chapters.iter().enumerate() {
+        if chapters {
+            let _ = writeln!(o, "## {}. {}\n", i + 1, prose::markdown(&c.title));
+            if !c.intro.trim().is_empty() {
+                let _ = writeln!(o, "{}\n", prose::markdown(c.intro.trim()));
+            }
+        }
+        for (k, s) in c.sections.iter().enumerate() {
+            let number = if chapters {
+                format!("{}.{}", i + 1, k + 1)
+            } else {
+                format!("{}.", k + 1)
+            };
+            markdown_section(&mut o, &number, s, if chapters { 3 } else { 2 });
+        }
     }
-    markdown_coverage(&mut o);
+    o
+}
+
+/// One derivation as Markdown: the section the notes print.
+pub fn markdown_fragment(d: &crate::derivation::Derivation) -> String {
+    let mut o = String::new();
+    markdown_section(&mut o, "", &Section::of(d, None), 2);
     o
 }
 
@@ -803,115 +957,96 @@ fn md_math_block(o: &mut String, body: &str) {
     let _ = writeln!(o, "$$\n\\begin{{aligned}}\n{body}\n\\end{{aligned}}\n$$\n");
 }
 
-fn markdown_section(o: &mut String, n: usize, d: &Derivation) {
-    let _ = writeln!(o, "<a id=\"{}\"></a>\n", md_anchor(&d.name));
-    let _ = writeln!(o, "## {n}. {}\n", md_text(&d.title));
-    let _ = writeln!(o, "**Source:** {}  ", md_text(&d.source));
-    let _ = writeln!(o, "**File:** {}\n", md_code(&d.path));
-    if !d.summary.trim().is_empty() {
-        let _ = writeln!(o, "{}\n", md_text(d.summary.trim()));
+fn markdown_section(o: &mut String, number: &str, s: &Section, level: usize) {
+    let h = "#".repeat(level);
+    let sub = "#".repeat(level + 1);
+    let _ = writeln!(o, "<a id=\"{}\"></a>\n", md_anchor(&s.name));
+    let number = if number.is_empty() {
+        String::new()
+    } else {
+        format!("{number} ")
+    };
+    let _ = writeln!(o, "{h} {number}{}\n", prose::markdown(&s.title));
+    let _ = writeln!(o, "**Source:** {}  ", prose::markdown(&s.source));
+    let _ = writeln!(o, "**File:** {}\n", md_code(&s.path));
+    if !s.summary.is_empty() {
+        let _ = writeln!(o, "{}\n", prose::markdown(&s.summary));
     }
-    let _ = writeln!(o, "### What is assumed\n");
-    for a in &d.assumptions {
-        let _ = writeln!(o, "- {}", md_text(a));
+    let _ = writeln!(o, "{sub} What is assumed\n");
+    for a in &s.assumptions {
+        let _ = writeln!(o, "- {}", prose::markdown(a));
     }
-    let consts = symbol_list(d, |x| matches!(x, Decl::Constant));
-    let time = symbol_list(d, |x| matches!(x, Decl::Time));
-    if !consts.is_empty() {
-        let _ = writeln!(o, "- Constants: ${}$.", consts.join(",\\ "));
+    if !s.constants.is_empty() {
+        let _ = writeln!(o, "- Constants: ${}$.", symbol_list(&s.constants));
     }
-    if !time.is_empty() {
-        let _ = writeln!(o, "- Functions of time: ${}$.", time.join(",\\ "));
+    if !s.time.is_empty() {
+        let _ = writeln!(o, "- Functions of time: ${}$.", symbol_list(&s.time));
     }
-    for a in &d.abbreviations {
+    for (name, def, doc) in &s.abbreviations {
         let _ = writeln!(
             o,
             "- Abbreviation: ${} = {}${}",
-            print::latex_symbol(&a.name, 0),
-            print::latex(&Expr::from_poly(&a.definition)),
-            md_doc_suffix(&a.doc)
+            print::latex_symbol(name, 0),
+            print::latex(def),
+            md_doc_suffix(doc)
         );
     }
-    if d.frames.len() > 1 {
+    if !s.frames.is_empty() {
         let _ = writeln!(
             o,
             "- Frames, each with its angular velocity $\\boldsymbol{{\\Omega}}$ relative to \
              the inertial frame $N$, in the frame's own axes:"
         );
-        for (k, f) in d.frames.iter().enumerate().skip(1) {
+        for f in &s.frames {
             let parent = match &f.parent {
-                Some((p, _)) => format!(" (turned from ${}$)", print::latex_symbol(p, 0)),
+                Some(p) => format!(" (turned from ${}$)", print::latex_symbol(p, 0)),
                 None => String::new(),
             };
             let _ = writeln!(
                 o,
                 "  - ${}$, axes ${}${parent}: $\\boldsymbol{{\\Omega}} = {}${}",
                 print::latex_symbol(&f.name, 0),
-                f.axes
-                    .iter()
-                    .map(|a| print::latex_symbol(a, 0))
-                    .collect::<Vec<_>>()
-                    .join(",\\ "),
-                frame_omega(d, k),
+                symbol_list(&f.axes),
+                omega_inline(f),
                 md_doc_suffix(&f.doc)
             );
         }
     }
-    let _ = writeln!(o, "\n### Steps\n");
-    for (k, s) in d.steps.iter().filter(|s| s.show).enumerate() {
+    let _ = writeln!(o, "\n{sub} Steps\n");
+    for (k, st) in s.steps.iter().enumerate() {
         let _ = writeln!(
             o,
             "**Step {}: ${}$.** {}\n",
             k + 1,
-            latex_label(&s.label, ""),
-            md_text(&sentence(&s.doc))
+            latex_label(&st.label, ""),
+            prose::markdown(&sentence(&st.doc))
         );
-        let frame = vector_frame(s)
+        let frame = st
+            .frame
+            .as_ref()
             .map(|f| format!(", components in frame ${}$", print::latex_symbol(f, 0)))
             .unwrap_or_default();
         let _ = writeln!(
             o,
             "Written in the file as {}{frame}.\n",
-            md_code(&s.formula)
+            md_code(&st.formula)
         );
-        md_math_block(o, &step_lines(s));
-        if s.checks.is_empty() {
-            let _ = writeln!(o, "*No expectation is stated for this step.*\n");
-        } else if s.checks.iter().all(Check::holds) {
-            let _ = writeln!(o, "✓ Equals the expected (textbook) form.\n");
-        } else {
-            let _ = writeln!(
-                o,
-                "✗ **Does not equal the expected form** (derived − expected is shown):\n"
-            );
-            let lines: Vec<String> = s
-                .checks
-                .iter()
-                .filter(|c| !c.holds())
-                .flat_map(|c| {
-                    let (lhs, exp, diff) = failed_check_math(s, c);
-                    let mut l = equation_lines(&format!("{lhs}^{{\\text{{expected}}}}"), &exp);
-                    l.extend(equation_lines(r"\text{difference}", &diff));
-                    l
-                })
-                .collect();
-            md_math_block(o, &lines.join(" \\\\\n"));
+        md_math_block(o, &step_lines(st, LINE_BUDGET));
+        match &st.verdict {
+            Verdict::NoExpectation => {
+                let _ = writeln!(o, "*No expectation is stated for this step.*\n");
+            }
+            Verdict::Holds => {
+                let _ = writeln!(o, "✓ Equals the expected (textbook) form.\n");
+            }
+            Verdict::Fails(f) => {
+                let _ = writeln!(
+                    o,
+                    "✗ **Does not equal the expected form** (derived − expected is shown):\n"
+                );
+                md_math_block(o, &failure_lines(f, LINE_BUDGET));
+            }
         }
-    }
-}
-
-fn markdown_coverage(o: &mut String) {
-    let _ = writeln!(o, "<a id=\"printer-coverage\"></a>\n");
-    let _ = writeln!(o, "## Appendix: Printer coverage\n");
-    let _ = writeln!(
-        o,
-        "These expressions are built in code, not derived: together they use every \
-         construct the LaTeX printer can emit, so that compiling these notes proves \
-         each of them typesets.\n"
-    );
-    for c in coverage() {
-        let _ = writeln!(o, "{}\n", md_text(&sentence(&capitalise(c.what))));
-        md_math_block(o, &coverage_lines(&c));
     }
 }
 
@@ -919,7 +1054,7 @@ fn md_doc_suffix(doc: &str) -> String {
     if doc.is_empty() {
         String::new()
     } else {
-        format!(" — {}", md_text(doc))
+        format!(" — {}", prose::markdown(doc))
     }
 }
 
@@ -934,7 +1069,7 @@ mod tests {
             parts,
             vec!["a", r"+ \left(b - c\right) d", r"- \frac{1}{2} e^{x - y}"]
         );
-        let lines = equation_lines("H_x", &vec!["I_x \\omega_x"; 20].join(" + "));
+        let lines = equation_lines("H_x", &vec!["I_x \\omega_x"; 20].join(" + "), LINE_BUDGET);
         assert!(lines.len() > 1);
         assert!(lines[0].starts_with("H_x &= "));
         assert!(lines[1].starts_with(r"&\quad {} + "));
@@ -942,7 +1077,7 @@ mod tests {
             r"\frac{{1}}{{2}} \left({}\right)",
             vec!["m v_x^{2}"; 30].join(" + ")
         );
-        let lines = equation_lines("T", &long);
+        let lines = equation_lines("T", &long, LINE_BUDGET);
         assert!(lines.len() > 1);
         assert!(lines[0].starts_with(r"T &= \frac{1}{2} \left(m v_x^{2} + "));
         assert!(lines[0].ends_with(r"\right."));

@@ -229,41 +229,8 @@ fn write_under_neg(e: &Expr, id: Id, style: &Cached, out: &mut String) {
 /// The Greek names the printers know (`omega` → ω / `\omega`), in the
 /// order of their table.
 pub fn greek_names() -> impl Iterator<Item = &'static str> {
-    GREEK.iter().map(|g| g.0)
+    crate::symbols::GREEK.iter().map(|g| g.0)
 }
-
-const GREEK: &[(&str, &str, &str)] = &[
-    ("alpha", r"\alpha", "α"),
-    ("beta", r"\beta", "β"),
-    ("gamma", r"\gamma", "γ"),
-    ("delta", r"\delta", "δ"),
-    ("epsilon", r"\varepsilon", "ε"),
-    ("zeta", r"\zeta", "ζ"),
-    ("eta", r"\eta", "η"),
-    ("theta", r"\theta", "θ"),
-    ("kappa", r"\kappa", "κ"),
-    ("lambda", r"\lambda", "λ"),
-    ("mu", r"\mu", "μ"),
-    ("nu", r"\nu", "ν"),
-    ("xi", r"\xi", "ξ"),
-    ("pi", r"\pi", "π"),
-    ("rho", r"\rho", "ρ"),
-    ("sigma", r"\sigma", "σ"),
-    ("tau", r"\tau", "τ"),
-    ("phi", r"\phi", "φ"),
-    ("chi", r"\chi", "χ"),
-    ("psi", r"\psi", "ψ"),
-    ("omega", r"\omega", "ω"),
-    ("Gamma", r"\Gamma", "Γ"),
-    ("Delta", r"\Delta", "Δ"),
-    ("Theta", r"\Theta", "Θ"),
-    ("Lambda", r"\Lambda", "Λ"),
-    ("Pi", r"\Pi", "Π"),
-    ("Sigma", r"\Sigma", "Σ"),
-    ("Phi", r"\Phi", "Φ"),
-    ("Psi", r"\Psi", "Ψ"),
-    ("Omega", r"\Omega", "Ω"),
-];
 
 /// Splits a symbol name into its base and subscript: `omega_x` → (`omega`, `x`).
 fn split_name(name: &str) -> (&str, Option<&str>) {
@@ -288,8 +255,8 @@ fn latex_base(base: &str) -> String {
     if let Some(inner) = base.strip_suffix("bar").filter(|b| !b.is_empty()) {
         return format!(r"\bar{{{}}}", latex_base(inner));
     }
-    if let Some(g) = GREEK.iter().find(|g| g.0 == base) {
-        return g.1.to_owned();
+    if let Some((latex, _)) = crate::symbols::greek(base) {
+        return latex.to_owned();
     }
     if let Some(c) = primed_base(base) {
         return format!("{c}'");
@@ -305,8 +272,8 @@ fn unicode_base(base: &str) -> String {
     if let Some(inner) = base.strip_suffix("bar").filter(|b| !b.is_empty()) {
         return format!("{}\u{304}", unicode_base(inner));
     }
-    if let Some(g) = GREEK.iter().find(|g| g.0 == base) {
-        return g.2.to_owned();
+    if let Some((_, c)) = crate::symbols::greek(base) {
+        return c.to_string();
     }
     if let Some(c) = primed_base(base) {
         return format!("{c}′");
@@ -317,12 +284,7 @@ fn unicode_base(base: &str) -> String {
 fn latex_sub(sub: &str) -> String {
     let parts: Vec<String> = sub
         .split('_')
-        .map(|p| {
-            GREEK
-                .iter()
-                .find(|g| g.0 == p)
-                .map_or(p.to_owned(), |g| g.1.to_owned())
-        })
+        .map(|p| crate::symbols::greek(p).map_or(p.to_owned(), |g| g.0.to_owned()))
         .collect();
     let s = parts.join(",");
     if s.chars().count() == 1 {

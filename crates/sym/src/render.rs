@@ -10,6 +10,7 @@ use std::fmt::Write;
 use crate::derivation::{Derivation, Step, Value};
 use crate::expr::Expr;
 use crate::print::{self, Latex, Sympy, Unicode, latex_symbol, unicode_symbol};
+use crate::prose;
 use crate::symbols::Decl;
 
 /// The output formats.
@@ -17,9 +18,10 @@ use crate::symbols::Decl;
 pub enum Format {
     /// Unicode text for a terminal.
     Unicode,
-    /// LaTeX `align*` blocks for lecture notes.
+    /// The derivation's section of the lecture notes, as a LaTeX fragment
+    /// to `\input` (needs amsmath and amssymb).
     Latex,
-    /// Markdown with `$$` math.
+    /// The derivation's section of the notes in Markdown with `$$` math.
     Markdown,
     /// Python source that rebuilds every equation with sympy.
     Sympy,
@@ -31,8 +33,8 @@ pub enum Format {
 pub fn render(d: &Derivation, format: Format) -> String {
     match format {
         Format::Unicode => unicode(d),
-        Format::Latex => latex(d),
-        Format::Markdown => markdown(d),
+        Format::Latex => crate::notes::latex_fragment(d),
+        Format::Markdown => crate::notes::markdown_fragment(d),
         Format::Sympy => sympy(d),
         Format::Json => serde_json::to_string_pretty(&json(d)).expect("JSON of plain data") + "\n",
     }
@@ -71,34 +73,16 @@ pub fn latex_label(label: &str, component: &str) -> String {
     }
 }
 
-/// The unknown a component of a solved list is the value of (θ̈ in
-/// θ̈ = …), when the step is one.
-fn unknown_of(s: &Step, component: &str) -> Option<Expr> {
-    let Value::List { labels, .. } = &s.value else {
-        return None;
-    };
-    let a = labels.iter().find(|a| a.to_string() == component)?;
-    let mut e = Expr::new();
-    e.push(crate::expr::Node::Atom(*a));
-    Some(e)
-}
-
 /// The left side of component `component` of step `s` in LaTeX: the
 /// unknown for a solved list (`\ddot{\theta}`), else the label with the
-/// component.
+/// component (see [`crate::document::step_lhs`]).
 pub fn step_lhs_latex(s: &Step, component: &str) -> String {
-    match unknown_of(s, component) {
-        Some(e) => print::latex(&e),
-        None => latex_label(&s.label, component),
-    }
+    crate::document::step_lhs(s, component).latex()
 }
 
 /// [`step_lhs_latex`] in Unicode (`θ̈`, `ΣM_x`).
 pub fn step_lhs_unicode(s: &Step, component: &str) -> String {
-    match unknown_of(s, component) {
-        Some(e) => print::unicode(&e),
-        None => unicode_label(&s.label, component),
-    }
+    crate::document::step_lhs(s, component).unicode()
 }
 
 /// A label with component in Unicode: `ΣM_x`.
@@ -134,16 +118,17 @@ fn frame_omega_unicode(d: &Derivation, k: usize) -> String {
 
 fn unicode(d: &Derivation) -> String {
     let mut o = String::new();
-    let _ = writeln!(o, "{}", d.title);
-    let _ = writeln!(o, "{}", "=".repeat(d.title.chars().count()));
-    let _ = writeln!(o, "Source: {}", d.source);
+    let title = prose::unicode(&d.title);
+    let _ = writeln!(o, "{title}");
+    let _ = writeln!(o, "{}", "=".repeat(title.chars().count()));
+    let _ = writeln!(o, "Source: {}", prose::unicode(&d.source));
     if !d.summary.is_empty() {
-        let _ = writeln!(o, "\n{}", d.summary.trim());
+        let _ = writeln!(o, "\n{}", prose::unicode(d.summary.trim()));
     }
     if !d.assumptions.is_empty() {
         let _ = writeln!(o, "\nAssumptions:");
         for a in &d.assumptions {
-            let _ = writeln!(o, "  • {a}");
+            let _ = writeln!(o, "  • {}", prose::unicode(a));
         }
     }
     let consts = unicode_names(d, |x| matches!(x, Decl::Constant));
@@ -201,7 +186,7 @@ fn doc_suffix(doc: &str) -> String {
     if doc.is_empty() {
         String::new()
     } else {
-        format!("  — {doc}")
+        format!("  — {}", prose::unicode(doc))
     }
 }
 
@@ -224,524 +209,19 @@ fn write_checks_unicode(o: &mut String, s: &Step) {
     }
 }
 
-/// LaTeX-escapes plain text (titles and prose) for pdflatex with the T1
-/// font encoding and `inputenc` utf8.
-///
-/// ASCII specials are escaped; Unicode mathematics becomes inline math:
-/// Greek letters, operators (×, ·, ≥, ∫, Σ, →, …), super- and subscript
-/// digits (`r²` → `r$^{2}$`), a letter with a combining or precomposed dot
-/// (`ω̇`, `Ḣ` → `$\dot{\omega}$`, `$\dot{H}$`); a single letter with a
-/// short subscript (`I_xy`, `ω_z`) is set as math (`$I_{xy}$`). Typographic
-/// punctuation becomes its LaTeX ligature (`—` → `---`). The accented letters
-/// of Latin-1 are left as they are (inputenc knows them); any other
-/// character is written as its code point (`[U+2603]`), so the output
-/// never holds a character pdflatex cannot typeset.
+/// Prose (titles, summaries, docs) as LaTeX text with its notation set
+/// as math; see [`crate::prose`].
 ///
 /// # Example
 /// ```
 /// use hdot_sym::render::latex_text;
-/// assert_eq!(latex_text("ΣM = Ḣ, 50% & ω̇_x"), r"$\Sigma$M = $\dot{H}$, 50\% \& $\dot{\omega}_{x}$");
-/// assert_eq!(latex_text("I_xy = ∫xy dm ≥ 0"), r"$I_{xy}$ = $\int$xy dm $\geq$ 0");
+/// assert_eq!(latex_text("ΣM = Ḣ, 50% & ω̇_x"), r"$\Sigma M = \dot{H}$, 50\% \& $\dot{\omega}_{x}$");
 /// ```
 pub fn latex_text(s: &str) -> String {
-    let chars: Vec<char> = s.chars().collect();
-    let mut segs: Vec<Seg> = Vec::new();
-    let mut i = 0;
-    while i < chars.len() {
-        let c = chars[i];
-        // A letter followed by a combining accent.
-        if let Some(acc) = chars.get(i + 1).and_then(|&n| combining_accent(n)) {
-            let base = unicode_math(c).unwrap_or_else(|| math_letter(c));
-            push_math(&mut segs, &format!("{acc}{{{base}}}"));
-            i += 2;
-            continue;
-        }
-        if c == '_'
-            && let Some(len) = subscript_run(&chars, i)
-        {
-            // A single-letter word before the underscore becomes math too.
-            if let Some(Seg::Text(t)) = segs.last_mut() {
-                let mut it = t.chars().rev();
-                if let (Some(l), next) = (it.next(), it.next())
-                    && l.is_ascii_alphabetic()
-                    && next.is_none_or(|n| !n.is_ascii_alphanumeric() && n != '\\')
-                {
-                    t.pop();
-                    if t.is_empty() {
-                        segs.pop();
-                    }
-                    push_math(&mut segs, &l.to_string());
-                }
-            }
-            let sub: String = chars[i + 1..i + 1 + len]
-                .iter()
-                .map(|&c| match unicode_math(c) {
-                    Some(m) => format!("{{{m}}}"),
-                    None => c.to_string(),
-                })
-                .collect();
-            push_math(&mut segs, &format!("_{{{sub}}}"));
-            i += 1 + len;
-            continue;
-        }
-        match c {
-            '\\' => push_text(&mut segs, r"\textbackslash{}"),
-            '&' | '%' | '$' | '#' | '_' | '{' | '}' => push_text(&mut segs, &format!("\\{c}")),
-            '~' => push_text(&mut segs, r"\textasciitilde{}"),
-            '^' => push_text(&mut segs, r"\textasciicircum{}"),
-            '<' => push_text(&mut segs, r"\textless{}"),
-            '>' => push_text(&mut segs, r"\textgreater{}"),
-            '|' => push_text(&mut segs, r"\textbar{}"),
-            c if c.is_ascii() => push_text(&mut segs, &c.to_string()),
-            c => {
-                if let Some(t) = text_symbol(c) {
-                    push_text(&mut segs, t);
-                } else if let Some(m) = unicode_math(c) {
-                    push_math(&mut segs, &m);
-                } else if let Some((acc, base)) = precomposed_accent(c) {
-                    push_math(&mut segs, &format!("{acc}{{{base}}}"));
-                } else if matches!(c, 'À'..='ÿ') && c.is_alphabetic() {
-                    push_text(&mut segs, &c.to_string());
-                } else {
-                    push_text(&mut segs, &format!("[U+{:04X}]", c as u32));
-                }
-            }
-        }
-        i += 1;
-    }
-    let mut out = String::with_capacity(s.len() + 16);
-    for seg in segs {
-        match seg {
-            Seg::Text(t) => out.push_str(&t),
-            Seg::Math(m) => {
-                let _ = write!(out, "${m}$");
-            }
-        }
-    }
-    out
+    crate::prose::latex(s)
 }
 
-/// A piece of escaped prose: text, or math to be set between `$`.
-enum Seg {
-    Text(String),
-    Math(String),
-}
-
-fn push_text(segs: &mut Vec<Seg>, t: &str) {
-    match segs.last_mut() {
-        Some(Seg::Text(s)) => s.push_str(t),
-        _ => segs.push(Seg::Text(t.to_owned())),
-    }
-}
-
-/// Appends math, merging with math just before it (`ω` + `_z` → `\omega_{z}`).
-fn push_math(segs: &mut Vec<Seg>, m: &str) {
-    match segs.last_mut() {
-        Some(Seg::Math(s)) => {
-            // `\omega` followed by a letter needs a space to stay a command.
-            let ends_in_command = s
-                .rsplit('\\')
-                .next()
-                .is_some_and(|w| !w.is_empty() && w.chars().all(|c| c.is_ascii_alphabetic()))
-                && s.contains('\\');
-            if ends_in_command && m.starts_with(|c: char| c.is_ascii_alphabetic()) {
-                s.push(' ');
-            }
-            s.push_str(m);
-        }
-        _ => segs.push(Seg::Math(m.to_owned())),
-    }
-}
-
-/// The length of a subscript after the `_` at `i`: 1 to 4 letters or
-/// digits (ASCII or Greek) after a letter, digit, `)` or math character,
-/// and followed by neither a letter nor a digit nor another `_`.
-fn subscript_run(chars: &[char], i: usize) -> Option<usize> {
-    let prev = *chars.get(i.checked_sub(1)?)?;
-    if !(prev.is_alphanumeric() || prev == ')' || combining_accent(prev).is_some()) {
-        return None;
-    }
-    let ok = |c: char| c.is_ascii_alphanumeric() || greek_char(c).is_some();
-    let len = chars[i + 1..].iter().take_while(|&&c| ok(c)).count();
-    let next = chars.get(i + 1 + len).copied();
-    // A word before the underscore (`dt_rel`) is code, not a subscript.
-    let word_start = chars[..i]
-        .iter()
-        .rev()
-        .take_while(|c| c.is_alphanumeric() || combining_accent(**c).is_some())
-        .filter(|c| combining_accent(**c).is_none())
-        .count();
-    let single = prev == ')' || word_start <= 1;
-    ((1..=4).contains(&len) && single && next.is_none_or(|n| !n.is_alphanumeric() && n != '_'))
-        .then_some(len)
-}
-
-/// A letter as math: itself when ASCII, else its code point as text.
-fn math_letter(c: char) -> String {
-    if c.is_ascii_alphanumeric() {
-        c.to_string()
-    } else {
-        format!(r"\text{{[U+{:04X}]}}", c as u32)
-    }
-}
-
-/// Combining accents over the preceding letter: dots of time derivatives,
-/// hat, bar, tilde, vector arrow.
-fn combining_accent(c: char) -> Option<&'static str> {
-    Some(match c {
-        '\u{307}' => r"\dot",
-        '\u{308}' => r"\ddot",
-        '\u{20DB}' => r"\dddot",
-        '\u{20DC}' => r"\ddddot",
-        '\u{302}' => r"\hat",
-        '\u{303}' => r"\tilde",
-        '\u{304}' | '\u{305}' => r"\bar",
-        '\u{20D7}' => r"\vec",
-        _ => return None,
-    })
-}
-
-/// Precomposed Latin letters with a dot, diaeresis or bar above (`Ḣ`,
-/// `ẋ`, `ẍ`, `ā`): time derivatives and mean values in prose. Latin-1
-/// letters with a diaeresis (`ö`) are left to the text font.
-fn precomposed_accent(c: char) -> Option<(&'static str, char)> {
-    const DOT: &[(char, char)] = &[
-        ('Ḃ', 'B'),
-        ('ḃ', 'b'),
-        ('Ċ', 'C'),
-        ('ċ', 'c'),
-        ('Ḋ', 'D'),
-        ('ḋ', 'd'),
-        ('Ė', 'E'),
-        ('ė', 'e'),
-        ('Ḟ', 'F'),
-        ('ḟ', 'f'),
-        ('Ġ', 'G'),
-        ('ġ', 'g'),
-        ('Ḣ', 'H'),
-        ('ḣ', 'h'),
-        ('İ', 'I'),
-        ('Ṁ', 'M'),
-        ('ṁ', 'm'),
-        ('Ṅ', 'N'),
-        ('ṅ', 'n'),
-        ('Ȯ', 'O'),
-        ('ȯ', 'o'),
-        ('Ṗ', 'P'),
-        ('ṗ', 'p'),
-        ('Ṙ', 'R'),
-        ('ṙ', 'r'),
-        ('Ṡ', 'S'),
-        ('ṡ', 's'),
-        ('Ṫ', 'T'),
-        ('ṫ', 't'),
-        ('Ẇ', 'W'),
-        ('ẇ', 'w'),
-        ('Ẋ', 'X'),
-        ('ẋ', 'x'),
-        ('Ẏ', 'Y'),
-        ('ẏ', 'y'),
-        ('Ż', 'Z'),
-        ('ż', 'z'),
-    ];
-    const DDOT: &[(char, char)] = &[
-        ('Ḧ', 'H'),
-        ('ḧ', 'h'),
-        ('ẗ', 't'),
-        ('Ẅ', 'W'),
-        ('ẅ', 'w'),
-        ('Ẍ', 'X'),
-        ('ẍ', 'x'),
-    ];
-    const BAR: &[(char, char)] = &[
-        ('Ā', 'A'),
-        ('ā', 'a'),
-        ('Ē', 'E'),
-        ('ē', 'e'),
-        ('Ī', 'I'),
-        ('ī', 'i'),
-        ('Ō', 'O'),
-        ('ō', 'o'),
-        ('Ū', 'U'),
-        ('ū', 'u'),
-        ('Ȳ', 'Y'),
-        ('ȳ', 'y'),
-    ];
-    if let Some(&(_, b)) = DOT.iter().find(|t| t.0 == c) {
-        return Some((r"\dot", b));
-    }
-    if let Some(&(_, b)) = BAR.iter().find(|t| t.0 == c) {
-        return Some((r"\bar", b));
-    }
-    DDOT.iter().find(|t| t.0 == c).map(|&(_, b)| (r"\ddot", b))
-}
-
-/// Typographic punctuation and text symbols, as text.
-fn text_symbol(c: char) -> Option<&'static str> {
-    Some(match c {
-        '§' => r"\S{}",
-        '¶' => r"\P{}",
-        '—' => "---",
-        '–' | '‒' => "--",
-        '‐' | '‑' => "-",
-        '‘' => "`",
-        '’' => "'",
-        '“' => "``",
-        '”' => "''",
-        '„' => ",,",
-        '«' => r"\guillemotleft{}",
-        '»' => r"\guillemotright{}",
-        '…' => r"\ldots{}",
-        '\u{a0}' => "~",
-        '\u{2009}' | '\u{202F}' | '\u{2002}' | '\u{2003}' => r"\,",
-        '\u{200B}' | '\u{FEFF}' | '\u{AD}' => "",
-        '†' => r"\dag{}",
-        '‡' => r"\ddag{}",
-        '©' => r"\textcopyright{}",
-        '®' => r"\textregistered{}",
-        '•' => r"\textbullet{}",
-        '✓' | '✔' => r"$\checkmark$",
-        '✗' | '✘' => r"$\times$",
-        _ => return None,
-    })
-}
-
-fn greek_char(c: char) -> Option<&'static str> {
-    const T: &[(char, &str)] = &[
-        ('α', r"\alpha"),
-        ('β', r"\beta"),
-        ('γ', r"\gamma"),
-        ('δ', r"\delta"),
-        ('ε', r"\varepsilon"),
-        ('ϵ', r"\epsilon"),
-        ('ζ', r"\zeta"),
-        ('η', r"\eta"),
-        ('θ', r"\theta"),
-        ('ϑ', r"\vartheta"),
-        ('ι', r"\iota"),
-        ('κ', r"\kappa"),
-        ('ϰ', r"\varkappa"),
-        ('λ', r"\lambda"),
-        ('μ', r"\mu"),
-        ('µ', r"\mu"),
-        ('ν', r"\nu"),
-        ('ξ', r"\xi"),
-        ('ο', "o"),
-        ('π', r"\pi"),
-        ('ϖ', r"\varpi"),
-        ('ρ', r"\rho"),
-        ('ϱ', r"\varrho"),
-        ('σ', r"\sigma"),
-        ('ς', r"\varsigma"),
-        ('τ', r"\tau"),
-        ('υ', r"\upsilon"),
-        ('φ', r"\phi"),
-        ('ϕ', r"\phi"),
-        ('χ', r"\chi"),
-        ('ψ', r"\psi"),
-        ('ω', r"\omega"),
-        ('Α', "A"),
-        ('Β', "B"),
-        ('Γ', r"\Gamma"),
-        ('Δ', r"\Delta"),
-        ('Ε', "E"),
-        ('Ζ', "Z"),
-        ('Η', "H"),
-        ('Θ', r"\Theta"),
-        ('Ι', "I"),
-        ('Κ', "K"),
-        ('Λ', r"\Lambda"),
-        ('Μ', "M"),
-        ('Ν', "N"),
-        ('Ξ', r"\Xi"),
-        ('Ο', "O"),
-        ('Π', r"\Pi"),
-        ('Ρ', "P"),
-        ('Σ', r"\Sigma"),
-        ('Τ', "T"),
-        ('Υ', r"\Upsilon"),
-        ('Φ', r"\Phi"),
-        ('Χ', "X"),
-        ('Ψ', r"\Psi"),
-        ('Ω', r"\Omega"),
-    ];
-    T.iter().find(|t| t.0 == c).map(|t| t.1)
-}
-
-/// The LaTeX math for a Unicode character that belongs in math: Greek
-/// letters, operators and relations, arrows, primes, super- and subscripts.
-/// `None` for characters that are text.
-pub fn unicode_math(c: char) -> Option<String> {
-    if let Some(g) = greek_char(c) {
-        return Some(g.to_owned());
-    }
-    const SUP: &str = "⁰¹²³⁴⁵⁶⁷⁸⁹";
-    const SUB: &str = "₀₁₂₃₄₅₆₇₈₉";
-    if let Some(k) = SUP.chars().position(|d| d == c) {
-        return Some(format!("^{{{k}}}"));
-    }
-    if let Some(k) = SUB.chars().position(|d| d == c) {
-        return Some(format!("_{{{k}}}"));
-    }
-    let s = match c {
-        '⁺' => "^{+}",
-        '⁻' => "^{-}",
-        'ⁿ' => "^{n}",
-        'ⁱ' => "^{i}",
-        'ᵀ' => "^{T}",
-        'ᵗ' => "^{t}",
-        '₊' => "_{+}",
-        '₋' => "_{-}",
-        'ₓ' => "_{x}",
-        'ᵧ' => "_{y}",
-        'ₐ' => "_{a}",
-        'ₑ' => "_{e}",
-        'ₒ' => "_{o}",
-        'ᵢ' => "_{i}",
-        'ⱼ' => "_{j}",
-        'ₖ' => "_{k}",
-        'ₙ' => "_{n}",
-        '×' => r"\times",
-        '·' | '⋅' => r"\cdot",
-        '÷' => r"\div",
-        '∗' => r"\ast",
-        '∘' => r"\circ",
-        '−' => "-",
-        '±' => r"\pm",
-        '∓' => r"\mp",
-        '≥' | '⩾' => r"\geq",
-        '≤' | '⩽' => r"\leq",
-        '≠' => r"\neq",
-        '≈' => r"\approx",
-        '≡' => r"\equiv",
-        '≔' => r"\mathrel{:=}",
-        '∼' => r"\sim",
-        '≪' => r"\ll",
-        '≫' => r"\gg",
-        '∝' => r"\propto",
-        '∫' => r"\int",
-        '∮' => r"\oint",
-        '∑' => r"\sum",
-        '∏' => r"\prod",
-        '∂' => r"\partial",
-        '∇' => r"\nabla",
-        '∞' => r"\infty",
-        '√' => r"\surd",
-        '∈' => r"\in",
-        '∉' => r"\notin",
-        '⊂' => r"\subset",
-        '⊆' => r"\subseteq",
-        '∪' => r"\cup",
-        '∩' => r"\cap",
-        '∀' => r"\forall",
-        '∃' => r"\exists",
-        '∅' => r"\emptyset",
-        '⊥' => r"\perp",
-        '∥' => r"\parallel",
-        '‖' => r"\|",
-        '∠' => r"\angle",
-        '→' => r"\to",
-        '←' => r"\leftarrow",
-        '↔' => r"\leftrightarrow",
-        '⇒' => r"\Rightarrow",
-        '⇐' => r"\Leftarrow",
-        '⇔' => r"\Leftrightarrow",
-        '↦' => r"\mapsto",
-        '⟨' => r"\langle",
-        '⟩' => r"\rangle",
-        '′' => "'",
-        '″' => "''",
-        '‴' => "'''",
-        '°' => r"^{\circ}",
-        '½' => r"\tfrac{1}{2}",
-        '¼' => r"\tfrac{1}{4}",
-        '¾' => r"\tfrac{3}{4}",
-        'ℏ' => r"\hbar",
-        'ℓ' => r"\ell",
-        '¬' => r"\neg",
-        '∧' => r"\wedge",
-        '∨' => r"\vee",
-        '⊗' => r"\otimes",
-        '⊕' => r"\oplus",
-        '⋯' => r"\cdots",
-        '⋮' => r"\vdots",
-        _ => return None,
-    };
-    Some(s.to_owned())
-}
-
-/// The `align*` block of one step.
-pub fn latex_step(s: &Step) -> String {
-    let mut o = String::from("\\begin{align*}\n");
-    let lines: Vec<String> = s
-        .components
-        .iter()
-        .map(|(c, e)| format!("  {} &= {}", step_lhs_latex(s, c), print::latex(e)))
-        .collect();
-    o.push_str(&lines.join(" \\\\\n"));
-    o.push_str("\n\\end{align*}\n");
-    o
-}
-
-fn latex(d: &Derivation) -> String {
-    let mut o = String::new();
-    let _ = writeln!(o, "% {} — generated by hdot from {}", d.title, d.path);
-    for s in d.steps.iter().filter(|s| s.show) {
-        if !s.doc.is_empty() {
-            let _ = writeln!(o, "% {}", s.doc);
-        }
-        o.push_str(&latex_step(s));
-    }
-    o
-}
-
-fn markdown(d: &Derivation) -> String {
-    let mut o = String::new();
-    let _ = writeln!(o, "## {}\n", d.title);
-    let _ = writeln!(o, "*Source:* {}  ", d.source);
-    let _ = writeln!(o, "*File:* `{}`\n", d.path);
-    if !d.summary.is_empty() {
-        let _ = writeln!(o, "{}\n", d.summary.trim());
-    }
-    if !d.assumptions.is_empty() {
-        let _ = writeln!(o, "**Assumptions.**\n");
-        for a in &d.assumptions {
-            let _ = writeln!(o, "- {a}");
-        }
-        o.push('\n');
-    }
-    for s in d.steps.iter().filter(|s| s.show) {
-        let _ = writeln!(
-            o,
-            "**{}** = `{}`{}\n",
-            s.name,
-            s.formula,
-            if s.doc.is_empty() {
-                String::new()
-            } else {
-                format!(" — {}", s.doc)
-            }
-        );
-        let lines: Vec<String> = s
-            .components
-            .iter()
-            .map(|(c, e)| format!("{} &= {}", step_lhs_latex(s, c), print::latex(e)))
-            .collect();
-        let _ = writeln!(
-            o,
-            "$$\n\\begin{{aligned}}\n{}\n\\end{{aligned}}\n$$\n",
-            lines.join(" \\\\\n")
-        );
-        if !s.checks.is_empty() {
-            if s.checks.iter().all(|c| c.holds()) {
-                let _ = writeln!(o, "✓ equals the expected (textbook) form.\n");
-            } else {
-                let _ = writeln!(o, "✗ does **not** equal the expected form.\n");
-            }
-        }
-    }
-    o
-}
+pub use crate::prose::unicode_math;
 
 /// A Python identifier for a symbol name that cannot clash with the
 /// names the export itself uses.

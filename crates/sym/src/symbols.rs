@@ -247,3 +247,96 @@ impl Symbols {
         })
     }
 }
+
+// ---------------------------------------------------------------- Greek --
+
+/// The Greek letters, one table for every printer and for prose: the
+/// symbol name used in derivation files, its LaTeX, its Unicode letter.
+/// `epsilon` prints as ε / `\varepsilon`, the form textbooks use.
+pub const GREEK: &[(&str, &str, char)] = &[
+    ("alpha", r"\alpha", 'α'),
+    ("beta", r"\beta", 'β'),
+    ("gamma", r"\gamma", 'γ'),
+    ("delta", r"\delta", 'δ'),
+    ("epsilon", r"\varepsilon", 'ε'),
+    ("zeta", r"\zeta", 'ζ'),
+    ("eta", r"\eta", 'η'),
+    ("theta", r"\theta", 'θ'),
+    ("iota", r"\iota", 'ι'),
+    ("kappa", r"\kappa", 'κ'),
+    ("lambda", r"\lambda", 'λ'),
+    ("mu", r"\mu", 'μ'),
+    ("nu", r"\nu", 'ν'),
+    ("xi", r"\xi", 'ξ'),
+    ("pi", r"\pi", 'π'),
+    ("rho", r"\rho", 'ρ'),
+    ("sigma", r"\sigma", 'σ'),
+    ("tau", r"\tau", 'τ'),
+    ("upsilon", r"\upsilon", 'υ'),
+    ("phi", r"\phi", 'φ'),
+    ("chi", r"\chi", 'χ'),
+    ("psi", r"\psi", 'ψ'),
+    ("omega", r"\omega", 'ω'),
+    ("Gamma", r"\Gamma", 'Γ'),
+    ("Delta", r"\Delta", 'Δ'),
+    ("Theta", r"\Theta", 'Θ'),
+    ("Lambda", r"\Lambda", 'Λ'),
+    ("Xi", r"\Xi", 'Ξ'),
+    ("Pi", r"\Pi", 'Π'),
+    ("Sigma", r"\Sigma", 'Σ'),
+    ("Upsilon", r"\Upsilon", 'Υ'),
+    ("Phi", r"\Phi", 'Φ'),
+    ("Psi", r"\Psi", 'Ψ'),
+    ("Omega", r"\Omega", 'Ω'),
+];
+
+/// Unicode Greek characters that have no name of their own in [`GREEK`]:
+/// variant forms, and capitals that look like Latin letters.
+const GREEK_VARIANTS: &[(char, &str)] = &[
+    ('ϵ', r"\epsilon"),
+    ('ϑ', r"\vartheta"),
+    ('ϰ', r"\varkappa"),
+    ('µ', r"\mu"),
+    ('ο', "o"),
+    ('ϖ', r"\varpi"),
+    ('ϱ', r"\varrho"),
+    ('ς', r"\varsigma"),
+    ('ϕ', r"\phi"),
+    ('Α', "A"),
+    ('Β', "B"),
+    ('Ε', "E"),
+    ('Ζ', "Z"),
+    ('Η', "H"),
+    ('Ι', "I"),
+    ('Κ', "K"),
+    ('Μ', "M"),
+    ('Ν', "N"),
+    ('Ο', "O"),
+    ('Ρ', "P"),
+    ('Τ', "T"),
+    ('Χ', "X"),
+];
+
+/// The Greek entry of a symbol name: `omega` → (`\omega`, `ω`).
+pub fn greek(name: &str) -> Option<(&'static str, char)> {
+    GREEK.iter().find(|g| g.0 == name).map(|g| (g.1, g.2))
+}
+
+/// The LaTeX of a Greek character: `ω` → `\omega`, `ϑ` → `\vartheta`.
+pub fn greek_latex(c: char) -> Option<&'static str> {
+    GREEK
+        .iter()
+        .find(|g| g.2 == c)
+        .map(|g| g.1)
+        .or_else(|| GREEK_VARIANTS.iter().find(|g| g.0 == c).map(|g| g.1))
+}
+
+/// The name of a Greek character, for plain ASCII (PDF bookmarks).
+pub fn greek_name(c: char) -> Option<&'static str> {
+    GREEK.iter().find(|g| g.2 == c).map(|g| g.0).or_else(|| {
+        GREEK_VARIANTS
+            .iter()
+            .find(|g| g.0 == c)
+            .map(|g| g.1.trim_start_matches('\\').trim_start_matches("var"))
+    })
+}

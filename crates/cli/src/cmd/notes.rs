@@ -1,49 +1,155 @@
-//! `hdot notes`: every derivation, step by step, as lecture notes in
-//! LaTeX and Markdown.
+//! `hdot notes`: derivations as lecture notes (LaTeX and Markdown), slides
+//! (LaTeX Beamer) and per-derivation LaTeX fragments.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::Args;
+use hdot_sym::course::{self, MANIFEST_FILE};
+use hdot_sym::derivation::Derivation;
+use hdot_sym::document::Course;
 use hdot_sym::notes;
 
 use crate::{catalog, output};
 
-/// Write the lecture notes: every derivation step by step, as a LaTeX
-/// document (`hdot-notes.tex`) and as Markdown with $$ math (`hdot-notes.md`).
+/// Write lecture notes: derivations step by step, as a LaTeX document
+/// (`hdot-notes.tex`) and as Markdown with $$ math (`hdot-notes.md`);
+/// with `--slides` also LaTeX Beamer slides (`hdot-slides.tex`), with
+/// `--fragments` one LaTeX fragment per derivation (`fragments/NAME.tex`,
+/// to \input in your own document).
 ///
-/// Exit status: 0 when written; 2 when a derivation file cannot be read or
-/// has an error (then nothing is written). A derivation whose expectation
-/// does not hold is still written, marked as such, and named on stderr.
+/// The derivations are the files and folders given (default: the
+/// derivations folder). Chapters, their order, the title and author line
+/// and the steps shown come from a notes manifest: `--manifest FILE`, or
+/// `notes.toml` in the one folder given (see docs/notes/README.md);
+/// without one, the derivations follow in file-name order.
+///
+/// Exit status: 0 when written; 2 when a derivation file or the manifest
+/// cannot be read or has an error (then nothing is written). A derivation
+/// whose expectation does not hold is still written, marked as such, and
+/// named on stderr.
 #[derive(Debug, Args)]
 pub struct NotesArgs {
-    /// Folder to write hdot-notes.tex and hdot-notes.md into.
+    /// Derivation files or folders of them (default: the derivations folder).
+    #[arg(value_name = "FILE|DIR")]
+    paths: Vec<PathBuf>,
+    /// Folder to write the notes into.
     #[arg(long, short, value_name = "DIR", default_value = "docs/notes")]
     out: PathBuf,
-    /// Folder of derivation files (default: ./derivations).
+    /// Folder of derivation files when no FILE|DIR is given (default: ./derivations).
     #[arg(long, value_name = "DIR")]
     dir: Option<PathBuf>,
+    /// The notes manifest (title, author, chapters, steps shown).
+    #[arg(long, value_name = "FILE", conflicts_with = "no_manifest")]
+    manifest: Option<PathBuf>,
+    /// Ignore any notes.toml: file-name order, no chapters.
+    #[arg(long)]
+    no_manifest: bool,
+    /// Also write LaTeX Beamer slides (hdot-slides.tex).
+    #[arg(long)]
+    slides: bool,
+    /// Also write one standalone LaTeX fragment per derivation (fragments/NAME.tex).
+    #[arg(long)]
+    fragments: bool,
+    /// Also write the printer-coverage test document (for scripts/build_notes).
+    #[arg(long, hide = true)]
+    printer_coverage: bool,
+}
+
+fn load_all(files: &[PathBuf]) -> Result<Vec<Derivation>, ExitCode> {
+    let mut ds = Vec::new();
+    for path in files {
+        match hdot_sym::derivation::load(path) {
+            Ok(d) => ds.push(d),
+            Err(diag) => {
+                eprintln!("{diag}");
+                eprintln!("error: no notes written");
+                return Err(ExitCode::from(2));
+            }
+        }
+    }
+    Ok(ds)
 }
 
 pub fn run(args: NotesArgs) -> anyhow::Result<ExitCode> {
-    let dir = catalog::derivations_dir(args.dir.as_deref());
-    let mut ds = Vec::new();
-    for path in catalog::all(&dir)? {
-        match hdot_sym::derivation::load(&path) {
-            Ok(d) => ds.push(d),
+    // The files, and the folder whose notes.toml applies.
+    let mut files = Vec::new();
+    let mut folders: Vec<PathBuf> = Vec::new();
+    if args.paths.is_empty() {
+        let dir = catalog::derivations_dir(args.dir.as_deref());
+        files = catalog::all(&dir)?;
+        folders.push(dir);
+    }
+    for p in &args.paths {
+        if p.is_dir() {
+            files.extend(catalog::all(p)?);
+            folders.push(p.clone());
+        } else if p.is_file() {
+            files.push(p.clone());
+        } else {
+            anyhow::bail!("no such derivation file or folder: {}", p.display());
+        }
+    }
+    let ds = match load_all(&files) {
+        Ok(ds) => ds,
+        Err(code) => return Ok(code),
+    };
+    let manifest: Option<PathBuf> = if args.no_manifest {
+        None
+    } else if let Some(m) = &args.manifest {
+        Some(m.clone())
+    } else if let [dir] = folders.as_slice() {
+        Some(dir.join(MANIFEST_FILE)).filter(|m| m.is_file())
+    } else {
+        None
+    };
+    let course = match &manifest {
+        Some(m) => match course::load(m, &ds) {
+            Ok(c) => c,
             Err(diag) => {
                 eprintln!("{diag}");
                 eprintln!("error: no notes written");
                 return Ok(ExitCode::from(2));
             }
+        },
+        None => Course::plain(&ds),
+    };
+    let doc = course.document(&ds);
+    let mut written: Vec<PathBuf> = Vec::new();
+    let mut write = |path: PathBuf, text: &str| -> anyhow::Result<()> {
+        output::write_atomic(&path, text.as_bytes())?;
+        written.push(path);
+        Ok(())
+    };
+    write(
+        args.out.join(notes::LATEX_FILE),
+        &notes::latex_document(&doc),
+    )?;
+    write(
+        args.out.join(notes::MARKDOWN_FILE),
+        &notes::markdown_document(&doc),
+    )?;
+    if args.slides {
+        write(
+            args.out.join(notes::SLIDES_FILE),
+            &notes::slides_document(&doc),
+        )?;
+    }
+    if args.fragments {
+        let dir: &Path = &args.out.join("fragments");
+        for d in &ds {
+            write(
+                dir.join(format!("{}.tex", d.name)),
+                &notes::latex_fragment(d),
+            )?;
         }
     }
-    let tex = notes::latex_document(&ds);
-    let md = notes::markdown_document(&ds);
-    let tex_path = args.out.join(notes::LATEX_FILE);
-    let md_path = args.out.join(notes::MARKDOWN_FILE);
-    output::write_atomic(&tex_path, tex.as_bytes())?;
-    output::write_atomic(&md_path, md.as_bytes())?;
+    if args.printer_coverage {
+        write(
+            args.out.join(notes::COVERAGE_FILE),
+            &notes::coverage_document(),
+        )?;
+    }
     for d in &ds {
         for (step, c) in d.failures() {
             eprintln!(
@@ -55,11 +161,24 @@ pub fn run(args: NotesArgs) -> anyhow::Result<ExitCode> {
             );
         }
     }
+    let shown: Vec<String> = written
+        .iter()
+        .take(3)
+        .map(|p| p.display().to_string())
+        .collect();
     println!(
-        "wrote {} and {} ({} derivations)",
-        tex_path.display(),
-        md_path.display(),
-        ds.len()
+        "wrote {}{} ({} derivations{})",
+        shown.join(", "),
+        if written.len() > 3 {
+            format!(" and {} more", written.len() - 3)
+        } else {
+            String::new()
+        },
+        ds.len(),
+        match &manifest {
+            Some(m) => format!(", arranged by {}", m.display()),
+            None => String::new(),
+        }
     );
     Ok(ExitCode::SUCCESS)
 }

@@ -1,0 +1,397 @@
+//! The document hdot writes about derivations, built once and rendered by
+//! each output format: `hdot derive` (one [`Section`]) and `hdot notes`
+//! (a [`Document`] of chapters of sections, arranged by a [`Course`]).
+//!
+//! A section holds prose (titles, summaries, docs, assumptions — written
+//! in hdot's notation and typeset by [`crate::prose`]), lists of symbols,
+//! and equations as expression trees with their left sides; it never holds
+//! printed LaTeX, so every backend prints the same content its own way.
+//!
+//! # Example
+//! ```
+//! let text = r#"
+//! title = "Angular momentum of a sphere"
+//! source = "example"
+//! [symbols]
+//! constants = ["I"]
+//! time = ["w_x", "w_y", "w_z"]
+//! [[frame]]
+//! name = "B"
+//! angular_velocity = "[w_x, w_y, w_z]"
+//! [[step]]
+//! name = "H"
+//! value = "principal(I, I, I) * angvel(B)"
+//! expect = ["I*w_x", "I*w_y", "I*w_z"]
+//! "#;
+//! let d = hdot_sym::derivation::load_str("sphere.toml", text).unwrap();
+//! let s = hdot_sym::document::Section::of(&d, None);
+//! assert_eq!(s.steps.len(), 1);
+//! assert_eq!(s.steps[0].equations.len(), 3);
+//! assert!(matches!(s.steps[0].verdict, hdot_sym::document::Verdict::Holds));
+//! ```
+
+use std::collections::BTreeMap;
+
+use crate::derivation::{Check, Derivation, Step, Value};
+use crate::expr::Expr;
+use crate::print;
+use crate::symbols::Decl;
+
+/// A whole document: lecture notes or slides.
+#[derive(Clone, Debug)]
+pub struct Document {
+    /// Title.
+    pub title: String,
+    /// Author line.
+    pub author: String,
+    /// Prose before the first chapter.
+    pub intro: String,
+    /// Chapters in order; a single chapter without a title means the
+    /// document is not divided into chapters.
+    pub chapters: Vec<Chapter>,
+}
+
+/// A chapter: a group of derivations under one heading.
+#[derive(Clone, Debug)]
+pub struct Chapter {
+    /// Heading; empty for a document without chapters.
+    pub title: String,
+    /// Prose before its first section.
+    pub intro: String,
+    /// Its derivations, in order.
+    pub sections: Vec<Section>,
+}
+
+/// One derivation.
+#[derive(Clone, Debug)]
+pub struct Section {
+    /// Short name (the file stem), for labels and anchors.
+    pub name: String,
+    /// Title (prose).
+    pub title: String,
+    /// Textbook source (prose).
+    pub source: String,
+    /// The file, as given.
+    pub path: String,
+    /// Summary (prose).
+    pub summary: String,
+    /// Assumptions (prose).
+    pub assumptions: Vec<String>,
+    /// Symbol names of the constants.
+    pub constants: Vec<String>,
+    /// Symbol names of the functions of time.
+    pub time: Vec<String>,
+    /// Abbreviations: name, definition, doc.
+    pub abbreviations: Vec<(String, Expr, String)>,
+    /// Frames other than the inertial one.
+    pub frames: Vec<FrameItem>,
+    /// The steps shown.
+    pub steps: Vec<StepBlock>,
+}
+
+/// A frame with its angular velocity.
+#[derive(Clone, Debug)]
+pub struct FrameItem {
+    /// Frame name.
+    pub name: String,
+    /// Axis names.
+    pub axes: Vec<String>,
+    /// The frame it is turned from, if declared so.
+    pub parent: Option<String>,
+    /// Ω in the frame's own axes, one equation per axis (`Ω_x = …`).
+    pub omega: Vec<Equation>,
+    /// Description.
+    pub doc: String,
+}
+
+/// The left side of an equation.
+#[derive(Clone, Debug)]
+pub enum Lhs {
+    /// A step label with a component: `Sigma M` and `x` (ΣM_x).
+    Label(String, String),
+    /// An expression: the unknown of a solved list (θ̈).
+    Expr(Expr),
+}
+
+impl Lhs {
+    /// LaTeX.
+    pub fn latex(&self) -> String {
+        match self {
+            Lhs::Label(l, c) => crate::render::latex_label(l, c),
+            Lhs::Expr(e) => print::latex(e),
+        }
+    }
+
+    /// Unicode.
+    pub fn unicode(&self) -> String {
+        match self {
+            Lhs::Label(l, c) => crate::render::unicode_label(l, c),
+            Lhs::Expr(e) => print::unicode(e),
+        }
+    }
+}
+
+/// An equation `lhs = rhs` with the right side as an expression tree.
+#[derive(Clone, Debug)]
+pub struct Equation {
+    /// Left side.
+    pub lhs: Lhs,
+    /// Right side.
+    pub rhs: Expr,
+}
+
+/// Whether a step's result equals its expectation.
+#[derive(Clone, Debug)]
+pub enum Verdict {
+    /// No expectation is stated.
+    NoExpectation,
+    /// Every expectation holds.
+    Holds,
+    /// Some do not: for each, the expected form and derived − expected.
+    Fails(Vec<(Equation, Equation)>),
+}
+
+/// One shown step.
+#[derive(Clone, Debug)]
+pub struct StepBlock {
+    /// Step name in the file.
+    pub name: String,
+    /// The label (`Sigma M`), without component.
+    pub label: String,
+    /// What the step does (prose).
+    pub doc: String,
+    /// The formula as written in the file.
+    pub formula: String,
+    /// The frame a vector's components are in.
+    pub frame: Option<String>,
+    /// The result, one equation per component.
+    pub equations: Vec<Equation>,
+    /// Whether it equals its expectation.
+    pub verdict: Verdict,
+}
+
+/// The left side of component `component` of step `s`: the unknown of a
+/// solved list (θ̈ in θ̈ = …), else the label with the component.
+pub fn step_lhs(s: &Step, component: &str) -> Lhs {
+    if let Value::List { labels, .. } = &s.value
+        && let Some(a) = labels.iter().find(|a| a.to_string() == component)
+    {
+        let mut e = Expr::new();
+        e.push(crate::expr::Node::Atom(*a));
+        return Lhs::Expr(e);
+    }
+    Lhs::Label(s.label.clone(), component.to_owned())
+}
+
+impl StepBlock {
+    /// The block of step `s`.
+    pub fn of(s: &Step) -> StepBlock {
+        let equations = s
+            .components
+            .iter()
+            .map(|(c, e)| Equation {
+                lhs: step_lhs(s, c),
+                rhs: e.clone(),
+            })
+            .collect();
+        let verdict = if s.checks.is_empty() {
+            Verdict::NoExpectation
+        } else if s.checks.iter().all(Check::holds) {
+            Verdict::Holds
+        } else {
+            Verdict::Fails(
+                s.checks
+                    .iter()
+                    .filter(|c| !c.holds())
+                    .map(|c| {
+                        (
+                            Equation {
+                                lhs: step_lhs(s, &c.component),
+                                rhs: c.expected.clone(),
+                            },
+                            Equation {
+                                lhs: step_lhs(s, &c.component),
+                                rhs: Expr::from_poly(&c.difference),
+                            },
+                        )
+                    })
+                    .collect(),
+            )
+        };
+        StepBlock {
+            name: s.name.clone(),
+            label: s.label.clone(),
+            doc: s.doc.clone(),
+            formula: s.formula.clone(),
+            frame: match &s.value {
+                Value::Vector(_, f) => Some(f.clone()),
+                _ => None,
+            },
+            equations,
+            verdict,
+        }
+    }
+}
+
+impl Section {
+    /// The section of derivation `d`, showing the steps named in `show`
+    /// (in the file's order), or the file's shown steps when `None`.
+    pub fn of(d: &Derivation, show: Option<&[String]>) -> Section {
+        let names = |want: fn(&Decl) -> bool| -> Vec<String> {
+            d.symbols
+                .names()
+                .iter()
+                .filter(|n| d.symbols.get(n).is_some_and(want))
+                .cloned()
+                .collect()
+        };
+        let frames = d
+            .frames
+            .iter()
+            .skip(1)
+            .map(|f| FrameItem {
+                name: f.name.clone(),
+                axes: f.axes.to_vec(),
+                parent: f.parent.as_ref().map(|(p, _)| p.clone()),
+                omega: f
+                    .axes
+                    .iter()
+                    .zip(&f.omega.0)
+                    .map(|(a, p)| Equation {
+                        lhs: Lhs::Label("Omega".into(), a.clone()),
+                        rhs: Expr::from_poly(p),
+                    })
+                    .collect(),
+                doc: f.doc.clone(),
+            })
+            .collect();
+        let steps = d
+            .steps
+            .iter()
+            .filter(|s| match show {
+                Some(list) => list.contains(&s.name),
+                None => s.show,
+            })
+            .map(StepBlock::of)
+            .collect();
+        Section {
+            name: d.name.clone(),
+            title: d.title.clone(),
+            source: d.source.clone(),
+            path: d.path.clone(),
+            summary: d.summary.trim().to_owned(),
+            assumptions: d.assumptions.clone(),
+            constants: names(|x| matches!(x, Decl::Constant)),
+            time: names(|x| matches!(x, Decl::Time)),
+            abbreviations: d
+                .abbreviations
+                .iter()
+                .map(|a| {
+                    (
+                        a.name.clone(),
+                        Expr::from_poly(&a.definition),
+                        a.doc.clone(),
+                    )
+                })
+                .collect(),
+            frames,
+            steps,
+        }
+    }
+}
+
+/// Default title of notes without a manifest.
+pub const DEFAULT_TITLE: &str = "Three-dimensional rigid-body kinetics: the derivations of hdot";
+
+/// Default author line.
+pub const DEFAULT_AUTHOR: &str = "Generated by hdot notes";
+
+/// Default introduction.
+pub const DEFAULT_INTRO: &str = "Every equation below is derived by hdot's exact engine from H = [I]ω, \
+     the frames' angular velocities and the transport theorem, and checked \
+     against the textbook form stated in the derivation file. Each section \
+     says what is assumed, shows each step as written in the file and its \
+     result in textbook form, and says whether the result equals the \
+     expected form.";
+
+/// How derivations are arranged into notes: title, author, chapters in
+/// the order of a course, and which steps to show. Read from a manifest
+/// (`derivations/notes.toml`, see [`crate::course`]) or
+/// [`Course::plain`].
+#[derive(Clone, Debug, Default)]
+pub struct Course {
+    /// Title.
+    pub title: String,
+    /// Author line.
+    pub author: String,
+    /// Introduction.
+    pub intro: String,
+    /// Chapters: title, introduction, derivation names.
+    pub chapters: Vec<(String, String, Vec<String>)>,
+    /// Steps to show, by derivation name (instead of the file's `show`).
+    pub steps: BTreeMap<String, Vec<String>>,
+}
+
+impl Course {
+    /// Notes without a manifest: the default title, every derivation in
+    /// the order given, no chapters.
+    pub fn plain(ds: &[Derivation]) -> Course {
+        Course {
+            title: DEFAULT_TITLE.into(),
+            author: DEFAULT_AUTHOR.into(),
+            intro: DEFAULT_INTRO.into(),
+            chapters: vec![(
+                String::new(),
+                String::new(),
+                ds.iter().map(|d| d.name.clone()).collect(),
+            )],
+            steps: BTreeMap::new(),
+        }
+    }
+
+    /// The document of `ds` arranged by this course. Derivations the
+    /// course does not name follow in a last chapter, *Further
+    /// derivations* (or at the end when there are no chapters); names the
+    /// course gives that are not among `ds` are skipped (a manifest is
+    /// checked against the files when it is read).
+    pub fn document(&self, ds: &[Derivation]) -> Document {
+        let mut used = vec![false; ds.len()];
+        let mut chapters: Vec<Chapter> = Vec::new();
+        for (title, intro, names) in &self.chapters {
+            let mut sections = Vec::new();
+            for n in names {
+                if let Some(k) = ds.iter().position(|d| d.name == *n) {
+                    used[k] = true;
+                    sections.push(Section::of(&ds[k], self.steps.get(n).map(Vec::as_slice)));
+                }
+            }
+            chapters.push(Chapter {
+                title: title.clone(),
+                intro: intro.clone(),
+                sections,
+            });
+        }
+        let rest: Vec<Section> = ds
+            .iter()
+            .zip(&used)
+            .filter(|(_, u)| !**u)
+            .map(|(d, _)| Section::of(d, self.steps.get(&d.name).map(Vec::as_slice)))
+            .collect();
+        if !rest.is_empty() {
+            match chapters.last_mut() {
+                Some(c) if c.title.is_empty() => c.sections.extend(rest),
+                _ => chapters.push(Chapter {
+                    title: "Further derivations".into(),
+                    intro: String::new(),
+                    sections: rest,
+                }),
+            }
+        }
+        Document {
+            title: self.title.clone(),
+            author: self.author.clone(),
+            intro: self.intro.clone(),
+            chapters,
+        }
+    }
+}

@@ -1,0 +1,686 @@
+//! Prose with mathematics in it: summaries, step docs, assumptions,
+//! sources and titles of derivation files.
+//!
+//! Prose is written in the notation hdot prints (ΣM_x, ω̇_z, (Ḣ_O)_Oxyz,
+//! I′ sin θ). [`pieces`] splits it into text and math: whatever stands
+//! between `$` signs is math, and outside them a run of words that is
+//! clearly notation (it holds a Greek letter, a dot or bar accent, a
+//! subscript such as `M_x`, a prime, a superscript, or an operator between
+//! such words) becomes one piece of math, so `ΣM_O = r̄ × m ā + Ḣ_G` is
+//! typeset as one formula, not as letters with literal underscores. Each
+//! output format renders the pieces: [`latex`] (and the PDF), [`markdown`]
+//! (`$…$` math) and [`unicode`] (the text as written, without `$`).
+//!
+//! Inside `$…$` the same notation is used: `$ΣM_O = (Ḣ_O)_Oxyz$`;
+//! multi-letter subscripts and `^` exponents are allowed there. A `$`
+//! without a closing `$` is a dollar sign.
+//!
+//! # Example
+//! ```
+//! use hdot_sym::prose;
+//! assert_eq!(
+//!     prose::latex("Transport theorem: ΣM_O = (Ḣ_O)_Oxyz + Ω × H_O."),
+//!     r"Transport theorem: $\Sigma M_{O} = (\dot{H}_{O})_{Oxyz} + \Omega \times H_{O}$."
+//! );
+//! assert_eq!(prose::latex("$T = ½ m v^2$ holds"), r"$T = \tfrac{1}{2} m v^{2}$ holds");
+//! assert_eq!(prose::markdown("the rate ω_z, 50%"), r"the rate $\omega_{z}$, 50%");
+//! assert_eq!(prose::unicode("$ω_z$ is constant"), "ω_z is constant");
+//! ```
+
+use crate::symbols;
+
+/// A piece of prose: text as written, or math as LaTeX.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Piece {
+    /// Plain text, unescaped.
+    Text(String),
+    /// Math, as LaTeX (without the `$`).
+    Math(String),
+}
+
+/// Splits prose into text and math (see the module documentation).
+pub fn pieces(s: &str) -> Vec<Piece> {
+    let mut out: Vec<Piece> = Vec::new();
+    let mut rest = s;
+    while !rest.is_empty() {
+        match explicit_math(rest) {
+            Some((before, math, after)) => {
+                words(before, &mut out);
+                push(&mut out, Piece::Math(math_latex(math.trim())));
+                rest = after;
+            }
+            None => {
+                words(rest, &mut out);
+                break;
+            }
+        }
+    }
+    out
+}
+
+/// The text before the first `$…$`, its content and the text after.
+fn explicit_math(s: &str) -> Option<(&str, &str, &str)> {
+    let open = s.find('$')?;
+    let close = s[open + 1..].find('$')? + open + 1;
+    if close == open + 1 {
+        return None;
+    }
+    Some((&s[..open], &s[open + 1..close], &s[close + 1..]))
+}
+
+fn push(out: &mut Vec<Piece>, p: Piece) {
+    match (out.last_mut(), p) {
+        (Some(Piece::Text(a)), Piece::Text(b)) => a.push_str(&b),
+        (_, Piece::Math(m)) if m.is_empty() => {}
+        (_, p) => out.push(p),
+    }
+}
+
+/// What a word of prose is, for the purpose of finding formulas in it.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum Kind {
+    /// Clearly notation: a Greek letter, an accent, a subscript, a prime…
+    Math,
+    /// An operator or relation between formulas (`=`, `+`, `×`).
+    Op,
+    /// A single letter, a number or a function name: math next to math.
+    Atom,
+    /// A word.
+    Word,
+}
+
+const OPS: &[&str] = &[
+    "=", "+", "−", "-", "×", "·", "≠", "≥", "≤", "≈", "→", "⇒", "/", "<", ">", "≡", "∝",
+];
+const FUNCTIONS: &[&str] = &["sin", "cos", "tan", "cot", "exp", "ln", "log"];
+
+fn kind(core: &str) -> Kind {
+    if core.is_empty() {
+        return Kind::Word;
+    }
+    if OPS.contains(&core) {
+        return Kind::Op;
+    }
+    let chars: Vec<char> = core.chars().collect();
+    let mathy = chars.iter().enumerate().any(|(i, &c)| {
+        symbols::greek_latex(c).is_some()
+            || combining_accent(c).is_some()
+            || precomposed_accent(c).is_some()
+            || (c != '−' && c != '…' && unicode_math(c).is_some())
+            || (c == '−' && chars.len() > 1)
+            || (c == '_' && subscript_len(&chars, i).is_some())
+            || (c == '^' && i > 0 && i + 1 < chars.len())
+            || (c == '=' && chars.len() > 1)
+    });
+    if mathy {
+        return Kind::Math;
+    }
+    // `d(m`, `(x)/dt`: letters in brackets or over a slash, as in a
+    // derivative written in prose.
+    let bracketed = chars.iter().any(|c| "()/".contains(*c))
+        && chars
+            .iter()
+            .all(|c| c.is_ascii_alphanumeric() || "()/".contains(*c))
+        && core
+            .split(|c: char| !c.is_ascii_alphabetic())
+            .all(|w| w.len() <= 2);
+    if bracketed {
+        return Kind::Atom;
+    }
+    let ascii_letters = chars.iter().all(|c| c.is_ascii_alphabetic());
+    if (ascii_letters && chars.len() == 1 && core != "a")
+        || FUNCTIONS.contains(&core)
+        || core.chars().all(|c| c.is_ascii_digit() || c == '.')
+            && core.starts_with(|c: char| c.is_ascii_digit())
+    {
+        return Kind::Atom;
+    }
+    Kind::Word
+}
+
+/// The length of a subscript after the `_` at `i` in a word: letters and
+/// digits (ASCII or Greek) after a letter, digit, accent, prime or `)`,
+/// up to the end of the word or a closing bracket.
+fn subscript_len(chars: &[char], i: usize) -> Option<usize> {
+    let prev = *chars.get(i.checked_sub(1)?)?;
+    if !(prev.is_alphanumeric()
+        || prev == ')'
+        || prev == '′'
+        || combining_accent(prev).is_some()
+        || symbols::greek_latex(prev).is_some())
+    {
+        return None;
+    }
+    // A word of several ASCII letters before the underscore (`dt_rel`) is
+    // code, not a symbol with a subscript.
+    let word: usize = chars[..i]
+        .iter()
+        .rev()
+        .take_while(|c| c.is_ascii_alphanumeric())
+        .count();
+    let at_start = i == word || !chars[i - word - 1].is_ascii_alphanumeric();
+    let two = word == 2 && at_start && {
+        let (a, b) = (chars[i - 2], chars[i - 1]);
+        a.is_ascii_uppercase() || (a == 'd' && b.is_ascii_uppercase())
+    };
+    if word > 1 && !two {
+        // Two letters are allowed when the first is a capital or a `d`
+        // before a capital (`dH_O/dt`); longer words (`dt_rel`) are code.
+        return None;
+    }
+    let ok = |c: char| c.is_ascii_alphanumeric() || symbols::greek_latex(c).is_some();
+    let len = chars[i + 1..].iter().take_while(|&&c| ok(c)).count();
+    let next = chars.get(i + 1 + len).copied();
+    (len >= 1 && next.is_none_or(|n| !n.is_alphanumeric() && n != '_')).then_some(len)
+}
+
+/// Splits `s` into words and turns each run of notation into math.
+fn words(s: &str, out: &mut Vec<Piece>) {
+    // Tokens: (leading punctuation, core, trailing punctuation, whitespace after).
+    struct Tok<'a> {
+        lead: &'a str,
+        core: &'a str,
+        trail: &'a str,
+        space: &'a str,
+        kind: Kind,
+    }
+    let mut toks: Vec<Tok> = Vec::new();
+    let mut rest = s;
+    // Leading whitespace.
+    let ws = rest.len() - rest.trim_start().len();
+    if ws > 0 {
+        push(out, Piece::Text(rest[..ws].to_owned()));
+        rest = &rest[ws..];
+    }
+    while !rest.is_empty() {
+        let end = rest.find(char::is_whitespace).unwrap_or(rest.len());
+        let word = &rest[..end];
+        let after = &rest[end..];
+        let ws = after.len() - after.trim_start().len();
+        let (lead, core, trail) = split_punct(word);
+        toks.push(Tok {
+            lead,
+            core,
+            trail,
+            space: &after[..ws],
+            kind: kind(core),
+        });
+        rest = &after[ws..];
+    }
+    // Runs: maximal sequences of Math/Op/Atom tokens without punctuation
+    // inside, holding at least one Math token (or an Op between Atoms),
+    // trimmed of operators at either end.
+    let mut k = 0;
+    while k < toks.len() {
+        let start = k;
+        let mut end = k; // exclusive
+        if toks[k].kind != Kind::Word {
+            end = k + 1;
+            while end < toks.len()
+                && toks[end].kind != Kind::Word
+                && toks[end].lead.is_empty()
+                && toks[end - 1].trail.is_empty()
+            {
+                end += 1;
+            }
+        }
+        // Trim operators from both ends.
+        let mut a = start;
+        let mut b = end;
+        while a < b && toks[a].kind == Kind::Op {
+            a += 1;
+        }
+        while b > a && toks[b - 1].kind == Kind::Op {
+            b -= 1;
+        }
+        let run = &toks[a..b];
+        let has_math = run.iter().any(|t| t.kind == Kind::Math)
+            || (run.len() >= 3 && run.iter().any(|t| t.kind == Kind::Op));
+        if end == start || !has_math {
+            // Not a formula: the first token as text.
+            let t = &toks[start];
+            push(
+                out,
+                Piece::Text(format!("{}{}{}{}", t.lead, t.core, t.trail, t.space)),
+            );
+            k = start + 1;
+            continue;
+        }
+        for t in &toks[start..a] {
+            push(
+                out,
+                Piece::Text(format!("{}{}{}{}", t.lead, t.core, t.trail, t.space)),
+            );
+        }
+        let first = &toks[a];
+        push(out, Piece::Text(first.lead.to_owned()));
+        let mut m = String::new();
+        for (j, t) in run.iter().enumerate() {
+            m.push_str(&math_latex(t.core));
+            if j + 1 < run.len() {
+                m.push(' ');
+            }
+        }
+        push(out, Piece::Math(m));
+        let last = &toks[b - 1];
+        push(out, Piece::Text(format!("{}{}", last.trail, last.space)));
+        for t in &toks[b..end] {
+            push(
+                out,
+                Piece::Text(format!("{}{}{}{}", t.lead, t.core, t.trail, t.space)),
+            );
+        }
+        k = end;
+    }
+}
+
+/// Splits a word into leading punctuation, core and trailing punctuation;
+/// a bracket stays in the core when it is matched inside it.
+fn split_punct(word: &str) -> (&str, &str, &str) {
+    let mut core = word;
+    let mut lead_len = 0;
+    let mut trail_len = 0;
+    loop {
+        let opens = core.matches(['(', '[']).count();
+        let closes = core.matches([')', ']']).count();
+        if let Some(c) = core.chars().last()
+            && (".,;:!?\"'’”".contains(c) && !(c == '\'' && core.len() > 1)
+                || (")]".contains(c) && closes > opens))
+        {
+            core = &core[..core.len() - c.len_utf8()];
+            trail_len += c.len_utf8();
+            continue;
+        }
+        if let Some(c) = core.chars().next()
+            && ("\"‘“".contains(c) || ("([".contains(c) && opens > closes))
+        {
+            core = &core[c.len_utf8()..];
+            lead_len += c.len_utf8();
+            continue;
+        }
+        break;
+    }
+    (&word[..lead_len], core, &word[word.len() - trail_len..])
+}
+
+/// LaTeX math for notation as hdot prints it: `ΣM_x` → `\Sigma M_{x}`,
+/// `(Ḣ_O)_Oxyz` → `(\dot{H}_{O})_{Oxyz}`, `sin²θ` → `\sin^{2}\theta`.
+pub fn math_latex(s: &str) -> String {
+    let chars: Vec<char> = s.chars().collect();
+    let mut o = String::new();
+    let mut i = 0;
+    // Whether `o` ends with a control word, so that a letter must be spaced.
+    let push_atom = |o: &mut String, t: &str| {
+        let ends_cmd = o.rsplit('\\').next().is_some_and(|w| {
+            o.contains('\\') && !w.is_empty() && w.chars().all(|c| c.is_ascii_alphabetic())
+        });
+        if ends_cmd && t.starts_with(|c: char| c.is_ascii_alphabetic()) {
+            o.push(' ');
+        }
+        o.push_str(t);
+    };
+    while i < chars.len() {
+        let c = chars[i];
+        if let Some(acc) = chars.get(i + 1).and_then(|&n| combining_accent(n)) {
+            let base = symbols::greek_latex(c).map_or_else(|| letter(c), str::to_owned);
+            push_atom(&mut o, &format!("{acc}{{{base}}}"));
+            i += 2;
+            continue;
+        }
+        if (c == '_' || c == '^') && i + 1 < chars.len() {
+            let ok = |c: char| c.is_ascii_alphanumeric() || symbols::greek_latex(c).is_some();
+            let len = chars[i + 1..].iter().take_while(|&&c| ok(c)).count();
+            if len > 0 {
+                let run = &chars[i + 1..i + 1 + len];
+                let sub: String = if len >= 3 && run.iter().all(|c| c.is_ascii_lowercase()) {
+                    // A word as a subscript (`r_rel`) is upright.
+                    format!(r"\mathrm{{{}}}", run.iter().collect::<String>())
+                } else {
+                    run.iter()
+                        .map(|&c| {
+                            symbols::greek_latex(c)
+                                .map_or_else(|| c.to_string(), |g| format!("{{{g}}}"))
+                        })
+                        .collect()
+                };
+                o.push_str(&format!("{c}{{{sub}}}"));
+                i += 1 + len;
+                continue;
+            }
+        }
+        if c.is_ascii_alphabetic() {
+            let len = chars[i..]
+                .iter()
+                .take_while(|c| c.is_ascii_alphabetic())
+                .count();
+            let w: String = chars[i..i + len].iter().collect();
+            if FUNCTIONS.contains(&w.as_str()) {
+                push_atom(&mut o, &format!("\\{w}"));
+                // A thin space between the function and its argument is
+                // LaTeX's own; a space in the source is dropped.
+            } else {
+                push_atom(&mut o, &w);
+            }
+            i += len;
+            continue;
+        }
+        let t: String = match c {
+            ' ' => " ".into(),
+            '{' => r"\{".into(),
+            '}' => r"\}".into(),
+            '%' | '&' | '#' => format!("\\{c}"),
+            '\\' => r"\backslash ".into(),
+            '~' => r"\sim ".into(),
+            '$' => r"\$".into(),
+            c if c.is_ascii() => c.to_string(),
+            c => {
+                if let Some(g) = symbols::greek_latex(c) {
+                    g.to_owned()
+                } else if let Some(m) = unicode_math(c) {
+                    m
+                } else if let Some((acc, b)) = precomposed_accent(c) {
+                    format!("{acc}{{{b}}}")
+                } else if let Some(t) = text_symbol(c) {
+                    format!(r"\text{{{t}}}")
+                } else {
+                    letter(c)
+                }
+            }
+        };
+        push_atom(&mut o, &t);
+        i += 1;
+    }
+    o
+}
+
+/// A letter as math: itself when ASCII, a Latin-1 letter as text, else its
+/// code point (visible in the output, never a pdflatex error).
+fn letter(c: char) -> String {
+    if c.is_ascii_alphanumeric() {
+        c.to_string()
+    } else if matches!(c, 'À'..='ÿ') && c.is_alphabetic() {
+        format!(r"\text{{{c}}}")
+    } else {
+        format!(r"\text{{[U+{:04X}]}}", c as u32)
+    }
+}
+
+/// Text for LaTeX: special characters escaped, typographic punctuation
+/// as LaTeX ligatures; any notation that is not in a math piece is kept
+/// visible as its code point.
+fn latex_plain(s: &str) -> String {
+    let mut o = String::with_capacity(s.len());
+    for c in s.chars() {
+        match c {
+            '\\' => o.push_str(r"\textbackslash{}"),
+            '&' | '%' | '$' | '#' | '_' | '{' | '}' => {
+                o.push('\\');
+                o.push(c);
+            }
+            '~' => o.push_str(r"\textasciitilde{}"),
+            '^' => o.push_str(r"\textasciicircum{}"),
+            '<' => o.push_str(r"\textless{}"),
+            '>' => o.push_str(r"\textgreater{}"),
+            '|' => o.push_str(r"\textbar{}"),
+            c if c.is_ascii() => o.push(c),
+            c => {
+                if let Some(t) = text_symbol(c) {
+                    o.push_str(t);
+                } else if matches!(c, 'À'..='ÿ') && c.is_alphabetic() {
+                    o.push(c);
+                } else if let Some(m) =
+                    unicode_math(c).or_else(|| symbols::greek_latex(c).map(str::to_owned))
+                {
+                    o.push('$');
+                    o.push_str(&m);
+                    o.push('$');
+                } else if let Some((acc, b)) = precomposed_accent(c) {
+                    o.push_str(&format!("${acc}{{{b}}}$"));
+                } else {
+                    o.push_str(&format!("[U+{:04X}]", c as u32));
+                }
+            }
+        }
+    }
+    o
+}
+
+/// Prose as LaTeX text with `$…$` math; it holds only characters pdflatex
+/// can typeset (ASCII and the accented letters of Latin-1).
+pub fn latex(s: &str) -> String {
+    let mut o = String::with_capacity(s.len() + 16);
+    for p in pieces(s) {
+        match p {
+            Piece::Text(t) => o.push_str(&latex_plain(&t)),
+            Piece::Math(m) => {
+                o.push('$');
+                o.push_str(&m);
+                o.push('$');
+            }
+        }
+    }
+    o
+}
+
+/// Prose as Markdown with `$…$` math; `*`, `_`, `` ` ``, `[`, `<` and `\`
+/// in text show as themselves.
+pub fn markdown(s: &str) -> String {
+    let mut o = String::with_capacity(s.len() + 16);
+    for p in pieces(s) {
+        match p {
+            Piece::Text(t) => {
+                for c in t.chars() {
+                    if "\\*_`$[]<".contains(c) {
+                        o.push('\\');
+                    }
+                    o.push(c);
+                }
+            }
+            Piece::Math(m) => {
+                o.push('$');
+                o.push_str(&m);
+                o.push('$');
+            }
+        }
+    }
+    o
+}
+
+/// Prose for a terminal: as written, without the `$` around math.
+pub fn unicode(s: &str) -> String {
+    let mut o = String::with_capacity(s.len());
+    let mut rest = s;
+    while let Some((before, math, after)) = explicit_math(rest) {
+        o.push_str(before);
+        o.push_str(math.trim());
+        rest = after;
+    }
+    o.push_str(rest);
+    o
+}
+
+/// Plain ASCII (PDF bookmarks): Greek letters by name, other symbols dropped.
+pub fn ascii(s: &str) -> String {
+    let mut o = String::new();
+    for c in unicode(s).chars() {
+        match c {
+            c if c.is_ascii_alphanumeric() || " .,:;()'-/+=".contains(c) => o.push(c),
+            '−' => o.push('-'),
+            c => {
+                if let Some(name) = symbols::greek_name(c) {
+                    o.push_str(name);
+                } else if let Some((_, b)) = precomposed_accent(c) {
+                    o.push(b);
+                }
+            }
+        }
+    }
+    o
+}
+
+// ------------------------------------------------------------- tables --
+
+/// Combining accents over the preceding letter: dots of time derivatives,
+/// hat, bar, tilde, vector arrow.
+pub fn combining_accent(c: char) -> Option<&'static str> {
+    Some(match c {
+        '\u{307}' => r"\dot",
+        '\u{308}' => r"\ddot",
+        '\u{20DB}' => r"\dddot",
+        '\u{20DC}' => r"\ddddot",
+        '\u{302}' => r"\hat",
+        '\u{303}' => r"\tilde",
+        '\u{304}' | '\u{305}' => r"\bar",
+        '\u{20D7}' => r"\vec",
+        _ => return None,
+    })
+}
+
+/// Precomposed Latin letters with a dot, diaeresis or bar above (`Ḣ`,
+/// `ẋ`, `ẍ`, `ā`): time derivatives and mean values in prose. Latin-1
+/// letters with a diaeresis (`ö`) are left to the text font.
+fn precomposed_accent(c: char) -> Option<(&'static str, char)> {
+    const DOT: &str = "ḂBḃbĊCċcḊDḋdĖEėeḞFḟfĠGġgḢHḣhİIṀMṁmṄNṅnȮOȯoṖPṗpṘRṙrṠSṡsṪTṫtẆWẇwẊXẋxẎYẏyŻZżz";
+    const DDOT: &str = "ḦHḧhẗtẄWẅwẌXẍx";
+    const BAR: &str = "ĀAāaĒEēeĪIīiŌOōoŪUūuȲYȳy";
+    for (table, acc) in [(DOT, r"\dot"), (DDOT, r"\ddot"), (BAR, r"\bar")] {
+        let cs: Vec<char> = table.chars().collect();
+        if let Some(p) = cs.chunks(2).find(|p| p[0] == c) {
+            return Some((acc, p[1]));
+        }
+    }
+    None
+}
+
+/// Typographic punctuation and text symbols, as LaTeX text.
+fn text_symbol(c: char) -> Option<&'static str> {
+    Some(match c {
+        '§' => r"\S{}",
+        '¶' => r"\P{}",
+        '—' => "---",
+        '–' | '‒' => "--",
+        '‐' | '‑' => "-",
+        '‘' => "`",
+        '’' => "'",
+        '“' => "``",
+        '”' => "''",
+        '„' => ",,",
+        '«' => r"\guillemotleft{}",
+        '»' => r"\guillemotright{}",
+        '…' => r"\ldots{}",
+        '\u{a0}' => "~",
+        '\u{2009}' | '\u{202F}' | '\u{2002}' | '\u{2003}' => r"\,",
+        '\u{200B}' | '\u{FEFF}' | '\u{AD}' => "",
+        '†' => r"\dag{}",
+        '‡' => r"\ddag{}",
+        '©' => r"\textcopyright{}",
+        '®' => r"\textregistered{}",
+        '•' => r"\textbullet{}",
+        '✓' | '✔' => r"$\checkmark$",
+        '✗' | '✘' => r"$\times$",
+        _ => return None,
+    })
+}
+
+/// The LaTeX math for a Unicode character that belongs in math (Greek
+/// letters are in [`symbols::greek_latex`]): operators and relations,
+/// arrows, primes, super- and subscripts. `None` for characters that are
+/// text.
+pub fn unicode_math(c: char) -> Option<String> {
+    if let Some(g) = symbols::greek_latex(c) {
+        return Some(g.to_owned());
+    }
+    const SUP: &str = "⁰¹²³⁴⁵⁶⁷⁸⁹";
+    const SUB: &str = "₀₁₂₃₄₅₆₇₈₉";
+    if let Some(k) = SUP.chars().position(|d| d == c) {
+        return Some(format!("^{{{k}}}"));
+    }
+    if let Some(k) = SUB.chars().position(|d| d == c) {
+        return Some(format!("_{{{k}}}"));
+    }
+    let s = match c {
+        '⁺' => "^{+}",
+        '⁻' => "^{-}",
+        'ⁿ' => "^{n}",
+        'ⁱ' => "^{i}",
+        'ᵀ' => "^{T}",
+        'ᵗ' => "^{t}",
+        '₊' => "_{+}",
+        '₋' => "_{-}",
+        'ₓ' => "_{x}",
+        'ᵧ' => "_{y}",
+        'ₐ' => "_{a}",
+        'ₑ' => "_{e}",
+        'ₒ' => "_{o}",
+        'ᵢ' => "_{i}",
+        'ⱼ' => "_{j}",
+        'ₖ' => "_{k}",
+        'ₙ' => "_{n}",
+        '×' => r"\times",
+        '·' | '⋅' => r"\cdot",
+        '÷' => r"\div",
+        '∗' => r"\ast",
+        '∘' => r"\circ",
+        '−' => "-",
+        '±' => r"\pm",
+        '∓' => r"\mp",
+        '≥' | '⩾' => r"\geq",
+        '≤' | '⩽' => r"\leq",
+        '≠' => r"\neq",
+        '≈' => r"\approx",
+        '≡' => r"\equiv",
+        '≔' => r"\mathrel{:=}",
+        '∼' => r"\sim",
+        '≪' => r"\ll",
+        '≫' => r"\gg",
+        '∝' => r"\propto",
+        '∫' => r"\int",
+        '∮' => r"\oint",
+        '∑' => r"\sum",
+        '∏' => r"\prod",
+        '∂' => r"\partial",
+        '∇' => r"\nabla",
+        '∞' => r"\infty",
+        '√' => r"\surd",
+        '∈' => r"\in",
+        '∉' => r"\notin",
+        '⊂' => r"\subset",
+        '⊆' => r"\subseteq",
+        '∪' => r"\cup",
+        '∩' => r"\cap",
+        '∀' => r"\forall",
+        '∃' => r"\exists",
+        '∅' => r"\emptyset",
+        '⊥' => r"\perp",
+        '∥' => r"\parallel",
+        '‖' => r"\|",
+        '∠' => r"\angle",
+        '→' => r"\to",
+        '←' => r"\leftarrow",
+        '↔' => r"\leftrightarrow",
+        '⇒' => r"\Rightarrow",
+        '⇐' => r"\Leftarrow",
+        '⇔' => r"\Leftrightarrow",
+        '↦' => r"\mapsto",
+        '⟨' => r"\langle",
+        '⟩' => r"\rangle",
+        '′' => "'",
+        '″' => "''",
+        '‴' => "'''",
+        '°' => r"^{\circ}",
+        '½' => r"\tfrac{1}{2}",
+        '¼' => r"\tfrac{1}{4}",
+        '¾' => r"\tfrac{3}{4}",
+        'ℏ' => r"\hbar",
+        'ℓ' => r"\ell",
+        '¬' => r"\neg",
+        '∧' => r"\wedge",
+        '∨' => r"\vee",
+        '⊗' => r"\otimes",
+        '⊕' => r"\oplus",
+        '⋯' => r"\cdots",
+        '⋮' => r"\vdots",
+        _ => return None,
+    };
+    Some(s.to_owned())
+}
