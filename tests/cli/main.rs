@@ -4,6 +4,8 @@ use std::process::Command;
 
 use hdot_tests::{hdot_bin, repo_root};
 
+mod reliability;
+
 fn hdot(args: &[&str]) -> std::process::Output {
     Command::new(hdot_bin())
         .args(args)

@@ -12,6 +12,8 @@ mod sums;
 mod bad_input;
 // Scenes and worked problems.
 mod scenes;
+// Strict scene input, no false alarms (issue 13).
+mod strict_scenes;
 // Convergence sweeps and the cheapest discretisation.
 mod convergence;
 // insta snapshots of the reports.

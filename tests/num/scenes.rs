@@ -192,11 +192,11 @@ fn inconsistent_unknowns_are_reported_not_solved() {
 
 #[test]
 fn scene_errors_name_file_line_and_field() {
-    // table: text => (line, field, message fragment)
+    // table: text => (line of the key, field, message fragment)
     let cases: &[(&str, usize, &str, &str)] = &[
         (
             "[[body]]\nshape = \"disk\"\nradius = 1.0\nmass = -2.0\n",
-            1,
+            4,
             "body[0].mass",
             "positive",
         ),
@@ -214,19 +214,19 @@ fn scene_errors_name_file_line_and_field() {
         ),
         (
             "[[body]]\nshape = \"sphere\"\nradius = nan\nmass = 2.0\n",
-            1,
+            3,
             "body[0].radius",
             "not finite",
         ),
         (
             "[[body]]\nshape = \"sphere\"\nradius = 1.0\nweight = 2.0\n",
-            1,
+            4,
             "body[0].weight",
             "g",
         ),
         (
             "[[body]]\nshape = \"sphere\"\nradius = 1.0\nmass = 1.0\nposition = [0.0, inf, 0.0]\n",
-            1,
+            5,
             "body[0].position",
             "not finite",
         ),
@@ -240,8 +240,8 @@ fn scene_errors_name_file_line_and_field() {
         ("", 0, "body", "no body"),
         (
             "[[body]]\nshape = \"disk\"\nradius = 1.0\nmass = 1.0\nrotation = { axis = [0.0, 0.0, 0.0], angle_deg = 3.0 }\n",
-            1,
-            "body[0].rotation",
+            5,
+            "body[0].rotation.axis",
             "zero",
         ),
     ];

@@ -1,38 +1,115 @@
-//! Finding derivation files: by name in the derivations folder, or by path.
+//! Finding derivation files: by name in the derivations folder, or by path;
+//! and the bundled derivations and example scenes, embedded in the binary
+//! (by `build.rs`) so that an installed `hdot` needs no source tree.
 
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, bail};
+use hdot_sym::derivation::{Derivation, Diagnostic};
 
-/// The folder of bundled derivations: `--dir`, then `$HDOT_DERIVATIONS`,
-/// then `./derivations`, then the folder this binary was built from.
-pub fn derivations_dir(explicit: Option<&Path>) -> PathBuf {
+/// The embedded files: `DERIVATIONS` and `SCENES`, (stem, text) pairs.
+mod bundled {
+    include!(concat!(env!("OUT_DIR"), "/bundled.rs"));
+}
+
+/// Where derivations are looked up.
+#[derive(Debug, Clone)]
+pub enum Dir {
+    /// A folder of `*.toml` files.
+    Folder(PathBuf),
+    /// The derivations embedded in the binary.
+    Bundled,
+}
+
+/// The folder of derivations: `--dir`, then `$HDOT_DERIVATIONS`, then
+/// `./derivations`, then the bundled derivations embedded in the binary.
+pub fn derivations_dir(explicit: Option<&Path>) -> Dir {
     if let Some(d) = explicit {
-        return d.to_owned();
+        return Dir::Folder(d.to_owned());
     }
     if let Some(d) = std::env::var_os("HDOT_DERIVATIONS") {
-        return PathBuf::from(d);
+        return Dir::Folder(PathBuf::from(d));
     }
     let here = PathBuf::from("derivations");
     if here.is_dir() {
-        return here;
+        return Dir::Folder(here);
     }
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../derivations")
+    Dir::Bundled
 }
 
-/// Every `*.toml` in `dir` but the notes manifest (`notes.toml`), sorted by name.
-pub fn all(dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
+/// One derivation: a file, or one embedded in the binary.
+#[derive(Debug, Clone)]
+pub enum Entry {
+    /// A file.
+    File(PathBuf),
+    /// An embedded derivation: its name and text.
+    Bundled(&'static str, &'static str),
+}
+
+impl Entry {
+    /// The short name (the file's stem).
+    pub fn name(&self) -> String {
+        match self {
+            Entry::File(p) => name_of(p),
+            Entry::Bundled(n, _) => (*n).to_owned(),
+        }
+    }
+
+    /// Loads and derives it.
+    pub fn load(&self) -> Result<Derivation, Diagnostic> {
+        match self {
+            Entry::File(p) => hdot_sym::derivation::load(p),
+            Entry::Bundled(n, text) => {
+                hdot_sym::derivation::load_str(&format!("derivations/{n}.toml"), text)
+            }
+        }
+    }
+}
+
+/// Whether `p` is the notes manifest (`notes.toml`), not a derivation.
+fn is_manifest(p: &Path) -> bool {
+    p.file_name()
+        .is_some_and(|n| n == hdot_sym::course::MANIFEST_FILE)
+}
+
+/// The notes manifest of `dir`, if it has one: its path (as shown) and text.
+pub fn manifest(dir: &Dir) -> Option<(PathBuf, String)> {
+    match dir {
+        Dir::Folder(d) => {
+            let m = d.join(hdot_sym::course::MANIFEST_FILE);
+            let text = std::fs::read_to_string(&m).ok()?;
+            Some((m, text))
+        }
+        Dir::Bundled => bundled::DERIVATIONS
+            .iter()
+            .find(|(n, _)| is_manifest(Path::new(&format!("{n}.toml"))))
+            .map(|(n, t)| (PathBuf::from(format!("derivations/{n}.toml")), (*t).to_owned())),
+    }
+}
+
+/// Every derivation of `dir` (not the notes manifest), sorted by name; an
+/// error when there is none (checking nothing must not pass).
+pub fn all(dir: &Dir) -> anyhow::Result<Vec<Entry>> {
+    let dir = match dir {
+        Dir::Bundled => {
+            return Ok(bundled::DERIVATIONS
+                .iter()
+                .filter(|(n, _)| !is_manifest(Path::new(&format!("{n}.toml"))))
+                .map(|(n, t)| Entry::Bundled(n, t))
+                .collect());
+        }
+        Dir::Folder(d) => d,
+    };
     let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
         .with_context(|| format!("cannot read the derivations folder {}", dir.display()))?
         .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
-        .filter(|p| {
-            p.file_name()
-                .is_none_or(|n| n != hdot_sym::course::MANIFEST_FILE)
-        })
+        .filter(|p| p.extension().is_some_and(|x| x == "toml") && !is_manifest(p))
         .collect();
     v.sort();
-    Ok(v)
+    if v.is_empty() {
+        bail!("no derivation files (*.toml) in {}", dir.display());
+    }
+    Ok(v.into_iter().map(Entry::File).collect())
 }
 
 /// The short name of a derivation file (its stem).
@@ -41,58 +118,78 @@ pub fn name_of(p: &Path) -> String {
         .map_or_else(String::new, |s| s.to_string_lossy().into_owned())
 }
 
-/// What a command-line argument names: a derivation file, or the generated
+/// What a command-line argument names: a derivation, or the generated
 /// scaling family `chain-K`.
 pub enum Target {
-    /// A file.
-    File(PathBuf),
+    /// A derivation.
+    Entry(Entry),
     /// `chain-K`.
     Chain(usize),
 }
 
-/// Resolves a file or `chain-K` (see [`resolve`]).
-pub fn target(dir: &Path, arg: &str) -> anyhow::Result<Target> {
+/// Resolves a derivation or `chain-K` (see [`resolve`]).
+pub fn target(dir: &Dir, arg: &str) -> anyhow::Result<Target> {
     if let Some(k) = hdot_sym::chain::parse_name(arg)
-        && !dir.join(format!("{arg}.toml")).is_file()
+        && resolve(dir, arg).is_err()
     {
         return Ok(Target::Chain(k));
     }
-    resolve(dir, arg).map(Target::File)
+    resolve(dir, arg).map(Target::Entry)
 }
 
 /// Loads what `arg` names.
-pub fn load(
-    dir: &Path,
-    arg: &str,
-) -> anyhow::Result<Result<hdot_sym::derivation::Derivation, hdot_sym::derivation::Diagnostic>> {
+pub fn load(dir: &Dir, arg: &str) -> anyhow::Result<Result<Derivation, Diagnostic>> {
     Ok(match target(dir, arg)? {
-        Target::File(p) => hdot_sym::derivation::load(&p),
+        Target::Entry(e) => e.load(),
         Target::Chain(k) => hdot_sym::chain::derivation(k),
     })
 }
 
-/// Resolves `NAME` (a file in `dir`) or `PATH` (an existing file, or
+/// Resolves `NAME` (a derivation of `dir`) or `PATH` (an existing file, or
 /// anything containing a path separator or ending in `.toml`).
-pub fn resolve(dir: &Path, arg: &str) -> anyhow::Result<PathBuf> {
+pub fn resolve(dir: &Dir, arg: &str) -> anyhow::Result<Entry> {
     let p = Path::new(arg);
     if p.is_file() || arg.contains('/') || arg.ends_with(".toml") {
         if !p.is_file() {
             bail!("no such derivation file: {arg}");
         }
-        return Ok(p.to_owned());
+        return Ok(Entry::File(p.to_owned()));
     }
-    let candidate = dir.join(format!("{arg}.toml"));
-    if candidate.is_file() {
-        return Ok(candidate);
+    match dir {
+        Dir::Folder(d) => {
+            let candidate = d.join(format!("{arg}.toml"));
+            if candidate.is_file() {
+                return Ok(Entry::File(candidate));
+            }
+        }
+        Dir::Bundled => {
+            if let Some((n, t)) = bundled::DERIVATIONS.iter().find(|(n, _)| *n == arg) {
+                return Ok(Entry::Bundled(n, t));
+            }
+        }
     }
     let names: Vec<String> = all(dir)
         .unwrap_or_default()
         .iter()
-        .map(|p| name_of(p))
+        .map(Entry::name)
         .collect();
     bail!(
         "unknown derivation `{arg}`; known: {}, chain-1 … chain-{} (or give a path to a .toml file)",
         names.join(", "),
         hdot_sym::chain::MAX_K
     )
+}
+
+/// A bundled example scene named by `arg` when no such file exists: its
+/// stem (`sim-heavy-top`) or its path in the source tree
+/// (`docs/examples/sim-heavy-top.toml`). Returns the name to show and the
+/// text.
+pub fn bundled_scene(arg: &Path) -> Option<(String, &'static str)> {
+    if arg.exists() {
+        return None;
+    }
+    let (n, t) = bundled::SCENES
+        .iter()
+        .find(|(n, _)| arg == Path::new(n) || arg.ends_with(format!("docs/examples/{n}.toml")))?;
+    Some((format!("docs/examples/{n}.toml"), t))
 }

@@ -2,8 +2,10 @@
 //!
 //! Each subcommand lives in a module of its own under `cmd/`, with a clap
 //! `Args` struct and a `run` function returning the process exit code.
-//! Exit codes: 0 success; 1 a check or verification failed; 2 bad input
-//! (a file that does not parse, an unknown name, an invalid option).
+//! Exit codes: 0 success; 1 a check or verification failed, or a result
+//! could not be written; 2 bad input (a file that does not parse, an
+//! unknown name, an invalid option). A standard output closed by its reader
+//! (`hdot list | head -1`) ends the command quietly with 0.
 
 use std::process::ExitCode;
 
@@ -47,8 +49,29 @@ enum Command {
     WorkPrecision(cmd::work_precision::WorkPrecisionArgs),
 }
 
+/// Stack of the thread a command runs on. Parsing and evaluation are
+/// bounded in depth (see `hdot_sym::parse::MAX_DEPTH`); this is a margin
+/// for the deepest expression they allow, in unoptimised builds too.
+const STACK_BYTES: usize = 256 << 20;
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    let worker = std::thread::Builder::new()
+        .name("hdot".into())
+        .stack_size(STACK_BYTES)
+        .spawn(move || dispatch(cli));
+    match worker.map(|w| w.join()) {
+        Ok(Ok(code)) => code,
+        // The panic message is already on stderr.
+        Ok(Err(_)) => ExitCode::from(101),
+        Err(e) => {
+            eprintln!("error: cannot start: {e}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn dispatch(cli: Cli) -> ExitCode {
     let result: anyhow::Result<ExitCode> = match cli.command {
         // -- dispatch (one line each) --
         Command::Check(a) => cmd::check::run(a),
@@ -64,9 +87,16 @@ fn main() -> ExitCode {
     };
     match result {
         Ok(code) => code,
-        Err(err) => {
-            eprintln!("error: {err:#}");
-            ExitCode::from(2)
-        }
+        Err(err) => match err.downcast_ref::<output::OutputError>() {
+            Some(o) if o.is_closed_stdout() => ExitCode::SUCCESS,
+            Some(_) => {
+                eprintln!("error: {err:#}");
+                ExitCode::from(1)
+            }
+            None => {
+                eprintln!("error: {err:#}");
+                ExitCode::from(2)
+            }
+        },
     }
 }

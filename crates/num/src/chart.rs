@@ -22,6 +22,7 @@
 //! assert!(dir.path().join("err.png").exists());
 //! ```
 
+use crate::fsio::Batch;
 use std::path::{Path, PathBuf};
 use std::sync::Once;
 
@@ -118,9 +119,27 @@ const COLOURS: [RGBColor; 8] = [
 /// `<path_stem>.png`: one line with markers per series, a legend, log axes
 /// spanning the data (rounded out to whole decades).
 ///
-/// The parent directory must exist. Each file appears complete or not at
-/// all (temporary file, then rename).
+/// The parent directory must exist. Both files appear complete or neither
+/// does (temporary files, then renames: [`crate::fsio`]).
 pub fn loglog_chart(
+    path_stem: &Path,
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    series: &[Series],
+) -> Result<(), ChartError> {
+    let mut batch = Batch::new();
+    loglog_chart_into(&mut batch, path_stem, title, x_label, y_label, series)?;
+    batch.commit().map_err(|source| ChartError::Io {
+        path: path_stem.to_path_buf(),
+        source,
+    })
+}
+
+/// As [`loglog_chart`], but stages the two files in `batch`, to appear
+/// together with the other files of the command when it is committed.
+pub fn loglog_chart_into(
+    batch: &mut Batch,
     path_stem: &Path,
     title: &str,
     x_label: &str,
@@ -183,7 +202,7 @@ pub fn loglog_chart(
             }
         })?;
     }
-    write_atomic(&svg_path, svg.as_bytes())?;
+    stage(batch, &svg_path, svg.as_bytes())?;
 
     // PNG
     let png_path = path_stem.with_extension("png");
@@ -210,7 +229,7 @@ pub fn loglog_chart(
         let mut writer = enc.write_header().map_err(png_err)?;
         writer.write_image_data(&rgb).map_err(png_err)?;
     }
-    write_atomic(&png_path, &bytes)
+    stage(batch, &png_path, &bytes)
 }
 
 fn draw<DB: DrawingBackend>(
@@ -282,8 +301,8 @@ fn draw<DB: DrawingBackend>(
     Ok(())
 }
 
-fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), ChartError> {
-    crate::fsio::write_atomic(path, bytes).map_err(|source| ChartError::Io {
+fn stage(batch: &mut Batch, path: &Path, bytes: &[u8]) -> Result<(), ChartError> {
+    batch.write(path, bytes).map_err(|source| ChartError::Io {
         path: path.to_path_buf(),
         source,
     })

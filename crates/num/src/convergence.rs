@@ -11,8 +11,9 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use crate::body::{Body, Pose, Primitive};
-use crate::chart::{ChartError, Series, loglog_chart};
+use crate::chart::{ChartError, Series, loglog_chart_into};
 use crate::discretize::{Discretization, DiscretizedBody, Method, particle_count};
+use crate::fsio::Batch;
 use crate::sums::{ParticleSource, mass_properties};
 
 /// One discretisation and how well it did.
@@ -192,6 +193,22 @@ pub struct PrimitiveSweeps {
 /// Writes `<dir>/<shape>-error-vs-particles.{svg,png}` and
 /// `<dir>/<shape>-error-vs-time.{svg,png}`; returns the stems written.
 pub fn write_charts(dir: &Path, s: &PrimitiveSweeps) -> Result<Vec<PathBuf>, ChartError> {
+    let mut batch = Batch::new();
+    let stems = stage_charts(&mut batch, dir, s)?;
+    batch.commit().map_err(|source| ChartError::Io {
+        path: dir.to_path_buf(),
+        source,
+    })?;
+    Ok(stems)
+}
+
+/// As [`write_charts`], but stages the files in `batch` (to appear with
+/// the other files of the command, or not at all).
+pub fn stage_charts(
+    batch: &mut Batch,
+    dir: &Path,
+    s: &PrimitiveSweeps,
+) -> Result<Vec<PathBuf>, ChartError> {
     let name = s.shape.name().replace('_', "-");
     let series = |f: &dyn Fn(&ConvergencePoint) -> f64| -> Vec<Series> {
         s.sweeps
@@ -202,7 +219,8 @@ pub fn write_charts(dir: &Path, s: &PrimitiveSweeps) -> Result<Vec<PathBuf>, Cha
             .collect()
     };
     let a = dir.join(format!("{name}-error-vs-particles"));
-    loglog_chart(
+    loglog_chart_into(
+        batch,
         &a,
         &format!("{}: relative error of the inertia tensor", s.shape.name()),
         "particles",
@@ -210,7 +228,8 @@ pub fn write_charts(dir: &Path, s: &PrimitiveSweeps) -> Result<Vec<PathBuf>, Cha
         &series(&|p| p.particles as f64),
     )?;
     let b = dir.join(format!("{name}-error-vs-time"));
-    loglog_chart(
+    loglog_chart_into(
+        batch,
         &b,
         &format!("{}: relative error against time", s.shape.name()),
         "seconds (mass properties by particle sums)",

@@ -1,25 +1,271 @@
-//! File output that never leaves a half-written file.
+//! File output that never leaves a half-written file: the one helper every
+//! command writes its files through.
+//!
+//! - A file is written to a temporary file beside its destination and
+//!   renamed into place, so the destination is either complete or
+//!   untouched ([`AtomicFile`], [`write_atomic`]).
+//! - The files of one command are staged together and renamed only when
+//!   all of them are written ([`Batch`]): a failure on the second leaves
+//!   the first untouched too.
+//! - Symbolic links are followed: the file the link points at is replaced,
+//!   not the link.
+//! - Special files (`/dev/stdout`, `/dev/null`, a named pipe, anything
+//!   under `/dev` or `/proc`) are written in place: they cannot be renamed
+//!   over, and they hold no earlier content to protect.
+//! - New files get the permissions `0o666` less the process umask, as
+//!   `File::create` would; a replaced file keeps its permissions.
+//! - An output that is an input of the same command is refused
+//!   ([`refuse_overwriting_inputs`]).
 
-use std::io::Write;
-use std::path::Path;
+use std::fs::{File, OpenOptions};
+use std::io::{self, Write};
+use std::path::{Path, PathBuf};
 
-/// Writes `bytes` to `path` through a temporary file in the same directory
-/// and a rename, so `path` is either complete or untouched.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    let mut builder = tempfile::Builder::new();
-    builder.prefix(".hdot-tmp");
+/// Symbolic links followed before giving up (as the kernel's `ELOOP`).
+const MAX_LINKS: usize = 40;
+
+/// Where writing to `path` really writes: `path` with every symbolic link
+/// (of the file itself) followed. A dangling link resolves to the path it
+/// points at, which is then created.
+pub fn resolve(path: &Path) -> io::Result<PathBuf> {
+    let mut p = path.to_path_buf();
+    for _ in 0..MAX_LINKS {
+        match std::fs::symlink_metadata(&p) {
+            Ok(m) if m.file_type().is_symlink() => {
+                let t = std::fs::read_link(&p)?;
+                p = if t.is_absolute() {
+                    t
+                } else {
+                    p.parent().unwrap_or(Path::new("")).join(t)
+                };
+            }
+            _ => return Ok(p),
+        }
+    }
+    Err(io::Error::other(format!(
+        "{}: too many levels of symbolic links",
+        path.display()
+    )))
+}
+
+/// Whether `path` is a special file written in place: a device, a pipe or
+/// a socket, or anything under `/dev` or `/proc` (`/dev/stdout` is a link
+/// to `/proc/self/fd/1`, which may be a pipe or the terminal).
+fn is_special(path: &Path) -> bool {
+    if path.starts_with("/dev") || path.starts_with("/proc") {
+        return true;
+    }
+    match std::fs::metadata(path) {
+        Ok(m) => !m.is_file() && !m.is_dir(),
+        Err(_) => false,
+    }
+}
+
+enum Inner {
+    /// A temporary file beside the destination, renamed over it on commit.
+    Temp(tempfile::NamedTempFile),
+    /// A special file written in place.
+    InPlace(File),
+}
+
+/// A file being written: complete at its destination after
+/// [`commit`](AtomicFile::commit), absent (or unchanged) if dropped before.
+pub struct AtomicFile {
+    dest: PathBuf,
+    inner: Inner,
+}
+
+impl AtomicFile {
+    /// Starts writing `path` (see the module documentation).
+    pub fn create(path: &Path) -> io::Result<AtomicFile> {
+        if is_special(path) {
+            let f = OpenOptions::new().append(true).open(path)?;
+            return Ok(AtomicFile {
+                dest: path.to_path_buf(),
+                inner: Inner::InPlace(f),
+            });
+        }
+        let dest = resolve(path)?;
+        if is_special(&dest) {
+            let f = OpenOptions::new().append(true).open(&dest)?;
+            return Ok(AtomicFile {
+                dest,
+                inner: Inner::InPlace(f),
+            });
+        }
+        if dest.is_dir() {
+            return Err(io::Error::other(format!(
+                "{} is a directory",
+                path.display()
+            )));
+        }
+        let dir = match dest.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d,
+            _ => Path::new("."),
+        };
+        let mut builder = tempfile::Builder::new();
+        builder.prefix(".hdot-tmp");
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            // A replaced file keeps its permissions; a new one gets what
+            // File::create would give it (0o666 less the umask).
+            let mode = std::fs::metadata(&dest).map_or(0o666, |m| m.permissions().mode() & 0o7777);
+            builder.permissions(std::fs::Permissions::from_mode(mode));
+        }
+        let tmp = builder.tempfile_in(dir)?;
+        Ok(AtomicFile {
+            dest,
+            inner: Inner::Temp(tmp),
+        })
+    }
+
+    /// The file this writes (links followed).
+    pub fn destination(&self) -> &Path {
+        &self.dest
+    }
+
+    /// Finishes the file: flushes it and renames it into place.
+    pub fn commit(self) -> io::Result<()> {
+        match self.inner {
+            Inner::Temp(mut t) => {
+                t.flush()?;
+                t.persist(&self.dest).map_err(|e| e.error)?;
+                Ok(())
+            }
+            Inner::InPlace(mut f) => f.flush(),
+        }
+    }
+}
+
+impl Write for AtomicFile {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        match &mut self.inner {
+            Inner::Temp(t) => t.write(buf),
+            Inner::InPlace(f) => f.write(buf),
+        }
+    }
+    fn flush(&mut self) -> io::Result<()> {
+        match &mut self.inner {
+            Inner::Temp(t) => t.flush(),
+            Inner::InPlace(f) => f.flush(),
+        }
+    }
+}
+
+/// Writes `bytes` to `path` through a temporary file and a rename, so
+/// `path` is either complete or untouched (see the module documentation).
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> io::Result<()> {
+    let mut f = AtomicFile::create(path)?;
+    f.write_all(bytes)?;
+    f.commit()
+}
+
+/// The files of one command, staged and then renamed into place together:
+/// nothing appears unless every file was written.
+#[derive(Default)]
+pub struct Batch {
+    files: Vec<AtomicFile>,
+}
+
+impl Batch {
+    /// An empty batch.
+    pub fn new() -> Batch {
+        Batch::default()
+    }
+
+    /// Stages `bytes` for `path`.
+    pub fn write(&mut self, path: &Path, bytes: &[u8]) -> io::Result<()> {
+        let mut f = AtomicFile::create(path)?;
+        f.write_all(bytes)?;
+        self.files.push(f);
+        Ok(())
+    }
+
+    /// Renames every staged file into place.
+    pub fn commit(self) -> io::Result<()> {
+        for f in self.files {
+            f.commit()?;
+        }
+        Ok(())
+    }
+}
+
+/// Whether `a` and `b` name the same existing file (links followed).
+pub fn same_file(a: &Path, b: &Path) -> bool {
     #[cfg(unix)]
     {
-        use std::os::unix::fs::PermissionsExt;
-        builder.permissions(std::fs::Permissions::from_mode(0o644));
+        use std::os::unix::fs::MetadataExt;
+        if let (Ok(x), Ok(y)) = (std::fs::metadata(a), std::fs::metadata(b)) {
+            return x.dev() == y.dev() && x.ino() == y.ino();
+        }
+        false
     }
-    let mut tmp = builder.tempfile_in(dir)?;
-    tmp.write_all(bytes)?;
-    tmp.flush()?;
-    tmp.persist(path).map_err(|e| e.error)?;
+    #[cfg(not(unix))]
+    {
+        match (std::fs::canonicalize(a), std::fs::canonicalize(b)) {
+            (Ok(x), Ok(y)) => x == y,
+            _ => false,
+        }
+    }
+}
+
+/// Refuses to write `output` when it is one of `inputs` (links followed):
+/// `hdot derive F --out F` would destroy its own input.
+pub fn refuse_overwriting_inputs(output: &Path, inputs: &[&Path]) -> io::Result<()> {
+    if is_special(output) {
+        return Ok(());
+    }
+    for input in inputs {
+        if same_file(output, input) {
+            return Err(io::Error::new(
+                io::ErrorKind::AlreadyExists,
+                format!(
+                    "the output {} is an input of this command ({}); choose another path",
+                    output.display(),
+                    input.display()
+                ),
+            ));
+        }
+    }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_batch_dropped_before_commit_leaves_nothing() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut b = Batch::new();
+        b.write(&dir.path().join("a.txt"), b"a").unwrap();
+        assert!(
+            b.write(&dir.path().join("no/such/dir/b.txt"), b"b")
+                .is_err()
+        );
+        drop(b);
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn links_are_followed_and_special_files_written_in_place() {
+        let dir = tempfile::tempdir().unwrap();
+        let real = dir.path().join("real.txt");
+        std::fs::write(&real, "old").unwrap();
+        let link = dir.path().join("link.txt");
+        std::os::unix::fs::symlink("real.txt", &link).unwrap();
+        write_atomic(&link, b"new").unwrap();
+        assert!(
+            std::fs::symlink_metadata(&link)
+                .unwrap()
+                .file_type()
+                .is_symlink()
+        );
+        assert_eq!(std::fs::read_to_string(&real).unwrap(), "new");
+        write_atomic(Path::new("/dev/null"), b"x").unwrap();
+        assert!(refuse_overwriting_inputs(&link, &[&real]).is_err());
+        assert!(refuse_overwriting_inputs(&dir.path().join("other"), &[&real]).is_ok());
+    }
 }

@@ -127,6 +127,40 @@ impl Report {
         r
     }
 
+    /// The first reported quantity that is not finite, by its JSON key
+    /// (`None` when every number is finite). A report holding one is not
+    /// printed: the command fails naming the quantity instead.
+    pub fn non_finite(&self) -> Option<String> {
+        let bad = |xs: &[f64]| xs.iter().any(|x| !x.is_finite());
+        let mut named: Vec<(String, Vec<f64>)> = vec![
+            ("mass".into(), vec![self.mass]),
+            ("center".into(), self.center.to_vec()),
+            ("reference".into(), self.reference.to_vec()),
+            ("inertia_G".into(), self.inertia_g.concat()),
+            ("inertia_O".into(), self.inertia_o.concat()),
+            ("principal_moments".into(), self.principal_moments.to_vec()),
+            ("principal_axes".into(), self.principal_axes.concat()),
+        ];
+        for (k, x) in [
+            ("H_G", &self.h_g),
+            ("H_O", &self.h_o),
+            ("resultant_force", &self.resultant_force),
+            ("resultant_moment", &self.resultant_moment),
+            ("resultant_moment_G", &self.resultant_moment_g),
+        ] {
+            if let Some(x) = x {
+                named.push((k.into(), x.to_vec()));
+            }
+        }
+        if let Some(t) = self.kinetic_energy {
+            named.push(("kinetic_energy".into(), vec![t]));
+        }
+        for (k, x) in self.unknowns.iter().flatten() {
+            named.push((format!("unknowns.{k}"), vec![*x]));
+        }
+        named.into_iter().find(|(_, xs)| bad(xs)).map(|(k, _)| k)
+    }
+
     /// Human-readable form (`--format text`), with `digits` significant
     /// digits.
     pub fn text(&self, digits: usize) -> String {

@@ -56,14 +56,19 @@ pub struct SceneError {
 }
 
 type V3 = [f64; 3];
+/// A vector as written: checked for three finite components when read,
+/// so that a fourth component or a NaN is an error at the key's line.
+type RV = Spanned<Vec<f64>>;
+/// A number as written, with its place.
+type RF = Spanned<f64>;
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawScene {
     name: Option<String>,
     description: Option<String>,
-    g: Option<V3>,
-    reference: Option<V3>,
+    g: Option<RV>,
+    reference: Option<RV>,
     #[serde(default)]
     body: Vec<Spanned<RawBody>>,
     #[serde(default)]
@@ -83,28 +88,28 @@ struct RawScene {
 struct RawBody {
     name: Option<String>,
     shape: String,
-    mass: Option<f64>,
-    weight: Option<f64>,
-    position: Option<V3>,
-    rotation: Option<RawRotation>,
-    length: Option<f64>,
-    a: Option<f64>,
-    b: Option<f64>,
-    c: Option<f64>,
-    radius: Option<f64>,
-    inner: Option<f64>,
-    outer: Option<f64>,
-    height: Option<f64>,
+    mass: Option<RF>,
+    weight: Option<RF>,
+    position: Option<RV>,
+    rotation: Option<Spanned<RawRotation>>,
+    length: Option<RF>,
+    a: Option<RF>,
+    b: Option<RF>,
+    c: Option<RF>,
+    radius: Option<RF>,
+    inner: Option<RF>,
+    outer: Option<RF>,
+    height: Option<RF>,
 }
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawRotation {
-    axis: Option<V3>,
-    angle_deg: Option<f64>,
-    x_axis: Option<V3>,
-    z_axis: Option<V3>,
-    euler_deg: Option<V3>,
+    axis: Option<RV>,
+    angle_deg: Option<RF>,
+    x_axis: Option<RV>,
+    z_axis: Option<RV>,
+    euler_deg: Option<RV>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -116,39 +121,38 @@ struct RawCloud {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawMotion {
-    omega: Option<V3>,
-    alpha: Option<V3>,
-    frame_rate: Option<V3>,
-    v_g: Option<V3>,
-    a_g: Option<V3>,
-    fixed_point: Option<V3>,
+    omega: Option<RV>,
+    alpha: Option<RV>,
+    frame_rate: Option<RV>,
+    v_g: Option<RV>,
+    a_g: Option<RV>,
+    fixed_point: Option<RV>,
 }
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawImpulse {
-    v_before: Option<V3>,
-    omega_before: Option<V3>,
+    v_before: Option<RV>,
+    omega_before: Option<RV>,
 }
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawForce {
-    name: String,
-    point: Option<V3>,
-    value: Option<V3>,
-    direction: Option<V3>,
-    unknown: Option<Vec<String>>,
+    name: Spanned<String>,
+    point: Option<RV>,
+    value: Option<RV>,
+    direction: Option<RV>,
+    unknown: Option<Vec<Spanned<String>>>,
 }
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawConstraint {
     name: String,
-    point: V3,
-    direction: V3,
-    #[serde(default)]
-    value: f64,
+    point: RV,
+    direction: RV,
+    value: Option<RF>,
 }
 
 /// A force (or impulse) or couple: known, or with unknown parts.
@@ -241,116 +245,140 @@ impl Scene {
     /// Parses scene text; `file` names it in errors and anchors relative
     /// cloud paths.
     pub fn from_str_at(file: &Path, text: &str) -> Result<Self, SceneError> {
-        let err = |line: usize, field: &str, message: String| SceneError {
-            file: file.to_path_buf(),
-            line,
-            field: field.to_string(),
-            message,
-        };
+        let cx = Cx { file, text };
         let raw: RawScene = toml::from_str(text).map_err(|e| {
             let line = e.span().map(|s| line_of(text, s.start)).unwrap_or(0);
-            err(line, "-", e.message().to_string())
+            cx.err(line, "-", e.message().to_string())
         })?;
-        let finite = |line: usize, field: &str, v: &[f64]| -> Result<(), SceneError> {
-            if let Some(x) = v.iter().find(|x| !x.is_finite()) {
-                return Err(err(line, field, format!("not finite: {x}")));
-            }
-            Ok(())
-        };
-        let top = 1;
-        if let Some(g) = raw.g {
-            finite(top, "g", &g)?;
-        }
-        if let Some(r) = raw.reference {
-            finite(top, "reference", &r)?;
-        }
-        let g = raw.g.map(v3);
+        let g = raw.g.as_ref().map(|g| cx.vec3("g", g)).transpose()?;
+        let reference = raw
+            .reference
+            .as_ref()
+            .map(|r| cx.vec3("reference", r))
+            .transpose()?;
         let mut parts = Vec::new();
         for (i, sb) in raw.body.iter().enumerate() {
             let line = line_of(text, sb.span().start);
             let b = sb.get_ref();
             let f = |name: &str| format!("body[{i}].{name}");
-            let dim = |name: &'static str, v: Option<f64>| {
-                v.ok_or_else(|| err(line, &f(name), format!("missing for shape {:?}", b.shape)))
+            let dim = |name: &'static str, v: &Option<RF>| match v {
+                Some(v) => cx.scalar(&f(name), v),
+                None => Err(cx.err(line, &f(name), format!("missing for shape {:?}", b.shape))),
             };
             let shape = match b.shape.as_str() {
                 "rod" => Primitive::Rod {
-                    length: dim("length", b.length)?,
+                    length: dim("length", &b.length)?,
                 },
                 "plate" => Primitive::Plate {
-                    a: dim("a", b.a)?,
-                    b: dim("b", b.b)?,
+                    a: dim("a", &b.a)?,
+                    b: dim("b", &b.b)?,
                 },
                 "prism" => Primitive::Prism {
-                    a: dim("a", b.a)?,
-                    b: dim("b", b.b)?,
-                    c: dim("c", b.c)?,
+                    a: dim("a", &b.a)?,
+                    b: dim("b", &b.b)?,
+                    c: dim("c", &b.c)?,
                 },
                 "disk" => Primitive::Disk {
-                    radius: dim("radius", b.radius)?,
+                    radius: dim("radius", &b.radius)?,
                 },
                 "cylinder" => Primitive::Cylinder {
-                    radius: dim("radius", b.radius)?,
-                    length: dim("length", b.length)?,
+                    radius: dim("radius", &b.radius)?,
+                    length: dim("length", &b.length)?,
                 },
                 "hollow_cylinder" => Primitive::HollowCylinder {
-                    inner: dim("inner", b.inner)?,
-                    outer: dim("outer", b.outer)?,
-                    length: dim("length", b.length)?,
+                    inner: dim("inner", &b.inner)?,
+                    outer: dim("outer", &b.outer)?,
+                    length: dim("length", &b.length)?,
                 },
                 "ring" => Primitive::Ring {
-                    radius: dim("radius", b.radius)?,
+                    radius: dim("radius", &b.radius)?,
                 },
                 "sphere" => Primitive::Sphere {
-                    radius: dim("radius", b.radius)?,
+                    radius: dim("radius", &b.radius)?,
                 },
                 "spherical_shell" => Primitive::SphericalShell {
-                    radius: dim("radius", b.radius)?,
+                    radius: dim("radius", &b.radius)?,
                 },
                 "cone" => Primitive::Cone {
-                    radius: dim("radius", b.radius)?,
-                    height: dim("height", b.height)?,
+                    radius: dim("radius", &b.radius)?,
+                    height: dim("height", &b.height)?,
                 },
                 other => {
-                    return Err(err(line, &f("shape"), format!("unknown shape {other:?}")));
+                    return Err(cx.err(line, &f("shape"), format!("unknown shape {other:?}")));
                 }
             };
-            let mass = match (b.mass, b.weight) {
-                (Some(m), None) => m,
+            let (mass, mass_field) = match (&b.mass, &b.weight) {
+                (Some(m), None) => (cx.scalar(&f("mass"), m)?, m),
                 (None, Some(w)) => {
-                    let gn = g.map(|g| g.norm()).filter(|n| *n > 0.0).ok_or_else(|| {
-                        err(line, &f("weight"), "a weight needs a non-zero g".into())
-                    })?;
-                    w / gn
+                    let wv = cx.scalar(&f("weight"), w)?;
+                    let gn = g
+                        .map(|g| safe_norm(&v3(g)))
+                        .filter(|n| *n > 0.0)
+                        .ok_or_else(|| {
+                            cx.err(
+                                cx.line(w),
+                                &f("weight"),
+                                "a weight needs a non-zero g".into(),
+                            )
+                        })?;
+                    (wv / gn, w)
                 }
-                (Some(_), Some(_)) => {
-                    return Err(err(
-                        line,
+                (Some(m), Some(_)) => {
+                    return Err(cx.err(
+                        cx.line(m),
                         &f("mass"),
                         "give mass or weight, not both".into(),
                     ));
                 }
-                (None, None) => return Err(err(line, &f("mass"), "missing (or weight)".into())),
+                (None, None) => {
+                    return Err(cx.err(line, &f("mass"), "missing (or weight)".into()));
+                }
             };
-            let position = b.position.unwrap_or([0.0; 3]);
-            finite(line, &f("position"), &position)?;
+            let position = match &b.position {
+                Some(p) => cx.vec3(&f("position"), p)?,
+                None => [0.0; 3],
+            };
             let rotation = match &b.rotation {
                 None => UnitQuaternion::identity(),
-                Some(r) => rotation_of(r).map_err(|m| err(line, &f("rotation"), m))?,
+                Some(r) => rotation_of(&cx, &f("rotation"), r)?,
             };
             let pose = Pose {
                 position: v3(position),
                 rotation,
             };
+            // The line of the key a body error is about.
+            let line_of_field = |field: &str| -> usize {
+                let v = match field {
+                    "mass" => Some(mass_field),
+                    "length" => b.length.as_ref(),
+                    "a" => b.a.as_ref(),
+                    "b" => b.b.as_ref(),
+                    "c" => b.c.as_ref(),
+                    "radius" => b.radius.as_ref(),
+                    "inner" => b.inner.as_ref(),
+                    "outer" => b.outer.as_ref(),
+                    "height" => b.height.as_ref(),
+                    _ => None,
+                };
+                v.map_or(line, |v| cx.line(v))
+            };
             let body = Body::try_new(shape, mass, pose).map_err(|e| {
                 let field = match &e {
-                    crate::BodyError::NonPositiveMass { .. } => f("mass"),
+                    crate::BodyError::NonPositiveMass { .. } => "mass",
                     crate::BodyError::BadDimension { field, .. }
-                    | crate::BodyError::NotFinite { field, .. } => f(field),
-                    _ => f("-"),
+                    | crate::BodyError::NotFinite { field, .. } => field,
+                    _ => "-",
                 };
-                err(line, &field, e.to_string())
+                cx.err(line_of_field(field), &f(field), e.to_string())
             })?;
+            let p = body.mass_properties();
+            if !props_finite(&p) {
+                return Err(cx.err(
+                    line,
+                    &f("shape"),
+                    "the mass properties overflow (mass or dimensions too large)".into(),
+                ));
+            }
             let _ = &b.name;
             parts.push(Part::Solid(body));
         }
@@ -361,16 +389,30 @@ impl Scene {
                 .unwrap_or(Path::new("."))
                 .join(&sc.get_ref().file);
             let c = ParticleCloud::from_csv_path(&p)
-                .map_err(|e| err(line, &format!("cloud[{i}].file"), e.to_string()))?;
+                .map_err(|e| cx.err(line, &format!("cloud[{i}].file"), e.to_string()))?;
             parts.push(Part::Cloud(c));
         }
+        // The parts together must stay finite too (two masses near the
+        // largest f64 sum past it).
+        let all: Vec<MassProperties> = parts.iter().map(Part::mass_properties).collect();
+        match MassProperties::combine(&all) {
+            Ok(p) if props_finite(&p) => {}
+            Ok(_) | Err(crate::BodyError::NotFinite { .. }) => {
+                return Err(cx.err(
+                    0,
+                    "body",
+                    "the mass properties of the bodies together overflow (masses summing past the largest number, or bodies too far apart)".into(),
+                ));
+            }
+            Err(_) => {}
+        }
         let body = Composite::try_new(parts)
-            .map_err(|_| err(0, "body", "the scene has no body and no cloud".into()))?;
+            .map_err(|_| cx.err(0, "body", "the scene has no body and no cloud".into()))?;
 
         let props = body.mass_properties();
         let problem = match (&raw.motion, &raw.impulse) {
             (Some(_), Some(s)) => {
-                return Err(err(
+                return Err(cx.err(
                     line_of(text, s.span().start),
                     "impulse",
                     "give [motion] or [impulse], not both".into(),
@@ -378,179 +420,194 @@ impl Scene {
             }
             (None, None) => Problem::Statics,
             (Some(sm), None) => {
-                let line = line_of(text, sm.span().start);
                 let m = sm.get_ref();
-                for (name, v) in [
-                    ("omega", m.omega),
-                    ("alpha", m.alpha),
-                    ("frame_rate", m.frame_rate),
-                    ("v_g", m.v_g),
-                    ("a_g", m.a_g),
-                    ("fixed_point", m.fixed_point),
-                ] {
-                    if let Some(v) = v {
-                        finite(line, &format!("motion.{name}"), &v)?;
-                    }
-                }
-                let omega = v3(m.omega.unwrap_or([0.0; 3]));
-                let alpha = match (m.alpha, m.frame_rate) {
+                let get =
+                    |name: &str, v: &Option<RV>| -> Result<Option<Vector3<f64>>, SceneError> {
+                        v.as_ref()
+                            .map(|v| cx.vec3(&format!("motion.{name}"), v).map(v3))
+                            .transpose()
+                    };
+                let omega = get("omega", &m.omega)?.unwrap_or_else(Vector3::zeros);
+                let alpha = get("alpha", &m.alpha)?;
+                let frame_rate = get("frame_rate", &m.frame_rate)?;
+                let v_g = get("v_g", &m.v_g)?;
+                let a_g = get("a_g", &m.a_g)?;
+                let fixed_point = get("fixed_point", &m.fixed_point)?;
+                let alpha = match (alpha, frame_rate) {
                     (Some(_), Some(_)) => {
-                        return Err(err(
-                            line,
+                        return Err(cx.err(
+                            m.frame_rate.as_ref().map_or(0, |v| cx.line(v)),
                             "motion.frame_rate",
                             "give alpha or frame_rate, not both".into(),
                         ));
                     }
-                    (Some(a), None) => v3(a),
-                    (None, Some(f)) => v3(f).cross(&omega),
+                    (Some(a), None) => a,
+                    (None, Some(f)) => f.cross(&omega),
                     (None, None) => Vector3::zeros(),
                 };
-                match m.fixed_point {
+                match fixed_point {
                     Some(o) => {
-                        if m.v_g.is_some() || m.a_g.is_some() {
-                            return Err(err(
-                                line,
+                        if v_g.is_some() || a_g.is_some() {
+                            return Err(cx.err(
+                                m.fixed_point.as_ref().map_or(0, |v| cx.line(v)),
                                 "motion.fixed_point",
                                 "v_g and a_g follow from a fixed point; do not give them".into(),
                             ));
                         }
-                        Problem::Motion(Motion::about_fixed_point(
-                            v3(o),
-                            props.center,
-                            omega,
-                            alpha,
-                        ))
+                        Problem::Motion(Motion::about_fixed_point(o, props.center, omega, alpha))
                     }
                     None => Problem::Motion(Motion {
                         omega,
                         alpha,
-                        v_g: v3(m.v_g.unwrap_or([0.0; 3])),
-                        a_g: v3(m.a_g.unwrap_or([0.0; 3])),
+                        v_g: v_g.unwrap_or_else(Vector3::zeros),
+                        a_g: a_g.unwrap_or_else(Vector3::zeros),
                     }),
                 }
             }
             (None, Some(si)) => {
-                let line = line_of(text, si.span().start);
                 let i = si.get_ref();
-                let vb = i.v_before.unwrap_or([0.0; 3]);
-                let wb = i.omega_before.unwrap_or([0.0; 3]);
-                finite(line, "impulse.v_before", &vb)?;
-                finite(line, "impulse.omega_before", &wb)?;
+                let get = |name: &str, v: &Option<RV>| -> Result<Vector3<f64>, SceneError> {
+                    Ok(v.as_ref()
+                        .map(|v| cx.vec3(&format!("impulse.{name}"), v).map(v3))
+                        .transpose()?
+                        .unwrap_or_else(Vector3::zeros))
+                };
                 Problem::Impulse {
-                    v_before: v3(vb),
-                    omega_before: v3(wb),
+                    v_before: get("v_before", &i.v_before)?,
+                    omega_before: get("omega_before", &i.omega_before)?,
                 }
             }
         };
-        let reference = raw
-            .reference
-            .map(v3)
-            .or_else(|| {
-                raw.motion
+        let reference = match reference {
+            Some(r) => v3(r),
+            None => match &problem {
+                Problem::Motion(_) => raw
+                    .motion
                     .as_ref()
-                    .and_then(|m| m.get_ref().fixed_point.map(v3))
-            })
-            .unwrap_or_else(Vector3::zeros);
+                    .and_then(|m| m.get_ref().fixed_point.as_ref())
+                    .map(|v| cx.vec3("motion.fixed_point", v).map(v3))
+                    .transpose()?
+                    .unwrap_or_else(Vector3::zeros),
+                _ => Vector3::zeros(),
+            },
+        };
+        let about_o = props.inertia_about(&reference);
+        if about_o.matrix().iter().any(|x| !x.is_finite()) {
+            return Err(cx.err(
+                raw.reference.as_ref().map_or(0, |r| cx.line(r)),
+                "reference",
+                "the inertia about the reference point overflows (bodies too far from it)".into(),
+            ));
+        }
 
-        let load = |kind: &str, i: usize, s: &Spanned<RawForce>, couple: bool| {
+        // Unknown scalars by name, with the line that names each.
+        let mut names: BTreeMap<String, usize> = BTreeMap::new();
+        let mut load = |kind: &str, i: usize, s: &Spanned<RawForce>, couple: bool| {
             let line = line_of(text, s.span().start);
             let l = s.get_ref();
             let f = |n: &str| format!("{kind}[{i}].{n}");
-            let point = match (l.point, couple) {
-                (Some(p), _) => {
-                    finite(line, &f("point"), &p)?;
-                    v3(p)
-                }
+            let point = match (&l.point, couple) {
+                (Some(p), _) => v3(cx.vec3(&f("point"), p)?),
                 (None, true) => Vector3::zeros(),
-                (None, false) => return Err(err(line, &f("point"), "missing".into())),
+                (None, false) => return Err(cx.err(line, &f("point"), "missing".into())),
             };
-            let known = v3(l.value.unwrap_or([0.0; 3]));
-            finite(line, &f("value"), known.as_slice())?;
+            let known = match &l.value {
+                Some(v) => v3(cx.vec3(&f("value"), v)?),
+                None => Vector3::zeros(),
+            };
+            let name = l.name.get_ref().clone();
             let mut unknowns = Vec::new();
-            if let Some(d) = l.direction {
-                finite(line, &f("direction"), &d)?;
-                let d = Unit::try_new(v3(d), 1e-300)
-                    .ok_or_else(|| err(line, &f("direction"), "zero vector".into()))?;
-                unknowns.push((l.name.clone(), d.into_inner()));
+            let mut add = |n: String, d: Vector3<f64>, at: usize| {
+                if let Some(first) = names.insert(n.clone(), at) {
+                    return Err(cx.err(
+                        at,
+                        &f("name"),
+                        format!("a second unknown named {n:?} (the first is on line {first})"),
+                    ));
+                }
+                unknowns.push((n, d));
+                Ok(())
+            };
+            if let Some(d) = &l.direction {
+                let d = cx.unit(&f("direction"), d)?;
+                add(name.clone(), d, cx.line(&l.name))?;
             }
+            let mut axes = std::collections::BTreeSet::new();
             for c in l.unknown.iter().flatten() {
-                let axis = match c.as_str() {
+                let at = cx.line(c);
+                let axis = match c.get_ref().as_str() {
                     "x" => Vector3::x(),
                     "y" => Vector3::y(),
                     "z" => Vector3::z(),
                     other => {
-                        return Err(err(
-                            line,
+                        return Err(cx.err(
+                            at,
                             &f("unknown"),
                             format!("unknown component {other:?} (use \"x\", \"y\", \"z\")"),
                         ));
                     }
                 };
-                unknowns.push((format!("{}_{c}", l.name), axis));
+                if !axes.insert(c.get_ref().clone()) {
+                    return Err(cx.err(
+                        at,
+                        &f("unknown"),
+                        format!("the component {:?} is listed twice", c.get_ref()),
+                    ));
+                }
+                add(format!("{name}_{}", c.get_ref()), axis, at)?;
             }
             if l.value.is_none() && unknowns.is_empty() {
-                return Err(err(
+                return Err(cx.err(
                     line,
                     &f("value"),
                     "give a value, a direction (unknown magnitude) or unknown components".into(),
                 ));
             }
             Ok(Load {
-                name: l.name.clone(),
+                name,
                 point,
                 known,
                 unknowns,
             })
         };
-        let forces = raw
-            .force
-            .iter()
-            .enumerate()
-            .map(|(i, s)| load("force", i, s, false))
-            .collect::<Result<Vec<_>, _>>()?;
-        let couples = raw
-            .couple
-            .iter()
-            .enumerate()
-            .map(|(i, s)| load("couple", i, s, true))
-            .collect::<Result<Vec<_>, _>>()?;
+        let mut forces = Vec::new();
+        for (i, s) in raw.force.iter().enumerate() {
+            forces.push(load("force", i, s, false)?);
+        }
+        let mut couples = Vec::new();
+        for (i, s) in raw.couple.iter().enumerate() {
+            couples.push(load("couple", i, s, true)?);
+        }
         let mut constraints = Vec::new();
         for (i, s) in raw.constraint.iter().enumerate() {
             let line = line_of(text, s.span().start);
             let c = s.get_ref();
             let f = |n: &str| format!("constraint[{i}].{n}");
             if !matches!(problem, Problem::Impulse { .. }) {
-                return Err(err(
+                return Err(cx.err(
                     line,
                     &f("name"),
                     "constraints need an [impulse] problem".into(),
                 ));
             }
-            finite(line, &f("point"), &c.point)?;
-            finite(line, &f("direction"), &c.direction)?;
-            finite(line, &f("value"), &[c.value])?;
-            let d = Unit::try_new(v3(c.direction), 1e-300)
-                .ok_or_else(|| err(line, &f("direction"), "zero vector".into()))?;
+            let point = v3(cx.vec3(&f("point"), &c.point)?);
+            let direction = cx.unit(&f("direction"), &c.direction)?;
+            let value = match &c.value {
+                Some(v) => cx.scalar(&f("value"), v)?,
+                None => 0.0,
+            };
             constraints.push(Constraint {
                 name: c.name.clone(),
-                point: v3(c.point),
-                direction: d.into_inner(),
-                value: c.value,
+                point,
+                direction,
+                value,
             });
-        }
-        let mut names = std::collections::BTreeSet::new();
-        for l in forces.iter().chain(&couples) {
-            for (n, _) in &l.unknowns {
-                if !names.insert(n.clone()) {
-                    return Err(err(0, n, "two unknowns with the same name".into()));
-                }
-            }
         }
         Ok(Scene {
             name: raw.name.unwrap_or_else(|| file.display().to_string()),
             description: raw.description.unwrap_or_default(),
             body,
-            g,
+            g: g.map(v3),
             reference,
             problem,
             forces,
@@ -560,7 +617,94 @@ impl Scene {
     }
 }
 
-fn rotation_of(r: &RawRotation) -> Result<UnitQuaternion<f64>, String> {
+/// The file being read, for errors that name a line and a field.
+struct Cx<'a> {
+    file: &'a Path,
+    text: &'a str,
+}
+
+impl Cx<'_> {
+    fn err(&self, line: usize, field: &str, message: String) -> SceneError {
+        SceneError {
+            file: self.file.to_path_buf(),
+            line,
+            field: field.to_string(),
+            message,
+        }
+    }
+
+    /// The line a value is written on (that of its key, unless the value
+    /// itself spans lines).
+    fn line<T>(&self, v: &Spanned<T>) -> usize {
+        line_of(self.text, v.span().start)
+    }
+
+    /// A number, checked finite.
+    fn scalar(&self, field: &str, v: &RF) -> Result<f64, SceneError> {
+        let x = *v.get_ref();
+        if !x.is_finite() {
+            return Err(self.err(self.line(v), field, format!("not finite: {x}")));
+        }
+        Ok(x)
+    }
+
+    /// A vector, checked to have three finite components.
+    fn vec3(&self, field: &str, v: &RV) -> Result<V3, SceneError> {
+        let c = v.get_ref();
+        let line = self.line(v);
+        let Ok(a) = <V3>::try_from(c.as_slice()) else {
+            return Err(self.err(
+                line,
+                field,
+                format!("a vector has 3 components, not {}", c.len()),
+            ));
+        };
+        if let Some(x) = a.iter().find(|x| !x.is_finite()) {
+            return Err(self.err(line, field, format!("not finite: {x}")));
+        }
+        Ok(a)
+    }
+
+    /// A direction: a non-zero vector, normalised without overflow.
+    fn unit(&self, field: &str, v: &RV) -> Result<Vector3<f64>, SceneError> {
+        let a = self.vec3(field, v)?;
+        unit_of(&v3(a)).ok_or_else(|| self.err(self.line(v), field, "zero vector".into()))
+    }
+}
+
+/// `|v|` without overflow or underflow of the squares (components of 1e200
+/// or 1e-200 are fine).
+fn safe_norm(v: &Vector3<f64>) -> f64 {
+    let m = v.amax();
+    if m == 0.0 || !m.is_finite() {
+        return m;
+    }
+    m * (v / m).norm()
+}
+
+/// `v / |v|` without overflow or underflow; `None` for the zero vector.
+pub fn unit_of(v: &Vector3<f64>) -> Option<Vector3<f64>> {
+    let m = v.amax();
+    if m == 0.0 || !m.is_finite() {
+        return None;
+    }
+    let w = v / m;
+    Some(w / w.norm())
+}
+
+fn props_finite(p: &MassProperties) -> bool {
+    p.mass.is_finite()
+        && p.center.iter().all(|x| x.is_finite())
+        && p.inertia_g.matrix().iter().all(|x| x.is_finite())
+}
+
+fn rotation_of(
+    cx: &Cx<'_>,
+    field: &str,
+    sr: &Spanned<RawRotation>,
+) -> Result<UnitQuaternion<f64>, SceneError> {
+    let r = sr.get_ref();
+    let line = line_of(cx.text, sr.span().start);
     let given = [
         r.axis.is_some() || r.angle_deg.is_some(),
         r.x_axis.is_some(),
@@ -571,45 +715,45 @@ fn rotation_of(r: &RawRotation) -> Result<UnitQuaternion<f64>, String> {
     .filter(|b| **b)
     .count();
     if given != 1 {
-        return Err("give exactly one of {axis, angle_deg}, x_axis, z_axis, euler_deg".to_string());
+        return Err(cx.err(
+            line,
+            field,
+            "give exactly one of {axis, angle_deg}, x_axis, z_axis, euler_deg".to_string(),
+        ));
     }
-    let unit = |v: V3, name: &str| {
-        if v.iter().any(|x| !x.is_finite()) {
-            return Err(format!("{name} is not finite"));
-        }
-        Unit::try_new(v3(v), 1e-300).ok_or_else(|| format!("{name} is the zero vector"))
-    };
-    if let Some(a) = r.x_axis {
-        let a = unit(a, "x_axis")?;
+    let sub = |n: &str| format!("{field}.{n}");
+    if let Some(a) = &r.x_axis {
+        let a = Unit::new_unchecked(cx.unit(&sub("x_axis"), a)?);
         return Ok(
             UnitQuaternion::rotation_between_axis(&Vector3::x_axis(), &a).unwrap_or_else(|| {
                 UnitQuaternion::from_axis_angle(&Vector3::z_axis(), std::f64::consts::PI)
             }),
         );
     }
-    if let Some(a) = r.z_axis {
-        let a = unit(a, "z_axis")?;
+    if let Some(a) = &r.z_axis {
+        let a = Unit::new_unchecked(cx.unit(&sub("z_axis"), a)?);
         return Ok(
             UnitQuaternion::rotation_between_axis(&Vector3::z_axis(), &a).unwrap_or_else(|| {
                 UnitQuaternion::from_axis_angle(&Vector3::x_axis(), std::f64::consts::PI)
             }),
         );
     }
-    if let Some([r_, p, y]) = r.euler_deg {
-        if [r_, p, y].iter().any(|x| !x.is_finite()) {
-            return Err("euler_deg is not finite".into());
-        }
+    if let Some(e) = &r.euler_deg {
+        let [r_, p, y] = cx.vec3(&sub("euler_deg"), e)?;
         return Ok(UnitQuaternion::from_euler_angles(
             r_.to_radians(),
             p.to_radians(),
             y.to_radians(),
         ));
     }
-    let axis = unit(r.axis.ok_or("axis missing (with angle_deg)")?, "axis")?;
-    let angle = r.angle_deg.ok_or("angle_deg missing (with axis)")?;
-    if !angle.is_finite() {
-        return Err("angle_deg is not finite".into());
-    }
+    let axis = match &r.axis {
+        Some(a) => Unit::new_unchecked(cx.unit(&sub("axis"), a)?),
+        None => return Err(cx.err(line, &sub("axis"), "missing (with angle_deg)".into())),
+    };
+    let angle = match &r.angle_deg {
+        Some(a) => cx.scalar(&sub("angle_deg"), a)?,
+        None => return Err(cx.err(line, &sub("angle_deg"), "missing (with axis)".into())),
+    };
     Ok(UnitQuaternion::from_axis_angle(&axis, angle.to_radians()))
 }
 
@@ -783,10 +927,12 @@ impl Scene {
                     for (k, c) in fcols.iter().enumerate() {
                         row[6 + k] = -c[axis];
                     }
-                    sys.push(
+                    // The scale holds the terms that cancel in the sum.
+                    sys.push_scaled(
                         format!("linear momentum {}", ["x", "y", "z"][axis]),
                         row,
                         m * v_before[axis] + f_known[axis],
+                        m * v_before.norm() + f_known.norm(),
                     );
                 }
                 // I_G ω₂ − Σ (r − G) × J = I_G ω₁ + known angular impulse about G
@@ -801,10 +947,13 @@ impl Scene {
                         // moment about G = moment about O − (G − O) × J
                         row[6 + k] = -(mc - (g - o).cross(fc))[axis];
                     }
-                    sys.push(
+                    sys.push_scaled(
                         format!("angular momentum {}", ["x", "y", "z"][axis]),
                         row,
                         h1[axis] + m_known_g[axis],
+                        props.inertia_g.trace().abs() * omega_before.norm()
+                            + m_known.norm()
+                            + (g - o).norm() * f_known.norm(),
                     );
                 }
                 // constraints: d · (v̄ + ω × (P − G)) = value
@@ -870,8 +1019,24 @@ impl Scene {
             (s.hdot_g, r.hdot_g),
             (s.moment_o, r.moment_o),
         ];
-        let scale_h = s.h_g.norm() + s.h_o.norm() + (s.momentum.norm() * 1.0);
-        let scale_a = s.force.norm() + s.hdot_g.norm() + s.moment_o.norm();
+        // Scales that include the magnitudes of the terms that cancel in
+        // the sums (a prism spinning steadily about a principal axis has
+        // zero resultants, made of particle terms of size m ω² r): a
+        // relative difference is round-off against these, not against a
+        // zero result.
+        let rg = (p.inertia_g.trace() / p.mass).max(0.0).sqrt();
+        let lever = 1.0 + (p.center - self.reference).norm() + rg;
+        let (w, al) = (m.omega.norm(), m.alpha.norm());
+        let speed = m.v_g.norm() + w * rg;
+        let accel = m.a_g.norm() + (al + w * w) * rg;
+        let i = p.inertia_g.trace().abs();
+        let scale_h =
+            s.h_g.norm() + s.h_o.norm() + s.momentum.norm() + i * w + p.mass * speed * lever;
+        let scale_a = s.force.norm()
+            + s.hdot_g.norm()
+            + s.moment_o.norm()
+            + i * (al + w * w)
+            + p.mass * accel * lever;
         let mut worst: f64 = 0.0;
         for (k, (a, b)) in pairs.iter().enumerate() {
             let scale = if k < 2 { scale_h } else { scale_a };

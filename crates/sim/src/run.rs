@@ -1167,6 +1167,23 @@ pub fn write_chart(
     stem: &std::path::Path,
     title: &str,
 ) -> Result<(), hdot_num::chart::ChartError> {
+    let mut batch = hdot_num::fsio::Batch::new();
+    stage_chart(&mut batch, rows, stem, title)?;
+    batch
+        .commit()
+        .map_err(|source| hdot_num::chart::ChartError::Io {
+            path: stem.to_path_buf(),
+            source,
+        })
+}
+
+/// As [`write_chart`], staged in `batch` with the other files of the command.
+pub fn stage_chart(
+    batch: &mut hdot_num::fsio::Batch,
+    rows: &[Row],
+    stem: &std::path::Path,
+    title: &str,
+) -> Result<(), hdot_num::chart::ChartError> {
     let series: Vec<hdot_num::chart::Series> = Method::ALL
         .into_iter()
         .filter_map(|m| {
@@ -1179,5 +1196,12 @@ pub fn write_chart(
             (!pts.is_empty()).then(|| hdot_num::chart::Series::new(m.name(), pts))
         })
         .collect();
-    hdot_num::chart::loglog_chart(stem, title, "wall time per run (s)", "error at T", &series)
+    hdot_num::chart::loglog_chart_into(
+        batch,
+        stem,
+        title,
+        "wall time per run (s)",
+        "error at T",
+        &series,
+    )
 }

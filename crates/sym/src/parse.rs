@@ -19,6 +19,20 @@
 
 use crate::rational::Rational;
 
+/// How deeply an expression may nest: parentheses, brackets, function
+/// calls, unary minus signs and `.component` selections each open a level.
+/// Parsing and evaluation recurse once per level, so the bound keeps both
+/// far from the stack's end; a human-written expression rarely needs ten.
+/// Deeper expressions are an error that says to split them into steps.
+pub const MAX_DEPTH: usize = 100;
+
+/// The most digits of one integer literal (numerator or denominator). A
+/// coefficient is also bounded in bits by
+/// [`Limits::max_bits`](crate::limits::Limits), which arithmetic can reach;
+/// this bounds what the parser is handed (a million-digit literal is
+/// refused before it is converted).
+pub const MAX_DIGITS: usize = 1000;
+
 /// A byte range inside the parsed text.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct Span {
@@ -80,6 +94,15 @@ fn tokenize(text: &str) -> Result<Vec<(Tok, Span)>, ParseError> {
                 } else {
                     break;
                 }
+            }
+            if s.len() > MAX_DIGITS {
+                return err(
+                    Span { start: i, end },
+                    format!(
+                        "a number literal of {} digits: at most {MAX_DIGITS} are allowed",
+                        s.len()
+                    ),
+                );
             }
             if let Some(&(j, '.')) = it.peek() {
                 return err(
@@ -213,6 +236,8 @@ pub enum AstKind {
 struct Parser {
     toks: Vec<(Tok, Span)>,
     pos: usize,
+    /// Levels of nesting open at the current token (see [`MAX_DEPTH`]).
+    depth: usize,
 }
 
 /// Parses one expression; the whole text must be consumed.
@@ -220,6 +245,7 @@ pub fn parse(text: &str) -> Result<Ast, ParseError> {
     let mut p = Parser {
         toks: tokenize(text)?,
         pos: 0,
+        depth: 0,
     };
     let e = p.expr()?;
     match p.peek() {
@@ -280,7 +306,28 @@ impl Parser {
         }
     }
 
+    /// Opens one level of nesting, refusing to go deeper than [`MAX_DEPTH`].
+    fn enter(&mut self) -> Result<(), ParseError> {
+        self.depth += 1;
+        if self.depth > MAX_DEPTH {
+            return err(
+                self.span(),
+                format!(
+                    "the expression nests deeper than {MAX_DEPTH} levels (parentheses, calls, signs, components); split it into steps"
+                ),
+            );
+        }
+        Ok(())
+    }
+
     fn expr(&mut self) -> Result<Ast, ParseError> {
+        self.enter()?;
+        let e = self.expr_inner();
+        self.depth -= 1;
+        e
+    }
+
+    fn expr_inner(&mut self) -> Result<Ast, ParseError> {
         let first = self.term()?;
         let start = first.span;
         let mut items = vec![first];
@@ -313,7 +360,9 @@ impl Parser {
     fn term(&mut self) -> Result<Ast, ParseError> {
         if self.eat('-') {
             let s = self.prev_span();
+            self.enter()?;
             let t = self.term()?;
+            self.depth -= 1;
             let span = s.to(t.span);
             return Ok(Ast {
                 kind: AstKind::Neg(Box::new(t)),
@@ -395,7 +444,10 @@ impl Parser {
 
     fn postfix(&mut self, allow_rational: bool) -> Result<Ast, ParseError> {
         let mut e = self.primary(allow_rational)?;
+        let depth = self.depth;
         while self.eat('.') {
+            // Each selection nests the tree one level deeper.
+            self.enter()?;
             let (t, s) = self.bump();
             let name = match t {
                 Tok::Ident(name) | Tok::Int(name) => name,
@@ -412,6 +464,7 @@ impl Parser {
                 span,
             };
         }
+        self.depth = depth;
         Ok(e)
     }
 
@@ -547,6 +600,29 @@ mod tests {
         assert!(e.message.contains("decimal"));
         let e = parse("f(a, b").unwrap_err();
         assert_eq!(e.span.start, 6);
+    }
+
+    #[test]
+    fn nesting_and_literals_are_bounded() {
+        let ok = format!(
+            "{}a{}",
+            "(".repeat(MAX_DEPTH - 1),
+            ")".repeat(MAX_DEPTH - 1)
+        );
+        assert!(parse(&ok).is_ok());
+        for deep in [
+            format!("{}a{}", "(".repeat(10_000), ")".repeat(10_000)),
+            format!("{}a", "-".repeat(10_000)),
+            format!("{}a{}", "dt(".repeat(10_000), ")".repeat(10_000)),
+            format!("a{}", ".x".repeat(10_000)),
+            format!("{}a", "[".repeat(10_000)),
+        ] {
+            let e = parse(&deep).unwrap_err();
+            assert!(e.message.contains("nests deeper"), "{}", e.message);
+        }
+        let e = parse(&"7".repeat(MAX_DIGITS + 1)).unwrap_err();
+        assert!(e.message.contains("digits"), "{}", e.message);
+        assert!(parse(&"7".repeat(MAX_DIGITS)).is_ok());
     }
 
     #[test]

@@ -66,7 +66,20 @@ fn label_body(label: &str, symbol: fn(&str, u32) -> String, sep: &str) -> (Strin
 
 /// A label such as `Sigma M` with component `x`, in LaTeX: `\Sigma M_{x}`.
 pub fn latex_label(label: &str, component: &str) -> String {
-    match (label_body(label, latex_symbol, " "), component.is_empty()) {
+    // Characters with a meaning in LaTeX that no symbol's LaTeX contains
+    // are escaped (`%` would comment out the rest of the equation).
+    let escape = |t: String| {
+        t.chars().fold(String::new(), |mut o, c| {
+            if matches!(c, '%' | '&' | '#' | '$') {
+                o.push('\\');
+            }
+            o.push(c);
+            o
+        })
+    };
+    let (body, sub) = label_body(label, latex_symbol, " ");
+    let component = escape(component.to_owned());
+    match ((escape(body), sub), component.is_empty()) {
         ((body, _), true) => body,
         ((body, false), false) => format!("{body}_{{{component}}}"),
         ((body, true), false) => format!(r"\left({body}\right)_{{{component}}}"),

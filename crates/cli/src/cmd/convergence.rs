@@ -7,12 +7,13 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use anyhow::Context;
 use clap::Args;
 use hdot_num::convergence::{
-    METHODS, PrimitiveSweeps, bundled_primitives, cheapest_meeting, observed_orders, sweep,
-    write_charts,
+    METHODS, PrimitiveSweeps, bundled_primitives, cheapest_meeting, observed_orders, stage_charts,
+    sweep,
 };
+
+use crate::output::{self, OutputError};
 
 /// Arguments of `hdot convergence`.
 #[derive(Debug, Args)]
@@ -38,7 +39,8 @@ pub fn run(args: ConvergenceArgs) -> anyhow::Result<ExitCode> {
         anyhow::bail!("--tol must be a positive number, got {t}");
     }
     if let Some(dir) = &args.out {
-        std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+        std::fs::create_dir_all(dir)
+            .map_err(|e| OutputError::new(format!("cannot create {}", dir.display()), e))?;
     }
     let shapes = bundled_primitives();
     let bar = std::io::stderr().is_terminal().then(|| {
@@ -50,9 +52,11 @@ pub fn run(args: ConvergenceArgs) -> anyhow::Result<ExitCode> {
         bar
     });
     let mut code = ExitCode::SUCCESS;
+    let mut batch = output::Batch::new();
+    let mut written = Vec::new();
     for shape in &shapes {
         let mut sweeps = Vec::new();
-        println!("{}", shape.name());
+        crate::outln!("{}", shape.name());
         for &method in &METHODS {
             if let Some(b) = &bar {
                 b.set_message(format!("{} {method}", shape.name()));
@@ -65,7 +69,7 @@ pub fn run(args: ConvergenceArgs) -> anyhow::Result<ExitCode> {
                 (_, Some(o)) => format!("observed order {o:.2}"),
                 _ => "-".to_string(),
             };
-            println!(
+            crate::outln!(
                 "  {:<18} finest {:>9} particles  error {:>9}  {verdict}",
                 method.to_string(),
                 last.map_or(0, |p| p.particles),
@@ -78,12 +82,15 @@ pub fn run(args: ConvergenceArgs) -> anyhow::Result<ExitCode> {
         }
         if let Some(tol) = args.tol {
             match cheapest_meeting(shape, tol, &METHODS, args.max_particles) {
-                Some(p) => println!(
+                Some(p) => crate::outln!(
                     "  cheapest for tol {tol:e}: {} with {} cells per parameter, {} particles, error {:.2e}",
-                    p.disc.method, p.disc.cells, p.particles, p.error
+                    p.disc.method,
+                    p.disc.cells,
+                    p.particles,
+                    p.error
                 ),
                 None => {
-                    println!(
+                    crate::outln!(
                         "  no discretisation within {} particles meets tol {tol:e}",
                         args.max_particles
                     );
@@ -92,20 +99,27 @@ pub fn run(args: ConvergenceArgs) -> anyhow::Result<ExitCode> {
             }
         }
         if let Some(dir) = &args.out {
-            let stems = write_charts(
+            let stems = stage_charts(
+                &mut batch,
                 dir,
                 &PrimitiveSweeps {
                     shape: *shape,
                     sweeps,
                 },
-            )?;
-            for s in stems {
-                println!("  wrote {}.{{svg,png}}", s.display());
-            }
+            )
+            .map_err(|e| OutputError::new("cannot write the charts", std::io::Error::other(e.to_string())))?;
+            written.extend(stems);
         }
     }
     if let Some(b) = bar {
         b.finish_and_clear();
+    }
+    // Every chart appears, or none does.
+    batch
+        .commit()
+        .map_err(|e| OutputError::new("cannot write the charts", e))?;
+    for s in written {
+        crate::outln!("wrote {}.{{svg,png}}", s.display());
     }
     Ok(code)
 }

@@ -19,9 +19,9 @@ pub struct DynamicsArgs {
     /// Output format.
     #[arg(long, value_enum, default_value_t = NumFormat::Text)]
     pub format: NumFormat,
-    /// Significant digits in text output.
-    #[arg(long, default_value_t = 6)]
-    pub digits: usize,
+    /// Significant digits in text output (1 to 17: an f64 holds no more).
+    #[arg(long, default_value_t = 6, value_parser = clap::value_parser!(u8).range(1..=17))]
+    pub digits: u8,
 }
 
 /// Prints the report. Exit 1 when the unknowns are underdetermined or
@@ -29,7 +29,14 @@ pub struct DynamicsArgs {
 pub fn run(args: DynamicsArgs) -> anyhow::Result<ExitCode> {
     let scene = Scene::from_path(&args.scene)?;
     let report = Report::dynamics(&scene);
-    print_report(&report, args.format, args.digits)?;
+    if let Some(q) = report.non_finite() {
+        eprintln!(
+            "error: {}: {q} is not a finite number (the scene's values are too large or too small for it)",
+            args.scene.display()
+        );
+        return Ok(ExitCode::from(1));
+    }
+    print_report(&report, args.format, usize::from(args.digits))?;
     let check_failed = report
         .particle_check
         .is_some_and(|c| c.is_nan() || c > 1e-9);

@@ -26,24 +26,31 @@ pub struct InertiaArgs {
     /// Output format.
     #[arg(long, value_enum, default_value_t = NumFormat::Text)]
     pub format: NumFormat,
-    /// Significant digits in text output.
-    #[arg(long, default_value_t = 6)]
-    pub digits: usize,
+    /// Significant digits in text output (1 to 17: an f64 holds no more).
+    #[arg(long, default_value_t = 6, value_parser = clap::value_parser!(u8).range(1..=17))]
+    pub digits: u8,
 }
 
 /// Prints the mass properties. Exit 2 on a bad scene.
 pub fn run(args: InertiaArgs) -> anyhow::Result<ExitCode> {
     let scene = Scene::from_path(&args.scene)?;
     let report = Report::inertia(&scene);
-    print_report(&report, args.format, args.digits)?;
+    if let Some(q) = report.non_finite() {
+        eprintln!(
+            "error: {}: {q} is not a finite number (the scene's values are too large or too small for it)",
+            args.scene.display()
+        );
+        return Ok(ExitCode::from(1));
+    }
+    print_report(&report, args.format, usize::from(args.digits))?;
     Ok(ExitCode::SUCCESS)
 }
 
 /// Prints a report in the chosen format.
 pub fn print_report(report: &Report, format: NumFormat, digits: usize) -> anyhow::Result<()> {
     match format {
-        NumFormat::Text => print!("{}", report.text(digits)),
-        NumFormat::Json => println!(
+        NumFormat::Text => crate::out!("{}", report.text(digits)),
+        NumFormat::Json => crate::outln!(
             "{}",
             serde_json::to_string_pretty(report).context("serialising the report")?
         ),

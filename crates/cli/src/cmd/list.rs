@@ -19,22 +19,21 @@ pub fn run(args: ListArgs) -> anyhow::Result<ExitCode> {
     let dir = catalog::derivations_dir(args.dir.as_deref());
     let mut failed = false;
     for p in catalog::all(&dir)? {
-        match hdot_sym::derivation::load(&p) {
-            Ok(d) => println!(
+        match p.load() {
+            Ok(d) => crate::outln!(
                 "{:<28} {}\n{:<28} source: {}",
-                d.name, d.title, "", d.source
+                d.name,
+                d.title,
+                "",
+                d.source
             ),
             Err(e) => {
                 failed = true;
-                println!(
-                    "{:<28} (does not load: {})",
-                    catalog::name_of(&p),
-                    e.message
-                );
+                crate::outln!("{:<28} (does not load: {})", p.name(), e.message);
             }
         }
     }
-    println!(
+    crate::outln!(
         "{:<28} Chain of K bodies: Ḣ in the inertial frame (generated scaling family)\n{:<28} source: hdot_sym::chain (K = 1…{})",
         "chain-K",
         "",

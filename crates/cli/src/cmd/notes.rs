@@ -5,11 +5,12 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::Args;
-use hdot_sym::course::{self, MANIFEST_FILE};
+use hdot_sym::course;
 use hdot_sym::derivation::Derivation;
 use hdot_sym::document::Course;
 use hdot_sym::notes;
 
+use crate::output::OutputError;
 use crate::{catalog, output};
 
 /// Write lecture notes: derivations step by step, as a LaTeX document
@@ -56,10 +57,10 @@ pub struct NotesArgs {
     printer_coverage: bool,
 }
 
-fn load_all(files: &[PathBuf]) -> Result<Vec<Derivation>, ExitCode> {
+fn load_all(files: &[catalog::Entry]) -> Result<Vec<Derivation>, ExitCode> {
     let mut ds = Vec::new();
-    for path in files {
-        match hdot_sym::derivation::load(path) {
+    for entry in files {
+        match entry.load() {
             Ok(d) => ds.push(d),
             Err(diag) => {
                 eprintln!("{diag}");
@@ -74,7 +75,7 @@ fn load_all(files: &[PathBuf]) -> Result<Vec<Derivation>, ExitCode> {
 pub fn run(args: NotesArgs) -> anyhow::Result<ExitCode> {
     // The files, and the folder whose notes.toml applies.
     let mut files = Vec::new();
-    let mut folders: Vec<PathBuf> = Vec::new();
+    let mut folders: Vec<catalog::Dir> = Vec::new();
     if args.paths.is_empty() {
         let dir = catalog::derivations_dir(args.dir.as_deref());
         files = catalog::all(&dir)?;
@@ -82,10 +83,11 @@ pub fn run(args: NotesArgs) -> anyhow::Result<ExitCode> {
     }
     for p in &args.paths {
         if p.is_dir() {
-            files.extend(catalog::all(p)?);
-            folders.push(p.clone());
+            let dir = catalog::Dir::Folder(p.clone());
+            files.extend(catalog::all(&dir)?);
+            folders.push(dir);
         } else if p.is_file() {
-            files.push(p.clone());
+            files.push(catalog::Entry::File(p.clone()));
         } else {
             anyhow::bail!("no such derivation file or folder: {}", p.display());
         }
@@ -94,17 +96,19 @@ pub fn run(args: NotesArgs) -> anyhow::Result<ExitCode> {
         Ok(ds) => ds,
         Err(code) => return Ok(code),
     };
-    let manifest: Option<PathBuf> = if args.no_manifest {
+    let manifest: Option<(PathBuf, String)> = if args.no_manifest {
         None
     } else if let Some(m) = &args.manifest {
-        Some(m.clone())
+        let text = std::fs::read_to_string(m)
+            .map_err(|e| anyhow::anyhow!("cannot read the notes manifest {}: {e}", m.display()))?;
+        Some((m.clone(), text))
     } else if let [dir] = folders.as_slice() {
-        Some(dir.join(MANIFEST_FILE)).filter(|m| m.is_file())
+        catalog::manifest(dir)
     } else {
         None
     };
     let course = match &manifest {
-        Some(m) => match course::load(m, &ds) {
+        Some((m, text)) => match course::parse(&m.display().to_string(), text, &ds) {
             Ok(c) => c,
             Err(diag) => {
                 eprintln!("{diag}");
@@ -115,9 +119,17 @@ pub fn run(args: NotesArgs) -> anyhow::Result<ExitCode> {
         None => Course::plain(&ds),
     };
     let doc = course.document(&ds);
+    // Every file appears, or none does.
     let mut written: Vec<PathBuf> = Vec::new();
+    let mut batch = output::Batch::new();
     let mut write = |path: PathBuf, text: &str| -> anyhow::Result<()> {
-        output::write_atomic(&path, text.as_bytes())?;
+        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir)
+                .map_err(|e| OutputError::new(format!("cannot create {}", dir.display()), e))?;
+        }
+        batch
+            .write(&path, text.as_bytes())
+            .map_err(|e| OutputError::new(format!("cannot write {}", path.display()), e))?;
         written.push(path);
         Ok(())
     };
@@ -150,6 +162,9 @@ pub fn run(args: NotesArgs) -> anyhow::Result<ExitCode> {
             &notes::coverage_document(),
         )?;
     }
+    batch
+        .commit()
+        .map_err(|e| OutputError::new(format!("cannot write {}", args.out.display()), e))?;
     for d in &ds {
         for (step, c) in d.failures() {
             eprintln!(
@@ -166,7 +181,7 @@ pub fn run(args: NotesArgs) -> anyhow::Result<ExitCode> {
         .take(3)
         .map(|p| p.display().to_string())
         .collect();
-    println!(
+    crate::outln!(
         "wrote {}{} ({} derivations{})",
         shown.join(", "),
         if written.len() > 3 {
@@ -176,7 +191,7 @@ pub fn run(args: NotesArgs) -> anyhow::Result<ExitCode> {
         },
         ds.len(),
         match &manifest {
-            Some(m) => format!(", arranged by {}", m.display()),
+            Some((m, _)) => format!(", arranged by {}", m.display()),
             None => String::new(),
         }
     );

@@ -5,11 +5,12 @@ use std::io::{BufWriter, IsTerminal, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use anyhow::Context;
 use clap::Args;
 use hdot_sim::run::{self, Output, Request};
 use hdot_sim::scene::Scene;
 use hdot_sim::{Method, SimError, Step};
+
+use crate::output::{self, OutputError};
 
 /// Arguments of `hdot simulate`.
 #[derive(Debug, Args)]
@@ -61,7 +62,10 @@ fn is_input_error(e: &SimError) -> bool {
 
 /// Runs `hdot simulate`.
 pub fn run(args: SimulateArgs) -> anyhow::Result<ExitCode> {
-    let scene = Scene::from_file(&args.scene)?;
+    let scene = match crate::catalog::bundled_scene(&args.scene) {
+        Some((name, text)) => Scene::parse(text, std::path::Path::new(&name))?,
+        None => Scene::from_file(&args.scene)?,
+    };
     let method = args
         .method
         .as_deref()
@@ -86,11 +90,14 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<ExitCode> {
     let plan = run::plan(&scene, &request)?;
 
     let mut file = match &args.output {
+        // Streamed to a temporary file, renamed into place when the run
+        // succeeds: a failed run leaves nothing behind.
         Some(path) => {
-            let f = std::fs::File::create(path)
-                .with_context(|| format!("creating {}", path.display()))?;
+            output::refuse_overwriting_inputs(path, &[&args.scene])?;
+            let cannot = |e| OutputError::new(format!("cannot write {}", path.display()), e);
+            let f = output::AtomicFile::create(path).map_err(cannot)?;
             let mut w = BufWriter::new(f);
-            writeln!(w, "{}", run::stream_header(&scene, plan.model))?;
+            writeln!(w, "{}", run::stream_header(&scene, plan.model)).map_err(cannot)?;
             Some(w)
         }
         None => None,
@@ -135,8 +142,13 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<ExitCode> {
     if let Some(b) = &bar {
         b.finish_and_clear();
     }
-    if let Some(mut w) = file {
-        w.flush()?;
+    if let (Some(w), Ok(_)) = (file, &result) {
+        let path = args.output.as_deref().unwrap_or(std::path::Path::new("-"));
+        let cannot = |e| OutputError::new(format!("cannot write {}", path.display()), e);
+        w.into_inner()
+            .map_err(|e| cannot(e.into_error()))?
+            .commit()
+            .map_err(cannot)?;
     }
     let report = match result {
         Ok(r) => r,

@@ -47,10 +47,7 @@ pub fn run(args: VerifyArgs) -> anyhow::Result<ExitCode> {
             .map(|n| catalog::resolve(&dir, n))
             .collect::<anyhow::Result<Vec<_>>>()?
     };
-    let checked = paths
-        .iter()
-        .filter(|p| is_supported(&catalog::name_of(p)))
-        .count();
+    let checked = paths.iter().filter(|p| is_supported(&p.name())).count();
     let bar = std::io::stderr().is_terminal().then(|| {
         let bar = indicatif::ProgressBar::new(checked as u64 * args.bodies);
         bar.set_style(
@@ -59,14 +56,16 @@ pub fn run(args: VerifyArgs) -> anyhow::Result<ExitCode> {
         );
         bar
     });
-    println!(
+    crate::outln!(
         "{:<36} {:>7} {:>12}  result (tolerance {TOLERANCE_ULPS} ulps of the magnitudes)",
-        "derivation", "bodies", "max rel err"
+        "derivation",
+        "bodies",
+        "max rel err"
     );
     let mut code = ExitCode::SUCCESS;
     for p in &paths {
-        let name = catalog::name_of(p);
-        let d = match hdot_sym::derivation::load(p) {
+        let name = p.name();
+        let d = match p.load() {
             Ok(d) => d,
             Err(e) => anyhow::bail!("{e}"),
         };
@@ -79,9 +78,9 @@ pub fn run(args: VerifyArgs) -> anyhow::Result<ExitCode> {
             }
         };
         match verify(&d, args.bodies as usize, args.seed, &mut tick) {
-            None => println!("{name:<36} {:>7} {:>12}  skipped: no binding", "-", "-"),
+            None => crate::outln!("{name:<36} {:>7} {:>12}  skipped: no binding", "-", "-"),
             Some(Err(e)) => {
-                println!("{name:<36} {:>7} {:>12}  error: {e}", "-", "-");
+                crate::outln!("{name:<36} {:>7} {:>12}  error: {e}", "-", "-");
                 code = ExitCode::FAILURE;
             }
             Some(Ok(o)) => {
@@ -97,23 +96,24 @@ pub fn run(args: VerifyArgs) -> anyhow::Result<ExitCode> {
                         None => "FAIL".into(),
                     }
                 };
-                println!(
+                crate::outln!(
                     "{name:<36} {:>7} {:>12.3e}  {verdict}",
-                    o.bodies, o.max_error
+                    o.bodies,
+                    o.max_error
                 );
             }
         }
         if let Some(c) = coverage(&name) {
             if args.steps {
                 for (steps, against) in c.compared {
-                    println!("    {steps}: against {against}");
+                    crate::outln!("    {steps}: against {against}");
                 }
             }
             for (steps, against) in c.kinematic {
-                println!("    {steps}: kinematics, against {against} (no particle sum)");
+                crate::outln!("    {steps}: kinematics, against {against} (no particle sum)");
             }
             for (steps, why) in c.not_compared {
-                println!("    {steps}: not compared, {why}");
+                crate::outln!("    {steps}: not compared, {why}");
             }
         }
     }

@@ -1,14 +1,14 @@
 //! `hdot work-precision SCENE`: sweep every method over step sizes and
 //! tolerances; write the CSV and the chart (error against wall time).
 
-use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use anyhow::Context;
 use clap::Args;
 use hdot_sim::run;
 use hdot_sim::scene::Scene;
+
+use crate::output::{self, OutputError};
 
 /// Arguments of `hdot work-precision`.
 #[derive(Debug, Args)]
@@ -34,7 +34,7 @@ pub fn run(args: WorkPrecisionArgs) -> anyhow::Result<ExitCode> {
         anyhow::bail!("--t-end must be positive and finite, got {t_end}");
     }
     std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("creating {}", args.out.display()))?;
+        .map_err(|e| OutputError::new(format!("cannot create {}", args.out.display()), e))?;
     let stem_name = format!(
         "{}-work-precision",
         args.scene
@@ -46,17 +46,35 @@ pub fn run(args: WorkPrecisionArgs) -> anyhow::Result<ExitCode> {
     let rows = run::work_precision(&scene, t_end, args.min_time, |r| {
         eprintln!("{}", r.csv());
     })?;
+    // The CSV and the chart appear together or not at all.
     let csv = stem.with_extension("csv");
-    let mut f =
-        std::fs::File::create(&csv).with_context(|| format!("creating {}", csv.display()))?;
-    writeln!(f, "{}", run::CSV_HEADER)?;
+    let mut text = format!("{}\n", run::CSV_HEADER);
     for r in &rows {
-        writeln!(f, "{}", r.csv())?;
+        text.push_str(&r.csv());
+        text.push('\n');
     }
-    run::write_chart(&rows, &stem, &format!("{} (T = {t_end})", scene.name))?;
-    // A closed stdout pipe is not an error: the files are written.
-    let _ = writeln!(
-        std::io::stdout(),
+    for p in [
+        csv.clone(),
+        stem.with_extension("svg"),
+        stem.with_extension("png"),
+    ] {
+        output::refuse_overwriting_inputs(&p, &[&args.scene])?;
+    }
+    let mut batch = output::Batch::new();
+    batch
+        .write(&csv, text.as_bytes())
+        .map_err(|e| OutputError::new(format!("cannot write {}", csv.display()), e))?;
+    run::stage_chart(
+        &mut batch,
+        &rows,
+        &stem,
+        &format!("{} (T = {t_end})", scene.name),
+    )
+    .map_err(|e| OutputError::new("cannot write the chart", std::io::Error::other(e.to_string())))?;
+    batch
+        .commit()
+        .map_err(|e| OutputError::new(format!("cannot write {}", stem.display()), e))?;
+    crate::outln!(
         "wrote {}, {}.svg, {}.png",
         csv.display(),
         stem.display(),

@@ -38,8 +38,18 @@ impl Diagnostic {
         end: usize,
         message: impl Into<String>,
     ) -> Diagnostic {
-        let start = start.min(text.len());
-        let end = end.clamp(start, text.len());
+        // Offsets inside a string with escapes (`\"`, `\u00e9`) are offsets
+        // into its unescaped value and can land inside a multibyte
+        // character of the file: step back to a character boundary.
+        let floor = |mut i: usize| {
+            i = i.min(text.len());
+            while !text.is_char_boundary(i) {
+                i -= 1;
+            }
+            i
+        };
+        let start = floor(start);
+        let end = floor(end.max(start));
         let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
         let line_end = text[start..].find('\n').map_or(text.len(), |i| start + i);
         let line = text[..start].matches('\n').count() + 1;

@@ -337,6 +337,15 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
                 "a step of this name is already defined",
             ));
         }
+        let n = s.name.get_ref();
+        if cx.symbols.get(n).is_some() || cx.frame_index(n).is_some() {
+            return Err(cx.diag_string(
+                &s.name,
+                0,
+                n.len(),
+                "a step may not be named like a declared symbol or frame: it would shadow it in later steps and expectations",
+            ));
+        }
         let mut out = None;
         limited(
             &cx,

@@ -1,0 +1,37 @@
+//! Embeds the bundled derivations (`derivations/*.toml`) and example
+//! scenes (`docs/examples/*.toml`) in the binary, so that an installed
+//! `hdot` works without the source tree it was built from.
+
+use std::fmt::Write;
+use std::path::Path;
+
+fn main() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let mut out = String::new();
+    for (konst, dir) in [("DERIVATIONS", "derivations"), ("SCENES", "docs/examples")] {
+        let dir = root.join(dir);
+        println!("cargo:rerun-if-changed={}", dir.display());
+        let mut files: Vec<_> = std::fs::read_dir(&dir)
+            .map(|rd| {
+                rd.filter_map(|e| e.ok().map(|e| e.path()))
+                    .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+                    .collect()
+            })
+            .unwrap_or_default();
+        files.sort();
+        let _ = writeln!(out, "pub const {konst}: &[(&str, &str)] = &[");
+        for f in files {
+            println!("cargo:rerun-if-changed={}", f.display());
+            let stem = f.file_stem().expect("a file name").to_string_lossy();
+            let abs = f.canonicalize().expect("a readable file");
+            let _ = writeln!(
+                out,
+                "    ({stem:?}, include_str!({:?})),",
+                abs.display().to_string()
+            );
+        }
+        let _ = writeln!(out, "];");
+    }
+    let dest = Path::new(&std::env::var("OUT_DIR").expect("OUT_DIR")).join("bundled.rs");
+    std::fs::write(dest, out).expect("write bundled.rs");
+}

@@ -1,0 +1,248 @@
+//! Reliability of the binary (issue 13): a closed stdout, output that
+//! never destroys, bounded parsing, strict options, and an installed
+//! binary that needs no source tree.
+
+use std::process::{Command, Stdio};
+
+use hdot_tests::{hdot_bin, repo_root};
+
+use super::{hdot, text};
+
+fn example(name: &str) -> String {
+    repo_root()
+        .join("docs/examples")
+        .join(name)
+        .display()
+        .to_string()
+}
+
+#[test]
+fn a_closed_stdout_ends_every_command_quietly() {
+    let notes = tempfile::tempdir().unwrap();
+    let rod = example("rod-on-axle.toml");
+    let commands: Vec<Vec<&str>> = vec![
+        vec!["list"],
+        vec!["check", "euler-principal", "fixed-axis"],
+        vec!["derive", "euler-general"],
+        vec!["inertia", &rod],
+        vec!["dynamics", &rod],
+        vec!["verify", "euler-principal", "--bodies", "2"],
+        vec!["notes", "--out", notes.path().to_str().unwrap()],
+    ];
+    for args in commands {
+        let mut child = Command::new(hdot_bin())
+            .args(&args)
+            .current_dir(repo_root())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        // Close the reading end before the command writes anything.
+        drop(child.stdout.take());
+        let out = child.wait_with_output().unwrap();
+        let err = text(&out.stderr);
+        assert_eq!(out.status.code(), Some(0), "{args:?}: {err}");
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+    }
+}
+
+#[test]
+fn a_result_that_cannot_be_written_exits_1() {
+    let out = hdot(&["derive", "euler-principal", "--out", "/dev/full"]);
+    assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
+    let out = hdot(&["derive", "euler-principal", "--out", "/proc/no/such/dir/x.tex"]);
+    assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
+    // Output to /dev/stdout is written in place.
+    let out = hdot(&["derive", "euler-principal", "--out", "/dev/stdout"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(text(&out.stdout).contains("Euler"));
+}
+
+#[test]
+fn deep_nesting_and_huge_literals_are_clear_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let n = 10_000;
+    for (what, value) in [
+        ("parentheses", format!("{}a{}", "(".repeat(n), ")".repeat(n))),
+        ("minus", format!("{}a", "-".repeat(n))),
+        ("dt", format!("{}x{}", "dt(".repeat(n), ")".repeat(n))),
+        ("cross", format!("{}a{}", "cross(a, ".repeat(n), ")".repeat(n))),
+        ("subst", format!("{}x{}", "subst(".repeat(n), ", a = 1)".repeat(n))),
+        ("literal", format!("{}*a", "7".repeat(1_000_000))),
+    ] {
+        let f = dir.path().join(format!("{what}.toml"));
+        std::fs::write(
+            &f,
+            format!(
+                "title = \"t\"\nsource = \"s\"\n[symbols]\nconstants = [\"a\"]\ntime = [\"x\"]\n[[step]]\nname = \"s\"\nvalue = \"{value}\"\n"
+            ),
+        )
+        .unwrap();
+        let out = hdot(&["derive", f.to_str().unwrap()]);
+        let err = text(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{what}: {err}");
+        assert!(
+            err.contains("nests deeper than") || err.contains("digits"),
+            "{what}: {err}"
+        );
+    }
+}
+
+#[test]
+fn digits_are_bounded() {
+    let rod = example("rod-on-axle.toml");
+    for cmd in ["inertia", "dynamics"] {
+        let out = hdot(&[cmd, &rod, "--digits", "65536"]);
+        assert_eq!(out.status.code(), Some(2), "{cmd}");
+        assert!(text(&out.stderr).contains("--digits"), "{cmd}");
+        let out = hdot(&[cmd, &rod, "--digits", "17"]);
+        assert!(out.status.success(), "{cmd}: {}", text(&out.stderr));
+    }
+}
+
+#[test]
+fn outputs_never_destroy_inputs_or_leave_partial_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    // derive F --out F is refused; F is unchanged.
+    let f = d.join("mine.toml");
+    let original = std::fs::read_to_string(repo_root().join("derivations/fixed-axis.toml")).unwrap();
+    std::fs::write(&f, &original).unwrap();
+    let out = hdot(&["derive", f.to_str().unwrap(), "--out", f.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(text(&out.stderr).contains("is an input"), "{}", text(&out.stderr));
+    assert_eq!(std::fs::read_to_string(&f).unwrap(), original);
+    // … also through a link to it.
+    let link = d.join("link.tex");
+    std::os::unix::fs::symlink(&f, &link).unwrap();
+    let out = hdot(&["derive", f.to_str().unwrap(), "--out", link.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(std::fs::read_to_string(&f).unwrap(), original);
+
+    // simulate S --output S is refused.
+    let s = d.join("scene.toml");
+    std::fs::copy(example("sim-shaft-unbalanced.toml"), &s).unwrap();
+    let before = std::fs::read(&s).unwrap();
+    let out = hdot(&["simulate", s.to_str().unwrap(), "--output", s.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2), "{}", text(&out.stderr));
+    assert_eq!(std::fs::read(&s).unwrap(), before);
+
+    // --out through a link writes where the link points; new files follow
+    // the umask (not 0600).
+    let target = d.join("target.tex");
+    let link = d.join("out-link.tex");
+    std::os::unix::fs::symlink("target.tex", &link).unwrap();
+    let out = hdot(&["derive", "euler-principal", "--out", link.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(std::fs::symlink_metadata(&link).unwrap().file_type().is_symlink());
+    assert!(std::fs::read_to_string(&target).unwrap().contains("Euler"));
+    use std::os::unix::fs::PermissionsExt;
+    let mode = std::fs::metadata(&target).unwrap().permissions().mode();
+    assert_ne!(mode & 0o777, 0o600, "mode {mode:o}");
+
+    // A failing run leaves no streamed rows behind (exit 1).
+    let rows = d.join("rows.csv");
+    let out = hdot(&[
+        "simulate",
+        &example("sim-heavy-top.toml"),
+        "--method",
+        "euler",
+        "--dt",
+        "1",
+        "--t-end",
+        "100000",
+        "--output",
+        rows.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
+    assert!(!rows.exists());
+
+    // notes: the LaTeX is not written when the Markdown cannot be.
+    let notes = d.join("notes");
+    std::fs::create_dir_all(notes.join("hdot-notes.md")).unwrap();
+    let out = hdot(&["notes", "--out", notes.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
+    assert!(!notes.join("hdot-notes.tex").exists());
+
+    // work-precision: no CSV when the chart cannot be written.
+    let wp = d.join("wp");
+    std::fs::create_dir_all(wp.join("sim-shaft-unbalanced-work-precision.png")).unwrap();
+    let out = hdot(&[
+        "work-precision",
+        &example("sim-shaft-unbalanced.toml"),
+        "--out",
+        wp.to_str().unwrap(),
+        "--t-end",
+        "0.01",
+        "--min-time",
+        "0",
+    ]);
+    assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
+    assert!(!wp.join("sim-shaft-unbalanced-work-precision.csv").exists());
+
+    // No temporary file is left anywhere.
+    for dir in [d, &notes, &wp] {
+        for e in std::fs::read_dir(dir).unwrap() {
+            let name = e.unwrap().file_name();
+            assert!(!name.to_string_lossy().starts_with(".hdot-tmp"), "{name:?}");
+        }
+    }
+}
+
+#[test]
+fn empty_folders_and_crashing_files_do_not_pass_silently() {
+    let dir = tempfile::tempdir().unwrap();
+    for cmd in ["check", "verify", "list"] {
+        let out = hdot(&[cmd, "--dir", dir.path().to_str().unwrap()]);
+        assert_eq!(out.status.code(), Some(2), "{cmd}");
+        assert!(text(&out.stderr).contains("no derivation files"), "{cmd}");
+    }
+}
+
+#[test]
+fn non_finite_results_are_errors_naming_the_quantity() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = dir.path().join("fast.toml");
+    std::fs::write(
+        &f,
+        "name = \"fast\"\n[[body]]\nshape = \"prism\"\na = 1.0\nb = 2.0\nc = 3.0\nmass = 2.0\n[motion]\nomega = [1e200, 0.0, 0.0]\n",
+    )
+    .unwrap();
+    let out = hdot(&["dynamics", f.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1), "{}", text(&out.stdout));
+    let err = text(&out.stderr);
+    assert!(err.contains("is not a finite number"), "{err}");
+    assert!(!text(&out.stdout).contains("inf"));
+}
+
+/// The binary copied away from the source tree, run from an empty folder:
+/// the bundled derivations and scenes are embedded in it.
+#[test]
+fn an_installed_binary_needs_no_source_tree() {
+    let dir = tempfile::tempdir().unwrap();
+    let bin = dir.path().join("hdot");
+    std::fs::copy(hdot_bin(), &bin).unwrap();
+    let work = dir.path().join("work");
+    std::fs::create_dir(&work).unwrap();
+    let run = |args: &[&str]| {
+        Command::new(&bin)
+            .args(args)
+            .current_dir(&work)
+            .env_remove("HDOT_DERIVATIONS")
+            .output()
+            .unwrap()
+    };
+    let out = run(&["list"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(text(&out.stdout).contains("euler-principal"));
+    let out = run(&["check", "euler-principal", "fixed-axis"]);
+    assert!(out.status.success(), "{}{}", text(&out.stdout), text(&out.stderr));
+    let out = run(&["verify", "euler-general", "--bodies", "2"]);
+    assert!(out.status.success(), "{}{}", text(&out.stdout), text(&out.stderr));
+    let out = run(&["derive", "fixed-axis", "--format", "sympy"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let out = run(&["simulate", "sim-shaft-unbalanced", "--t-end", "0.1"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let out = run(&["simulate", "docs/examples/sim-shaft-unbalanced.toml", "--t-end", "0.1"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+}
