@@ -50,7 +50,12 @@ fn a_closed_stdout_ends_every_command_quietly() {
 fn a_result_that_cannot_be_written_exits_1() {
     let out = hdot(&["derive", "euler-principal", "--out", "/dev/full"]);
     assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
-    let out = hdot(&["derive", "euler-principal", "--out", "/proc/no/such/dir/x.tex"]);
+    let out = hdot(&[
+        "derive",
+        "euler-principal",
+        "--out",
+        "/proc/no/such/dir/x.tex",
+    ]);
     assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
     // Output to /dev/stdout is written in place.
     let out = hdot(&["derive", "euler-principal", "--out", "/dev/stdout"]);
@@ -63,11 +68,20 @@ fn deep_nesting_and_huge_literals_are_clear_errors() {
     let dir = tempfile::tempdir().unwrap();
     let n = 10_000;
     for (what, value) in [
-        ("parentheses", format!("{}a{}", "(".repeat(n), ")".repeat(n))),
+        (
+            "parentheses",
+            format!("{}a{}", "(".repeat(n), ")".repeat(n)),
+        ),
         ("minus", format!("{}a", "-".repeat(n))),
         ("dt", format!("{}x{}", "dt(".repeat(n), ")".repeat(n))),
-        ("cross", format!("{}a{}", "cross(a, ".repeat(n), ")".repeat(n))),
-        ("subst", format!("{}x{}", "subst(".repeat(n), ", a = 1)".repeat(n))),
+        (
+            "cross",
+            format!("{}a{}", "cross(a, ".repeat(n), ")".repeat(n)),
+        ),
+        (
+            "subst",
+            format!("{}x{}", "subst(".repeat(n), ", a = 1)".repeat(n)),
+        ),
         ("literal", format!("{}*a", "7".repeat(1_000_000))),
     ] {
         let f = dir.path().join(format!("{what}.toml"));
@@ -106,16 +120,26 @@ fn outputs_never_destroy_inputs_or_leave_partial_files() {
     let d = dir.path();
     // derive F --out F is refused; F is unchanged.
     let f = d.join("mine.toml");
-    let original = std::fs::read_to_string(repo_root().join("derivations/fixed-axis.toml")).unwrap();
+    let original =
+        std::fs::read_to_string(repo_root().join("derivations/fixed-axis.toml")).unwrap();
     std::fs::write(&f, &original).unwrap();
     let out = hdot(&["derive", f.to_str().unwrap(), "--out", f.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(2));
-    assert!(text(&out.stderr).contains("is an input"), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stderr).contains("is an input"),
+        "{}",
+        text(&out.stderr)
+    );
     assert_eq!(std::fs::read_to_string(&f).unwrap(), original);
     // … also through a link to it.
     let link = d.join("link.tex");
     std::os::unix::fs::symlink(&f, &link).unwrap();
-    let out = hdot(&["derive", f.to_str().unwrap(), "--out", link.to_str().unwrap()]);
+    let out = hdot(&[
+        "derive",
+        f.to_str().unwrap(),
+        "--out",
+        link.to_str().unwrap(),
+    ]);
     assert_eq!(out.status.code(), Some(2));
     assert_eq!(std::fs::read_to_string(&f).unwrap(), original);
 
@@ -123,7 +147,12 @@ fn outputs_never_destroy_inputs_or_leave_partial_files() {
     let s = d.join("scene.toml");
     std::fs::copy(example("sim-shaft-unbalanced.toml"), &s).unwrap();
     let before = std::fs::read(&s).unwrap();
-    let out = hdot(&["simulate", s.to_str().unwrap(), "--output", s.to_str().unwrap()]);
+    let out = hdot(&[
+        "simulate",
+        s.to_str().unwrap(),
+        "--output",
+        s.to_str().unwrap(),
+    ]);
     assert_eq!(out.status.code(), Some(2), "{}", text(&out.stderr));
     assert_eq!(std::fs::read(&s).unwrap(), before);
 
@@ -134,7 +163,12 @@ fn outputs_never_destroy_inputs_or_leave_partial_files() {
     std::os::unix::fs::symlink("target.tex", &link).unwrap();
     let out = hdot(&["derive", "euler-principal", "--out", link.to_str().unwrap()]);
     assert!(out.status.success(), "{}", text(&out.stderr));
-    assert!(std::fs::symlink_metadata(&link).unwrap().file_type().is_symlink());
+    assert!(
+        std::fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink()
+    );
     assert!(std::fs::read_to_string(&target).unwrap().contains("Euler"));
     use std::os::unix::fs::PermissionsExt;
     let mode = std::fs::metadata(&target).unwrap().permissions().mode();
@@ -236,13 +270,28 @@ fn an_installed_binary_needs_no_source_tree() {
     assert!(out.status.success(), "{}", text(&out.stderr));
     assert!(text(&out.stdout).contains("euler-principal"));
     let out = run(&["check", "euler-principal", "fixed-axis"]);
-    assert!(out.status.success(), "{}{}", text(&out.stdout), text(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}{}",
+        text(&out.stdout),
+        text(&out.stderr)
+    );
     let out = run(&["verify", "euler-general", "--bodies", "2"]);
-    assert!(out.status.success(), "{}{}", text(&out.stdout), text(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}{}",
+        text(&out.stdout),
+        text(&out.stderr)
+    );
     let out = run(&["derive", "fixed-axis", "--format", "sympy"]);
     assert!(out.status.success(), "{}", text(&out.stderr));
     let out = run(&["simulate", "sim-shaft-unbalanced", "--t-end", "0.1"]);
     assert!(out.status.success(), "{}", text(&out.stderr));
-    let out = run(&["simulate", "docs/examples/sim-shaft-unbalanced.toml", "--t-end", "0.1"]);
+    let out = run(&[
+        "simulate",
+        "docs/examples/sim-shaft-unbalanced.toml",
+        "--t-end",
+        "0.1",
+    ]);
     assert!(out.status.success(), "{}", text(&out.stderr));
 }

@@ -8,7 +8,8 @@ use std::path::Path;
 
 use hdot_num::scene::Scene;
 
-const PRISM: &str = "name = \"p\"\n[[body]]\nshape = \"prism\"\na = 1.0\nb = 2.0\nc = 3.0\nmass = 2.0\n";
+const PRISM: &str =
+    "name = \"p\"\n[[body]]\nshape = \"prism\"\na = 1.0\nb = 2.0\nc = 3.0\nmass = 2.0\n";
 
 fn error_of(text: &str) -> hdot_num::scene::SceneError {
     Scene::from_str_at(Path::new("s.toml"), text).unwrap_err()
@@ -105,9 +106,12 @@ fn huge_and_tiny_directions_are_normalised_without_overflow() {
             "{PRISM}rotation = {{ x_axis = {x_axis} }}\n[motion]\nomega = [0.0, 0.0, 1.0]\n[[force]]\nname = \"F\"\npoint = [0.0, 0.0, 0.0]\ndirection = {dir}\n[[force]]\nname = \"R\"\npoint = [0.0, 0.0, 0.0]\nunknown = [\"y\", \"z\"]\n[[couple]]\nname = \"C\"\nunknown = [\"x\", \"y\", \"z\"]\n"
         )
     };
-    let reference = Scene::from_str_at(Path::new("s.toml"), &base("[1.0, 1.0, 0.0]", "[1.0, 0.0, 0.0]"))
-        .unwrap()
-        .dynamics();
+    let reference = Scene::from_str_at(
+        Path::new("s.toml"),
+        &base("[1.0, 1.0, 0.0]", "[1.0, 0.0, 0.0]"),
+    )
+    .unwrap()
+    .dynamics();
     assert!(reference.unsolved.is_none(), "{:?}", reference.unsolved);
     for (x_axis, dir) in [
         ("[1e160, 1e160, 0.0]", "[1e200, 0.0, 0.0]"),
@@ -116,7 +120,10 @@ fn huge_and_tiny_directions_are_normalised_without_overflow() {
         let s = Scene::from_str_at(Path::new("s.toml"), &base(x_axis, dir)).unwrap();
         let d = s.dynamics();
         assert!(d.unsolved.is_none(), "{x_axis} {dir}: {:?}", d.unsolved);
-        let (a, b) = (d.inertia.props.inertia_g.matrix(), reference.inertia.props.inertia_g.matrix());
+        let (a, b) = (
+            d.inertia.props.inertia_g.matrix(),
+            reference.inertia.props.inertia_g.matrix(),
+        );
         assert!((a - b).norm() <= 1e-12 * b.norm(), "{x_axis}: {a} vs {b}");
         for (k, v) in &reference.unknowns {
             let w = d.unknowns[k];

@@ -107,7 +107,12 @@ pub fn run(args: ConvergenceArgs) -> anyhow::Result<ExitCode> {
                     sweeps,
                 },
             )
-            .map_err(|e| OutputError::new("cannot write the charts", std::io::Error::other(e.to_string())))?;
+            .map_err(|e| {
+                OutputError::new(
+                    "cannot write the charts",
+                    std::io::Error::other(e.to_string()),
+                )
+            })?;
             written.extend(stems);
         }
     }

@@ -70,7 +70,12 @@ pub fn run(args: WorkPrecisionArgs) -> anyhow::Result<ExitCode> {
         &stem,
         &format!("{} (T = {t_end})", scene.name),
     )
-    .map_err(|e| OutputError::new("cannot write the chart", std::io::Error::other(e.to_string())))?;
+    .map_err(|e| {
+        OutputError::new(
+            "cannot write the chart",
+            std::io::Error::other(e.to_string()),
+        )
+    })?;
     batch
         .commit()
         .map_err(|e| OutputError::new(format!("cannot write {}", stem.display()), e))?;
