@@ -83,7 +83,12 @@ pub fn manifest(dir: &Dir) -> Option<(PathBuf, String)> {
         Dir::Bundled => bundled::DERIVATIONS
             .iter()
             .find(|(n, _)| is_manifest(Path::new(&format!("{n}.toml"))))
-            .map(|(n, t)| (PathBuf::from(format!("derivations/{n}.toml")), (*t).to_owned())),
+            .map(|(n, t)| {
+                (
+                    PathBuf::from(format!("derivations/{n}.toml")),
+                    (*t).to_owned(),
+                )
+            }),
     }
 }
 
