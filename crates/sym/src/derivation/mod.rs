@@ -270,9 +270,8 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
                 0,
                 at.get_ref().len(),
                 format!(
-                    "{what}: {e}; raise the limit with `{}` under [limits] in the file (or the command's --{} option)",
+                    "{what}: {e}; raise the limit with `{} = …` under [limits] in the file",
                     e.setting(),
-                    e.setting().replace('_', "-")
                 ),
             )),
         }

@@ -1,0 +1,213 @@
+//! The regression corpus of issue 13: every case found by hand, kept as a
+//! test. Each is refused with a located error (or derived correctly), fast.
+
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+use hdot_sym::derivation::{Derivation, Diagnostic, load_str};
+
+fn derivation(constants: &[&str], steps: &[(&str, &str)]) -> String {
+    let list = |v: &[&str]| {
+        v.iter()
+            .map(|s| format!("\"{s}\""))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let mut t = format!(
+        "title = \"t\"\nsource = \"s\"\n[symbols]\nconstants = [{}]\ntime = [\"x\"]\n",
+        list(constants)
+    );
+    for (name, value) in steps {
+        t.push_str(&format!(
+            "[[step]]\nname = \"{name}\"\nvalue = \"{value}\"\n"
+        ));
+    }
+    t
+}
+
+/// Loads `text`; it must finish within a few seconds (the limits are
+/// checked before the work, so an absurd input fails at once).
+fn load_fast(what: &str, text: &str) -> Result<Derivation, Diagnostic> {
+    let t0 = Instant::now();
+    let r = load_str(&format!("{what}.toml"), text);
+    assert!(
+        t0.elapsed() < Duration::from_secs(5),
+        "{what}: took {:?}",
+        t0.elapsed()
+    );
+    r
+}
+
+fn refused(what: &str, text: &str, fragment: &str) {
+    let e = load_fast(what, text).expect_err(what);
+    assert!(e.line > 0, "{what}: no location: {e}");
+    assert!(e.message.contains(fragment), "{what}: {e}");
+}
+
+#[test]
+fn explosive_polynomials_are_refused_before_the_work() {
+    refused(
+        "power",
+        &derivation(&["a", "b"], &[("s", "(a + b)^100000")]),
+        "limit",
+    );
+    refused(
+        "six-term-power",
+        &derivation(
+            &["a", "b", "c", "d", "e", "f"],
+            &[("s", "(a + b + c + d + e + f)^60")],
+        ),
+        "limit",
+    );
+}
+
+/// Thirty steps, each squaring the last: `(a + b)^(2^k)` grows past the
+/// work limit at k ≈ 13, but the steps before it multiply thousands of
+/// terms with coefficients of thousands of bits and take about 30 s in an
+/// optimised build: the work limit does not yet weigh coefficient size
+/// enough to stop this in under a second.
+#[test]
+#[ignore = "known gap of the symbolic limits (issue 13): about 30 s"]
+fn a_squaring_chain_is_refused_fast() {
+    let mut squaring = vec![("s0".to_string(), "a + b".to_string())];
+    for k in 1..30 {
+        squaring.push((format!("s{k}"), format!("s{} * s{}", k - 1, k - 1)));
+    }
+    let steps: Vec<(&str, &str)> = squaring
+        .iter()
+        .map(|(n, v)| (n.as_str(), v.as_str()))
+        .collect();
+    refused("squaring", &derivation(&["a", "b"], &steps), "limit");
+}
+
+/// `(c0 + c1)(c2 + c3)…` of thirty sums: 2^k terms after k factors; the
+/// term limit (2,000,000) is reached only after about 15 s of building
+/// million-term polynomials.
+#[test]
+#[ignore = "known gap of the symbolic limits (issue 13): about 15 s"]
+fn a_product_of_thirty_sums_is_refused_fast() {
+    let names: Vec<String> = (0..60).map(|k| format!("c{k}")).collect();
+    let product: Vec<String> = (0..30)
+        .map(|k| format!("({} + {})", names[2 * k], names[2 * k + 1]))
+        .collect();
+    let consts: Vec<&str> = names.iter().map(String::as_str).collect();
+    refused(
+        "product-of-sums",
+        &derivation(&consts, &[("s", &product.join(" * "))]),
+        "limit",
+    );
+}
+
+#[test]
+fn exponents_never_wrap() {
+    let r = load_fast(
+        "wrap",
+        &(derivation(&["a"], &[("s", "a^2147483648 * a^2147483648")]) + "expect = \"1\"\n"),
+    );
+    match r {
+        Err(e) => assert!(e.message.contains("exponent"), "{e}"),
+        Ok(d) => assert!(!d.failures().is_empty(), "a^(2^32) checked equal to 1"),
+    }
+}
+
+#[test]
+fn deep_nesting_and_long_literals_are_refused() {
+    let n = 10_000;
+    for (what, value) in [
+        (
+            "parentheses",
+            format!("{}a{}", "(".repeat(n), ")".repeat(n)),
+        ),
+        ("minus", format!("{}a", "-".repeat(n))),
+        ("dt", format!("{}x{}", "dt(".repeat(n), ")".repeat(n))),
+        (
+            "cross",
+            format!("{}a{}", "cross(a, ".repeat(n), ")".repeat(n)),
+        ),
+        (
+            "subst",
+            format!("{}x{}", "subst(".repeat(n), ", a = 1)".repeat(n)),
+        ),
+        ("components", format!("a{}", ".x".repeat(n))),
+    ] {
+        refused(what, &derivation(&["a"], &[("s", &value)]), "nests deeper");
+    }
+    refused(
+        "literal",
+        &derivation(&["a"], &[("s", &format!("{}*a", "7".repeat(1_000_000)))]),
+        "digits",
+    );
+}
+
+#[test]
+fn many_distinct_symbols_in_one_sum_are_fast() {
+    let names: Vec<String> = (0..5_000).map(|k| format!("s{k}")).collect();
+    let consts: Vec<&str> = names.iter().map(String::as_str).collect();
+    let d = load_fast("wide", &derivation(&consts, &[("s", &names.join(" + "))])).unwrap();
+    assert_eq!(d.steps.len(), 1);
+}
+
+#[test]
+fn small_traps() {
+    // A step named like a constant would shadow it in later expectations.
+    refused(
+        "shadow",
+        &derivation(&["m", "v"], &[("m", "v*x")]),
+        "named like a declared symbol",
+    );
+    // A TOML escape before a multibyte character, then an error: located,
+    // no panic while showing the line.
+    let e = load_fast(
+        "escape",
+        &derivation(&["a"], &[("s", "\\\\u00e9é + * a")]).replace("\\\\u", "\\u"),
+    )
+    .unwrap_err();
+    assert!(e.line > 0);
+    let _ = e.to_string();
+    // LaTeX labels are escaped.
+    let l = hdot_sym::render::latex_label("50% H", "");
+    assert!(l.contains(r"50\%") && !l.contains("0%"), "{l}");
+}
+
+#[test]
+fn csv_with_invalid_utf8_names_the_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = dir.path().join("c.csv");
+    std::fs::write(&f, b"x,y,z,m\n0,0,0,1\n0,0,\xff,1\n").unwrap();
+    let e = hdot_num::ParticleCloud::from_csv_path(&f).unwrap_err();
+    assert_eq!(e.line, 3, "{e}");
+}
+
+#[test]
+fn scenes_from_the_issue() {
+    let prism =
+        "name = \"p\"\n[[body]]\nshape = \"prism\"\na = 1.0\nb = 2.0\nc = 3.0\nmass = 2.0\n";
+    let parse = |t: &str| hdot_num::scene::Scene::from_str_at(Path::new("s.toml"), t);
+    // A vector of four components.
+    assert!(parse(&format!("{prism}position = [0.0, 0.0, 0.0, 1.0]\n")).is_err());
+    // Masses summing past f64.
+    assert!(
+        parse("[[body]]\nshape = \"sphere\"\nradius = 1.0\nmass = 1e308\n[[body]]\nshape = \"sphere\"\nradius = 1.0\nmass = 1e308\n")
+            .is_err()
+    );
+    // A prism spinning steadily about a principal axis: no false alarm.
+    let s = parse(&format!("{prism}[motion]\nomega = [0.0, 0.0, 1.0]\n")).unwrap();
+    assert!(s.dynamics().particle_check < 1e-9);
+    // ω of 1e200: the report is not finite, and says which quantity.
+    let s = parse(&format!("{prism}[motion]\nomega = [1e200, 0.0, 0.0]\n")).unwrap();
+    assert!(
+        hdot_num::report::Report::dynamics(&s)
+            .non_finite()
+            .is_some()
+    );
+    // x_axis = [1e160, 1e160, 0] is a rotation, not dropped.
+    let turned = parse(&format!(
+        "{prism}rotation = {{ x_axis = [1e160, 1e160, 0.0] }}\n"
+    ))
+    .unwrap();
+    let plain = parse(prism).unwrap();
+    assert_ne!(
+        turned.inertia().props.inertia_g,
+        plain.inertia().props.inertia_g
+    );
+}
