@@ -1,4 +1,5 @@
-//! Scene files (numeric and simulation) and CSV particle clouds.
+//! Scene files (numeric and simulation), the simulation planner, and CSV
+//! particle clouds.
 
 use std::path::Path;
 
@@ -172,5 +173,69 @@ proptest! {
         if let Err(e) = ParticleCloud::from_csv_str(Path::new("c.csv"), &text) {
             prop_assert!(e.to_string().starts_with("c.csv:"), "{e}");
         }
+    }
+}
+
+/// The simulation planner: every bundled simulation scene with random
+/// models, methods, steps and end times (absurd ones included).
+fn request() -> impl Strategy<Value = hdot_sim::run::Request> {
+    use hdot_sim::run::{Model, Request};
+    use hdot_sim::{Method, Step};
+    let models = vec![
+        "fixed-axis",
+        "steady-precession",
+        "elliptic",
+        "precession-angle",
+        "rigid-body",
+        "euler-angles",
+    ];
+    let methods = vec![
+        "euler", "rk4", "dopri5", "dop853", "midpoint", "split2", "split4",
+    ];
+    let number = prop::sample::select(vec![
+        1e-3,
+        0.1,
+        -1.0,
+        0.0,
+        1e308,
+        1e-300,
+        f64::NAN,
+        f64::INFINITY,
+    ]);
+    (
+        prop::option::of(prop::sample::select(models)),
+        prop::option::of(prop::sample::select(methods)),
+        prop::option::of((any::<bool>(), number.clone())),
+        prop::option::of(number),
+    )
+        .prop_map(|(model, method, step, t_end)| Request {
+            model: model.and_then(|m| m.parse::<Model>().ok()),
+            method: method.and_then(|m| m.parse::<Method>().ok()),
+            step: step.map(|(fixed, x)| {
+                if fixed {
+                    Step::Fixed(x)
+                } else {
+                    Step::Tolerance(x)
+                }
+            }),
+            t_end,
+        })
+}
+
+proptest! {
+    #![proptest_config(crate::config())]
+
+    #[test]
+    fn the_simulation_planner_never_panics(which in 0usize..16, req in request()) {
+        let dir = hdot_tests::repo_root().join("docs/examples");
+        let mut scenes: Vec<_> = std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.file_name().unwrap().to_string_lossy().starts_with("sim-"))
+            .collect();
+        scenes.sort();
+        let path = &scenes[which % scenes.len()];
+        let scene = hdot_sim::scene::Scene::from_file(path).unwrap();
+        let _ = hdot_sim::run::plan(&scene, &req);
     }
 }
