@@ -176,3 +176,53 @@ fn verify_fails_on_a_wrong_derivation_and_rejects_unknown_names() {
         text(&out.stderr)
     );
 }
+
+/// Issue 11: non-finite and overflowing input refused (exit 2), a requested
+/// error that is not met is a failure (exit 1), closed forms report an
+/// estimate.
+#[test]
+fn simulate_refuses_what_f64_cannot_carry_and_reports_estimates() {
+    let dir = tempfile::tempdir().unwrap();
+    let write = |name: &str, initial: &str| {
+        let p = dir.path().join(name);
+        std::fs::write(
+            &p,
+            format!(
+                "name = \"t\"\nkind = \"free\"\nt_end = 10.0\n[body]\nprincipal_moments = [1.0, 2.0, 3.0]\n[initial]\n{initial}\n"
+            ),
+        )
+        .unwrap();
+        p.to_string_lossy().into_owned()
+    };
+    let big = write("big.toml", "angular_momentum = [1e200, 1.0, 1.0]");
+    let out = hdot(&["simulate", &big]);
+    assert_eq!(out.status.code(), Some(2), "{}", text(&out.stderr));
+    assert!(text(&out.stderr).contains("initial.angular_momentum"));
+    let near = write("near.toml", "angular_velocity = [1e-6, 1.0, 1e-6]");
+    for t in ["inf", "1e308", "nan"] {
+        let out = hdot(&["simulate", &near, "--t-end", t]);
+        assert_eq!(
+            out.status.code(),
+            Some(2),
+            "--t-end {t}: {}",
+            text(&out.stderr)
+        );
+    }
+    let out = hdot(&[
+        "work-precision",
+        &near,
+        "--min-time",
+        "inf",
+        "--out",
+        dir.path().to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2), "{}", text(&out.stderr));
+    let out = hdot(&["simulate", &near, "--check"]);
+    let so = text(&out.stdout);
+    assert!(out.status.success(), "{so}{}", text(&out.stderr));
+    assert!(so.contains("(estimated:") && so.contains("check:"), "{so}");
+    assert!(!so.contains("this is the reference"), "{so}");
+    let out = hdot(&["simulate", &near, "--tol", "1e-20"]);
+    assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
+    assert!(text(&out.stderr).contains("not met"));
+}

@@ -144,7 +144,6 @@ pub enum SimError {
         /// The budget.
         budget: u64,
     },
-    /// Writing streamed output failed.
     /// A derived model cannot be built from its derivation and scene.
     #[error("derived model: {message}")]
     Derived {
@@ -159,6 +158,26 @@ pub enum SimError {
         /// What vanished.
         why: String,
     },
+    /// A result (state, drift, reaction, error) that is NaN or infinite.
+    #[error("{quantity} is not finite at t = {t}: the result is refused")]
+    NonFiniteResult {
+        /// Time of the result.
+        t: f64,
+        /// Which quantity, e.g. `state component ω_2`, `energy drift`.
+        quantity: String,
+    },
+    /// An end time so long that f64 time no longer resolves the motion.
+    #[error(
+        "end time {t_end:e} is too long for this scene: the phase |ω| T = {phase:e} exceeds 2^52, \
+         beyond the resolution of f64 time"
+    )]
+    EndTimeTooLong {
+        /// The end time asked for.
+        t_end: f64,
+        /// `|ω| T`.
+        phase: f64,
+    },
+    /// Writing streamed output failed.
     #[error("writing output: {0}")]
     Output(#[source] std::io::Error),
 }

@@ -104,6 +104,8 @@ pub struct Request {
     pub step: Option<Step>,
     /// `--t-end` (else the scene's).
     pub t_end: Option<f64>,
+    /// `--check`: also compare a closed-form run with a tight DOP853 run.
+    pub check: bool,
 }
 
 /// Default tolerance of adaptive runs and of the heavy-top method choice.
@@ -129,6 +131,9 @@ pub struct Plan {
     pub t_end: f64,
     /// Why this model (and method).
     pub reason: String,
+    /// `--check` asked for.
+    #[serde(skip)]
+    pub check: bool,
 }
 
 fn ser_display<S: serde::Serializer, T: fmt::Display>(v: &T, s: S) -> Result<S::Ok, S::Error> {
@@ -171,9 +176,7 @@ fn not_applicable(model: Model, scene: &Scene, reason: &str) -> SimError {
 /// Chooses the model (and method) for a scene: see the module docs.
 pub fn plan(scene: &Scene, req: &Request) -> Result<Plan, SimError> {
     let t_end = req.t_end.unwrap_or(scene.t_end);
-    if !(t_end.is_finite() && t_end >= 0.0) {
-        return Err(SimError::BadEndTime(t_end));
-    }
+    check_end_time(scene, t_end)?;
     if let Some(step) = req.step {
         step.validate()?;
     }
@@ -193,6 +196,7 @@ pub fn plan(scene: &Scene, req: &Request) -> Result<Plan, SimError> {
                 step: Some(default_step(method)),
                 t_end,
                 reason,
+                check: req.check,
             })
         };
     let closed = |model: Model, reason: &str| Plan {
@@ -201,6 +205,7 @@ pub fn plan(scene: &Scene, req: &Request) -> Result<Plan, SimError> {
         step: None,
         t_end,
         reason: reason.to_string(),
+        check: req.check,
     };
     match &scene.kind {
         SceneKind::FixedAxis { .. } => match req.model {
@@ -288,6 +293,19 @@ pub fn plan(scene: &Scene, req: &Request) -> Result<Plan, SimError> {
                          quaternion form; reference: the closed form)"
                     ),
                 ),
+                (None, None) if !closed_form_meets_bound(scene, t_end)? => integrated(
+                    Model::PrecessionAngle,
+                    Some(Method::Dop853),
+                    format!(
+                        "torque-free, but the closed form's defect estimate on this scene exceeds its bound \
+                         ({CLOSED_FORM_BOUND:e} per unit of |ω| T) or is not finite, so it is not trusted: \
+                         integrate [ω, φ] with dop853 instead"
+                    ),
+                )
+                .map(|mut p| {
+                    p.step = Some(Step::Tolerance(1e-13));
+                    p
+                }),
                 (None, None) => Ok(closed(
                     closed_model,
                     match exact {
@@ -353,6 +371,7 @@ pub fn plan(scene: &Scene, req: &Request) -> Result<Plan, SimError> {
                             step_label(row.step),
                             row.wall_s
                         ),
+                        check: req.check,
                     }),
                     None => integrated(
                         Model::RigidBody,
@@ -369,6 +388,144 @@ pub fn plan(scene: &Scene, req: &Request) -> Result<Plan, SimError> {
             }
         },
     }
+}
+
+/// The error a closed form must stay within, per unit of phase `|ω| T`
+/// (the bound the exact torque-free solution is tested to).
+pub const CLOSED_FORM_BOUND: f64 = 1e-13;
+/// Tolerance of the DOP853 run that `--check` compares a closed form with.
+pub const CHECK_TOL: f64 = 1e-13;
+
+/// The largest rate of the scene's motion, `|ω₀|` (`|ω|` of a shaft).
+fn rate_scale(scene: &Scene) -> f64 {
+    match &scene.kind {
+        SceneKind::Free { w0, .. } | SceneKind::HeavyTop { w0, .. } => w0.norm(),
+        SceneKind::FixedAxis { y0, .. } => y0[1].abs(),
+    }
+}
+
+/// Refuses an end time that is negative, not finite, or so long that the
+/// phase `|ω| T` exceeds 2^52 (f64 time no longer resolves one turn).
+pub fn check_end_time(scene: &Scene, t_end: f64) -> Result<(), SimError> {
+    if !(t_end.is_finite() && t_end >= 0.0) {
+        return Err(SimError::BadEndTime(t_end));
+    }
+    let phase = rate_scale(scene) * t_end;
+    if phase.is_nan() || phase > 2f64.powi(52) {
+        return Err(SimError::EndTimeTooLong { t_end, phase });
+    }
+    Ok(())
+}
+
+/// An estimate of the error at `t_end` of a closed form `exact` of the
+/// system `sys` from `y0`, not assuming the closed form is right: its
+/// distance from `y0` at t = 0, plus its *defect* — starting from
+/// `exact(t_k)` at `samples` points along the run, the equations
+/// (`sys`: Euler's equations and the attitude kinematics for a body) are
+/// integrated by DOP853 in fixed steps of `1/(64|ω|)` over `Δ` (16 time
+/// scales `1/|ω|`, at most `T/samples`) and compared with `exact(t_k + Δ)`;
+/// the largest defect, plus the largest defect rate times T. The estimate
+/// includes DOP853's own round-off over Δ: it is an upper estimate at
+/// round-off level, not a proof.
+pub fn closed_form_estimate<const N: usize, S: crate::System<N>>(
+    sys: &S,
+    exact: &dyn Fn(f64) -> [f64; N],
+    y0: &[f64; N],
+    t_end: f64,
+    time_scale: f64,
+    samples: usize,
+    dist: fn(&[f64; N], &[f64; N]) -> f64,
+) -> Result<f64, SimError> {
+    let start = exact(0.0);
+    // Fixed DOP853 steps of 1/64 of the time scale: truncation (1/64)^8 per
+    // step, far below round-off, and no tolerance floor. Δ spans up to 16
+    // time scales so that the evaluation's own jitter (ε u in the elliptic
+    // argument) is not mistaken for a drift.
+    let delta_max = (t_end / samples as f64).min(16.0 * time_scale);
+    let step = Step::Fixed(delta_max.min(time_scale) / 64.0);
+    let initial = dist(&start, y0);
+    if t_end <= 0.0 || samples == 0 {
+        return Ok(initial);
+    }
+    let delta = delta_max;
+    let mut rate: f64 = 0.0;
+    let mut jitter: f64 = 0.0;
+    for k in 0..samples {
+        let t = if samples == 1 {
+            0.0
+        } else {
+            (t_end - delta) * k as f64 / (samples - 1) as f64
+        };
+        let ya = exact(t);
+        if ya.iter().any(|v| !v.is_finite()) {
+            return Ok(f64::INFINITY);
+        }
+        let (yi, _) = integrate(
+            sys,
+            Method::Dop853,
+            step,
+            t,
+            ya,
+            t + delta,
+            Limits::default(),
+            |_, _| Ok(()),
+        )?;
+        let d = dist(&yi, &exact(t + delta));
+        jitter = jitter.max(d);
+        rate = rate.max(d / delta);
+    }
+    Ok(initial + jitter + rate * t_end)
+}
+
+fn euclid<const N: usize>(a: &[f64; N], b: &[f64; N]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y) * (x - y))
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// The defect estimate of a body scene's closed form (free or steady top).
+fn body_closed_form_estimate(scene: &Scene, t_end: f64, samples: usize) -> Result<f64, SimError> {
+    let (body, y0) = free_body(scene).expect("free or heavy top");
+    let scale = rate_scale(scene);
+    let time_scale = if scale > 0.0 { 1.0 / scale } else { t_end };
+    match &scene.kind {
+        SceneKind::Free { moments, q0, w0 } => {
+            let exact = TorqueFree::new(moments.get(), *q0, *w0)?;
+            closed_form_estimate(
+                &body,
+                &|t| exact.state(t),
+                &y0,
+                t_end,
+                time_scale,
+                samples,
+                state_distance,
+            )
+        }
+        SceneKind::HeavyTop {
+            steady: Some(top), ..
+        } => closed_form_estimate(
+            &body,
+            &|t| top.state(t),
+            &y0,
+            t_end,
+            time_scale,
+            samples,
+            state_distance,
+        ),
+        _ => Ok(f64::NAN),
+    }
+}
+
+/// Whether the torque-free closed form keeps its bound on this scene: its
+/// defect estimate (four samples) within `CLOSED_FORM_BOUND · max(|ω|T, 1)`.
+fn closed_form_meets_bound(scene: &Scene, t_end: f64) -> Result<bool, SimError> {
+    let est = body_closed_form_estimate(scene, t_end, 4)?;
+    let w = rate_scale(scene);
+    // Angle per unit of phase, and |Δω| relative to |ω|.
+    let bound = CLOSED_FORM_BOUND * (w * t_end).max(1.0) * w.max(1.0);
+    Ok(est.is_finite() && est <= bound)
 }
 
 /// Relative change of an invariant between start and end.
@@ -404,8 +561,13 @@ pub struct Report {
     pub plan: Plan,
     /// The reference the error is measured against.
     pub reference: String,
-    /// Distance to the reference at T (None when the run *is* the closed form).
+    /// Error at T: distance to the reference for an integrated run, an
+    /// estimate (see `error_basis`) for a closed-form run.
     pub error: Option<f64>,
+    /// How `error` was obtained (`measured against …` or `estimated: …`).
+    pub error_basis: String,
+    /// `--check`: distance of a closed-form run from a tight DOP853 run.
+    pub check: Option<Check>,
     /// Invariant drifts at T.
     pub drifts: Vec<Drift>,
     /// Right-hand-side evaluations (sub-flows for the splittings).
@@ -424,6 +586,15 @@ pub struct Report {
     pub reactions: Option<[f64; 7]>,
     /// Stored trajectory rows (time first), when asked for.
     pub trajectory: Option<Vec<Vec<f64>>>,
+}
+
+/// Comparison of a closed-form run with an independent integration.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Check {
+    /// What it was compared with.
+    pub against: String,
+    /// Distance at T.
+    pub difference: f64,
 }
 
 /// Output options of a run.
@@ -628,12 +799,15 @@ fn shaft_reactions(shaft: &Shaft, w: f64) -> [f64; 7] {
 /// Runs a scene as planned.
 pub fn run(scene: &Scene, plan: &Plan, out: &mut Output<'_>) -> Result<Report, SimError> {
     let t_end = plan.t_end;
+    let check = plan.check;
     let mut report = Report {
         scene: scene.name.clone(),
         kind: scene.kind.name(),
         plan: plan.clone(),
         reference: String::new(),
         error: None,
+        error_basis: String::new(),
+        check: None,
         drifts: vec![],
         evaluations: 0,
         steps: 0,
@@ -693,6 +867,36 @@ pub fn run(scene: &Scene, plan: &Plan, out: &mut Output<'_>) -> Result<Report, S
             report.reference = "closed form of the one-degree-of-freedom equation".into();
             if plan.method.is_some() {
                 report.error = Some(((y[0] - exact[0]).powi(2) + (y[1] - exact[1]).powi(2)).sqrt());
+                report.error_basis = "measured against the closed form".into();
+            } else {
+                let w = y0[1].abs();
+                let time_scale = if w > 0.0 { 1.0 / w } else { t_end };
+                report.error = Some(closed_form_estimate(
+                    shaft,
+                    &|t| shaft.exact(y0, t),
+                    y0,
+                    t_end,
+                    time_scale,
+                    ESTIMATE_SAMPLES,
+                    euclid,
+                )?);
+                report.error_basis = ESTIMATE_BASIS.into();
+                if check {
+                    let (yc, _) = integrate(
+                        shaft,
+                        Method::Dop853,
+                        Step::Tolerance(CHECK_TOL),
+                        0.0,
+                        *y0,
+                        t_end,
+                        Limits::default(),
+                        |_, _| Ok(()),
+                    )?;
+                    report.check = Some(Check {
+                        against: format!("dop853 at tol={CHECK_TOL:e}"),
+                        difference: euclid(&y, &yc),
+                    });
+                }
             }
             report.reactions = Some(shaft_reactions(shaft, y[1]));
             report.final_state = y.to_vec();
@@ -722,7 +926,25 @@ pub fn run(scene: &Scene, plan: &Plan, out: &mut Output<'_>) -> Result<Report, S
                 row.extend_from_slice(&y);
                 rec.record(row)?;
             }
-            report.reference = name;
+            report.reference = format!("none: this run is the {name}");
+            report.error = Some(body_closed_form_estimate(scene, t_end, ESTIMATE_SAMPLES)?);
+            report.error_basis = ESTIMATE_BASIS.into();
+            if check {
+                let (yc, _) = integrate(
+                    &body,
+                    Method::Dop853,
+                    Step::Tolerance(CHECK_TOL),
+                    0.0,
+                    y0,
+                    t_end,
+                    Limits::default(),
+                    |_, _| Ok(()),
+                )?;
+                report.check = Some(Check {
+                    against: format!("dop853 at tol={CHECK_TOL:e}"),
+                    difference: state_distance(&y, &yc),
+                });
+            }
             report.drifts = free_drifts(&body, &y0, &y);
             report.final_state = y.to_vec();
         }
@@ -831,7 +1053,49 @@ pub fn run(scene: &Scene, plan: &Plan, out: &mut Output<'_>) -> Result<Report, S
     if rec.out.store {
         report.trajectory = Some(std::mem::take(&mut rec.rows));
     }
+    refuse_non_finite(&report)?;
     Ok(report)
+}
+
+/// Number of points along a closed-form run where its defect is sampled.
+const ESTIMATE_SAMPLES: usize = 16;
+const ESTIMATE_BASIS: &str = "estimated: distance from the initial state plus the defect of the \
+     equations of motion (and attitude kinematics) sampled at 16 points along the run, times T";
+
+/// A NaN or infinity anywhere in a report is an error naming it.
+fn refuse_non_finite(r: &Report) -> Result<(), SimError> {
+    let t = r.plan.t_end;
+    let bad = |quantity: String| Err(SimError::NonFiniteResult { t, quantity });
+    let names: &[&str] = if r.final_state.len() == 7 {
+        &["q_w", "q_x", "q_y", "q_z", "ω_1", "ω_2", "ω_3"]
+    } else {
+        &["angle", "ω"]
+    };
+    for (k, v) in r.final_state.iter().enumerate() {
+        if !v.is_finite() {
+            return bad(format!(
+                "state component {}",
+                names.get(k).copied().unwrap_or("?")
+            ));
+        }
+    }
+    for d in &r.drifts {
+        if !d.relative.is_finite() {
+            return bad(format!("drift of {}", d.name));
+        }
+    }
+    if let Some(re) = &r.reactions {
+        const RN: [&str; 7] = ["A_x", "A_y", "B_x", "B_y", "M_x", "M_y", "M_z"];
+        if let Some(k) = re.iter().position(|v| !v.is_finite()) {
+            return bad(format!("reaction {}", RN[k]));
+        }
+    }
+    if let Some(e) = r.error
+        && !e.is_finite()
+    {
+        return bad("error at T".into());
+    }
+    Ok(())
 }
 
 fn method_step(plan: &Plan) -> Result<(Method, Step), SimError> {
@@ -860,6 +1124,7 @@ fn finish_free(
     report: &mut Report,
 ) -> Result<(), SimError> {
     let (reference, name) = reference_state(scene, t_end)?;
+    report.error_basis = format!("measured against the reference ({name})");
     report.reference = name;
     report.error = Some(state_distance(y, &reference));
     report.drifts = free_drifts(body, y0, y);
@@ -886,8 +1151,15 @@ impl fmt::Display for Report {
         writeln!(f, "t_end:       {}", p.t_end)?;
         writeln!(f, "reference:   {}", self.reference)?;
         match self.error {
-            Some(e) => writeln!(f, "error at T:  {e:.3e}")?,
-            None => writeln!(f, "error at T:  0 (this is the reference)")?,
+            Some(e) => writeln!(f, "error at T:  {e:.3e} ({})", self.error_basis)?,
+            None => writeln!(f, "error at T:  not estimated")?,
+        }
+        if let Some(c) = &self.check {
+            writeln!(
+                f,
+                "check:       {:.3e} from {} (--check)",
+                c.difference, c.against
+            )?;
         }
         for d in &self.drifts {
             writeln!(

@@ -322,12 +322,40 @@ impl Scene {
                             ));
                         }
                     };
+                    // |H|² and 2E·I must be finite with room to spare: the
+                    // closed forms and the invariants square them.
+                    let in_range = |w: &Vector3<f64>| {
+                        let h2: f64 = (0..3).map(|k| (i[k] * w[k]).powi(2)).sum();
+                        let e2: f64 = (0..3).map(|k| i[k] * w[k] * w[k]).sum();
+                        let imax = i[0].max(i[1]).max(i[2]);
+                        (h2 * 1e6).is_finite() && (e2 * imax * 1e6).is_finite()
+                    };
+                    let overflow = |field: &str, v: &Vector3<f64>| {
+                        bad(
+                            field,
+                            format!(
+                                "|H|² = Σ (I_i ω_i)² is beyond the range of f64 (components {:?}): \
+                                 rescale the units",
+                                [v.x, v.y, v.z]
+                            ),
+                        )
+                    };
                     let w0 = match (initial.angular_momentum, initial.angular_velocity) {
                         (Some(h), None) => {
                             let h = finite3(h, "initial.angular_momentum")?;
-                            Vector3::new(h.x / i[0], h.y / i[1], h.z / i[2])
+                            let w = Vector3::new(h.x / i[0], h.y / i[1], h.z / i[2]);
+                            if !in_range(&w) {
+                                return Err(overflow("initial.angular_momentum", &h));
+                            }
+                            w
                         }
-                        (None, Some(w)) => finite3(w, "initial.angular_velocity")?,
+                        (None, Some(w)) => {
+                            let w = finite3(w, "initial.angular_velocity")?;
+                            if !in_range(&w) {
+                                return Err(overflow("initial.angular_velocity", &w));
+                            }
+                            w
+                        }
                         _ => {
                             return Err(bad(
                                 "initial",

@@ -45,6 +45,9 @@ pub struct SimulateArgs {
     /// Budget in bytes for the stored trajectory.
     #[arg(long, default_value_t = 64 << 20)]
     pub memory_budget: u64,
+    /// Also compare a closed-form run with a tight DOP853 run (tol 1e-13).
+    #[arg(long)]
+    pub check: bool,
 }
 
 /// Errors of the input (exit 2) as opposed to failures of a run (exit 1).
@@ -56,6 +59,8 @@ fn is_input_error(e: &SimError) -> bool {
             | SimError::StepSizeUnderflow { .. }
             | SimError::NotConverged { .. }
             | SimError::TooManySteps { .. }
+            | SimError::NonFiniteResult { .. }
+            | SimError::CoordinateSingularity { .. }
             | SimError::Output(_)
     )
 }
@@ -86,6 +91,7 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<ExitCode> {
         method,
         step,
         t_end: args.t_end,
+        check: args.check,
     };
     let plan = run::plan(&scene, &request)?;
 
@@ -168,6 +174,17 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<ExitCode> {
         && e.kind() != std::io::ErrorKind::BrokenPipe
     {
         return Err(e.into());
+    }
+    // Without --method, --tol is the error the run must reach.
+    if let (Some(tol), None) = (args.tol, &args.method)
+        && report.error.is_some_and(|e| e.is_nan() || e > tol)
+    {
+        eprintln!(
+            "error: the requested error {tol:e} is not met: error at T is {:e} ({})",
+            report.error.unwrap_or(f64::NAN),
+            report.error_basis
+        );
+        return Ok(ExitCode::from(1));
     }
     Ok(ExitCode::SUCCESS)
 }

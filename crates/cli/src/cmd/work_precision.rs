@@ -33,6 +33,13 @@ pub fn run(args: WorkPrecisionArgs) -> anyhow::Result<ExitCode> {
     if !(t_end.is_finite() && t_end > 0.0) {
         anyhow::bail!("--t-end must be positive and finite, got {t_end}");
     }
+    run::check_end_time(&scene, t_end)?;
+    if !(args.min_time.is_finite() && args.min_time >= 0.0) {
+        anyhow::bail!(
+            "--min-time must be non-negative and finite, got {}",
+            args.min_time
+        );
+    }
     std::fs::create_dir_all(&args.out)
         .map_err(|e| OutputError::new(format!("cannot create {}", args.out.display()), e))?;
     let stem_name = format!(

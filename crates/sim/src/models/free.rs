@@ -99,7 +99,12 @@ pub fn state_error(a: &[f64; 7], b: &[f64; 7]) -> StateError {
     }
     let omega = ((a[4] - b[4]).powi(2) + (a[5] - b[5]).powi(2) + (a[6] - b[6]).powi(2)).sqrt();
     StateError {
-        attitude: attitude(a).angle_to(&attitude(b)),
+        // 2 atan2(|v|, |w|) of the relative rotation: `angle_to` goes through
+        // acos, which cannot tell angles below ~2e-8 from 0.
+        attitude: {
+            let d = attitude(a).rotation_to(&attitude(b));
+            2.0 * d.imag().norm().atan2(d.scalar().abs())
+        },
         omega,
     }
 }
