@@ -52,3 +52,177 @@ fn every_presented_component_expands_to_its_value() {
     assert!(files >= 16, "only {files} derivation files");
     assert!(compared > 100, "only {compared} components compared");
 }
+
+/// Every bundled step's shown result, printed, compared with its printed
+/// expectation after whitespace normalisation. The printer never reads
+/// the expectation; this test only lists where the derived result's shape
+/// (terms, factors, signs, order) differs from the textbook form written
+/// in the file. Each remaining entry is argued in
+/// docs/presentation.md ("Where the printed shape differs"); the list
+/// here must equal the list there, so a fix or a regression shows up.
+#[test]
+fn printed_shape_matches_the_expectation_or_is_argued() {
+    let dir = hdot_tests::repo_root().join("derivations");
+    let mut entries: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .filter(|p| p.file_name().unwrap() != hdot_sym::course::MANIFEST_FILE)
+        .collect();
+    entries.sort();
+    let norm = |s: &str| s.split_whitespace().collect::<Vec<_>>().join(" ");
+    let mut differ = Vec::new();
+    for path in entries {
+        let d = load(&path).unwrap();
+        for s in d.steps.iter().filter(|s| s.show) {
+            for c in &s.checks {
+                let Some((_, e)) = s.components.iter().find(|(k, _)| *k == c.component) else {
+                    continue;
+                };
+                let printed = norm(&hdot_sym::print::unicode(e));
+                let expected = norm(&hdot_sym::print::unicode(&c.expected));
+                if printed != expected {
+                    let dot = if c.component.is_empty() { "" } else { "." };
+                    differ.push(format!("{}: {}{dot}{}", d.name, s.name, c.component));
+                }
+            }
+        }
+    }
+    let doc =
+        std::fs::read_to_string(hdot_tests::repo_root().join("docs/presentation.md")).unwrap();
+    let section = doc
+        .split("## Where the printed shape differs")
+        .nth(1)
+        .expect("docs/presentation.md has a section `Where the printed shape differs`");
+    let argued: Vec<String> = section
+        .lines()
+        .filter_map(|l| l.strip_prefix("- `"))
+        .filter_map(|l| l.split('`').next())
+        .map(str::to_owned)
+        .collect();
+    assert_eq!(
+        differ, argued,
+        "steps whose printed result differs in shape from the printed expectation \
+         (left) against the entries argued in docs/presentation.md (right)"
+    );
+}
+
+/// The printer never reads the expectation: writing an expectation in a
+/// different order leaves the printed result unchanged.
+#[test]
+fn editing_an_expectation_leaves_the_printed_result_unchanged() {
+    let text = |expect: &str| {
+        format!(
+            r#"
+title = "t"
+source = "written for this test"
+[symbols]
+constants = ["I_x", "I_y", "I_z"]
+time = ["w_x", "w_y", "w_z"]
+[[frame]]
+name = "B"
+angular_velocity = "[w_x, w_y, w_z]"
+[[step]]
+name = "M"
+label = "Sigma M"
+value = "dt_rel(principal(I_x, I_y, I_z) * angvel(B)) + cross(angvel(B), principal(I_x, I_y, I_z) * angvel(B))"
+collect = ["w_x'", "w_y'", "w_z'", "w_x", "w_y", "w_z"]
+expect = [{expect}]
+"#
+        )
+    };
+    let a = hdot_sym::derivation::load_str(
+        "a.toml",
+        &text(r#""I_x*w_x' - (I_y - I_z)*w_y*w_z", "I_y*w_y' - (I_z - I_x)*w_z*w_x", "I_z*w_z' - (I_x - I_y)*w_x*w_y""#),
+    )
+    .unwrap();
+    let b = hdot_sym::derivation::load_str(
+        "b.toml",
+        &text(r#""w_z*w_y*I_z - w_y*w_z*I_y + I_x*w_x'", "w_z*w_x*I_x - I_z*w_z*w_x + I_y*w_y'", "I_y*w_x*w_y + w_z'*I_z - I_x*w_y*w_x""#),
+    )
+    .unwrap();
+    assert!(a.all_hold() && b.all_hold());
+    let show = |d: &hdot_sym::derivation::Derivation| {
+        d.steps[0]
+            .components
+            .iter()
+            .map(|(_, e)| hdot_sym::print::unicode(e))
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(show(&a), show(&b));
+}
+
+/// Prints the shown components of a derivation written for a test.
+fn printed(text: &str) -> Vec<String> {
+    let d = hdot_sym::derivation::load_str("new.toml", text).unwrap_or_else(|e| panic!("{e}"));
+    d.steps
+        .iter()
+        .filter(|s| s.show)
+        .flat_map(|s| {
+            s.components
+                .iter()
+                .map(|(_, e)| hdot_sym::print::unicode(e))
+        })
+        .collect()
+}
+
+/// sin² θ or 1 − cos² θ, whichever gives the group fewer terms; constant
+/// factors in conventional order (mass, inertia, gravity, lengths).
+#[test]
+fn new_problems_print_sin_squared_and_m_g_l() {
+    let out = printed(
+        r#"
+title = "A gimbal and a pendulum, written for this test"
+source = "test"
+[symbols]
+constants = ["Ip", "J", "m", "g", "l", "b"]
+time = ["phi", "theta"]
+[[step]]
+name = "p"
+value = "(J + Ip*sin(theta)^2)*phi'"
+collect = ["phi'"]
+[[step]]
+name = "T"
+value = "Ip*(theta'^2 + phi'^2*sin(theta)^2)/2"
+collect = ["Ip"]
+[[step]]
+name = "M"
+value = "l*g*m*sin(theta)"
+"#,
+    );
+    assert_eq!(out[0], "(I′ sin² θ + J) φ\u{307}", "{out:?}");
+    assert_eq!(out[1], "(1/2) I′ (φ\u{307}² sin² θ + θ\u{307}²)", "{out:?}");
+    assert_eq!(out[2], "m g l sin θ", "{out:?}");
+}
+
+/// Euler-type differences in cyclic order, for symbols that are not the
+/// bundled ones (J_1, J_2, J_3 and rates w_1, w_2, w_3).
+#[test]
+fn new_problems_print_euler_differences_in_cyclic_order() {
+    let out = printed(
+        r#"
+title = "Euler's equations with other names, written for this test"
+source = "test"
+[symbols]
+constants = ["J_1", "J_2", "J_3"]
+time = ["w_1", "w_2", "w_3"]
+[[frame]]
+name = "B"
+axes = ["1", "2", "3"]
+angular_velocity = "[w_1, w_2, w_3]"
+[[step]]
+name = "M"
+label = "Sigma M"
+value = "dt_rel(principal(J_1, J_2, J_3) * angvel(B)) + cross(angvel(B), principal(J_1, J_2, J_3) * angvel(B))"
+collect = ["w_1'", "w_2'", "w_3'", "w_1", "w_2", "w_3"]
+"#,
+    );
+    assert_eq!(
+        out,
+        [
+            "J_1 w\u{307}_1 − (J_2 − J_3) w_2 w_3",
+            "J_2 w\u{307}_2 − (J_3 − J_1) w_3 w_1",
+            "J_3 w\u{307}_3 − (J_1 − J_2) w_1 w_2"
+        ]
+    );
+}

@@ -126,6 +126,9 @@ pub fn present(p: &Poly, pres: &Presentation) -> Expr {
     };
     groups.sort_by_key(|g| group_key(&g.0));
 
+    for (_, ts) in &mut groups {
+        merge_trig_squares(ts);
+    }
     let mut e = Expr::new();
     let ids: Vec<Id> = groups
         .iter()
@@ -176,6 +179,13 @@ fn group_node(e: &mut Expr, key: &Monomial, terms: &[(Monomial, Rational)], know
     let bracket: Vec<Id> = if terms.len() == 1 {
         outer = outer.mul(&terms[0].1.div(&common));
         Vec::new()
+    } else if let Some((a, b)) = cyclic_difference(&terms, &common) {
+        // (a − b) with b before a in cyclic order: written −(b − a), as
+        // Euler's equations are (− (I_z − I_x) ω_z ω_x).
+        negative = !negative;
+        let ta = e.term_node(&[(b, 1)], &Rational::ONE);
+        let tb = e.term_node(&[(a, 1)], &-Rational::ONE);
+        vec![e.add(vec![ta, tb])]
     } else if let Some((fs, m, c)) = factored {
         // rest = c · m · Π fs
         outer = outer.mul(&m);
@@ -187,10 +197,14 @@ fn group_node(e: &mut Expr, key: &Monomial, terms: &[(Monomial, Rational)], know
             .iter()
             .map(|(sorted, m, c)| {
                 if plain {
-                    e.term_node(sorted, c)
+                    let mut f = sorted.to_vec();
+                    conventional(&mut f);
+                    e.term_node(&f, c)
                 } else {
                     let m = m.div(&common);
-                    e.term_node(&m.sorted_for_print(), &(*c * &inv))
+                    let mut f = m.sorted_for_print();
+                    conventional(&mut f);
+                    e.term_node(&f, &(*c * &inv))
                 }
             })
             .collect();
@@ -205,17 +219,165 @@ fn group_node(e: &mut Expr, key: &Monomial, terms: &[(Monomial, Rational)], know
     if !number.is_one() || (factors.is_empty() && bracket.is_empty()) {
         ids.push(e.push(Node::Num(number)));
     }
-    // Constant symbols lead; sin/cos (even of a constant angle) follow the rates.
-    let leading = |a: Atom| !a.is_time_dependent() && matches!(a.kind(), AtomKind::Var { .. });
-    for &(a, x) in factors.iter().filter(|f| leading(f.0)) {
+    // Constant symbols lead, in conventional order (mass, inertia,
+    // gravity, then by name: m g l, I′ θ̇); constants named by a Greek
+    // letter (a constant rate Ω) and sin/cos (even of a constant angle)
+    // follow the bracket with the rates.
+    let leading = |a: Atom| {
+        !a.is_time_dependent()
+            && matches!(a.kind(), AtomKind::Var { .. })
+            && crate::symbols::greek(a.name().split('_').next().unwrap_or("")).is_none()
+    };
+    let mut lead: Vec<(Atom, i32)> = factors.iter().copied().filter(|f| leading(f.0)).collect();
+    lead.sort_by_key(|f| constant_class(f.0));
+    for (a, x) in lead {
         ids.push(e.atom_pow(a, x));
     }
     ids.extend(bracket);
-    for &(a, x) in factors.iter().filter(|f| !leading(f.0)) {
+    let mut trailing: Vec<(Atom, i32)> =
+        factors.iter().copied().filter(|f| !leading(f.0)).collect();
+    cyclic_pair(&mut trailing);
+    for (a, x) in trailing {
         ids.push(e.atom_pow(a, x));
     }
     let m = e.mul(ids);
     if negative { e.push(Node::Neg(m)) } else { m }
+}
+
+/// Chooses between `sin² θ` and `1 − cos² θ` so that the group has the
+/// fewest terms: a pair `X − X cos² θ` (the canonical form holds sin² θ as
+/// 1 − cos² θ) becomes the single term `X sin² θ`. So φ̇² − φ̇² cos² θ
+/// prints φ̇² sin² θ and I′ − I′ cos² θ + J prints J + I′ sin² θ. Exact:
+/// the term expands back to the pair.
+fn merge_trig_squares(ts: &mut Vec<(Monomial, Rational)>) {
+    let mut k = 0;
+    while k < ts.len() {
+        let (m, c) = ts[k].clone();
+        let cos2 = m.factors().iter().find_map(|&(a, x)| match a.kind() {
+            AtomKind::Cos(q) if x >= 2 => Some((a, q)),
+            _ => None,
+        });
+        let Some((cos, q)) = cos2 else {
+            k += 1;
+            continue;
+        };
+        let rest = m.div(&Monomial::atom(cos, 2));
+        let partner = ts
+            .iter()
+            .position(|(m2, c2)| *m2 == rest && (c2 + &c).is_zero());
+        match (partner, Atom::sin(q)) {
+            (Some(j), Some(sin)) => {
+                ts[j] = (rest.mul(&Monomial::atom(sin, 2)), ts[j].1.clone());
+                ts.remove(k);
+                if j < k {
+                    k -= 1;
+                }
+            }
+            _ => k += 1,
+        }
+    }
+}
+
+/// The conventional place of a constant factor: mass first, then
+/// inertia, then gravity, then the others (lengths) — `m g l`, `I′ θ̇` —
+/// each class by name.
+fn constant_class(a: Atom) -> (u8, &'static str) {
+    let name = a.name();
+    let base = name.split('_').next().unwrap_or(name);
+    let class = match base {
+        "m" | "M" | "mass" => 0,
+        "I" | "Ip" | "J" | "Jp" => 1,
+        "g" => 2,
+        _ => 3,
+    };
+    (class, name)
+}
+
+/// The position of a subscript or letter in a cyclic order (x → y → z,
+/// 1 → 2 → 3, A → B → C), and the name without it.
+fn cyclic_place(a: Atom) -> Option<(&'static str, usize)> {
+    let name = a.name();
+    if let Some((base, sub)) = name.rsplit_once('_') {
+        let k = ["x", "y", "z"]
+            .iter()
+            .position(|c| *c == sub)
+            .or_else(|| ["1", "2", "3"].iter().position(|c| *c == sub))?;
+        return Some((base, k));
+    }
+    ["A", "B", "C"]
+        .iter()
+        .position(|c| *c == name)
+        .map(|k| ("", k))
+}
+
+/// Whether `b` follows `a` in their cyclic order (same family).
+fn cyclic_next(a: Atom, b: Atom) -> bool {
+    match (cyclic_place(a), cyclic_place(b)) {
+        (Some((fa, ka)), Some((fb, kb))) => fa == fb && (ka + 1) % 3 == kb,
+        _ => false,
+    }
+}
+
+/// A bracket of two terms `a − b` (single constants of one cyclic family,
+/// coefficients +1 and −1 after the common factor) in which `a` follows
+/// `b` in cyclic order, so that it reads better as `−(b − a)`:
+/// (I_x − I_z) → −(I_z − I_x), (A − C) → −(C − A).
+fn cyclic_difference(
+    terms: &[crate::expr::PrintTerm<'_>],
+    common: &Monomial,
+) -> Option<(Atom, Atom)> {
+    let [t0, t1] = terms else { return None };
+    let single = |m: &Monomial| match m.div(common).factors() {
+        [(a, 1)] if !a.is_time_dependent() => Some(*a),
+        _ => None,
+    };
+    let (a, b) = (single(t0.1)?, single(t1.1)?);
+    if t0.2.is_negative() || !(t0.2 + t1.2).is_zero() {
+        return None;
+    }
+    // a − b: reads cyclically when b follows a.
+    (cyclic_next(b, a) && !cyclic_next(a, b)).then_some((a, b))
+}
+
+/// The factors of a term inside a bracket in conventional order: constants
+/// first as [`constant_class`] orders them (`2 m g l cos θ`), the rest as
+/// they were, two rates of one cyclic family in cyclic order.
+fn conventional(fs: &mut [(Atom, i32)]) {
+    let constant = |a: Atom| {
+        !a.is_time_dependent()
+            && matches!(a.kind(), AtomKind::Var { .. })
+            && crate::symbols::greek(a.name().split('_').next().unwrap_or("")).is_none()
+    };
+    fs.sort_by_key(|&(a, _)| {
+        if constant(a) {
+            (0, constant_class(a))
+        } else {
+            (1, (0, ""))
+        }
+    });
+    cyclic_pair(fs);
+}
+
+/// Two rates of one cyclic family in cyclic order: ω_x ω_z → ω_z ω_x
+/// (the order Euler's equations write them in).
+fn cyclic_pair(fs: &mut [(Atom, i32)]) {
+    for i in 0..fs.len() {
+        let Some((family, _)) = cyclic_place(fs[i].0) else {
+            continue;
+        };
+        let same: Vec<usize> = (0..fs.len())
+            .filter(|&k| cyclic_place(fs[k].0).is_some_and(|(f, _)| f == family))
+            .collect();
+        if let [p, q] = same[..]
+            && p == i
+            && fs[p].1 == 1
+            && fs[q].1 == 1
+            && cyclic_next(fs[q].0, fs[p].0)
+            && !cyclic_next(fs[p].0, fs[q].0)
+        {
+            fs.swap(p, q);
+        }
+    }
 }
 
 /// Writes `p` as `c · m · Π fs` with `fs` all the known factors (or a single
