@@ -14,6 +14,8 @@ mod elliptic;
 mod exact;
 // exact.rs near the separatrix against the double-double Taylor reference.
 mod exact_separatrix;
+// Charts of where methods fail near the separatrix.
+mod charts;
 // run.rs: error estimates of closed forms, --check, non-finite refusal.
 mod honest;
 // Test support: a 32-digit Taylor integrator of the torque-free body.
