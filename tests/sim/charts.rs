@@ -117,3 +117,87 @@ fn error_against_distance_to_the_separatrix_at_fixed_cost() {
         hdot_num::chart::loglog_chart(&stem, title, x, y, &s).unwrap();
     }
 }
+
+/// End times of the long-time study (periods of ω of the issue body are
+/// about 5 time units): to about 200 periods in CI, 10⁴ with `slow-tests`.
+#[cfg(not(feature = "slow-tests"))]
+const LONG_TIMES: [f64; 4] = [10.0, 100.0, 300.0, 1000.0];
+#[cfg(feature = "slow-tests")]
+const LONG_TIMES: [f64; 6] = [10.0, 100.0, 1000.0, 3000.0, 10000.0, 50000.0];
+
+#[test]
+fn error_against_time_on_the_torque_free_body() {
+    let i = [0.6, 0.8, 1.0];
+    let q0 = UnitQuaternion::identity();
+    let w0 = Vector3::new(3.0, 0.5, -0.9);
+    let y0 = pack(&q0, &w0);
+    let body = FreeBody {
+        moments: i,
+        gravity: None,
+    };
+    let e0 = body.energy(&y0);
+    let runs: [(Method, Step); 4] = [
+        (Method::Rk4, Step::Fixed(0.01)),
+        (Method::Dop853, Step::Tolerance(1e-10)),
+        (Method::Split2, Step::Fixed(0.01)),
+        (Method::Split4, Step::Fixed(0.01)),
+    ];
+    let exact = TorqueFree::new(i, q0, w0).unwrap();
+    let mut errors = vec![vec![]; runs.len() + 1];
+    let mut energy = vec![vec![]; runs.len()];
+    let mut reference = DdState::new([y0[0], y0[1], y0[2], y0[3]], [w0.x, w0.y, w0.z]);
+    let mut t_prev = 0.0;
+    for &t in &LONG_TIMES {
+        // The reference continues from the previous end time.
+        reference = torque_free(i, reference, t - t_prev);
+        t_prev = t;
+        let r = reference.to_f64();
+        for (j, &(m, st)) in runs.iter().enumerate() {
+            let (y, _) =
+                integrate(&body, m, st, 0.0, y0, t, Limits::default(), |_, _| Ok(())).unwrap();
+            errors[j].push((t, attitude_rate_error(&y, &r).max(1e-17)));
+            energy[j].push((body.energy(&y) - e0).abs() / e0);
+        }
+        errors[runs.len()].push((t, attitude_rate_error(&exact.state(t), &r).max(1e-17)));
+    }
+    let phase = |t: f64| w0.norm() * t;
+    let n = LONG_TIMES.len() - 1;
+    let growth = LONG_TIMES[n] / LONG_TIMES[1];
+    // Exact: round-off level, within 1e-13 per unit of |ω| T at every T.
+    for &(t, e) in &errors[runs.len()] {
+        assert!(e <= 1e-13 * phase(t), "exact at T = {t}: {e:e}");
+    }
+    // Runge–Kutta: secular growth, at least linear in T.
+    for j in [0, 1] {
+        let (a, b) = (errors[j][1].1, errors[j][n].1);
+        assert!(b >= 0.3 * growth * a, "{}: {a:e} → {b:e}", runs[j].0);
+    }
+    // Splittings: bounded energy error (no growth beyond 3× from the first T).
+    for j in [2, 3] {
+        let first = energy[j][0].max(1e-15);
+        assert!(
+            energy[j].iter().all(|&e| e <= 3.0 * first),
+            "{}: {:?}",
+            runs[j].0,
+            energy[j]
+        );
+    }
+    let labels: Vec<String> = runs
+        .iter()
+        .map(|(m, s)| format!("{m} ({})", hdot_sim::run::step_label(*s)))
+        .chain(std::iter::once("exact (elliptic)".to_string()))
+        .collect();
+    let s: Vec<hdot_num::chart::Series> = labels
+        .into_iter()
+        .zip(errors)
+        .map(|(l, p)| hdot_num::chart::Series::new(l, p))
+        .collect();
+    let dir = tempfile::tempdir().unwrap();
+    let title = "Torque-free I = (0.6, 0.8, 1.0): error against T";
+    let (x, y) = ("T (s)", "rotation angle + |Δω|/|ω| at T");
+    hdot_num::chart::loglog_chart(&dir.path().join("long-time-error"), title, x, y, &s).unwrap();
+    if std::env::var("HDOT_DOCS_CHARTS").as_deref() == Ok("1") {
+        let stem = hdot_tests::repo_root().join("docs/charts/long-time-error");
+        hdot_num::chart::loglog_chart(&stem, title, x, y, &s).unwrap();
+    }
+}
