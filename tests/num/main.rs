@@ -22,3 +22,5 @@ mod snapshots;
 mod eval;
 // Derived equations against particle sums (hdot verify).
 mod verify;
+// Verification from declarations.
+mod verify_declared;

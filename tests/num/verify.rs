@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use hdot_num::verify::{COVERAGE, Comparison, SUPPORTED, check};
+use hdot_num::verify::{COVERAGE, Comparison, SUPPORTED, check_named as check};
 use hdot_sym::atom::AtomKind;
 use hdot_sym::derivation::Derivation;
 use hdot_sym::poly::Poly;
@@ -216,7 +216,8 @@ fn verify_is_seeded_and_covers_every_bundled_derivation() {
         .unwrap();
     assert_eq!(a, b);
     assert!(a.passed && a.bodies == 5);
-    // Every bundled derivation has a binding and a coverage entry.
+    // Every bundled derivation declares its meanings, or (until it does)
+    // has a binding and a coverage entry.
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../derivations");
     let mut names: Vec<String> = std::fs::read_dir(dir)
         .unwrap()
@@ -227,6 +228,7 @@ fn verify_is_seeded_and_covers_every_bundled_derivation() {
                 .is_some_and(|n| n != hdot_sym::course::MANIFEST_FILE)
         })
         .map(|p| p.file_stem().unwrap().to_string_lossy().into_owned())
+        .filter(|n| derivation(n).steps.iter().all(|s| s.meaning.is_none()))
         .collect();
     names.sort();
     assert_eq!(names, SUPPORTED);

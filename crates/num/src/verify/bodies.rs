@@ -134,7 +134,7 @@ fn random_vector(rng: &mut impl Rng, s: f64) -> Vector3<f64> {
     )
 }
 
-fn random_rotation(rng: &mut impl Rng) -> Rotation3<f64> {
+pub(crate) fn random_rotation(rng: &mut impl Rng) -> Rotation3<f64> {
     let q = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
         rng.gen_range(-1.0..1.0),
         rng.gen_range(-1.0..1.0),

@@ -38,10 +38,13 @@
 //! round-off.
 
 mod bodies;
+mod declared;
 pub mod free;
 pub mod gyro;
 pub mod motion;
+pub mod quantities;
 pub mod rigid;
+pub mod world;
 
 use std::collections::HashMap;
 
@@ -53,6 +56,7 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
 pub use bodies::{random_body, random_cloud, random_state};
+pub use declared::{Draw, Options, Report, StepCheck, Values, check, check_with, symmetric};
 
 use crate::cloud::ParticleCloud;
 use crate::error::BodyError;
@@ -330,6 +334,36 @@ pub enum VerifyError {
     /// A random body was invalid (a bug in the sampler).
     #[error(transparent)]
     Body(#[from] BodyError),
+    /// The declarations cannot be met by the drawn bodies and motions.
+    #[error("{derivation}: {message}")]
+    Declaration {
+        /// Derivation name.
+        derivation: String,
+        /// What is wrong.
+        message: String,
+    },
+}
+
+impl VerifyError {
+    pub(crate) fn unbound(d: &Derivation, step: &str, a: Atom) -> VerifyError {
+        VerifyError::Unbound {
+            derivation: d.name.clone(),
+            step: step.into(),
+            symbol: a.to_string(),
+        }
+    }
+
+    /// The same error, attributed to `step` of `d`.
+    pub(crate) fn in_step(self, d: &Derivation, step: &str) -> VerifyError {
+        match self {
+            VerifyError::Unbound { symbol, .. } => VerifyError::Unbound {
+                derivation: d.name.clone(),
+                step: step.into(),
+                symbol,
+            },
+            e => e,
+        }
+    }
 }
 
 /// A random instantaneous state. Each check uses the fields it needs:
@@ -442,7 +476,7 @@ pub fn verify(
         let state_and_body = random_body(&mut rng).map(|c| (c, random_state(&mut rng)));
         let run = state_and_body
             .map_err(VerifyError::from)
-            .and_then(|(cloud, state)| check(d, &cloud, &state).expect("supported"));
+            .and_then(|(cloud, state)| check_named(d, &cloud, &state).expect("supported"));
         let comparisons = match run {
             Ok(c) => c,
             Err(e) => return Some(Err(e)),
@@ -465,7 +499,7 @@ type CheckFn = fn(&Derivation, &ParticleCloud, &State) -> Result<Vec<Comparison>
 
 /// Runs the check of `d` on one body (world coordinates) and state.
 /// `None` when the derivation has no numeric check.
-pub fn check(
+pub fn check_named(
     d: &Derivation,
     cloud: &ParticleCloud,
     state: &State,

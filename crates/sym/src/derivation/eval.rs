@@ -68,7 +68,7 @@ impl<'a> Context<'a> {
     }
 
     /// The byte offset where the contents of a spanned TOML string begin.
-    fn content_start(&self, s: &Spanned<String>) -> usize {
+    pub(crate) fn content_start(&self, s: &Spanned<String>) -> usize {
         let start = s.span().start;
         let rest = &self.text[start.min(self.text.len())..];
         if rest.starts_with("\"\"\"") || rest.starts_with("'''") {
@@ -96,7 +96,7 @@ impl<'a> Context<'a> {
         self.diag(base + span.start, base + span.end, msg)
     }
 
-    fn parse_at(&self, text: &str, base: usize) -> R<Ast> {
+    pub(crate) fn parse_at(&self, text: &str, base: usize) -> R<Ast> {
         parse(text).map_err(|e| self.at(base, e.span, e.message))
     }
 

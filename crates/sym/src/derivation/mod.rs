@@ -32,6 +32,7 @@
 mod error;
 mod eval;
 pub mod ops;
+pub mod physics;
 mod raw;
 mod value;
 
@@ -72,6 +73,8 @@ pub struct Derivation {
     pub frames: Vec<Frame>,
     /// The evaluated steps.
     pub steps: Vec<Step>,
+    /// The physical model the file declares (empty without declarations).
+    pub physics: physics::Physics,
 }
 
 /// A named abbreviation such as ω_z := ψ̇ + φ̇ cos θ.
@@ -111,6 +114,8 @@ pub struct Step {
     pub components: Vec<(String, Expr)>,
     /// Expectation checks, one per component, when the file states one.
     pub checks: Vec<Check>,
+    /// What the step means physically (`means`), when the file says.
+    pub meaning: Option<physics::StepMeaning>,
 }
 
 impl Step {
@@ -324,6 +329,8 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
         })?;
         cx.push_frame(cx_frame.expect("built"));
     }
+    // Bodies, points, gravity, knowns, conditions.
+    let physics = physics::declarations(&cx, &raw)?;
     // Steps.
     let mut steps = Vec::new();
     let mut seen: HashMap<String, ()> = HashMap::new();
@@ -362,11 +369,12 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
                     Vec::new()
                 };
                 let checks = cx.checks(s, &value, &abbreviations, &presentation, &axes)?;
-                out = Some((value, presentation, axes, components, checks));
+                let meaning = physics::step_meaning(&cx, &physics, s, &value)?;
+                out = Some((value, presentation, axes, components, checks, meaning));
                 Ok(())
             },
         )?;
-        let (value, presentation, axes, components, checks) = out.expect("evaluated");
+        let (value, presentation, axes, components, checks, meaning) = out.expect("evaluated");
         cx.bind(s.name.get_ref(), value.clone());
         steps.push(Step {
             name: s.name.get_ref().clone(),
@@ -379,6 +387,7 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
             axes,
             components,
             checks,
+            meaning,
         });
     }
     Ok(Derivation {
@@ -392,5 +401,6 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
         abbreviations,
         frames: cx.frames.clone(),
         steps,
+        physics,
     })
 }

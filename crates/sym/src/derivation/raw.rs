@@ -25,6 +25,59 @@ pub(crate) struct RawFile {
     pub steps: Vec<RawStep>,
     /// Resource limits for this file (crate::limits).
     pub limits: Option<RawLimits>,
+    /// The weight per unit mass, a vector expression (physics.rs).
+    pub gravity: Option<Spanned<String>>,
+    #[serde(default, rename = "point")]
+    pub points: Vec<RawPoint>,
+    #[serde(default, rename = "body")]
+    pub bodies: Vec<RawBody>,
+    #[serde(default, rename = "known")]
+    pub knowns: Vec<RawKnown>,
+    pub motion: Option<RawMotion>,
+}
+
+/// `[[point]]` (physics.rs).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawPoint {
+    pub name: Spanned<String>,
+    #[serde(default)]
+    pub doc: String,
+    pub fixed: Option<Spanned<bool>>,
+    pub from: Option<Spanned<String>>,
+    pub at: Option<Spanned<String>>,
+}
+
+/// `[[body]]` (physics.rs).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawBody {
+    pub name: Spanned<String>,
+    #[serde(default)]
+    pub doc: String,
+    pub frame: Spanned<String>,
+    pub point: Option<Spanned<String>>,
+    pub centre: Option<Spanned<String>>,
+    pub mass: Spanned<String>,
+    pub mass_centre: Option<Spanned<String>>,
+    pub inertia: Spanned<String>,
+    pub symmetry: Option<Spanned<String>>,
+}
+
+/// `[[known]]` (physics.rs).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawKnown {
+    pub value: Spanned<String>,
+    pub means: Spanned<String>,
+}
+
+/// `[motion]` (physics.rs).
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawMotion {
+    #[serde(default)]
+    pub given: Vec<Spanned<String>>,
 }
 
 /// `[limits]`: overrides of [`crate::limits::Limits`].
@@ -92,6 +145,11 @@ pub(crate) struct RawStep {
     pub fold: Option<Spanned<Vec<String>>>,
     /// Known factors to print brackets as products of: `["A - B", "A - C"]`.
     pub factor: Option<Spanned<Vec<String>>>,
+    /// What the step means physically (physics.rs).
+    pub means: Option<Spanned<String>>,
+    /// Conditions on the motion under which `means` holds.
+    #[serde(default)]
+    pub given: Vec<Spanned<String>>,
 }
 
 fn yes() -> bool {

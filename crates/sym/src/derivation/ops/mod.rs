@@ -24,6 +24,8 @@ mod subst;
 mod trig;
 mod vector;
 
+pub(crate) use subst::quarter_turns;
+
 use super::eval::{Context, R};
 use super::value::Value;
 use crate::atom::Atom;

@@ -133,7 +133,7 @@ fn eval(c: &Call<'_, '_>) -> R<Value> {
 }
 
 /// `pi`, `pi/2`, `k*pi/2`, `k*pi`, `0` as a number of quarter turns.
-fn quarter_turns(ast: &Ast) -> Option<i64> {
+pub(crate) fn quarter_turns(ast: &Ast) -> Option<i64> {
     fn walk(a: &Ast) -> Option<(Rational, bool)> {
         match &a.kind {
             AstKind::Name { name, primes: 0 } if name == "pi" => Some((Rational::ONE, true)),

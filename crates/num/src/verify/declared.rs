@@ -1,0 +1,1026 @@
+//! Verification from what a derivation file declares (its `[[body]]`,
+//! `[[point]]`, `gravity`, `[[known]]`, `[motion]` and each step's
+//! `means`), independent of the file's name.
+//!
+//! For each draw: random bodies with the declared symmetry (particles
+//! copied so the symmetry is exact), random constant values, random values
+//! and derivatives of every time symbol (then the `[motion]` conditions and
+//! a step's `given` applied), random attitudes of frames given by their
+//! angular velocity and random motions of free points. The file's symbols
+//! are bound from particle sums of the same particles (mass, G, inertia
+//! about the reference point in the body axes) and from the quantities
+//! `[[known]]` declares. Every step with a meaning is evaluated with a
+//! compiled [`Tape`] and compared with the measured quantity
+//! ([`super::quantities`]), computed from the motion of the particles
+//! ([`super::world`]), never from the engine's ω or transport theorem.
+
+use std::collections::{BTreeMap, HashMap};
+
+use hdot_sym::atom::{Atom, AtomKind};
+use hdot_sym::derivation::physics::{
+    Body, FrameMotion, Meaning, PointKind, Rule, RuleValue, StepMeaning, Symmetry,
+};
+use hdot_sym::derivation::{Derivation, Step, Value};
+use hdot_sym::poly::Poly;
+use hdot_sym::symbols::Decl;
+use nalgebra::{Matrix3, Vector3};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+use super::bodies::{axisymmetric, map_particles, mirrored, random_body, random_rotation};
+use super::quantities::{Measured, measure};
+use super::world::{ORDERS, PointJet, World, mat_t_vec, vee};
+use super::{Comparison, VerifyError};
+use crate::cloud::ParticleCloud;
+use crate::eval::Tape;
+
+/// Highest derivative order drawn for a time symbol.
+const MAX_ORDER: u32 = 6;
+
+/// How many draws and from which seed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Options {
+    /// Random bodies and motions (at least 1).
+    pub draws: usize,
+    /// Seed of the ChaCha generator.
+    pub seed: u64,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options { draws: 50, seed: 0 }
+    }
+}
+
+/// One compared step.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StepCheck {
+    /// The step's name.
+    pub step: String,
+    /// Its meaning as written.
+    pub means: String,
+    /// What the meaning was measured as.
+    pub against: String,
+    /// The largest relative error over the draws.
+    pub max_error: f64,
+    /// The comparison with the largest error.
+    pub worst: Option<Comparison>,
+    /// Whether every comparison passed.
+    pub passed: bool,
+}
+
+/// The result of [`check`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Report {
+    /// The derivation's name.
+    pub derivation: String,
+    /// Draws made.
+    pub draws: usize,
+    /// The steps with a meaning, compared.
+    pub steps: Vec<StepCheck>,
+    /// The steps without a meaning (not compared).
+    pub not_compared: Vec<String>,
+}
+
+impl Report {
+    /// Whether every compared step passed (true when none was compared).
+    pub fn passed(&self) -> bool {
+        self.steps.iter().all(|s| s.passed)
+    }
+
+    /// The largest relative error.
+    pub fn max_error(&self) -> f64 {
+        self.steps.iter().map(|s| s.max_error).fold(0.0, f64::max)
+    }
+
+    /// The worst comparison over all steps.
+    pub fn worst(&self) -> Option<&Comparison> {
+        self.steps
+            .iter()
+            .filter(|s| s.worst.is_some())
+            .max_by(|a, b| a.max_error.total_cmp(&b.max_error))
+            .and_then(|s| s.worst.as_ref())
+    }
+
+    /// What the file would need for a step to be compared, when none is.
+    pub fn hint(&self, d: &Derivation) -> Option<String> {
+        if !self.steps.is_empty() {
+            return None;
+        }
+        Some(if d.physics.bodies.is_empty() {
+            "no step has a meaning: declare the bodies ([[body]], [[point]]) and say what steps mean (`means = \"moment(body, O)\"`); see docs/derivation-format.md".into()
+        } else {
+            "no step has a meaning: add `means = \"…\"` to the steps (see docs/derivation-format.md, *Meanings*)".into()
+        })
+    }
+}
+
+/// Values of symbols (constants, and time symbols with their derivative
+/// order) and bounds on their sizes.
+#[derive(Clone, Debug, Default)]
+pub struct Values {
+    map: HashMap<Atom, (f64, f64)>,
+}
+
+/// The `n`th derivative of a time atom.
+fn nth(a: Atom, n: u32) -> Atom {
+    Atom::time(a.name(), a.order() + n)
+}
+
+impl Values {
+    /// Value and size of an atom (sin and cos of a bound angle included).
+    pub fn get(&self, a: Atom) -> Option<(f64, f64)> {
+        match a.kind() {
+            AtomKind::Var { .. } => self.map.get(&a).copied(),
+            AtomKind::Sin(q) => self.map.get(&q).map(|v| (v.0.sin(), 1.0)),
+            AtomKind::Cos(q) => self.map.get(&q).map(|v| (v.0.cos(), 1.0)),
+        }
+    }
+
+    /// The `n`th derivative of time atom `a`.
+    pub fn time(&self, a: Atom, n: u32) -> Option<(f64, f64)> {
+        self.get(nth(a, n))
+    }
+
+    fn set(&mut self, a: Atom, v: f64, size: f64) {
+        self.map.insert(a, (v, size.abs()));
+    }
+
+    fn bound(&self, a: Atom) -> bool {
+        self.get(a).is_some()
+    }
+
+    /// Value and size (Σ |terms| with each atom at its size) of `p`.
+    pub fn eval(&self, p: &Poly) -> Result<(f64, f64), VerifyError> {
+        let (mut v, mut s) = (0.0, 0.0);
+        for (m, c) in p.terms() {
+            let (mut tv, mut ts) = (c.to_f64(), c.to_f64().abs());
+            for &(a, e) in m.factors() {
+                let (x, sx) = self.get(a).ok_or_else(|| VerifyError::Unbound {
+                    derivation: String::new(),
+                    step: String::new(),
+                    symbol: a.to_string(),
+                })?;
+                tv *= x.powi(e);
+                ts *= if e < 0 { x.abs() } else { sx }.powi(e);
+            }
+            v += tv;
+            s += ts;
+        }
+        Ok((v, s))
+    }
+}
+
+/// What one draw fixes besides the symbols' values: the bodies (body axes,
+/// about the reference point), their centres, free attitudes and free
+/// points.
+#[derive(Clone, Debug)]
+pub struct Draw {
+    bodies: Vec<ParticleCloud>,
+    centres: Vec<Vector3<f64>>,
+    attitudes: HashMap<usize, Matrix3<f64>>,
+    points: HashMap<String, PointJet>,
+}
+
+impl Draw {
+    /// The particles of body `i` (body axes, about its reference point).
+    pub fn body(&self, i: usize) -> &ParticleCloud {
+        &self.bodies[i]
+    }
+
+    /// G of body `i` from its reference point, body axes.
+    pub fn centre(&self, i: usize) -> Vector3<f64> {
+        self.centres[i]
+    }
+
+    pub(crate) fn attitude(&self, frame: usize) -> Matrix3<f64> {
+        self.attitudes[&frame]
+    }
+
+    pub(crate) fn point(&self, name: &str) -> PointJet {
+        self.points[name]
+    }
+}
+
+/// A body with the declared symmetry about the origin (the reference
+/// point): copies mirrored in planes or turned about an axis.
+pub fn symmetric(
+    cloud: &ParticleCloud,
+    symmetry: Symmetry,
+    fold: usize,
+) -> Result<ParticleCloud, VerifyError> {
+    Ok(match symmetry {
+        Symmetry::None => cloud.clone(),
+        Symmetry::Principal => mirrored(cloud, [true; 3])?,
+        Symmetry::Plane(k) => {
+            let mut n = [false; 3];
+            n[k] = true;
+            mirrored(cloud, n)?
+        }
+        Symmetry::Axisymmetric(k) => {
+            let c = axisymmetric(cloud, fold)?;
+            // z to axis k by a cyclic permutation (a proper rotation).
+            map_particles(&c, |p, m| {
+                let q = match k {
+                    0 => Vector3::new(p.z, p.x, p.y),
+                    1 => Vector3::new(p.y, p.z, p.x),
+                    _ => p,
+                };
+                [(q, m)]
+            })?
+        }
+    })
+}
+
+fn declaration(d: &Derivation, message: String) -> VerifyError {
+    VerifyError::Declaration {
+        derivation: d.name.clone(),
+        message,
+    }
+}
+
+/// Binds the one unbound symbol of each `(poly, target)` (linear in it),
+/// as long as progress is made; checks those without one.
+fn bind_all(
+    d: &Derivation,
+    values: &mut Values,
+    mut eqs: Vec<(Poly, f64, f64, String)>,
+) -> Result<(), VerifyError> {
+    loop {
+        let before = eqs.len();
+        let mut rest = Vec::new();
+        for (p, target, size, what) in eqs {
+            let unbound: Vec<Atom> = {
+                let mut u: Vec<Atom> = p
+                    .atoms()
+                    .into_iter()
+                    .map(|a| match a.kind() {
+                        AtomKind::Sin(q) | AtomKind::Cos(q) => q,
+                        _ => a,
+                    })
+                    .filter(|a| !values.bound(*a))
+                    .collect();
+                u.sort_by_key(|a| a.sort_key());
+                u.dedup();
+                u
+            };
+            match unbound.as_slice() {
+                [] => {
+                    let (v, s) = values.eval(&p)?;
+                    if (v - target).abs() > 1e-9 * (s + size.abs() + target.abs()) {
+                        return Err(declaration(
+                            d,
+                            format!(
+                                "{what} is declared {} = {v:e} but the drawn body has {target:e}: the declared symmetry does not make it so",
+                                p.to_source()
+                            ),
+                        ));
+                    }
+                }
+                [s] if p.terms().iter().all(|(m, _)| m.exponent(*s) <= 1)
+                    && Atom::sin(*s).is_none_or(|x| !p.contains(x))
+                    && Atom::cos(*s).is_none_or(|x| !p.contains(x)) =>
+                {
+                    let coef = p.partial(*s);
+                    let rest = p.subst(&mut |a| (a == *s).then(Poly::zero));
+                    let (c, _) = values.eval(&coef)?;
+                    let (r, _) = values.eval(&rest)?;
+                    if c == 0.0 {
+                        return Err(declaration(
+                            d,
+                            format!("{what}: cannot solve {} for {s}", p.to_source()),
+                        ));
+                    }
+                    values.set(*s, (target - r) / c, size / c.abs());
+                }
+                _ => rest.push((p, target, size, what)),
+            }
+        }
+        if rest.is_empty() {
+            return Ok(());
+        }
+        if rest.len() == before {
+            let (p, _, _, what) = &rest[0];
+            return Err(declaration(
+                d,
+                format!(
+                    "{what}: {} has more than one symbol not bound yet (bind all but one elsewhere)",
+                    p.to_source()
+                ),
+            ));
+        }
+        eqs = rest;
+    }
+}
+
+fn random_vector(rng: &mut impl Rng, s: f64) -> Vector3<f64> {
+    Vector3::new(
+        rng.gen_range(-s..s),
+        rng.gen_range(-s..s),
+        rng.gen_range(-s..s),
+    )
+}
+
+/// Draws bodies, free motions and symbol values; binds the bodies'
+/// symbols.
+fn draw(d: &Derivation, rng: &mut ChaCha8Rng) -> Result<(Draw, Values), VerifyError> {
+    let ph = &d.physics;
+    let mut values = Values::default();
+    let mut bodies = Vec::new();
+    let mut centres = Vec::new();
+    let mut eqs = Vec::new();
+    for b in &ph.bodies {
+        let fold = rng.gen_range(3..=6);
+        let mut cloud = symmetric(&random_body(rng)?, b.symmetry, fold)?;
+        let mp = cloud.mass_properties();
+        if b.about_centre() {
+            let g = mp.center;
+            cloud = map_particles(&cloud, |p, m| [(p - g, m)])?;
+        }
+        let mp = cloud.mass_properties();
+        let c = mp.center;
+        let i = inertia_about_origin(&cloud);
+        // The body's extent: the size positions are computed to.
+        let extent = (i.trace() / mp.mass).sqrt() + c.norm();
+        eqs.extend(body_equations(b, mp.mass, &c, extent, &i));
+        bodies.push(cloud);
+        centres.push(c);
+    }
+    // Symbols the bodies and knowns bind are left unbound here.
+    let declared: Vec<Atom> = ph
+        .bodies
+        .iter()
+        .flat_map(|b| {
+            let mut v = b.mass.atoms();
+            v.extend(b.mass_centre.0.iter().flat_map(Poly::atoms));
+            v.extend(b.inertia.0.iter().flatten().flat_map(Poly::atoms));
+            v
+        })
+        .chain(
+            ph.knowns
+                .iter()
+                .flat_map(|k| k.value.components().into_iter().flat_map(Poly::atoms)),
+        )
+        .collect();
+    for name in d.symbols.names() {
+        match d.symbols.get(name) {
+            Some(Decl::Constant) => {
+                let a = Atom::constant(name);
+                if !declared.contains(&a) {
+                    let v = rng.gen_range(0.5..2.0);
+                    values.set(a, v, v);
+                }
+            }
+            Some(Decl::Time) => {
+                let a = Atom::time(name, 0);
+                for n in 0..=MAX_ORDER {
+                    let x = nth(a, n);
+                    if !declared.contains(&x) {
+                        let v = rng.gen_range(-2.0..2.0);
+                        values.set(x, v, v);
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    bind_all(d, &mut values, eqs)?;
+    let mut attitudes = HashMap::new();
+    for (i, m) in ph.frames.iter().enumerate() {
+        if *m == FrameMotion::AngularVelocity {
+            attitudes.insert(i, *random_rotation(rng).matrix());
+        }
+    }
+    let mut points = HashMap::new();
+    let free = ph
+        .points
+        .iter()
+        .filter(|p| p.kind == PointKind::Free)
+        .map(|p| p.name.clone())
+        .chain(
+            ph.bodies
+                .iter()
+                .filter(|b| b.about_centre())
+                .filter_map(|b| b.centre.clone()),
+        );
+    for name in free {
+        let r: [Vector3<f64>; ORDERS] = std::array::from_fn(|_| random_vector(rng, 3.0));
+        points.insert(
+            name,
+            PointJet {
+                r,
+                mag: std::array::from_fn(|n| r[n].norm()),
+            },
+        );
+    }
+    Ok((
+        Draw {
+            bodies,
+            centres,
+            attitudes,
+            points,
+        },
+        values,
+    ))
+}
+
+/// Σ m (|q|² E − q qᵀ) about the origin.
+fn inertia_about_origin(c: &ParticleCloud) -> Matrix3<f64> {
+    (0..c.len())
+        .map(|k| {
+            let (q, m) = c.particle(k);
+            m * (Matrix3::identity() * q.norm_squared() - q * q.transpose())
+        })
+        .sum()
+}
+
+fn body_equations(
+    b: &Body,
+    mass: f64,
+    c: &Vector3<f64>,
+    extent: f64,
+    i: &Matrix3<f64>,
+) -> Vec<(Poly, f64, f64, String)> {
+    let mut eqs = vec![(
+        b.mass.clone(),
+        mass,
+        mass,
+        format!("the mass of {}", b.name),
+    )];
+    for k in 0..3 {
+        eqs.push((
+            b.mass_centre.0[k].clone(),
+            c[k],
+            extent,
+            format!("component {} of the mass centre of {}", k + 1, b.name),
+        ));
+    }
+    let size = 0.5 * i.trace();
+    for r in 0..3 {
+        for s in r..3 {
+            eqs.push((
+                b.inertia.0[r][s].clone(),
+                i[(r, s)],
+                size,
+                format!("inertia entry ({}, {}) of {}", r + 1, s + 1, b.name),
+            ));
+        }
+    }
+    eqs
+}
+
+/// Applies conditions to the values (rules in order).
+fn apply(d: &Derivation, values: &mut Values, rules: &[Rule]) -> Result<(), VerifyError> {
+    for r in rules {
+        let from = r.target.order();
+        let base = Atom::time(r.target.name(), 0);
+        match &r.value {
+            RuleValue::QuarterTurns(t) => {
+                values.set(base, *t as f64 * std::f64::consts::FRAC_PI_2, 1.0);
+                for n in 1..=MAX_ORDER {
+                    values.set(nth(base, n), 0.0, 0.0);
+                }
+            }
+            RuleValue::Expr(p) => {
+                let mut q = p.clone();
+                for n in from..=MAX_ORDER {
+                    let (v, s) = values
+                        .eval(&q)
+                        .map_err(|e| e.in_step(d, &format!("given {}", r.text)))?;
+                    values.set(nth(base, n), v, s);
+                    q = q.dt();
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Binds the symbols of `[[known]]` from the measured quantities (and
+/// their time derivatives, for point and frame kinematics).
+fn bind_knowns(d: &Derivation, w: &World<'_>, values: &mut Values) -> Result<(), VerifyError> {
+    for k in &d.physics.knowns {
+        let jets: Vec<[f64; 3]> = match (&k.value, &k.meaning) {
+            (Value::Vector(_, f), m) => {
+                let fi = frame_index(d, f);
+                let x = kinematic_jet(w, m);
+                match x {
+                    Some(x) => {
+                        let rf = &w.frames[fi];
+                        let c = mat_t_vec(rf, &x);
+                        (0..3).map(|i| [c[0][i], c[1][i], c[2][i]]).collect()
+                    }
+                    None => {
+                        let (v, _) = meaning_value(w, m)?;
+                        let v = w.frames[fi][0].transpose() * v.vector();
+                        (0..3).map(|i| [v[i], f64::NAN, f64::NAN]).collect()
+                    }
+                }
+            }
+            (_, m) => vec![[meaning_value(w, m)?.0.scalar(), f64::NAN, f64::NAN]],
+        };
+        let (_, size) = meaning_value(w, &k.meaning)?;
+        for (p, jet) in k.value.components().into_iter().zip(jets) {
+            let atoms: Vec<Atom> = p
+                .atoms()
+                .into_iter()
+                .filter(|a| !values.bound(*a))
+                .collect();
+            bind_all(
+                d,
+                values,
+                vec![(p.clone(), jet[0], size, format!("the known {}", k.text))],
+            )?;
+            // Derivatives: p = c s + r with c and r constant.
+            if let [s] = atoms.as_slice()
+                && p.atoms().iter().all(|a| *a == *s || !a.is_time_dependent())
+                && s.is_time_dependent()
+            {
+                let (c, _) = values.eval(&p.partial(*s))?;
+                for (n, x) in jet.iter().enumerate().skip(1) {
+                    if x.is_finite() {
+                        values.set(nth(*s, n as u32), x / c, size / c.abs());
+                    }
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+fn frame_index(d: &Derivation, f: &str) -> usize {
+    d.frames
+        .iter()
+        .position(|x| x.name == f)
+        .expect("frame exists")
+}
+
+/// The jet (N's axes, orders 0..2) of a point-kinematics or angular-velocity
+/// meaning.
+fn kinematic_jet(w: &World<'_>, m: &Meaning) -> Option<[Vector3<f64>; ORDERS]> {
+    use hdot_sym::derivation::physics::{Arg, Quantity};
+    let Meaning::Quantity(q, args) = m else {
+        return None;
+    };
+    let pt = |a: &Arg| match a {
+        Arg::Point(p) => w.points[p].r,
+        _ => unreachable!("validated"),
+    };
+    let z = Vector3::zeros();
+    Some(match q {
+        Quantity::Position => {
+            let (p, o) = (pt(&args[0]), pt(&args[1]));
+            std::array::from_fn(|n| p[n] - o[n])
+        }
+        Quantity::Velocity => {
+            let p = pt(&args[0]);
+            [p[1], p[2], p[3], z]
+        }
+        Quantity::AngularVelocity => {
+            let Arg::Frame(f) = args[0] else {
+                unreachable!("validated")
+            };
+            let r = &w.frames[f];
+            [
+                vee(&(r[1] * r[0].transpose())),
+                vee(&(r[2] * r[0].transpose() + r[1] * r[1].transpose())),
+                vee(&(r[3] * r[0].transpose()
+                    + 2.0 * r[2] * r[1].transpose()
+                    + r[1] * r[2].transpose())),
+                z,
+            ]
+        }
+        _ => return None,
+    })
+}
+
+/// A measured meaning: a vector in N's axes, a scalar, a matrix in its
+/// frame's axes or a list; and its scale.
+#[derive(Clone, Debug, PartialEq)]
+enum Val {
+    Scalar(f64),
+    Vector(Vector3<f64>),
+    Matrix(Matrix3<f64>),
+    List(Vec<f64>),
+}
+
+impl Val {
+    fn vector(&self) -> Vector3<f64> {
+        match self {
+            Val::Vector(v) => *v,
+            _ => unreachable!("shapes are validated"),
+        }
+    }
+
+    fn scalar(&self) -> f64 {
+        match self {
+            Val::Scalar(v) => *v,
+            _ => unreachable!("shapes are validated"),
+        }
+    }
+
+    fn scaled(&self, c: f64) -> Val {
+        match self {
+            Val::Scalar(x) => Val::Scalar(c * x),
+            Val::Vector(v) => Val::Vector(c * v),
+            Val::Matrix(m) => Val::Matrix(c * m),
+            Val::List(l) => Val::List(l.iter().map(|x| c * x).collect()),
+        }
+    }
+
+    fn add(&self, o: &Val) -> Val {
+        match (self, o) {
+            (Val::Scalar(a), Val::Scalar(b)) => Val::Scalar(a + b),
+            (Val::Vector(a), Val::Vector(b)) => Val::Vector(a + b),
+            (Val::Matrix(a), Val::Matrix(b)) => Val::Matrix(a + b),
+            (Val::List(a), Val::List(b)) => {
+                Val::List(a.iter().zip(b).map(|(x, y)| x + y).collect())
+            }
+            _ => unreachable!("shapes are validated"),
+        }
+    }
+
+    /// Components, a vector in the axes of `frame`.
+    fn components(&self, w: &World<'_>, frame: Option<usize>) -> Vec<f64> {
+        match self {
+            Val::Scalar(x) => vec![*x],
+            Val::Vector(v) => {
+                let r = frame.map_or(Matrix3::identity(), |f| w.frames[f][0]);
+                (r.transpose() * v).iter().copied().collect()
+            }
+            Val::Matrix(m) => m.transpose().iter().copied().collect(),
+            Val::List(l) => l.clone(),
+        }
+    }
+}
+
+fn meaning_value(w: &World<'_>, m: &Meaning) -> Result<(Val, f64), VerifyError> {
+    Ok(match m {
+        Meaning::Quantity(q, args) => {
+            let (v, s) = (measure(*q).compute)(w, args)?;
+            (
+                match v {
+                    Measured::Scalar(x) => Val::Scalar(x),
+                    Measured::Vector(v) => Val::Vector(v),
+                    Measured::Matrix(m) => Val::Matrix(m),
+                },
+                s,
+            )
+        }
+        Meaning::Sum(terms) => {
+            let mut acc: Option<Val> = None;
+            let mut scale = 0.0;
+            for (c, t) in terms {
+                let c = c.to_f64();
+                let (v, s) = meaning_value(w, t)?;
+                let v = v.scaled(c);
+                scale += c.abs() * s;
+                acc = Some(match acc {
+                    None => v,
+                    Some(a) => a.add(&v),
+                });
+            }
+            (acc.expect("a sum has terms"), scale)
+        }
+        Meaning::Along(x, e, f) => {
+            let (v, s) = meaning_value(w, x)?;
+            let fi = frame_index(w.d, f);
+            let mut values_e = Vec::new();
+            for c in &e.0 {
+                values_e.push(w.values.eval(c)?.0);
+            }
+            let e = w.frames[fi][0] * Vector3::new(values_e[0], values_e[1], values_e[2]);
+            (Val::Scalar(v.vector().dot(&e)), s * e.norm())
+        }
+        Meaning::List(items) => {
+            let mut out = Vec::new();
+            let mut scale: f64 = 0.0;
+            for it in items {
+                let (v, s) = meaning_value(w, it)?;
+                out.push(v.scalar());
+                scale = scale.max(s);
+            }
+            (Val::List(out), scale)
+        }
+        Meaning::Solves(x) | Meaning::MassMatrix(x, _) | Meaning::Forcing(x, _) => {
+            meaning_value(w, x)?
+        }
+    })
+}
+
+/// A step compiled once.
+struct Compiled<'d> {
+    step: &'d Step,
+    meaning: &'d StepMeaning,
+    tape: Tape,
+    labels: Vec<String>,
+    frame: Option<usize>,
+}
+
+fn compile<'d>(d: &'d Derivation, step: &'d Step, meaning: &'d StepMeaning) -> Compiled<'d> {
+    let polys: Vec<Poly> = step.values().into_iter().map(|p| d.unfold(p)).collect();
+    let tape = Tape::compile(&polys);
+    let labels = match &step.value {
+        Value::Scalar(_) => vec![step.name.clone()],
+        Value::Vector(..) => step
+            .axes
+            .iter()
+            .map(|a| format!("{}.{a}", step.name))
+            .collect(),
+        Value::Matrix(_) => (0..9)
+            .map(|k| {
+                format!(
+                    "{}.{}{}",
+                    step.name,
+                    ["x", "y", "z"][k / 3],
+                    ["x", "y", "z"][k % 3]
+                )
+            })
+            .collect(),
+        Value::List { items, labels } => (0..items.len())
+            .map(|k| match labels.get(k) {
+                Some(a) => format!("{}[{a}]", step.name),
+                None => format!("{}.{}", step.name, k + 1),
+            })
+            .collect(),
+        Value::Array(rows) => rows
+            .iter()
+            .enumerate()
+            .flat_map(|(i, r)| {
+                (0..r.len()).map(move |j| format!("{}.{}{}", step.name, i + 1, j + 1))
+            })
+            .collect(),
+    };
+    let frame = match &step.value {
+        Value::Vector(_, f) => Some(frame_index(d, f)),
+        _ => None,
+    };
+    Compiled {
+        step,
+        meaning,
+        tape,
+        labels,
+        frame,
+    }
+}
+
+impl Compiled<'_> {
+    fn eval(&self, d: &Derivation, values: &Values) -> Result<(Vec<f64>, Vec<f64>), VerifyError> {
+        let mut inputs = Vec::with_capacity(self.tape.atoms().len());
+        let mut sizes = Vec::with_capacity(self.tape.atoms().len());
+        for &a in self.tape.atoms() {
+            let (v, s) = values.get(a).ok_or_else(|| VerifyError::Unbound {
+                derivation: d.name.clone(),
+                step: self.step.name.clone(),
+                symbol: a.to_string(),
+            })?;
+            inputs.push(v);
+            sizes.push(s);
+        }
+        let n = self.tape.outputs();
+        let (mut out, mut scale) = (vec![0.0; n], vec![0.0; n]);
+        self.tape.eval(&inputs, &mut out);
+        self.tape.eval_abs(&sizes, &mut scale);
+        Ok((out, scale))
+    }
+}
+
+/// Compares one step in one draw.
+fn compare_step(
+    d: &Derivation,
+    c: &Compiled<'_>,
+    draw: &Draw,
+    values: &Values,
+) -> Result<Vec<Comparison>, VerifyError> {
+    let mut values = values.clone();
+    apply(d, &mut values, &c.meaning.given)?;
+    let w = World::build(d, draw, &values, &coordinate(&c.meaning.meaning))?;
+    bind_knowns(d, &w, &mut values)?;
+    let w = World::build(d, draw, &values, &coordinate(&c.meaning.meaning))?;
+    let (derived, dscale) = c.eval(d, &values)?;
+    if let Meaning::MassMatrix(x, unknowns) | Meaning::Forcing(x, unknowns) = &c.meaning.meaning {
+        let at = |vals: &Values| -> Result<(Vec<f64>, f64), VerifyError> {
+            let w = World::build(d, draw, vals, &coordinate(x))?;
+            let (v, s) = meaning_value(&w, x)?;
+            Ok((v.components(&w, None), s))
+        };
+        let mut zero = values.clone();
+        for a in unknowns {
+            zero.set(*a, 0.0, 0.0);
+        }
+        let (x0, mut scale) = at(&zero)?;
+        let direct: Vec<f64> = if matches!(c.meaning.meaning, Meaning::Forcing(..)) {
+            x0.iter().map(|v| -v).collect()
+        } else {
+            let mut cols = Vec::new();
+            for a in unknowns {
+                let mut unit = zero.clone();
+                unit.set(*a, 1.0, 1.0);
+                let (xj, sj) = at(&unit)?;
+                scale = scale.max(sj);
+                cols.push(xj.iter().zip(&x0).map(|(p, q)| p - q).collect::<Vec<f64>>());
+            }
+            (0..x0.len())
+                .flat_map(|i| cols.iter().map(move |col| col[i]))
+                .collect()
+        };
+        let top = dscale.iter().copied().fold(0.0, f64::max)
+            + scale
+            + direct.iter().map(|x| x.abs()).fold(0.0, f64::max);
+        return Ok(derived
+            .iter()
+            .zip(&direct)
+            .zip(&c.labels)
+            .map(|((x, y), l)| Comparison {
+                quantity: l.clone(),
+                derived: *x,
+                direct: *y,
+                scale: top + f64::MIN_POSITIVE,
+            })
+            .collect());
+    }
+    if let (Meaning::Solves(x), Value::List { labels, .. }) = (&c.meaning.meaning, &c.step.value) {
+        // X at the solved accelerations must vanish; X is linear in them.
+        let at = |vals: &Values| -> Result<(Vec<f64>, f64), VerifyError> {
+            let w = World::build(d, draw, vals, &coordinate(x))?;
+            let (v, s) = meaning_value(&w, x)?;
+            Ok((v.components(&w, None), s))
+        };
+        let mut solved = values.clone();
+        for (a, (v, s)) in labels.iter().zip(derived.iter().zip(&dscale)) {
+            solved.set(*a, *v, *s);
+        }
+        let (residual, rscale) = at(&solved)?;
+        let mut zero = solved.clone();
+        for a in labels {
+            zero.set(*a, 0.0, 0.0);
+        }
+        let (x0, _) = at(&zero)?;
+        let mut scale = rscale;
+        for (j, a) in labels.iter().enumerate() {
+            let mut unit = zero.clone();
+            unit.set(*a, 1.0, 1.0);
+            let (xj, _) = at(&unit)?;
+            let col: f64 = xj
+                .iter()
+                .zip(&x0)
+                .map(|(p, q)| (p - q).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            scale += col * dscale[j];
+        }
+        return Ok(residual
+            .iter()
+            .enumerate()
+            .map(|(k, r)| Comparison {
+                quantity: format!("{}: ({}).{}", c.step.name, c.meaning.text, k + 1),
+                derived: *r,
+                direct: 0.0,
+                scale: scale + f64::MIN_POSITIVE,
+            })
+            .collect());
+    }
+    let (m, mscale) = meaning_value(&w, &c.meaning.meaning)?;
+    let direct = m.components(&w, c.frame);
+    let top = dscale.iter().copied().fold(0.0, f64::max)
+        + mscale
+        + direct.iter().map(|x| x.abs()).fold(0.0, f64::max);
+    Ok(derived
+        .iter()
+        .zip(&direct)
+        .zip(&c.labels)
+        .map(|((x, y), l)| Comparison {
+            quantity: l.clone(),
+            derived: *x,
+            direct: *y,
+            scale: top + f64::MIN_POSITIVE,
+        })
+        .collect())
+}
+
+/// The coordinates the generalized quantities of `m` are taken for.
+fn coordinate(m: &Meaning) -> Vec<Atom> {
+    use hdot_sym::derivation::physics::Arg;
+    let mut out = Vec::new();
+    for (_, args) in m.quantities() {
+        for a in args {
+            if let Arg::Coordinate(q) = a
+                && !out.contains(q)
+            {
+                out.push(*q);
+            }
+        }
+    }
+    out
+}
+
+/// Verifies every step of `d` that has a meaning, on `options.draws`
+/// random bodies and motions.
+///
+/// # Errors
+/// A declaration the drawn bodies cannot satisfy (an inertia entry
+/// declared zero without the symmetry that makes it so), a step using a
+/// symbol nothing binds, or an invalid random body.
+///
+/// # Example
+/// ```
+/// let text = r#"
+/// title = "A spinning body"
+/// source = "example"
+/// [symbols]
+/// constants = ["m", "A", "Bm", "C"]
+/// time = ["w_x", "w_y", "w_z"]
+/// [[frame]]
+/// name = "B"
+/// angular_velocity = "[w_x, w_y, w_z]"
+/// [[body]]
+/// name = "body"
+/// frame = "B"
+/// mass = "m"
+/// inertia = "principal(A, Bm, C)"
+/// symmetry = "principal"
+/// [[step]]
+/// name = "H"
+/// value = "principal(A, Bm, C) * angvel(B)"
+/// means = "angular_momentum(body, G)"
+/// "#;
+/// let d = hdot_sym::derivation::load_str("spin.toml", text).unwrap();
+/// let r = hdot_num::verify::check(&d, &hdot_num::verify::Options { draws: 5, seed: 1 }).unwrap();
+/// assert!(r.passed() && r.steps.len() == 1);
+/// ```
+pub fn check(d: &Derivation, options: &Options) -> Result<Report, VerifyError> {
+    check_with(d, options, &mut || {})
+}
+
+/// [`check`], calling `tick` after each draw.
+pub fn check_with(
+    d: &Derivation,
+    options: &Options,
+    tick: &mut dyn FnMut(),
+) -> Result<Report, VerifyError> {
+    let compiled: Vec<Compiled<'_>> = d
+        .steps
+        .iter()
+        .filter_map(|s| s.meaning.as_ref().map(|m| compile(d, s, m)))
+        .collect();
+    let mut per_step: BTreeMap<usize, StepCheck> = BTreeMap::new();
+    for (k, c) in compiled.iter().enumerate() {
+        let against = c
+            .meaning
+            .meaning
+            .quantities()
+            .iter()
+            .map(|(q, _)| measure(*q).measured_as)
+            .fold(Vec::new(), |mut v, s| {
+                if !v.contains(&s) {
+                    v.push(s);
+                }
+                v
+            })
+            .join(", ");
+        per_step.insert(
+            k,
+            StepCheck {
+                step: c.step.name.clone(),
+                means: c.meaning.text.clone(),
+                against,
+                max_error: 0.0,
+                worst: None,
+                passed: true,
+            },
+        );
+    }
+    let mut rng = ChaCha8Rng::seed_from_u64(options.seed);
+    let mut draws = 0;
+    if !compiled.is_empty() {
+        for _ in 0..options.draws.max(1) {
+            let (dr, mut values) = draw(d, &mut rng)?;
+            apply(d, &mut values, &d.physics.motion)?;
+            for (k, c) in compiled.iter().enumerate() {
+                let cs = compare_step(d, c, &dr, &values)?;
+                let s = per_step.get_mut(&k).expect("inserted");
+                for cmp in cs {
+                    let e = cmp.relative_error();
+                    s.passed &= cmp.passes();
+                    if s.worst.is_none() || e > s.max_error {
+                        s.max_error = e;
+                        s.worst = Some(cmp);
+                    }
+                }
+            }
+            draws += 1;
+            tick();
+        }
+    }
+    Ok(Report {
+        derivation: d.name.clone(),
+        draws,
+        steps: per_step.into_values().collect(),
+        not_compared: d
+            .steps
+            .iter()
+            .filter(|s| s.meaning.is_none())
+            .map(|s| s.name.clone())
+            .collect(),
+    })
+}

@@ -1,0 +1,334 @@
+//! The measurable quantities: a registry of self-describing entries, one
+//! per [`Quantity`] of `hdot_sym::derivation::physics`, each with its
+//! particle sum and the magnitudes its round-off is relative to.
+
+use hdot_sym::derivation::physics::{Arg, Bodies, Quantity};
+use nalgebra::{Matrix3, Vector3};
+
+use super::VerifyError;
+use super::world::{World, vee};
+
+/// A measured value: in N's axes for a vector, in the named frame's axes
+/// for a matrix.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Measured {
+    /// A scalar.
+    Scalar(f64),
+    /// A vector, N's axes.
+    Vector(Vector3<f64>),
+    /// A matrix, in the axes of the frame its quantity names.
+    Matrix(Matrix3<f64>),
+}
+
+/// One entry of the registry.
+pub struct Measure {
+    /// The quantity.
+    pub quantity: Quantity,
+    /// What it is compared with, for reports.
+    pub measured_as: &'static str,
+    /// The particle sum (or point kinematics) and its scale.
+    pub compute: fn(&World<'_>, &[Arg]) -> Out,
+}
+
+/// Every measurable quantity.
+pub static REGISTRY: &[Measure] = &[
+    Measure {
+        quantity: Quantity::Mass,
+        measured_as: "Σ m",
+        compute: mass,
+    },
+    Measure {
+        quantity: Quantity::Position,
+        measured_as: "r_P − r_Q",
+        compute: position,
+    },
+    Measure {
+        quantity: Quantity::Velocity,
+        measured_as: "ṙ of the point",
+        compute: velocity,
+    },
+    Measure {
+        quantity: Quantity::Acceleration,
+        measured_as: "r̈ of the point",
+        compute: acceleration,
+    },
+    Measure {
+        quantity: Quantity::AngularVelocity,
+        measured_as: "the axial vector of Ṙ Rᵀ",
+        compute: angular_velocity,
+    },
+    Measure {
+        quantity: Quantity::AngularAcceleration,
+        measured_as: "the axial vector of d(Ṙ Rᵀ)/dt",
+        compute: angular_acceleration,
+    },
+    Measure {
+        quantity: Quantity::Momentum,
+        measured_as: "Σ m v",
+        compute: momentum,
+    },
+    Measure {
+        quantity: Quantity::Force,
+        measured_as: "Σ m a",
+        compute: force,
+    },
+    Measure {
+        quantity: Quantity::AngularMomentum,
+        measured_as: "Σ m (r − r_P) × v",
+        compute: angular_momentum,
+    },
+    Measure {
+        quantity: Quantity::Moment,
+        measured_as: "Σ m (r − r_P) × a",
+        compute: moment,
+    },
+    Measure {
+        quantity: Quantity::KineticEnergy,
+        measured_as: "Σ ½ m v²",
+        compute: kinetic_energy,
+    },
+    Measure {
+        quantity: Quantity::Inertia,
+        measured_as: "Σ m (|ρ|² E − ρ ρᵀ) in the frame's axes",
+        compute: inertia,
+    },
+    Measure {
+        quantity: Quantity::Weight,
+        measured_as: "Σ m g",
+        compute: weight,
+    },
+    Measure {
+        quantity: Quantity::WeightMoment,
+        measured_as: "Σ (r − r_P) × m g",
+        compute: weight_moment,
+    },
+    Measure {
+        quantity: Quantity::PotentialEnergy,
+        measured_as: "−Σ m g · (r − r_P)",
+        compute: potential_energy,
+    },
+    Measure {
+        quantity: Quantity::GeneralizedForce,
+        measured_as: "Σ m a · ∂r/∂q",
+        compute: generalized_force,
+    },
+    Measure {
+        quantity: Quantity::GeneralizedMomentum,
+        measured_as: "Σ m v · ∂r/∂q",
+        compute: generalized_momentum,
+    },
+    Measure {
+        quantity: Quantity::GeneralizedWeight,
+        measured_as: "Σ m g · ∂r/∂q",
+        compute: generalized_weight,
+    },
+];
+
+/// The registry entry of `q`.
+pub fn measure(q: Quantity) -> &'static Measure {
+    REGISTRY
+        .iter()
+        .find(|m| m.quantity == q)
+        .expect("every quantity is measurable")
+}
+
+/// A measured value and the magnitudes its round-off is relative to.
+pub type Out = Result<(Measured, f64), VerifyError>;
+
+fn bodies(a: &Arg) -> Bodies {
+    match a {
+        Arg::Body(b) => *b,
+        _ => unreachable!("validated by hdot-sym"),
+    }
+}
+
+fn point<'w>(w: &'w World<'_>, a: &Arg) -> &'w super::world::PointJet {
+    match a {
+        Arg::Point(p) => &w.points[p],
+        _ => unreachable!("validated by hdot-sym"),
+    }
+}
+
+fn frame(a: &Arg) -> usize {
+    match a {
+        Arg::Frame(f) => *f,
+        _ => unreachable!("validated by hdot-sym"),
+    }
+}
+
+fn mass(w: &World<'_>, a: &[Arg]) -> Out {
+    let m: f64 = w.particles(bodies(&a[0])).iter().map(|p| p.m).sum();
+    Ok((Measured::Scalar(m), m))
+}
+
+fn position(w: &World<'_>, a: &[Arg]) -> Out {
+    let (p, q) = (point(w, &a[0]), point(w, &a[1]));
+    Ok((Measured::Vector(p.r[0] - q.r[0]), p.mag[0] + q.mag[0]))
+}
+
+fn velocity(w: &World<'_>, a: &[Arg]) -> Out {
+    let p = point(w, &a[0]);
+    Ok((Measured::Vector(p.r[1]), p.mag[1]))
+}
+
+fn acceleration(w: &World<'_>, a: &[Arg]) -> Out {
+    let p = point(w, &a[0]);
+    Ok((Measured::Vector(p.r[2]), p.mag[2]))
+}
+
+fn angular_velocity(w: &World<'_>, a: &[Arg]) -> Out {
+    let r = &w.frames[frame(&a[0])];
+    Ok((
+        Measured::Vector(vee(&(r[1] * r[0].transpose()))),
+        r[1].norm(),
+    ))
+}
+
+fn angular_acceleration(w: &World<'_>, a: &[Arg]) -> Out {
+    let r = &w.frames[frame(&a[0])];
+    let s = r[2] * r[0].transpose() + r[1] * r[1].transpose();
+    Ok((Measured::Vector(vee(&s)), r[2].norm() + r[1].norm_squared()))
+}
+
+/// Σ over the particles of `f(particle) → (vector, magnitude)`.
+fn sum_vec(
+    w: &World<'_>,
+    b: Bodies,
+    f: impl Fn(&super::world::Particle) -> (Vector3<f64>, f64),
+) -> (Vector3<f64>, f64) {
+    w.particles(b)
+        .iter()
+        .fold((Vector3::zeros(), 0.0), |(s, m), p| {
+            let (v, mag) = f(p);
+            (s + v, m + mag)
+        })
+}
+
+fn sum_scalar(
+    w: &World<'_>,
+    b: Bodies,
+    f: impl Fn(&super::world::Particle) -> (f64, f64),
+) -> (f64, f64) {
+    w.particles(b).iter().fold((0.0, 0.0), |(s, m), p| {
+        let (v, mag) = f(p);
+        (s + v, m + mag)
+    })
+}
+
+fn momentum(w: &World<'_>, a: &[Arg]) -> Out {
+    let (v, s) = sum_vec(w, bodies(&a[0]), |p| (p.r[1] * p.m, p.m * p.mag[1]));
+    Ok((Measured::Vector(v), s))
+}
+
+fn force(w: &World<'_>, a: &[Arg]) -> Out {
+    let (v, s) = sum_vec(w, bodies(&a[0]), |p| (p.r[2] * p.m, p.m * p.mag[2]));
+    Ok((Measured::Vector(v), s))
+}
+
+fn about(w: &World<'_>, a: &[Arg], order: usize) -> Out {
+    let o = point(w, &a[1]);
+    let (v, s) = sum_vec(w, bodies(&a[0]), |p| {
+        let rho = p.r[0] - o.r[0];
+        (
+            rho.cross(&p.r[order]) * p.m,
+            p.m * (p.mag[0] + o.mag[0]) * p.mag[order],
+        )
+    });
+    Ok((Measured::Vector(v), s))
+}
+
+fn angular_momentum(w: &World<'_>, a: &[Arg]) -> Out {
+    about(w, a, 1)
+}
+
+fn moment(w: &World<'_>, a: &[Arg]) -> Out {
+    about(w, a, 2)
+}
+
+fn kinetic_energy(w: &World<'_>, a: &[Arg]) -> Out {
+    let (t, s) = sum_scalar(w, bodies(&a[0]), |p| {
+        (
+            0.5 * p.m * p.r[1].norm_squared(),
+            0.5 * p.m * p.mag[1] * p.mag[1],
+        )
+    });
+    Ok((Measured::Scalar(t), s))
+}
+
+fn inertia(w: &World<'_>, a: &[Arg]) -> Out {
+    let o = point(w, &a[1]);
+    let f = frame(&a[2]);
+    let rt = w.frames[f][0].transpose();
+    let mut i = Matrix3::zeros();
+    let mut s = 0.0;
+    for p in w.particles(bodies(&a[0])) {
+        let rho = rt * (p.r[0] - o.r[0]);
+        i += p.m * (Matrix3::identity() * rho.norm_squared() - rho * rho.transpose());
+        s += p.m * (p.mag[0] + o.mag[0]).powi(2);
+    }
+    Ok((Measured::Matrix(i), s))
+}
+
+fn weight(w: &World<'_>, a: &[Arg]) -> Out {
+    let g = w.gravity;
+    let (v, s) = sum_vec(w, bodies(&a[0]), |p| (g * p.m, p.m * g.norm()));
+    Ok((Measured::Vector(v), s))
+}
+
+fn weight_moment(w: &World<'_>, a: &[Arg]) -> Out {
+    let (g, o) = (w.gravity, point(w, &a[1]));
+    let (v, s) = sum_vec(w, bodies(&a[0]), |p| {
+        (
+            (p.r[0] - o.r[0]).cross(&g) * p.m,
+            p.m * (p.mag[0] + o.mag[0]) * g.norm(),
+        )
+    });
+    Ok((Measured::Vector(v), s))
+}
+
+fn potential_energy(w: &World<'_>, a: &[Arg]) -> Out {
+    let (g, o) = (w.gravity, point(w, &a[1]));
+    let (v, s) = sum_scalar(w, bodies(&a[0]), |p| {
+        (
+            -p.m * g.dot(&(p.r[0] - o.r[0])),
+            p.m * (p.mag[0] + o.mag[0]) * g.norm(),
+        )
+    });
+    Ok((Measured::Scalar(v), s))
+}
+
+/// The index of the coordinate in `a` among the world's coordinates.
+fn coordinate(w: &World<'_>, a: &Arg) -> usize {
+    match a {
+        Arg::Coordinate(q) => w
+            .coordinates
+            .iter()
+            .position(|c| c == q)
+            .expect("the world carries ∂r/∂q for every coordinate of the meaning"),
+        _ => unreachable!("validated by hdot-sym"),
+    }
+}
+
+fn generalized_force(w: &World<'_>, a: &[Arg]) -> Out {
+    let k = coordinate(w, &a[1]);
+    let (v, s) = sum_scalar(w, bodies(&a[0]), |p| {
+        (p.m * p.r[2].dot(&p.dr[k]), p.m * p.mag[2] * p.dr[k].norm())
+    });
+    Ok((Measured::Scalar(v), s))
+}
+
+fn generalized_momentum(w: &World<'_>, a: &[Arg]) -> Out {
+    let k = coordinate(w, &a[1]);
+    let (v, s) = sum_scalar(w, bodies(&a[0]), |p| {
+        (p.m * p.r[1].dot(&p.dr[k]), p.m * p.mag[1] * p.dr[k].norm())
+    });
+    Ok((Measured::Scalar(v), s))
+}
+
+fn generalized_weight(w: &World<'_>, a: &[Arg]) -> Out {
+    let (g, k) = (w.gravity, coordinate(w, &a[1]));
+    let (v, s) = sum_scalar(w, bodies(&a[0]), |p| {
+        (p.m * g.dot(&p.dr[k]), p.m * g.norm() * p.dr[k].norm())
+    });
+    Ok((Measured::Scalar(v), s))
+}

@@ -1,0 +1,383 @@
+//! The motion of a declared model at one instant, computed independently
+//! of the symbolic engine: attitudes of the frame chain as products of
+//! elementary rotations differentiated by the product rule (never through
+//! a derived ω, the transport theorem or `express`), points as jets
+//! (position and three derivatives), particles as `r = r_P + R q`.
+
+use std::collections::HashMap;
+
+use hdot_sym::atom::Atom;
+use hdot_sym::derivation::Derivation;
+use hdot_sym::derivation::physics::{Bodies, FrameMotion, PointKind};
+use hdot_sym::poly::Poly;
+use hdot_sym::vector::Vec3;
+use nalgebra::{Matrix3, Vector3};
+
+use super::VerifyError;
+use super::declared::{Draw, Values};
+
+/// Orders kept in a jet: the value and three time derivatives.
+pub const ORDERS: usize = 4;
+
+const BINOMIAL: [[f64; ORDERS]; ORDERS] = [
+    [1.0, 0.0, 0.0, 0.0],
+    [1.0, 1.0, 0.0, 0.0],
+    [1.0, 2.0, 1.0, 0.0],
+    [1.0, 3.0, 3.0, 1.0],
+];
+
+/// A matrix function of time and its derivatives.
+pub type MatJet = [Matrix3<f64>; ORDERS];
+/// A vector function of time and its derivatives.
+pub type VecJet = [Vector3<f64>; ORDERS];
+
+/// `(a b)⁽ⁿ⁾ = Σ C(n, k) a⁽ᵏ⁾ b⁽ⁿ⁻ᵏ⁾`.
+pub fn mat_mat(a: &MatJet, b: &MatJet) -> MatJet {
+    std::array::from_fn(|n| (0..=n).map(|k| BINOMIAL[n][k] * a[k] * b[n - k]).sum())
+}
+
+/// `(A v)⁽ⁿ⁾` by the product rule.
+pub fn mat_vec(a: &MatJet, v: &VecJet) -> VecJet {
+    std::array::from_fn(|n| (0..=n).map(|k| BINOMIAL[n][k] * a[k] * v[n - k]).sum())
+}
+
+/// `(Aᵀ v)⁽ⁿ⁾` by the product rule.
+pub fn mat_t_vec(a: &MatJet, v: &VecJet) -> VecJet {
+    std::array::from_fn(|n| {
+        (0..=n)
+            .map(|k| BINOMIAL[n][k] * a[k].transpose() * v[n - k])
+            .sum()
+    })
+}
+
+/// `[e_k]×`.
+fn generator(k: usize) -> Matrix3<f64> {
+    Vector3::ith(k, 1.0).cross_matrix()
+}
+
+/// The axial vector of the skew part of `s`.
+pub fn vee(s: &Matrix3<f64>) -> Vector3<f64> {
+    0.5 * Vector3::new(
+        s[(2, 1)] - s[(1, 2)],
+        s[(0, 2)] - s[(2, 0)],
+        s[(1, 0)] - s[(0, 1)],
+    )
+}
+
+/// The rotation about axis `k` by `q(t)` and its derivatives, from
+/// `q, q̇, q̈, q⃛`: `Ṙ = R G q̇`, `R̈ = R (G² q̇² + G q̈)`,
+/// `R⃛ = R (G³ q̇³ + 3 G² q̇ q̈ + G q⃛)`.
+pub fn rotation_jet(k: usize, q: [f64; ORDERS]) -> MatJet {
+    let axis = nalgebra::Unit::new_unchecked(Vector3::ith(k, 1.0));
+    let r = *nalgebra::Rotation3::from_axis_angle(&axis, q[0]).matrix();
+    let g = generator(k);
+    let (g2, g3) = (g * g, g * g * g);
+    [
+        r,
+        r * g * q[1],
+        r * (g2 * (q[1] * q[1]) + g * q[2]),
+        r * (g3 * q[1].powi(3) + g2 * (3.0 * q[1] * q[2]) + g * q[3]),
+    ]
+}
+
+/// Frobenius norm.
+fn fro(m: &Matrix3<f64>) -> f64 {
+    m.norm()
+}
+
+/// A point's motion: the jet (world axes) and the magnitudes of the terms
+/// each order is computed from (for the round-off scale).
+#[derive(Clone, Copy, Debug)]
+pub struct PointJet {
+    /// r, ṙ, r̈, r⃛ in N's axes.
+    pub r: VecJet,
+    /// Magnitudes of the terms summed into each order.
+    pub mag: [f64; ORDERS],
+}
+
+/// One particle at the instant.
+#[derive(Clone, Debug)]
+pub struct Particle {
+    /// Mass.
+    pub m: f64,
+    /// Position, velocity, acceleration (N's axes).
+    pub r: [Vector3<f64>; 3],
+    /// Magnitudes of the terms of each.
+    pub mag: [f64; 3],
+    /// ∂r/∂q for each of the world's coordinates.
+    pub dr: Vec<Vector3<f64>>,
+}
+
+/// The model at one instant.
+pub struct World<'d> {
+    pub(crate) d: &'d Derivation,
+    /// Attitude jets of the frames (parallel to the derivation's frames).
+    pub frames: Vec<MatJet>,
+    /// Point jets by name (declared points and body centres).
+    pub points: HashMap<String, PointJet>,
+    /// The particles of each body.
+    pub bodies: Vec<Vec<Particle>>,
+    /// Gravity in N's axes.
+    pub gravity: Vector3<f64>,
+    /// The coordinate the particles' ∂r/∂q is being computed for.
+    coordinate: Option<Atom>,
+    /// The coordinates the particles carry ∂r/∂q for.
+    pub coordinates: Vec<Atom>,
+    /// The symbols' values it was built from.
+    pub values: Values,
+}
+
+/// The jet of a polynomial's value (`p, ṗ, p̈, p⃛`) under `values`.
+pub(crate) fn poly_jet(p: &Poly, values: &Values) -> Result<[f64; ORDERS], VerifyError> {
+    let mut out = [0.0; ORDERS];
+    let mut q = p.clone();
+    for o in &mut out {
+        *o = values.eval(&q)?.0;
+        q = q.dt();
+    }
+    Ok(out)
+}
+
+fn vec_jet(v: &Vec3, values: &Values) -> Result<VecJet, VerifyError> {
+    let c = [
+        poly_jet(&v.0[0], values)?,
+        poly_jet(&v.0[1], values)?,
+        poly_jet(&v.0[2], values)?,
+    ];
+    Ok(std::array::from_fn(|n| {
+        Vector3::new(c[0][n], c[1][n], c[2][n])
+    }))
+}
+
+impl<'d> World<'d> {
+    /// Builds the model at the instant `values` describe, with the free
+    /// attitudes, free points and bodies of `draw`; each particle carries
+    /// ∂r/∂q for each of `coordinates`.
+    pub fn build(
+        d: &'d Derivation,
+        draw: &Draw,
+        values: &Values,
+        coordinates: &[Atom],
+    ) -> Result<World<'d>, VerifyError> {
+        let mut w = World::build_for(d, draw, values, coordinates.first().copied())?;
+        for (k, q) in coordinates.iter().enumerate().skip(1) {
+            let other = World::build_for(d, draw, values, Some(*q))?;
+            for (b, ob) in w.bodies.iter_mut().zip(other.bodies) {
+                for (p, op) in b.iter_mut().zip(ob) {
+                    p.dr.push(op.dr[0]);
+                }
+            }
+            debug_assert!(w.bodies.iter().flatten().all(|p| p.dr.len() == k + 1));
+        }
+        w.coordinates = coordinates.to_vec();
+        Ok(w)
+    }
+
+    fn build_for(
+        d: &'d Derivation,
+        draw: &Draw,
+        values: &Values,
+        coordinate: Option<Atom>,
+    ) -> Result<World<'d>, VerifyError> {
+        let ph = &d.physics;
+        let mut frames: Vec<MatJet> = Vec::with_capacity(d.frames.len());
+        // ∂R/∂q of each frame.
+        let mut partials: Vec<Matrix3<f64>> = Vec::with_capacity(d.frames.len());
+        for (i, motion) in ph.frames.iter().enumerate() {
+            let (jet, partial) = match motion {
+                FrameMotion::Inertial => (
+                    [
+                        Matrix3::identity(),
+                        Matrix3::zeros(),
+                        Matrix3::zeros(),
+                        Matrix3::zeros(),
+                    ],
+                    Matrix3::zeros(),
+                ),
+                FrameMotion::Rotation {
+                    parent,
+                    axis,
+                    angle,
+                } => {
+                    let q = (0..ORDERS as u32)
+                        .map(|n| values.time(*angle, n).map(|(v, _)| v))
+                        .collect::<Option<Vec<f64>>>();
+                    let q = q.ok_or_else(|| VerifyError::unbound(d, "frame", *angle))?;
+                    let rot = rotation_jet(*axis, [q[0], q[1], q[2], q[3]]);
+                    let jet = mat_mat(&frames[*parent], &rot);
+                    let mut partial = partials[*parent] * rot[0];
+                    if Some(angle.base()) == coordinate {
+                        partial += frames[*parent][0] * rot[0] * generator(*axis);
+                    }
+                    (jet, partial)
+                }
+                FrameMotion::AngularVelocity => {
+                    let w = vec_jet(&d.frames[i].omega, values)?;
+                    let wx: [Matrix3<f64>; ORDERS] = std::array::from_fn(|n| w[n].cross_matrix());
+                    let r = draw.attitude(i);
+                    let mut jet = [r, Matrix3::zeros(), Matrix3::zeros(), Matrix3::zeros()];
+                    // Ṙ = R W, differentiated by the product rule.
+                    for n in 1..ORDERS {
+                        jet[n] = (0..n)
+                            .map(|k| BINOMIAL[n - 1][k] * jet[k] * wx[n - 1 - k])
+                            .sum();
+                    }
+                    (jet, Matrix3::zeros())
+                }
+            };
+            frames.push(jet);
+            partials.push(partial);
+        }
+        let mut w = World {
+            d,
+            frames,
+            points: HashMap::new(),
+            bodies: Vec::new(),
+            gravity: Vector3::zeros(),
+            coordinate,
+            coordinates: Vec::new(),
+            values: values.clone(),
+        };
+        if let Some((g, f)) = &ph.gravity {
+            let fi = d.frames.iter().position(|x| &x.name == f).expect("frame");
+            let g = vec_jet(g, values)?[0];
+            w.gravity = w.frames[fi][0] * g;
+        }
+        let mut point_partials: HashMap<String, Vector3<f64>> = HashMap::new();
+        let names: Vec<String> = ph
+            .points
+            .iter()
+            .map(|p| p.name.clone())
+            .chain(ph.bodies.iter().filter_map(|b| b.centre.clone()))
+            .collect();
+        for n in &names {
+            w.point(n, draw, values, &partials, &mut point_partials, 0)?;
+        }
+        for (bi, b) in ph.bodies.iter().enumerate() {
+            let reference = w.point(&b.point, draw, values, &partials, &mut point_partials, 0)?;
+            let dref = point_partials[&b.point];
+            let rj = &w.frames[b.frame];
+            let norms: [f64; 3] = std::array::from_fn(|n| fro(&rj[n]));
+            let cloud = draw.body(bi);
+            let mut ps = Vec::with_capacity(cloud.len());
+            for k in 0..cloud.len() {
+                let (q, m) = cloud.particle(k);
+                let r: [Vector3<f64>; 3] = std::array::from_fn(|n| reference.r[n] + rj[n] * q);
+                let mag: [f64; 3] = std::array::from_fn(|n| reference.mag[n] + norms[n] * q.norm());
+                ps.push(Particle {
+                    m,
+                    r,
+                    mag,
+                    dr: vec![dref + partials[b.frame] * q],
+                });
+            }
+            w.bodies.push(ps);
+        }
+        Ok(w)
+    }
+
+    /// The jet of point `name`, computed once.
+    fn point(
+        &mut self,
+        name: &str,
+        draw: &Draw,
+        values: &Values,
+        partials: &[Matrix3<f64>],
+        dp: &mut HashMap<String, Vector3<f64>>,
+        depth: usize,
+    ) -> Result<PointJet, VerifyError> {
+        if let Some(p) = self.points.get(name) {
+            return Ok(*p);
+        }
+        if depth > 64 {
+            return Err(VerifyError::Declaration {
+                derivation: self.d.name.clone(),
+                message: format!("point {name} is placed relative to itself"),
+            });
+        }
+        let ph = &self.d.physics;
+        let frame_of = |f: &str| {
+            self.d
+                .frames
+                .iter()
+                .position(|x| x.name == f)
+                .expect("frame")
+        };
+        let (jet, partial) = if let Some(p) = ph.points.iter().find(|p| p.name == name) {
+            match &p.kind {
+                PointKind::Fixed(v, f) => {
+                    let r = self.frames[frame_of(f)][0] * vec_jet(v, values)?[0];
+                    (
+                        PointJet {
+                            r: [r, Vector3::zeros(), Vector3::zeros(), Vector3::zeros()],
+                            mag: [r.norm(), 0.0, 0.0, 0.0],
+                        },
+                        Vector3::zeros(),
+                    )
+                }
+                PointKind::Free => (draw.point(name), Vector3::zeros()),
+                PointKind::From { from, at, frame } => {
+                    let base = self.point(from, draw, values, partials, dp, depth + 1)?;
+                    let fi = frame_of(frame);
+                    let a = vec_jet(at, values)?;
+                    let rj = self.frames[fi];
+                    let r = mat_vec(&rj, &a);
+                    let mag = std::array::from_fn(|n| {
+                        base.mag[n]
+                            + (0..=n)
+                                .map(|k| BINOMIAL[n][k] * fro(&rj[k]) * a[n - k].norm())
+                                .sum::<f64>()
+                    });
+                    let mut partial = dp[from] + partials[fi] * a[0];
+                    if let Some(q) = self.coordinate {
+                        let da = Vector3::from_iterator(
+                            at.0.iter()
+                                .map(|c| values.eval(&c.partial(q)).map(|x| x.0).unwrap_or(0.0)),
+                        );
+                        partial += rj[0] * da;
+                    }
+                    (
+                        PointJet {
+                            r: std::array::from_fn(|n| base.r[n] + r[n]),
+                            mag,
+                        },
+                        partial,
+                    )
+                }
+            }
+        } else {
+            let (bi, b) = ph
+                .bodies
+                .iter()
+                .enumerate()
+                .find(|(_, b)| b.centre.as_deref() == Some(name))
+                .expect("points are validated");
+            if b.about_centre() {
+                (draw.point(name), Vector3::zeros())
+            } else {
+                let base = self.point(&b.point, draw, values, partials, dp, depth + 1)?;
+                let c = draw.centre(bi);
+                let rj = self.frames[b.frame];
+                let mag = std::array::from_fn(|n| base.mag[n] + fro(&rj[n]) * c.norm());
+                (
+                    PointJet {
+                        r: std::array::from_fn(|n| base.r[n] + rj[n] * c),
+                        mag,
+                    },
+                    dp[&b.point] + partials[b.frame] * c,
+                )
+            }
+        };
+        self.points.insert(name.to_owned(), jet);
+        dp.insert(name.to_owned(), partial);
+        Ok(jet)
+    }
+
+    /// The particles of `bodies`.
+    pub fn particles(&self, bodies: Bodies) -> Vec<&Particle> {
+        match bodies {
+            Bodies::One(i) => self.bodies[i].iter().collect(),
+            Bodies::System => self.bodies.iter().flatten().collect(),
+        }
+    }
+}

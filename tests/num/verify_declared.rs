@@ -1,0 +1,285 @@
+//! Verification from declarations (`[[body]]`, `[[point]]`, `means`) on
+//! derivation files written here, and the errors of bad declarations.
+
+use hdot_num::verify::{Options, check};
+use hdot_sym::derivation::{Derivation, load_str};
+
+fn load(text: &str) -> Derivation {
+    load_str("test.toml", text).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn err(text: &str) -> String {
+    load_str("test.toml", text)
+        .expect_err("should fail")
+        .to_string()
+}
+
+const OPTS: Options = Options { draws: 12, seed: 7 };
+
+/// A heavy top written from the docs: moments about the fixed tip, the
+/// weight's moment, energies, the solved accelerations and Lagrange's
+/// equations, all against particle sums.
+const TOP: &str = r#"
+title = "top"
+source = "test"
+gravity = "[0, 0, -g] in N"
+[symbols]
+constants = ["m", "g", "l", "I", "Ip"]
+time = ["phi", "theta", "psi"]
+[[frame]]
+name = "P"
+parent = "N"
+rotation = "z(phi)"
+[[frame]]
+name = "F"
+parent = "P"
+rotation = "y(theta)"
+[[frame]]
+name = "R"
+parent = "F"
+rotation = "z(psi)"
+[[point]]
+name = "O"
+fixed = true
+[[body]]
+name = "top"
+frame = "R"
+point = "O"
+mass = "m"
+mass_centre = "[0, 0, l] in R"
+inertia = "principal(Ip, Ip, I)"
+symmetry = "axisymmetric z"
+[[step]]
+name = "omega"
+value = "express(angvel(R), F)"
+means = "angular_velocity(R)"
+[[step]]
+name = "H"
+value = "principal(Ip, Ip, I) * omega"
+means = "angular_momentum(top, O)"
+[[step]]
+name = "M"
+value = "dt_rel(H) + cross(angvel(F), H)"
+means = "moment(top, O)"
+[[step]]
+name = "M_W"
+value = "cross([0, 0, l] in F, m*express([0, 0, -g] in N, F))"
+means = "weight_moment(top, O)"
+[[step]]
+name = "acc"
+value = "solve(M - M_W, [phi'', theta'', psi''])"
+means = "solves(moment(top, O) - weight_moment(top, O))"
+[[step]]
+name = "T"
+value = "dot(omega, H)/2"
+means = "kinetic_energy(top)"
+[[step]]
+name = "V"
+value = "m*g*l*cos(theta)"
+means = "potential_energy(top, O)"
+[[step]]
+name = "L"
+value = "lagrange(T, V, [phi, theta, psi])"
+means = "list(generalized_force(top, phi) - generalized_weight(top, phi), generalized_force(top, theta) - generalized_weight(top, theta), generalized_force(top, psi) - generalized_weight(top, psi))"
+[[step]]
+name = "M_steady"
+value = "subst(M, theta' = 0, phi'' = 0, psi'' = 0)"
+means = "moment(top, O)"
+given = ["theta' = 0", "phi'' = 0", "psi'' = 0"]
+[[step]]
+name = "G_velocity"
+value = "cross(omega, [0, 0, l] in F)"
+means = "velocity(G)"
+"#;
+
+#[test]
+fn a_heavy_top_written_here_passes_every_meaning() {
+    let d = load(TOP);
+    let r = check(&d, &OPTS).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(r.draws, 12);
+    assert_eq!(r.steps.len(), 10, "{r:#?}");
+    for s in &r.steps {
+        assert!(s.passed, "{s:#?}");
+    }
+    assert!(r.not_compared.is_empty());
+}
+
+#[test]
+fn a_wrong_step_fails_naming_the_step_and_component() {
+    // The sign of the transport term flipped.
+    let d = load(&TOP.replace(
+        "dt_rel(H) + cross(angvel(F), H)",
+        "dt_rel(H) - cross(angvel(F), H)",
+    ));
+    let r = check(&d, &OPTS).unwrap();
+    assert!(!r.passed());
+    let bad: Vec<&str> = r
+        .steps
+        .iter()
+        .filter(|s| !s.passed)
+        .map(|s| s.step.as_str())
+        .collect();
+    assert!(bad.contains(&"M"), "{bad:?}");
+    let worst = r.worst().expect("a comparison");
+    assert!(
+        worst.quantity.starts_with("M") || worst.quantity.starts_with("acc"),
+        "{worst:?}"
+    );
+    // The wrong frame's angular velocity in the transport theorem.
+    let d = load(&TOP.replace(
+        "dt_rel(H) + cross(angvel(F), H)",
+        "dt_rel(H) + cross(express(angvel(R), F), H)",
+    ));
+    assert!(!check(&d, &OPTS).unwrap().passed());
+    // A frame's rotation axis changed changes the declared motion with the
+    // steps: the mutant is a consistent other problem, and passes.
+    let d = load(&TOP.replace("rotation = \"y(theta)\"", "rotation = \"x(theta)\""));
+    assert!(check(&d, &OPTS).unwrap().passed());
+    // Two inertia arguments swapped in a step (not in the declaration).
+    let d = load(&TOP.replace(
+        "value = \"principal(Ip, Ip, I) * omega\"",
+        "value = \"principal(Ip, I, Ip) * omega\"",
+    ));
+    assert!(!check(&d, &OPTS).unwrap().passed());
+}
+
+/// A free body in its own axes: the frame is given by its angular
+/// velocity, G moves freely, v̄ is known.
+#[test]
+fn a_free_body_with_a_known_velocity_passes() {
+    let d = load(
+        r#"
+title = "free"
+source = "test"
+[symbols]
+constants = ["m", "I_x", "I_y", "I_z", "I_xy", "I_yz", "I_zx"]
+time = ["w_x", "w_y", "w_z", "v_x", "v_y", "v_z"]
+[[frame]]
+name = "B"
+angular_velocity = "[w_x, w_y, w_z]"
+[[body]]
+name = "b"
+frame = "B"
+mass = "m"
+inertia = "inertia(I_x, I_y, I_z, I_xy, I_yz, I_zx)"
+[[known]]
+value = "[v_x, v_y, v_z] in B"
+means = "velocity(G)"
+[[step]]
+name = "H"
+value = "inertia(I_x, I_y, I_z, I_xy, I_yz, I_zx) * angvel(B)"
+means = "angular_momentum(b, G)"
+[[step]]
+name = "M"
+value = "dt_rel(H) + cross(angvel(B), H)"
+means = "moment(b, G)"
+[[step]]
+name = "p"
+value = "m*[v_x, v_y, v_z] in B"
+means = "momentum(b)"
+[[step]]
+name = "F"
+value = "m*(dt_rel([v_x, v_y, v_z] in B) + cross(angvel(B), [v_x, v_y, v_z] in B))"
+means = "force(b)"
+[[step]]
+name = "T"
+value = "m*(v_x^2 + v_y^2 + v_z^2)/2 + dot(angvel(B), H)/2"
+means = "kinetic_energy(b)"
+[[step]]
+name = "I"
+value = "inertia(I_x, I_y, I_z, I_xy, I_yz, I_zx)"
+means = "inertia(b, G, B)"
+[[step]]
+name = "w"
+value = "angvel(B)"
+"#,
+    );
+    let r = check(&d, &OPTS).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(r.steps.len(), 6);
+    assert!(r.passed(), "{r:#?}");
+    assert_eq!(r.not_compared, ["w"]);
+}
+
+#[test]
+fn a_zero_declared_without_its_symmetry_is_an_error_naming_the_entry() {
+    let d = load(&TOP.replace("symmetry = \"axisymmetric z\"", ""));
+    let e = check(&d, &OPTS).expect_err("no symmetry").to_string();
+    assert!(
+        e.contains("mass centre") || e.contains("inertia entry"),
+        "{e}"
+    );
+}
+
+#[test]
+fn bad_declarations_are_located() {
+    let e = err(&TOP.replace("means = \"moment(top, O)\"", "means = \"moment(rotor, O)\""));
+    assert!(
+        e.contains("unknown body `rotor`") && e.contains("test.toml:"),
+        "{e}"
+    );
+    let e = err(&TOP.replace("means = \"moment(top, O)\"", "means = \"moment(top, Q)\""));
+    assert!(e.contains("unknown point `Q`"), "{e}");
+    let e = err(&TOP.replace("frame = \"R\"", "frame = \"S\""));
+    assert!(e.contains("unknown frame `S`"), "{e}");
+    let e = err(&TOP.replace(
+        "means = \"kinetic_energy(top)\"",
+        "means = \"momentum(top)\"",
+    ));
+    assert!(
+        e.contains("the meaning is a vector, but the step is a scalar"),
+        "{e}"
+    );
+    // The caret is under the `means` value, line and column given.
+    let line = TOP.lines().position(|l| l == "means = \"momentum(top)\"");
+    assert!(line.is_none());
+    let text = TOP.replace(
+        "means = \"kinetic_energy(top)\"",
+        "means = \"momentum(top)\"",
+    );
+    let want = text
+        .lines()
+        .position(|l| l == "means = \"momentum(top)\"")
+        .unwrap()
+        + 1;
+    assert!(e.contains(&format!("test.toml:{want}:10")), "{e}");
+    let e = err(&TOP.replace("gravity = \"[0, 0, -g] in N\"", ""));
+    assert!(e.contains("needs `gravity`"), "{e}");
+    let e = err(&TOP.replace(
+        "symmetry = \"axisymmetric z\"",
+        "symmetry = \"axisymmetric w\"",
+    ));
+    assert!(e.contains("axisymmetric"), "{e}");
+    let e = err(&TOP.replace("given = [\"theta' = 0\"", "given = [\"m = 0\""));
+    assert!(e.contains("not a time symbol"), "{e}");
+}
+
+#[test]
+fn files_without_declarations_have_no_physics_and_nothing_compared() {
+    let d = load(
+        r#"
+title = "plain"
+source = "test"
+[symbols]
+constants = ["I"]
+time = ["w"]
+[[step]]
+name = "H"
+value = "I*w"
+"#,
+    );
+    assert!(d.physics.bodies.is_empty() && d.steps[0].meaning.is_none());
+    let r = check(&d, &OPTS).unwrap();
+    assert!(r.steps.is_empty() && r.draws == 0);
+    assert!(r.hint(&d).unwrap().contains("[[body]]"));
+}
+
+#[test]
+fn every_quantity_has_one_particle_sum() {
+    use hdot_num::verify::quantities::REGISTRY;
+    use hdot_sym::derivation::physics::QUANTITIES;
+    for q in QUANTITIES {
+        let n = REGISTRY.iter().filter(|m| m.quantity == q.quantity).count();
+        assert_eq!(n, 1, "{}", q.name);
+    }
+    assert_eq!(REGISTRY.len(), QUANTITIES.len());
+}
