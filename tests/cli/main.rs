@@ -177,6 +177,59 @@ fn verify_fails_on_a_wrong_derivation_and_rejects_unknown_names() {
     );
 }
 
+/// Verification reads what a file declares, not its name: heavy-top copied
+/// under another name gives the same report; a wrong step fails naming
+/// it; a file that compares nothing exits 1 under `--require`.
+#[test]
+fn verify_reads_declarations_under_any_name() {
+    let dir = tempfile::tempdir().unwrap();
+    let good = std::fs::read_to_string(repo_root().join("derivations/heavy-top.toml")).unwrap();
+    let copy = dir.path().join("my-own-top.toml");
+    std::fs::write(&copy, &good).unwrap();
+    let run = |p: &str| {
+        let out = hdot(&["verify", p, "--bodies", "4", "--steps"]);
+        let so = text(&out.stdout);
+        (
+            out.status.code(),
+            so.lines().skip(2).map(str::to_owned).collect::<Vec<_>>(),
+            so,
+        )
+    };
+    let (code, lines, so) = run(copy.to_str().unwrap());
+    assert_eq!(code, Some(0), "{so}");
+    let (code0, lines0, _) = run("heavy-top");
+    assert_eq!((code, &lines), (code0, &lines0));
+    assert!(so.contains("M_weight: weight_moment(top, O)"), "{so}");
+
+    let wrong = dir.path().join("wrong.toml");
+    std::fs::write(
+        &wrong,
+        good.replace("value = \"dot(omega, H)/2\"", "value = \"dot(omega, H)\""),
+    )
+    .unwrap();
+    let out = hdot(&["verify", wrong.to_str().unwrap(), "--bodies", "4"]);
+    assert_eq!(out.status.code(), Some(1));
+    let so = text(&out.stdout);
+    assert!(so.contains("FAIL at "), "{so}");
+    assert!(
+        so.lines()
+            .any(|l| l.trim_start().starts_with("T: kinetic_energy(top)") && l.ends_with("FAIL")),
+        "{so}"
+    );
+
+    let plain = dir.path().join("plain.toml");
+    std::fs::write(&plain, "title = \"p\"\nsource = \"s\"\n[symbols]\nconstants = [\"a\"]\n[[step]]\nname = \"x\"\nvalue = \"2*a\"\n").unwrap();
+    let out = hdot(&["verify", plain.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(0));
+    assert!(
+        text(&out.stdout).contains("[[body]]"),
+        "{}",
+        text(&out.stdout)
+    );
+    let out = hdot(&["verify", plain.to_str().unwrap(), "--require"]);
+    assert_eq!(out.status.code(), Some(1));
+}
+
 /// Issue 11: non-finite and overflowing input refused (exit 2), a requested
 /// error that is not met is a failure (exit 1), closed forms report an
 /// estimate.

@@ -283,3 +283,15 @@ fn every_quantity_has_one_particle_sum() {
     }
     assert_eq!(REGISTRY.len(), QUANTITIES.len());
 }
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig { cases: 24, rng_seed: proptest::test_runner::RngSeed::Fixed(3), ..Default::default() })]
+    /// As a user's own property test would: every draw (a body with the
+    /// declared symmetry and a motion) of the heavy top written above passes.
+    #[test]
+    fn every_draw_of_a_declared_body_passes(seed in proptest::prelude::any::<u64>()) {
+        let d = load(TOP);
+        let r = check(&d, &Options { draws: 1, seed }).unwrap();
+        proptest::prop_assert!(r.passed(), "{:?}", r.worst());
+    }
+}
