@@ -41,10 +41,6 @@ macro_rules! law {
 }
 
 law!(
-    eulers_principal_moments_equal_sum_of_r_cross_m_a,
-    "euler-principal"
-);
-law!(
     eulers_general_moments_equal_sum_of_r_cross_m_a,
     "euler-general"
 );
@@ -129,7 +125,6 @@ const PERTURBATIONS: &[(&str, &str, &str, u32)] = &[
     ("angular-momentum-about-point", "H_O", "m", 0),
     ("dalembert", "M_O", "m", 0),
     ("euler-general", "M", "I_xy", 0),
-    ("euler-principal", "M", "I_z", 0),
     ("fixed-axis", "M", "I_yz", 0),
     ("gyroscope", "M", "Ip", 0),
     ("gyroscope-axisymmetric-frame", "Q", "Omega_3", 0),

@@ -351,7 +351,7 @@ fn draw(d: &Derivation, rng: &mut ChaCha8Rng) -> Result<(Draw, Values), VerifyEr
         .bodies
         .iter()
         .flat_map(|b| {
-            let mut v = b.mass.atoms();
+            let mut v = b.mass.as_ref().map(Poly::atoms).unwrap_or_default();
             v.extend(b.mass_centre.0.iter().flat_map(Poly::atoms));
             v.extend(b.inertia.0.iter().flatten().flat_map(Poly::atoms));
             v
@@ -441,12 +441,11 @@ fn body_equations(
     extent: f64,
     i: &Matrix3<f64>,
 ) -> Vec<(Poly, f64, f64, String)> {
-    let mut eqs = vec![(
-        b.mass.clone(),
-        mass,
-        mass,
-        format!("the mass of {}", b.name),
-    )];
+    let mut eqs: Vec<_> = b
+        .mass
+        .iter()
+        .map(|p| (p.clone(), mass, mass, format!("the mass of {}", b.name)))
+        .collect();
     for k in 0..3 {
         eqs.push((
             b.mass_centre.0[k].clone(),

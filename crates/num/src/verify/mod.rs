@@ -18,7 +18,7 @@
 //!
 //! | family (file) | derivations | bodies |
 //! |---|---|---|
-//! | [`rigid`] | `euler-principal`, `euler-general`, `angular-momentum`, `fixed-axis`, `kinetic-energy`, `parallel-axis`, `angular-momentum-about-point`, `dalembert`, `plane-motion`, `impulse-momentum` | any; principal (mirrored in the three coordinate planes); symmetric about the xy plane (mirrored) |
+//! | [`rigid`] | `euler-general`, `angular-momentum`, `fixed-axis`, `kinetic-energy`, `parallel-axis`, `angular-momentum-about-point`, `dalembert`, `plane-motion`, `impulse-momentum` | any; principal (mirrored in the three coordinate planes); symmetric about the xy plane (mirrored) |
 //! | [`gyro`] | `gyroscope`, `steady-precession`, `gyroscope-axisymmetric-frame` | axisymmetric (N ≥ 3 rotated copies about z) |
 //! | [`free`] | `torque-free-axisymmetric`, `principal-axis-stability` | axisymmetric, elongated or flattened; triaxial principal |
 //! | [`motion`] | `rotating-frame-kinematics` (and the rotation chains the others use) | none: a point on a quadratic path in a rotating frame |
@@ -71,7 +71,6 @@ pub const SUPPORTED: &[&str] = &[
     "angular-momentum-about-point",
     "dalembert",
     "euler-general",
-    "euler-principal",
     "fixed-axis",
     "gyroscope",
     "gyroscope-axisymmetric-frame",
@@ -143,15 +142,6 @@ pub const COVERAGE: &[Coverage] = &[
         ],
         kinematic: &[],
         not_compared: &[],
-    },
-    Coverage {
-        derivation: "euler-principal",
-        compared: &[(
-            "M, M_transport, I_G, H",
-            "Σ m r × a, Σ m r × (e_k × r), Σ m r × v; body mirrored in three planes",
-        )],
-        kinematic: &[],
-        not_compared: &[("omega", RESTATES)],
     },
     Coverage {
         derivation: "fixed-axis",
@@ -505,7 +495,6 @@ pub fn check_named(
     state: &State,
 ) -> Option<Result<Vec<Comparison>, VerifyError>> {
     let f: CheckFn = match d.name.as_str() {
-        "euler-principal" => rigid::euler_principal,
         "euler-general" => rigid::euler_general,
         "angular-momentum" => rigid::angular_momentum,
         "fixed-axis" => rigid::fixed_axis,

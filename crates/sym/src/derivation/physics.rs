@@ -117,8 +117,8 @@ pub struct Body {
     pub point: String,
     /// The name of its mass centre as a point (when it has one).
     pub centre: Option<String>,
-    /// Its mass (an expression of constants).
-    pub mass: Poly,
+    /// Its mass (an expression of constants), when the file names it.
+    pub mass: Option<Poly>,
     /// G from the reference point, in the body frame's components.
     pub mass_centre: Vec3,
     /// The inertia tensor about the reference point in the body axes.
@@ -706,16 +706,22 @@ fn body(
             }
         },
     };
-    let mass = cx.scalar_in(&b.mass)?;
-    if mass.atoms().iter().any(|a| a.is_time_dependent()) || mass.is_zero() {
-        let n = b.mass.get_ref().len();
-        return Err(cx.diag_string(
-            &b.mass,
-            0,
-            n,
-            "`mass` is a non-zero expression of constants",
-        ));
-    }
+    let mass = match &b.mass {
+        None => None,
+        Some(s) => {
+            let mass = cx.scalar_in(s)?;
+            if mass.atoms().iter().any(|a| a.is_time_dependent()) || mass.is_zero() {
+                let n = s.get_ref().len();
+                return Err(cx.diag_string(
+                    s,
+                    0,
+                    n,
+                    "`mass` is a non-zero expression of constants",
+                ));
+            }
+            Some(mass)
+        }
+    };
     let own = &cx.frames[frame].name;
     let mass_centre = match &b.mass_centre {
         Some(s) => {

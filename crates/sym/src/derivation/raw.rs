@@ -58,7 +58,7 @@ pub(crate) struct RawBody {
     pub frame: Spanned<String>,
     pub point: Option<Spanned<String>>,
     pub centre: Option<Spanned<String>>,
-    pub mass: Spanned<String>,
+    pub mass: Option<Spanned<String>>,
     pub mass_centre: Option<Spanned<String>>,
     pub inertia: Spanned<String>,
     pub symmetry: Option<Spanned<String>>,
