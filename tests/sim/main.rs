@@ -8,6 +8,8 @@ mod strategies;
 mod derived;
 // models/derived.rs: equations of motion from derivation files, integrated.
 mod derived_model;
+// scene/derived.rs and run/derived.rs: scenes of kind "derived".
+mod derived_scene;
 // elliptic.rs: identities, special values, series of K.
 mod elliptic;
 // exact.rs: closed forms against the ODE and against each other.

@@ -198,3 +198,29 @@ pub fn bundled_scene(arg: &Path) -> Option<(String, &'static str)> {
         .find(|(n, _)| arg == Path::new(n) || arg.ends_with(format!("docs/examples/{n}.toml")))?;
     Some((format!("docs/examples/{n}.toml"), t))
 }
+
+/// Reads a simulation scene: a file, or a bundled example named as in
+/// [`bundled_scene`]. A derived scene's `derivation.file` is looked up
+/// next to the scene first, then among the derivations of
+/// [`derivations_dir`] (the bundled ones when there is no folder).
+pub fn scene(path: &Path) -> anyhow::Result<hdot_sim::scene::Scene> {
+    let find = |name: &str| {
+        hdot_sim::scene::resolve_near(path, name).or_else(|near| {
+            let entry = resolve(&derivations_dir(None), name).map_err(|_| near)?;
+            match entry {
+                Entry::File(file) => {
+                    let text = std::fs::read_to_string(&file)
+                        .map_err(|e| format!("cannot read {}: {e}", file.display()))?;
+                    Ok((file, text))
+                }
+                Entry::Bundled(n, text) => {
+                    Ok((PathBuf::from(format!("derivations/{n}.toml")), text.to_owned()))
+                }
+            }
+        })
+    };
+    Ok(match bundled_scene(path) {
+        Some((name, text)) => hdot_sim::scene::Scene::parse_with(text, Path::new(&name), &find)?,
+        None => hdot_sim::scene::Scene::from_file_with(path, &find)?,
+    })
+}

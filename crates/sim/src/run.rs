@@ -13,6 +13,7 @@
 //! | free, integrated (`--method`, not a splitting) | `precession-angle` | H is fixed in space: ω and one angle about H, ω projected onto E and \|H\| |
 //! | heavy top in steady precession | `steady-precession` | §7's relation holds: θ, φ̇, ψ̇ constant |
 //! | heavy top otherwise | `rigid-body` with the method cheapest for the tolerance | no closed form here; the bundled work-precision data rank the methods |
+//! | derived (a derivation's equations of motion) | `derived`, integrated with DOP853 | the scene asks for exactly what a file derived; no built-in closed form is known to cover it |
 //!
 //! `--model` and `--method` override: a method alone means "integrate the
 //! rigid-body (or one-degree-of-freedom) equations with it".
@@ -31,6 +32,8 @@ use crate::models::{EulerAngleBody, FreeBody, Gravity, PrecessionAngle, Shaft};
 use crate::scene::{Scene, SceneKind};
 use crate::{Limits, Method, SimError, Stats, Step, integrate};
 
+pub mod derived;
+
 /// A model of the motion.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Model {
@@ -47,17 +50,21 @@ pub enum Model {
     RigidBody,
     /// Euler's equations with Eulerian angles, integrated.
     EulerAngles,
+    /// The equations of motion of a derivation file, integrated in its
+    /// coordinates (see [`crate::models::derived`]).
+    Derived,
 }
 
 impl Model {
     /// Every model, least first.
-    pub const ALL: [Model; 6] = [
+    pub const ALL: [Model; 7] = [
         Model::FixedAxis,
         Model::SteadyPrecession,
         Model::Elliptic,
         Model::PrecessionAngle,
         Model::RigidBody,
         Model::EulerAngles,
+        Model::Derived,
     ];
 
     /// Command-line name.
@@ -69,6 +76,7 @@ impl Model {
             Model::PrecessionAngle => "precession-angle",
             Model::RigidBody => "rigid-body",
             Model::EulerAngles => "euler-angles",
+            Model::Derived => "derived",
         }
     }
 }
@@ -207,7 +215,33 @@ pub fn plan(scene: &Scene, req: &Request) -> Result<Plan, SimError> {
         reason: reason.to_string(),
         check: req.check,
     };
+    if req.model == Some(Model::Derived) && !matches!(scene.kind, SceneKind::Derived(_)) {
+        return Err(not_applicable(
+            Model::Derived,
+            scene,
+            "only a scene of kind \"derived\" names a derivation's equations of motion",
+        ));
+    }
     match &scene.kind {
+        SceneKind::Derived(_) => match req.model {
+            None | Some(Model::Derived) => integrated(
+                Model::Derived,
+                req.method,
+                match req.method {
+                    Some(m) => format!(
+                        "the scene names a derivation's equations of motion; integrated in its coordinates with {m} as requested"
+                    ),
+                    None => "the scene names a derivation's equations of motion and no built-in closed form is known to \
+                             cover them, so they are integrated in the derivation's coordinates (dop853)"
+                        .to_string(),
+                },
+            ),
+            Some(other) => Err(not_applicable(
+                other,
+                scene,
+                "a derived scene is described by its derivation's equations; only `derived` runs them",
+            )),
+        },
         SceneKind::FixedAxis { .. } => match req.model {
             None | Some(Model::FixedAxis) => Ok(match req.method {
                 None => closed(
@@ -234,6 +268,7 @@ pub fn plan(scene: &Scene, req: &Request) -> Result<Plan, SimError> {
                 _ => Model::SteadyPrecession,
             };
             match (req.model, req.method) {
+                (Some(Model::Derived), _) => unreachable!("refused above for a scene that is not derived"),
                 (Some(Model::FixedAxis), _) => Err(not_applicable(
                     Model::FixedAxis,
                     scene,
@@ -529,10 +564,10 @@ fn closed_form_meets_bound(scene: &Scene, t_end: f64) -> Result<bool, SimError> 
 }
 
 /// Relative change of an invariant between start and end.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Drift {
-    /// Which invariant (`energy`, `|H|`, `H_Z`).
-    pub name: &'static str,
+    /// Which invariant (`energy`, `|H|`, `H_Z`, or a derived step's name).
+    pub name: String,
     /// `|I(T) − I(0)| / |I(0)|`.
     pub relative: f64,
 }
@@ -586,6 +621,25 @@ pub struct Report {
     pub reactions: Option<[f64; 7]>,
     /// Stored trajectory rows (time first), when asked for.
     pub trajectory: Option<Vec<Vec<f64>>>,
+    /// Names of the components of `final_state` (a derived scene's
+    /// coordinates and rates; empty for the built-in models, whose state
+    /// is `[q, ω]`).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub state_names: Vec<String>,
+    /// A derived scene's reported frame at T.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub frame: Option<FrameState>,
+}
+
+/// The attitude and angular velocity of a frame at T.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FrameState {
+    /// The frame's name in the derivation.
+    pub frame: String,
+    /// Rotation matrix: columns are the frame's axes in the fixed frame N.
+    pub attitude: [[f64; 3]; 3],
+    /// Angular velocity relative to N, in the frame's own axes.
+    pub angular_velocity: [f64; 3],
 }
 
 /// Comparison of a closed-form run with an independent integration.
@@ -679,11 +733,12 @@ fn check_budget(out: &Output<'_>, plan: &Plan, row_len: usize) -> Result<(), Sim
 }
 
 /// CSV header of the streamed rows for a scene.
-pub fn stream_header(scene: &Scene, model: Model) -> &'static str {
+pub fn stream_header(scene: &Scene, model: Model) -> String {
     match (&scene.kind, model) {
-        (SceneKind::FixedAxis { .. }, _) => "t,angle,omega,A_x,A_y,B_x,B_y",
-        (_, Model::EulerAngles) => "t,phi,theta,psi,omega_1,omega_2,omega_3",
-        _ => "t,q_w,q_x,q_y,q_z,omega_1,omega_2,omega_3",
+        (SceneKind::Derived(ds), _) => format!("t,{}", ds.state_names().join(",")),
+        (SceneKind::FixedAxis { .. }, _) => "t,angle,omega,A_x,A_y,B_x,B_y".into(),
+        (_, Model::EulerAngles) => "t,phi,theta,psi,omega_1,omega_2,omega_3".into(),
+        _ => "t,q_w,q_x,q_y,q_z,omega_1,omega_2,omega_3".into(),
     }
 }
 
@@ -715,7 +770,7 @@ fn free_body(scene: &Scene) -> Option<(FreeBody, [f64; 7])> {
             },
             pack(q0, w0),
         )),
-        SceneKind::FixedAxis { .. } => None,
+        SceneKind::FixedAxis { .. } | SceneKind::Derived(_) => None,
     }
 }
 
@@ -748,17 +803,22 @@ pub fn reference_state(scene: &Scene, t: f64) -> Result<([f64; 7], String), SimE
             scene: scene.name.clone(),
             reason: "a shaft has a one-degree-of-freedom state".into(),
         }),
+        SceneKind::Derived(_) => Err(SimError::ModelNotApplicable {
+            model: "rigid-body".into(),
+            scene: scene.name.clone(),
+            reason: "a derived scene's state is its derivation's coordinates and rates".into(),
+        }),
     }
 }
 
 fn free_drifts(body: &FreeBody, y0: &[f64; 7], y: &[f64; 7]) -> Vec<Drift> {
     vec![
         Drift {
-            name: "energy",
+            name: "energy".into(),
             relative: relative(body.energy(y), body.energy(y0)),
         },
         Drift {
-            name: if body.gravity.is_some() { "H_Z" } else { "|H|" },
+            name: if body.gravity.is_some() { "H_Z" } else { "|H|" }.into(),
             relative: relative(body.momentum_invariant(y), body.momentum_invariant(y0)),
         },
     ]
@@ -817,9 +877,12 @@ pub fn run(scene: &Scene, plan: &Plan, out: &mut Output<'_>) -> Result<Report, S
         precession: None,
         reactions: None,
         trajectory: None,
+        state_names: vec![],
+        frame: None,
     };
     let row_len = match &scene.kind {
         SceneKind::FixedAxis { .. } => 7,
+        SceneKind::Derived(ds) => ds.y0.len() + 1,
         _ => 8,
     };
     check_budget(out, plan, row_len)?;
@@ -829,6 +892,21 @@ pub fn run(scene: &Scene, plan: &Plan, out: &mut Output<'_>) -> Result<Report, S
         bytes: 0,
     };
     match (&scene.kind, plan.model) {
+        (SceneKind::Derived(ds), Model::Derived) => derived::run(ds, plan, &mut rec, &mut report)?,
+        (SceneKind::Derived(_), m) => {
+            return Err(not_applicable(
+                m,
+                scene,
+                "a derived scene is described by its derivation's equations; only `derived` runs them",
+            ));
+        }
+        (_, Model::Derived) => {
+            return Err(not_applicable(
+                Model::Derived,
+                scene,
+                "only a scene of kind \"derived\" names a derivation's equations of motion",
+            ));
+        }
         (SceneKind::FixedAxis { shaft, y0 }, Model::FixedAxis) => {
             let start = Instant::now();
             let (y, stats) = match (plan.method, plan.step) {
@@ -1189,11 +1267,28 @@ impl fmt::Display for Report {
                 r[0], r[1], r[2], r[3], r[4], r[5], r[6]
             )?;
         }
-        let state: Vec<String> = self
-            .final_state
-            .iter()
-            .map(|v| format!("{v:.12}"))
-            .collect();
+        if let Some(fs) = &self.frame {
+            let r = &fs.attitude;
+            writeln!(
+                f,
+                "frame {}:     attitude [[{:.9}, {:.9}, {:.9}], [{:.9}, {:.9}, {:.9}], [{:.9}, {:.9}, {:.9}]], ω = ({:.9}, {:.9}, {:.9}) rad/s",
+                fs.frame,
+                r[0][0], r[0][1], r[0][2], r[1][0], r[1][1], r[1][2], r[2][0], r[2][1], r[2][2],
+                fs.angular_velocity[0], fs.angular_velocity[1], fs.angular_velocity[2]
+            )?;
+        }
+        let state: Vec<String> = if self.state_names.len() == self.final_state.len() {
+            self.state_names
+                .iter()
+                .zip(&self.final_state)
+                .map(|(n, v)| format!("{n} = {v:.12}"))
+                .collect()
+        } else {
+            self.final_state
+                .iter()
+                .map(|v| format!("{v:.12}"))
+                .collect()
+        };
         writeln!(f, "state at T:  [{}]", state.join(", "))
     }
 }
@@ -1375,6 +1470,7 @@ fn sweep_one(
         status: "ok".into(),
     };
     match &scene.kind {
+        SceneKind::Derived(ds) => derived::sweep_one(ds, &mut row, t_end, min_time)?,
         SceneKind::FixedAxis { shaft, y0 } => {
             let run = || {
                 integrate(

@@ -4,7 +4,7 @@
 //!
 //! ```toml
 //! name = "torque-free asymmetric body"
-//! kind = "free"                        # free | heavy-top | fixed-axis
+//! kind = "free"                        # free | heavy-top | fixed-axis | derived
 //! t_end = 100.0
 //! [body]
 //! principal_moments = [0.6, 0.8, 1.0]  # or: shape = { kind = "prism", mass = 1, a = 1, b = 2, c = 3 }
@@ -13,6 +13,7 @@
 //! angular_momentum = [1.8, 0.4, -0.9]  # body axes; or angular_velocity = [...]
 //! ```
 
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
@@ -22,6 +23,9 @@ use crate::exact::SteadyTop;
 use crate::models::Shaft;
 use crate::models::euler_angles::quaternion_from_angles;
 use crate::{PrincipalMoments, Shape, SimError};
+
+mod derived;
+pub use derived::{DerivedScene, Resolve, resolve_near};
 
 /// Relative residual of §7's relation under which a heavy top counts as
 /// being in steady precession.
@@ -40,6 +44,9 @@ struct RawScene {
     top: Option<RawTop>,
     shaft: Option<RawShaft>,
     motor: Option<RawMotor>,
+    derivation: Option<derived::RawDerivation>,
+    constants: Option<BTreeMap<String, f64>>,
+    inputs: Option<BTreeMap<String, String>>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -59,6 +66,8 @@ struct RawInitial {
     steady_precession: Option<RawSteady>,
     angle: Option<f64>,
     rate: Option<f64>,
+    coordinates: Option<BTreeMap<String, f64>>,
+    rates: Option<BTreeMap<String, f64>>,
 }
 
 #[derive(Debug, Deserialize, Clone, Copy)]
@@ -153,6 +162,8 @@ pub enum SceneKind {
         /// Initial angle and rate.
         y0: [f64; 2],
     },
+    /// The equations of motion a derivation file derived.
+    Derived(Box<DerivedScene>),
 }
 
 impl SceneKind {
@@ -162,6 +173,7 @@ impl SceneKind {
             SceneKind::Free { .. } => "free",
             SceneKind::HeavyTop { .. } => "heavy-top",
             SceneKind::FixedAxis { .. } => "fixed-axis",
+            SceneKind::Derived(_) => "derived",
         }
     }
 }
@@ -182,17 +194,29 @@ pub fn unit_attitude(q: [f64; 4], field: &str) -> Result<UnitQuaternion<f64>, Si
 
 /// # Construction
 impl Scene {
-    /// Reads and validates a scene file.
+    /// Reads and validates a scene file; a derived scene's derivation is
+    /// found by [`resolve_near`].
     pub fn from_file(path: &Path) -> Result<Scene, SimError> {
+        Scene::from_file_with(path, &|name| resolve_near(path, name))
+    }
+
+    /// [`Scene::from_file`] with the derivation of a derived scene found
+    /// by `resolve` (the command line also knows the bundled ones).
+    pub fn from_file_with(path: &Path, resolve: Resolve<'_>) -> Result<Scene, SimError> {
         let text = std::fs::read_to_string(path).map_err(|source| SimError::Io {
             file: path.to_path_buf(),
             source,
         })?;
-        Scene::parse(&text, path)
+        Scene::parse_with(&text, path, resolve)
     }
 
     /// Parses and validates scene text; `file` names it in messages.
     pub fn parse(text: &str, file: &Path) -> Result<Scene, SimError> {
+        Scene::parse_with(text, file, &|name| resolve_near(file, name))
+    }
+
+    /// [`Scene::parse`] with a resolver for a derived scene's derivation.
+    pub fn parse_with(text: &str, file: &Path, resolve: Resolve<'_>) -> Result<Scene, SimError> {
         let raw: RawScene = toml::from_str(text).map_err(|e| SimError::Parse {
             file: file.to_path_buf(),
             message: e.to_string(),
@@ -208,7 +232,22 @@ impl Scene {
                 format!("must be positive and finite, got {}", raw.t_end),
             ));
         }
-        let initial = raw.initial.unwrap_or_default();
+        let mut initial = raw.initial.unwrap_or_default();
+        let derived_fields = [
+            ("derivation", raw.derivation.is_some()),
+            ("constants", raw.constants.is_some()),
+            ("inputs", raw.inputs.is_some()),
+            ("initial.coordinates", initial.coordinates.is_some()),
+            ("initial.rates", initial.rates.is_some()),
+        ];
+        if raw.kind != "derived"
+            && let Some((field, _)) = derived_fields.iter().find(|(_, set)| *set)
+        {
+            return Err(bad(
+                field,
+                format!("only a scene of kind \"derived\" takes `{field}`"),
+            ));
+        }
         let finite3 = |v: [f64; 3], field: &str| -> Result<Vector3<f64>, SimError> {
             if v.iter().all(|x| x.is_finite()) {
                 Ok(Vector3::from(v))
@@ -450,10 +489,47 @@ impl Scene {
                 }
                 SceneKind::FixedAxis { shaft, y0 }
             }
+            "derived" => {
+                let builtin = [
+                    ("body", raw.body.is_some()),
+                    ("top", raw.top.is_some()),
+                    ("shaft", raw.shaft.is_some()),
+                    ("motor", raw.motor.is_some()),
+                    ("initial.attitude", initial.attitude.is_some()),
+                    ("initial.euler_angles", initial.euler_angles.is_some()),
+                    ("initial.angular_momentum", initial.angular_momentum.is_some()),
+                    ("initial.angular_velocity", initial.angular_velocity.is_some()),
+                    ("initial.steady_precession", initial.steady_precession.is_some()),
+                    ("initial.angle", initial.angle.is_some()),
+                    ("initial.rate", initial.rate.is_some()),
+                ];
+                if let Some((field, _)) = builtin.iter().find(|(_, set)| *set) {
+                    return Err(bad(
+                        field,
+                        "a derived scene gives its state as `initial.coordinates` and `initial.rates` \
+                         and its parameters under `[constants]`"
+                            .into(),
+                    ));
+                }
+                let start = derived::RawStart {
+                    coordinates: initial.coordinates.take().unwrap_or_default(),
+                    rates: initial.rates.take().unwrap_or_default(),
+                };
+                SceneKind::Derived(Box::new(derived::parse(
+                    raw.derivation,
+                    raw.constants.unwrap_or_default(),
+                    raw.inputs.unwrap_or_default(),
+                    start,
+                    file,
+                    resolve,
+                )?))
+            }
             other => {
                 return Err(bad(
                     "kind",
-                    format!("unknown kind `{other}` (expected free, heavy-top or fixed-axis)"),
+                    format!(
+                        "unknown kind `{other}` (expected free, heavy-top, fixed-axis or derived)"
+                    ),
                 ));
             }
         };

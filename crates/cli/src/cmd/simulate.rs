@@ -7,7 +7,6 @@ use std::process::ExitCode;
 
 use clap::Args;
 use hdot_sim::run::{self, Output, Request};
-use hdot_sim::scene::Scene;
 use hdot_sim::{Method, SimError, Step};
 
 use crate::output::{self, OutputError};
@@ -20,7 +19,7 @@ pub struct SimulateArgs {
     /// Integration method: euler, rk4, dopri5, dop853, midpoint, split2, split4.
     #[arg(long)]
     pub method: Option<String>,
-    /// Model: fixed-axis, steady-precession, elliptic, precession-angle, rigid-body, euler-angles.
+    /// Model: fixed-axis, steady-precession, elliptic, precession-angle, rigid-body, euler-angles, derived.
     #[arg(long)]
     pub model: Option<String>,
     /// Fixed step size.
@@ -55,6 +54,7 @@ fn is_input_error(e: &SimError) -> bool {
     !matches!(
         e,
         SimError::EulerAngleSingularity { .. }
+            | SimError::CoordinateSingularity { .. }
             | SimError::NonFinite { .. }
             | SimError::StepSizeUnderflow { .. }
             | SimError::NotConverged { .. }
@@ -67,10 +67,7 @@ fn is_input_error(e: &SimError) -> bool {
 
 /// Runs `hdot simulate`.
 pub fn run(args: SimulateArgs) -> anyhow::Result<ExitCode> {
-    let scene = match crate::catalog::bundled_scene(&args.scene) {
-        Some((name, text)) => Scene::parse(text, std::path::Path::new(&name))?,
-        None => Scene::from_file(&args.scene)?,
-    };
+    let scene = crate::catalog::scene(&args.scene)?;
     let method = args
         .method
         .as_deref()

@@ -6,7 +6,6 @@ use std::process::ExitCode;
 
 use clap::Args;
 use hdot_sim::run;
-use hdot_sim::scene::Scene;
 
 use crate::output::{self, OutputError};
 
@@ -28,7 +27,7 @@ pub struct WorkPrecisionArgs {
 
 /// Runs `hdot work-precision`.
 pub fn run(args: WorkPrecisionArgs) -> anyhow::Result<ExitCode> {
-    let scene = Scene::from_file(&args.scene)?;
+    let scene = crate::catalog::scene(&args.scene)?;
     let t_end = args.t_end.unwrap_or(scene.t_end);
     if !(t_end.is_finite() && t_end > 0.0) {
         anyhow::bail!("--t-end must be positive and finite, got {t_end}");

@@ -66,7 +66,8 @@ pub struct DerivedSpec {
     /// Time symbols that are applied inputs, as functions of t.
     pub inputs: BTreeMap<String, TimeFunction>,
     /// Steps whose values should stay constant along the motion (each is
-    /// reported as a drift), in addition to those the derivation marks.
+    /// reported as a drift), in addition to those the derivation marks
+    /// `conserved = true`.
     pub conserved: Vec<String>,
 }
 
@@ -290,7 +291,18 @@ impl DerivedModel {
             }
         };
         let mut conserved = Vec::new();
+        let mut names: Vec<&String> = d
+            .steps
+            .iter()
+            .filter(|s| s.conserved)
+            .map(|s| &s.name)
+            .collect();
         for name in &spec.conserved {
+            if !names.contains(&name) {
+                names.push(name);
+            }
+        }
+        for name in names {
             let s = step(name)?;
             let polys = unfold(&s.values().into_iter().cloned().collect::<Vec<_>>());
             conserved.push(Conserved {

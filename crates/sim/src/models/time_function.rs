@@ -4,8 +4,9 @@
 //!
 //! Parsed with `hdot-sym`'s expression parser (so the syntax, its limits
 //! and its error positions are the derivation files'), then evaluated in
-//! `f64`. Unlike a derivation, any function below may take any argument:
-//! this is numerics, not the canonical form.
+//! `f64`. Unlike a derivation, any function below may take any argument,
+//! and decimal numbers (`0.02`, `1.5e-3`) are allowed: this is numerics,
+//! not the canonical form (each is read as the exact fraction it denotes).
 
 use std::collections::BTreeMap;
 use std::fmt;
@@ -33,7 +34,14 @@ impl TimeFunction {
     /// Parses `text`; names other than `t`, `pi` and the keys of
     /// `constants` are errors (with the byte offset in `text`).
     pub fn parse(text: &str, constants: &BTreeMap<String, f64>) -> Result<TimeFunction, String> {
-        let ast = parse(text).map_err(|e| format!("{} (at byte {})", e.message, e.span.start))?;
+        let exact = decimals_as_fractions(text);
+        let ast = parse(&exact).map_err(|e| {
+            if exact == text {
+                format!("{} (at byte {})", e.message, e.span.start)
+            } else {
+                format!("{} (in `{exact}`, at byte {})", e.message, e.span.start)
+            }
+        })?;
         check(&ast, constants)?;
         Ok(TimeFunction {
             text: text.to_owned(),
@@ -51,6 +59,67 @@ impl TimeFunction {
     pub fn eval(&self, t: f64) -> f64 {
         eval(&self.ast, t, &self.constants)
     }
+}
+
+/// `text` with every decimal literal (`0.25`, `3e-2`, `1.5E+3`) replaced by
+/// the exact fraction it denotes, in parentheses (`(25/100)`).
+fn decimals_as_fractions(text: &str) -> String {
+    let b = text.as_bytes();
+    let mut out = String::with_capacity(text.len());
+    let mut i = 0;
+    while i < b.len() {
+        let starts_number =
+            b[i].is_ascii_digit() && (i == 0 || !(b[i - 1].is_ascii_alphanumeric() || b[i - 1] == b'_'));
+        if !starts_number {
+            let ch = text[i..].chars().next().expect("in bounds");
+            out.push(ch);
+            i += ch.len_utf8();
+            continue;
+        }
+        let digits = |mut j: usize| {
+            while j < b.len() && b[j].is_ascii_digit() {
+                j += 1;
+            }
+            j
+        };
+        let int_end = digits(i);
+        let mut j = int_end;
+        let mut frac = "";
+        if j + 1 < b.len() && b[j] == b'.' && b[j + 1].is_ascii_digit() {
+            let end = digits(j + 1);
+            frac = &text[j + 1..end];
+            j = end;
+        }
+        let mut exp: i64 = 0;
+        let mut has_exp = false;
+        if j < b.len() && (b[j] == b'e' || b[j] == b'E') {
+            let mut k = j + 1;
+            if k < b.len() && (b[k] == b'+' || b[k] == b'-') {
+                k += 1;
+            }
+            if k < b.len() && b[k].is_ascii_digit() {
+                let end = digits(k);
+                // Saturate absurd exponents: the parser's literal limit refuses them.
+                exp = text[j + 1..end].parse().unwrap_or(i64::MAX / 2);
+                has_exp = true;
+                j = end;
+            }
+        }
+        if frac.is_empty() && !has_exp {
+            out.push_str(&text[i..j]);
+        } else {
+            let mantissa = format!("{}{frac}", &text[i..int_end]);
+            let scale = exp - frac.len() as i64;
+            let zeros = |n: i64| "0".repeat(n.clamp(0, 4096) as usize);
+            if scale >= 0 {
+                out.push_str(&format!("({mantissa}{})", zeros(scale)));
+            } else {
+                out.push_str(&format!("({mantissa}/1{})", zeros(-scale)));
+            }
+        }
+        i = j;
+    }
+    out
 }
 
 fn check(a: &Ast, constants: &BTreeMap<String, f64>) -> Result<(), String> {
@@ -131,5 +200,24 @@ mod tests {
                 .unwrap_err()
                 .contains("`atan`")
         );
+    }
+
+    #[test]
+    fn decimal_numbers_are_read_exactly() {
+        let c = BTreeMap::new();
+        for (text, want) in [
+            ("0.02*t", 0.02 * 1.5),
+            ("1.5e-3 + t", 1.5e-3 + 1.5),
+            ("2E+2*t", 300.0),
+            ("12.5", 12.5),
+        ] {
+            let f = TimeFunction::parse(text, &c).unwrap();
+            assert!(
+                (f.eval(1.5) - want).abs() <= 4.0 * f64::EPSILON * want.abs(),
+                "{text}: {} ≠ {want}",
+                f.eval(1.5)
+            );
+        }
+        assert_eq!(decimals_as_fractions("M_2*0.5"), "M_2*(5/10)");
     }
 }

@@ -745,17 +745,38 @@ impl<'a> Context<'a> {
         };
         let sp = exp.span();
         let spans = string_contents(self.text, sp.start, sp.end);
+        let strings = |a: &[toml::Value]| -> Option<Vec<String>> {
+            a.iter().map(|x| x.as_str().map(str::to_owned)).collect()
+        };
+        // Rows of strings (a matrix or array step) are read row by row.
+        let nested = matches!(exp.get_ref(), toml::Value::Array(a) if !a.is_empty() && a.iter().all(|r| r.is_array()));
         let texts: Vec<String> = match exp.get_ref() {
             toml::Value::String(t) => vec![t.clone()],
-            toml::Value::Array(a) if a.iter().all(|x| x.is_str()) => a
-                .iter()
-                .map(|x| x.as_str().expect("string").to_owned())
-                .collect(),
+            toml::Value::Array(a) if a.iter().all(|x| x.is_str()) => {
+                strings(a).expect("strings")
+            }
+            toml::Value::Array(rows) if nested => {
+                let rows: Option<Vec<Vec<String>>> = rows
+                    .iter()
+                    .map(|r| r.as_array().and_then(|r| strings(r)))
+                    .collect();
+                match rows {
+                    Some(rows) => rows.into_iter().flatten().collect(),
+                    None => {
+                        return Err(self.diag(
+                            sp.start,
+                            sp.end,
+                            "`expect` for a matrix is an array of rows, each an array of strings",
+                        ));
+                    }
+                }
+            }
             _ => {
                 return Err(self.diag(
                     sp.start,
                     sp.end,
-                    "`expect` is a string (scalar) or an array of three strings (vector)",
+                    "`expect` is a string (scalar), an array of strings (vector or list) or an array of rows of \
+                     strings (matrix or array)",
                 ));
             }
         };
@@ -784,11 +805,21 @@ impl<'a> Context<'a> {
                 (0..3).map(|k| (axes[k].clone(), v.0[k].clone())).collect()
             }
             Value::List { items, .. }
-                if texts.len() == items.len() && matches!(exp.get_ref(), toml::Value::Array(_)) =>
+                if !nested
+                    && texts.len() == items.len()
+                    && matches!(exp.get_ref(), toml::Value::Array(_)) =>
             {
                 super::component_labels(value, axes)
                     .into_iter()
                     .zip(items.iter().cloned())
+                    .collect()
+            }
+            Value::Matrix(_) | Value::Array(_)
+                if nested && texts.len() == value.components().len() =>
+            {
+                super::component_labels(value, axes)
+                    .into_iter()
+                    .zip(value.components().into_iter().cloned())
                     .collect()
             }
             v => {
@@ -805,7 +836,7 @@ impl<'a> Context<'a> {
                             Value::List { .. } =>
                                 "an array of as many strings as the list has items",
                             Value::Matrix(_) | Value::Array(_) =>
-                                "omitted (check components in scalar steps)",
+                                "an array of rows, each an array of strings, as many as the step has",
                         }
                     ),
                 ));

@@ -116,6 +116,10 @@ pub struct Step {
     pub checks: Vec<Check>,
     /// What the step means physically (`means`), when the file says.
     pub meaning: Option<physics::StepMeaning>,
+    /// Whether the file marks the value as constant along the motion
+    /// (`conserved = true`): simulations of the file's equations report
+    /// its drift.
+    pub conserved: bool,
 }
 
 impl Step {
@@ -388,6 +392,7 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
             components,
             checks,
             meaning,
+            conserved: s.conserved,
         });
     }
     Ok(Derivation {

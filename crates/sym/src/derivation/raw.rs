@@ -150,6 +150,10 @@ pub(crate) struct RawStep {
     /// Conditions on the motion under which `means` holds.
     #[serde(default)]
     pub given: Vec<Spanned<String>>,
+    /// The step's value stays constant along every motion the equations
+    /// of the file describe (a simulation reports its drift).
+    #[serde(default)]
+    pub conserved: bool,
 }
 
 fn yes() -> bool {

@@ -1,0 +1,316 @@
+//! Scenes of `kind = "derived"` (scene/derived.rs, run/derived.rs): the
+//! bundled derived heavy top against the built-in quaternion heavy top,
+//! a problem written for this test (a pendulum hanging from a turntable
+//! driven at a given rate), work-precision on a derived scene, and bad
+//! scenes, each refused naming its field.
+
+use std::path::PathBuf;
+
+use hdot_sim::models::euler_angles::quaternion_from_angles;
+use hdot_sim::run::{self, Model, Output, Request};
+use hdot_sim::scene::{Scene, SceneKind};
+use hdot_sim::{Method, SimError, Step};
+use hdot_tests::repo_root;
+
+fn example(name: &str) -> PathBuf {
+    repo_root().join("docs/examples").join(name)
+}
+
+fn run_scene(scene: &Scene, req: Request) -> run::Report {
+    let plan = run::plan(scene, &req).expect("plan");
+    run::run(scene, &plan, &mut Output::default()).expect("run")
+}
+
+/// The bundled derived heavy top and the bundled built-in one describe the
+/// same top from the same state: at T, the attitude of the derivation's
+/// frame R and the quaternion attitude agree, and so do the angular
+/// velocities in body axes, within a bound scaled to the tolerance.
+#[test]
+fn derived_heavy_top_scene_agrees_with_the_built_in_one() {
+    let derived = Scene::from_file(&example("sim-derived-heavy-top.toml")).expect("derived scene");
+    let builtin = Scene::from_file(&example("sim-heavy-top.toml")).expect("built-in scene");
+    let tol = 1e-11;
+    let req = Request {
+        method: Some(Method::Dop853),
+        step: Some(Step::Tolerance(tol)),
+        t_end: Some(2.0),
+        ..Request::default()
+    };
+    let a = run_scene(&derived, req);
+    let b = run_scene(&builtin, Request { model: Some(Model::RigidBody), ..req });
+    assert_eq!(a.plan.model, Model::Derived);
+    let frame = a.frame.expect("the scene names frame R");
+    let y: &[f64; 7] = b.final_state[..].try_into().expect("7 components");
+    let q = hdot_sim::models::free::attitude(y);
+    let r_builtin = q.to_rotation_matrix();
+    let w_builtin = &b.final_state[4..7];
+    let mut worst: f64 = 0.0;
+    for i in 0..3 {
+        for j in 0..3 {
+            worst = worst.max((frame.attitude[i][j] - r_builtin[(i, j)]).abs());
+        }
+    }
+    let w_scale = w_builtin.iter().map(|w| w.abs()).fold(0.0, f64::max);
+    for k in 0..3 {
+        worst = worst.max((frame.angular_velocity[k] - w_builtin[k]).abs() / w_scale);
+    }
+    // 60 rad/s for 2 s: the global error of a tolerance-1e-11 run is a
+    // few hundred times the tolerance.
+    assert!(worst < 1e3 * tol, "derived and built-in differ by {worst:e}");
+    // The file marks p_φ, p_ψ and the energy conserved: all three are reported, small.
+    let names: Vec<&str> = a.drifts.iter().map(|d| d.name.as_str()).collect();
+    assert_eq!(names, ["p_phi", "p_psi", "energy"]);
+    for d in &a.drifts {
+        assert!(d.relative < 1e-8, "{} drifts by {:e}", d.name, d.relative);
+    }
+    assert_eq!(
+        a.state_names,
+        ["phi", "theta", "psi", "phi'", "theta'", "psi'"]
+    );
+    // Same starting attitude as the built-in scene's euler_angles.
+    let q0 = quaternion_from_angles(0.0, 0.5, 0.0);
+    let SceneKind::Derived(ds) = &derived.kind else {
+        panic!("derived kind")
+    };
+    let r0 = ds.model.attitude("R", 0.0, &ds.y0).expect("frame R");
+    assert!((r0 - q0.to_rotation_matrix().into_inner()).abs().max() < 1e-15);
+}
+
+/// A problem nobody bundled: a pendulum of length l hanging from a point at
+/// distance a from the axis of a turntable that turns at the rate `Omega`
+/// (an input, a function of t); the pendulum swings in the radial plane.
+/// Lagrange's equation gives θ̈; the scene drives the table at a constant
+/// rate, so the Jacobi integral T₂ − T₀ + V (here T − 2 T₀ + V, T₀ the part
+/// of T without θ̇, as T has no part linear in θ̇) is conserved and must be
+/// reported as such.
+const TURNTABLE: &str = r#"
+title = "pendulum on a turntable"
+source = "written for the test"
+[symbols]
+constants = ["m", "g", "l", "a"]
+time = ["theta", "Omega", "beta"]
+[[frame]]
+name = "T"
+parent = "N"
+rotation = "z(beta)"
+[[frame]]
+name = "P"
+parent = "T"
+rotation = "y(theta)"
+[[step]]
+name = "r"
+value = "[a, 0, 0] in T + express([0, 0, -l] in P, T)"
+[[step]]
+name = "v"
+value = "subst(dt(r), beta' = Omega)"
+[[step]]
+name = "T_kin"
+value = "m*dot(v, v)/2"
+[[step]]
+name = "V"
+value = "m*g*dot(r, [0, 0, 1] in T)"
+[[step]]
+name = "eq"
+value = "lagrange(T_kin, V, theta)"
+[[step]]
+name = "acc"
+value = "solve(list(eq), [theta''])"
+[[step]]
+name = "T0"
+value = "subst(T_kin, theta' = 0)"
+[[step]]
+name = "jacobi"
+value = "T_kin - 2*T0 + V"
+conserved = true
+"#;
+
+const TURNTABLE_SCENE: &str = r#"
+name = "pendulum on a turntable"
+kind = "derived"
+t_end = 3.0
+[derivation]
+file = "turntable.toml"
+accelerations = "acc"
+[constants]
+m = 0.3
+g = 9.81
+l = 0.4
+a = 0.25
+[inputs]
+Omega = "2.5"
+[initial]
+coordinates = { theta = 0.3 }
+rates = { theta = 0.0 }
+"#;
+
+fn turntable(scene: &str, derivation: &str) -> Result<Scene, SimError> {
+    let dir = tempfile::tempdir().expect("temp dir");
+    std::fs::write(dir.path().join("turntable.toml"), derivation).expect("write");
+    Scene::parse(scene, &dir.path().join("scene.toml"))
+}
+
+#[test]
+fn a_problem_written_for_the_test_runs_with_every_applicable_method() {
+    let scene = turntable(TURNTABLE_SCENE, TURNTABLE).expect("scene");
+    for method in Method::ALL {
+        let step = if method.is_adaptive() {
+            Step::Tolerance(1e-10)
+        } else {
+            Step::Fixed(1e-3)
+        };
+        let req = Request {
+            method: Some(method),
+            step: Some(step),
+            ..Request::default()
+        };
+        let plan = run::plan(&scene, &req).expect("plan");
+        match run::run(&scene, &plan, &mut Output::default()) {
+            Ok(r) => {
+                // Explicit Euler is first order: at h = 1e-3 it is only roughly right.
+                let bound = if method == Method::Euler { 0.1 } else { 1e-3 };
+                let e = r.error.expect("an error against the reference run");
+                assert!(e.is_finite() && e < bound, "{method}: error {e:e}");
+                assert_eq!(r.drifts.len(), 1, "jacobi is marked conserved");
+                assert!(
+                    r.drifts[0].relative < bound,
+                    "{method}: Jacobi integral drifts by {:e}",
+                    r.drifts[0].relative
+                );
+            }
+            // The splittings need a body's exact sub-flows.
+            Err(e) => assert!(
+                matches!(method, Method::Split2 | Method::Split4),
+                "{method}: {e}"
+            ),
+        }
+    }
+}
+
+#[test]
+fn work_precision_sweeps_a_derived_scene() {
+    let scene = turntable(TURNTABLE_SCENE, TURNTABLE).expect("scene");
+    let rows = run::work_precision(&scene, 1.0, 0.0, |_| {}).expect("sweep");
+    let dop853: Vec<&run::Row> = rows
+        .iter()
+        .filter(|r| r.method == Method::Dop853 && r.status == "ok")
+        .collect();
+    assert!(dop853.len() >= 3, "dop853 rows: {}", dop853.len());
+    // Tighter tolerances reach smaller errors, down to round-off.
+    let (first, last) = (dop853[0], dop853[dop853.len() - 1]);
+    assert!(
+        last.error < 1e-3 * first.error || last.error < 1e-12,
+        "dop853 from {:e} to {:e}",
+        first.error,
+        last.error
+    );
+    assert!(
+        rows.iter()
+            .filter(|r| matches!(r.method, Method::Split2 | Method::Split4))
+            .all(|r| r.status != "ok"),
+        "the splittings cannot run a derived model"
+    );
+}
+
+macro_rules! refuses {
+    ($($name:ident: $scene:expr, $derivation:expr => $says:expr;)*) => {$(
+        #[test]
+        fn $name() {
+            let err = turntable(&$scene, $derivation).expect_err("must be refused");
+            let msg = err.to_string();
+            assert!(msg.contains($says), "message `{msg}` lacks `{}`", $says);
+        }
+    )*};
+}
+
+refuses! {
+    constant_without_value: TURNTABLE_SCENE.replace("a = 0.25\n", ""), TURNTABLE
+        => "the constant `a` has no value";
+    initial_rate_missing: TURNTABLE_SCENE.replace("rates = { theta = 0.0 }", ""), TURNTABLE
+        => "`theta'` is missing";
+    initial_value_for_a_constant: TURNTABLE_SCENE.replace("{ theta = 0.3 }", "{ theta = 0.3, m = 1.0 }"), TURNTABLE
+        => "`m`, which is not a coordinate";
+    input_not_given: TURNTABLE_SCENE.replace("Omega = \"2.5\"", ""), TURNTABLE
+        => "`Omega`";
+    input_with_unknown_name: TURNTABLE_SCENE.replace("\"2.5\"", "\"w*t\""), TURNTABLE
+        => "inputs.Omega";
+    step_not_solved: TURNTABLE_SCENE.replace("accelerations = \"acc\"", "accelerations = \"eq\""), TURNTABLE
+        => "not accelerations solved for";
+    no_such_step: TURNTABLE_SCENE.replace("accelerations = \"acc\"", "accelerations = \"nope\""), TURNTABLE
+        => "no step named `nope`";
+    both_forms: TURNTABLE_SCENE.replace("accelerations = \"acc\"", "accelerations = \"acc\"\nmass_matrix = \"acc\""), TURNTABLE
+        => "give either `accelerations`";
+    missing_derivation: TURNTABLE_SCENE.replace("turntable.toml", "elsewhere.toml"), TURNTABLE
+        => "derivation.file";
+    broken_derivation: TURNTABLE_SCENE, &TURNTABLE.replace("lagrange(T_kin, V, theta)", "lagrange(T_kin, V)")
+        => "derivation.file";
+    builtin_field_in_derived_scene: TURNTABLE_SCENE.replace("[initial]", "[initial]\nangle = 1.0"), TURNTABLE
+        => "initial.angle";
+    derived_field_in_builtin_scene: TURNTABLE_SCENE.replace("kind = \"derived\"", "kind = \"free\""), TURNTABLE
+        => "only a scene of kind \"derived\"";
+    non_finite_constant: TURNTABLE_SCENE.replace("g = 9.81", "g = nan"), TURNTABLE
+        => "constants.g";
+}
+
+/// A heavy top started on its axis (θ = 0) is at the Eulerian angles'
+/// singularity: the equations divide by sin θ. Refused before the run,
+/// naming the divisor.
+#[test]
+fn a_start_at_a_coordinate_singularity_is_refused() {
+    let text = std::fs::read_to_string(example("sim-derived-heavy-top.toml")).expect("read");
+    let text = text.replace("theta = 0.5", "theta = 0.0");
+    let err = Scene::parse(&text, &example("sim-derived-heavy-top.toml")).expect_err("singular");
+    let msg = err.to_string();
+    assert!(msg.contains("initial") && msg.contains("sin(theta)"), "{msg}");
+}
+
+#[test]
+fn model_derived_is_refused_for_a_built_in_scene() {
+    let scene = Scene::from_file(&example("sim-heavy-top.toml")).expect("scene");
+    let err = run::plan(
+        &scene,
+        &Request {
+            model: Some(Model::Derived),
+            ..Request::default()
+        },
+    )
+    .expect_err("not derived");
+    assert!(err.to_string().contains("only a scene of kind"), "{err}");
+    let derived = Scene::from_file(&example("sim-derived-heavy-top.toml")).expect("scene");
+    let err = run::plan(
+        &derived,
+        &Request {
+            model: Some(Model::RigidBody),
+            ..Request::default()
+        },
+    )
+    .expect_err("derived only");
+    assert!(err.to_string().contains("only `derived` runs them"), "{err}");
+}
+
+/// Every bundled derived scene runs and reports finite errors and drifts.
+#[test]
+fn bundled_derived_scenes_run() {
+    for name in [
+        "sim-derived-heavy-top.toml",
+        "sim-gimballed-gyroscope.toml",
+        "sim-rolling-disk.toml",
+    ] {
+        let scene = Scene::from_file(&example(name)).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let r = run_scene(&scene, Request::default());
+        assert_eq!(r.plan.model, Model::Derived, "{name}");
+        assert!(r.error.is_some_and(f64::is_finite), "{name}");
+        assert!(r.final_state.iter().all(|v| v.is_finite()), "{name}");
+        assert!(r.drifts.iter().all(|d| d.relative.is_finite()), "{name}");
+    }
+    // The gyroscope's spin momentum is conserved although the motor works.
+    let gyro = Scene::from_file(&example("sim-gimballed-gyroscope.toml")).expect("gyro");
+    let r = run_scene(
+        &gyro,
+        Request {
+            step: Some(Step::Tolerance(1e-10)),
+            ..Request::default()
+        },
+    );
+    let p_psi = r.drifts.iter().find(|d| d.name == "p_psi").expect("p_psi");
+    assert!(p_psi.relative < 1e-9, "p_psi drifts by {:e}", p_psi.relative);
+}
