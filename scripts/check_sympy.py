@@ -7,7 +7,9 @@ generated Python, and checks with sympy that
   1. every equation equals the derivation's own expected (textbook) form, once
      abbreviations are expanded (``simplify(rhs - expected) == 0``);
   2. the main results equal the textbook forms of docs/equations.md, written
-     here independently in sympy (sections 1, 5 and 6).
+     here independently in sympy (sections 1, 5 and 6);
+  3. where a file exports both solved accelerations and a mass-matrix form,
+     M.LUsolve(f) equals the accelerations.
 
 Usage: scripts/check_sympy.py [path/to/hdot] [NAME ...]
 Exit status: 0 when everything holds, 1 otherwise.
@@ -95,6 +97,20 @@ def main():
                 if not is_zero(eq.rhs.subs(abbreviations).doit() - ref, {}):
                     failures += 1
                     print(f"FAIL {name} {label}: {eq.rhs} != textbook {ref}")
+        # Equations of motion exported both ways: M.LUsolve(f) must give the
+        # solved accelerations, so a sympy user can continue from either.
+        m, f = ns.get("mass_matrix"), ns.get("forcing")
+        if isinstance(m, sympy.MatrixBase) and isinstance(f, sympy.MatrixBase):
+            for key, solved in ns.items():
+                if not (isinstance(solved, dict) and len(solved) == m.rows
+                        and all(isinstance(k, sympy.Derivative) for k in solved)):
+                    continue
+                qdd = m.LUsolve(f)
+                for k, (q, value) in enumerate(solved.items()):
+                    checked += 1
+                    if not is_zero(qdd[k] - value, abbreviations):
+                        failures += 1
+                        print(f"FAIL {name} {key}: M⁻¹f gives {qdd[k]} for {q}, the export {value}")
         print(f"ok   {name}: {len(ns['equations'])} equations rebuilt by sympy {sympy.__version__}")
     print(f"sympy: {checked} comparisons, {failures} failed")
     return 1 if failures else 0

@@ -37,7 +37,13 @@ fn derived_heavy_top_scene_agrees_with_the_built_in_one() {
         ..Request::default()
     };
     let a = run_scene(&derived, req);
-    let b = run_scene(&builtin, Request { model: Some(Model::RigidBody), ..req });
+    let b = run_scene(
+        &builtin,
+        Request {
+            model: Some(Model::RigidBody),
+            ..req
+        },
+    );
     assert_eq!(a.plan.model, Model::Derived);
     let frame = a.frame.expect("the scene names frame R");
     let y: &[f64; 7] = b.final_state[..].try_into().expect("7 components");
@@ -56,7 +62,10 @@ fn derived_heavy_top_scene_agrees_with_the_built_in_one() {
     }
     // 60 rad/s for 2 s: the global error of a tolerance-1e-11 run is a
     // few hundred times the tolerance.
-    assert!(worst < 1e3 * tol, "derived and built-in differ by {worst:e}");
+    assert!(
+        worst < 1e3 * tol,
+        "derived and built-in differ by {worst:e}"
+    );
     // The file marks p_φ, p_ψ and the energy conserved: all three are reported, small.
     let names: Vec<&str> = a.drifts.iter().map(|d| d.name.as_str()).collect();
     assert_eq!(names, ["p_phi", "p_psi", "energy"]);
@@ -260,7 +269,10 @@ fn a_start_at_a_coordinate_singularity_is_refused() {
     let text = text.replace("theta = 0.5", "theta = 0.0");
     let err = Scene::parse(&text, &example("sim-derived-heavy-top.toml")).expect_err("singular");
     let msg = err.to_string();
-    assert!(msg.contains("initial") && msg.contains("sin(theta)"), "{msg}");
+    assert!(
+        msg.contains("initial") && msg.contains("sin(theta)"),
+        "{msg}"
+    );
 }
 
 #[test]
@@ -284,7 +296,10 @@ fn model_derived_is_refused_for_a_built_in_scene() {
         },
     )
     .expect_err("derived only");
-    assert!(err.to_string().contains("only `derived` runs them"), "{err}");
+    assert!(
+        err.to_string().contains("only `derived` runs them"),
+        "{err}"
+    );
 }
 
 /// Every bundled derived scene runs and reports finite errors and drifts.
@@ -312,5 +327,9 @@ fn bundled_derived_scenes_run() {
         },
     );
     let p_psi = r.drifts.iter().find(|d| d.name == "p_psi").expect("p_psi");
-    assert!(p_psi.relative < 1e-9, "p_psi drifts by {:e}", p_psi.relative);
+    assert!(
+        p_psi.relative < 1e-9,
+        "p_psi drifts by {:e}",
+        p_psi.relative
+    );
 }

@@ -150,6 +150,12 @@ fn bundled_scenes_simulate_with_every_method() {
         let scene = Scene::from_file(&path).unwrap();
         let t_end = scene.t_end.min(0.2);
         for method in Method::ALL {
+            // The splittings need the quaternion body's exact sub-flows.
+            if matches!(scene.kind, hdot_sim::scene::SceneKind::Derived(_))
+                && matches!(method, Method::Split2 | Method::Split4)
+            {
+                continue;
+            }
             let steps = if method.is_adaptive() {
                 [Step::Tolerance(1e-5), Step::Tolerance(1e-9)]
             } else {
@@ -185,7 +191,7 @@ fn bundled_scenes_simulate_with_every_method() {
             );
         }
     }
-    assert_eq!(n, 7, "seven bundled scenes");
+    assert_eq!(n, 10, "ten bundled scenes");
 }
 
 #[test]

@@ -1273,8 +1273,18 @@ impl fmt::Display for Report {
                 f,
                 "frame {}:     attitude [[{:.9}, {:.9}, {:.9}], [{:.9}, {:.9}, {:.9}], [{:.9}, {:.9}, {:.9}]], ω = ({:.9}, {:.9}, {:.9}) rad/s",
                 fs.frame,
-                r[0][0], r[0][1], r[0][2], r[1][0], r[1][1], r[1][2], r[2][0], r[2][1], r[2][2],
-                fs.angular_velocity[0], fs.angular_velocity[1], fs.angular_velocity[2]
+                r[0][0],
+                r[0][1],
+                r[0][2],
+                r[1][0],
+                r[1][1],
+                r[1][2],
+                r[2][0],
+                r[2][1],
+                r[2][2],
+                fs.angular_velocity[0],
+                fs.angular_velocity[1],
+                fs.angular_velocity[2]
             )?;
         }
         let state: Vec<String> = if self.state_names.len() == self.final_state.len() {

@@ -497,9 +497,18 @@ impl Scene {
                     ("motor", raw.motor.is_some()),
                     ("initial.attitude", initial.attitude.is_some()),
                     ("initial.euler_angles", initial.euler_angles.is_some()),
-                    ("initial.angular_momentum", initial.angular_momentum.is_some()),
-                    ("initial.angular_velocity", initial.angular_velocity.is_some()),
-                    ("initial.steady_precession", initial.steady_precession.is_some()),
+                    (
+                        "initial.angular_momentum",
+                        initial.angular_momentum.is_some(),
+                    ),
+                    (
+                        "initial.angular_velocity",
+                        initial.angular_velocity.is_some(),
+                    ),
+                    (
+                        "initial.steady_precession",
+                        initial.steady_precession.is_some(),
+                    ),
                     ("initial.angle", initial.angle.is_some()),
                     ("initial.rate", initial.rate.is_some()),
                 ];

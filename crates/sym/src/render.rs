@@ -308,7 +308,7 @@ fn sympy(d: &Derivation) -> String {
     );
     let _ = writeln!(
         o,
-        "from sympy import Eq, Function, Integer, Rational, Symbol, cos, sin\n"
+        "from sympy import Eq, Function, Integer, Matrix, Rational, Symbol, cos, sin\n"
     );
     let _ = writeln!(o, "t = Symbol('t')");
     for n in d.symbols.names() {
@@ -336,7 +336,53 @@ fn sympy(d: &Derivation) -> String {
     let mut eqs = Vec::new();
     let mut exps = Vec::new();
     let mut labels = Vec::new();
+    let mut motion = Vec::new();
     for s in d.steps.iter().filter(|s| s.show) {
+        // Equations of motion to continue with: solved accelerations as a
+        // dict {q'': …}, a mass matrix and a forcing as Matrix objects.
+        let printed: Vec<String> = s
+            .components
+            .iter()
+            .map(|(_, e)| print::print(e, &style))
+            .collect();
+        match &s.value {
+            Value::List { labels, .. } if labels.len() == printed.len() && !labels.is_empty() => {
+                let items: Vec<String> = labels
+                    .iter()
+                    .zip(&printed)
+                    .map(|(&a, p)| {
+                        let mut x = Expr::new();
+                        x.push(crate::expr::Node::Atom(a));
+                        format!("    {}: {p},", print::print(&x, &style))
+                    })
+                    .collect();
+                motion.push(format!("{} = {{\n{}\n}}", var(&s.name), items.join("\n")));
+            }
+            Value::Array(rows) => {
+                let mut k = 0;
+                let rows: Vec<String> = rows
+                    .iter()
+                    .map(|r| {
+                        let row = printed[k..k + r.len()].join(", ");
+                        k += r.len();
+                        format!("    [{row}],")
+                    })
+                    .collect();
+                motion.push(format!(
+                    "{} = Matrix([\n{}\n])",
+                    var(&s.name),
+                    rows.join("\n")
+                ));
+            }
+            Value::List { .. } if s.formula.trim_start().starts_with("forcing(") => {
+                motion.push(format!(
+                    "{} = Matrix([{}])",
+                    var(&s.name),
+                    printed.join(", ")
+                ));
+            }
+            _ => {}
+        }
         // A Python string: primes (time derivatives) become `dot`.
         let base: String = s
             .label
@@ -382,6 +428,16 @@ fn sympy(d: &Derivation) -> String {
     let _ = writeln!(o, "expected = [\n{}\n]\n", exps.join("\n"));
     let _ = writeln!(o, "# step.component of each equation.");
     let _ = writeln!(o, "labels = [{}]", labels.join(", "));
+    if !motion.is_empty() {
+        let _ = writeln!(
+            o,
+            "\n# Equations of motion: accelerations solved for ({{q'': value}}), and the mass-matrix form\n\
+             # M q'' = f as Matrix objects (M.LUsolve(f) gives q'' where M can be inverted)."
+        );
+        for m in &motion {
+            let _ = writeln!(o, "{m}");
+        }
+    }
     o
 }
 

@@ -110,7 +110,11 @@ pub fn distance(ds: &DerivedScene, t: f64, y: &[f64], r: &[f64]) -> f64 {
 
 /// The angle of a rotation matrix, accurate for small angles as well.
 fn rotation_angle(r: &Matrix3<f64>) -> f64 {
-    let axis = nalgebra::Vector3::new(r[(2, 1)] - r[(1, 2)], r[(0, 2)] - r[(2, 0)], r[(1, 0)] - r[(0, 1)]);
+    let axis = nalgebra::Vector3::new(
+        r[(2, 1)] - r[(1, 2)],
+        r[(0, 2)] - r[(2, 0)],
+        r[(1, 0)] - r[(0, 1)],
+    );
     let cos = (r.trace() - 1.0) / 2.0;
     (axis.norm() / 2.0).atan2(cos)
 }

@@ -126,7 +126,12 @@ pub(super) fn parse(
             "missing table [derivation] (file = \"…\", and accelerations = \"…\" or mass_matrix/forcing/coordinates)".into(),
         )
     })?;
-    let equations = match (raw.accelerations, raw.mass_matrix, raw.forcing, raw.coordinates) {
+    let equations = match (
+        raw.accelerations,
+        raw.mass_matrix,
+        raw.forcing,
+        raw.coordinates,
+    ) {
         (Some(step), None, None, None) => EquationsSpec::Explicit { step },
         (None, Some(mass_matrix), Some(forcing), Some(coordinates)) => EquationsSpec::MassMatrix {
             mass_matrix,
@@ -189,7 +194,10 @@ pub(super) fn parse(
         ));
     }
     if let Some(why) = model.singularity(0.0, &y0) {
-        return Err(bad("initial", format!("the equations break down at the initial state: {why}")));
+        return Err(bad(
+            "initial",
+            format!("the equations break down at the initial state: {why}"),
+        ));
     }
     Ok(DerivedScene {
         derivation: path,

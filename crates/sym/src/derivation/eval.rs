@@ -752,9 +752,7 @@ impl<'a> Context<'a> {
         let nested = matches!(exp.get_ref(), toml::Value::Array(a) if !a.is_empty() && a.iter().all(|r| r.is_array()));
         let texts: Vec<String> = match exp.get_ref() {
             toml::Value::String(t) => vec![t.clone()],
-            toml::Value::Array(a) if a.iter().all(|x| x.is_str()) => {
-                strings(a).expect("strings")
-            }
+            toml::Value::Array(a) if a.iter().all(|x| x.is_str()) => strings(a).expect("strings"),
             toml::Value::Array(rows) if nested => {
                 let rows: Option<Vec<Vec<String>>> = rows
                     .iter()
