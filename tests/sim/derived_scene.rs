@@ -57,8 +57,8 @@ fn derived_heavy_top_scene_agrees_with_the_built_in_one() {
         }
     }
     let w_scale = w_builtin.iter().map(|w| w.abs()).fold(0.0, f64::max);
-    for k in 0..3 {
-        worst = worst.max((frame.angular_velocity[k] - w_builtin[k]).abs() / w_scale);
+    for (w, wb) in frame.angular_velocity.iter().zip(w_builtin) {
+        worst = worst.max((w - wb).abs() / w_scale);
     }
     // 60 rad/s for 2 s: the global error of a tolerance-1e-11 run is a
     // few hundred times the tolerance.

@@ -24,7 +24,7 @@
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
+use std::rc::Rc;
 
 use serde::Deserialize;
 
@@ -87,7 +87,7 @@ pub struct DerivedScene {
     /// The derivation file the equations come from.
     pub derivation: PathBuf,
     /// The compiled equations.
-    pub model: Arc<DerivedModel>,
+    pub model: Rc<DerivedModel>,
     /// What the scene asked for (constants, inputs, steps).
     pub spec: DerivedSpec,
     /// The initial state `(q, q̇)`.
@@ -201,7 +201,7 @@ pub(super) fn parse(
     }
     Ok(DerivedScene {
         derivation: path,
-        model: Arc::new(model),
+        model: Rc::new(model),
         spec,
         y0,
         frame: raw.frame,
