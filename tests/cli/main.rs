@@ -136,8 +136,9 @@ fn verify_passes_on_every_bundled_derivation() {
     let bundled = std::fs::read_dir(hdot_tests::repo_root().join("derivations"))
         .expect("derivations folder")
         .filter(|e| {
-            e.as_ref()
-                .is_ok_and(|e| e.path().extension().is_some_and(|x| x == "toml") && e.file_name() != "notes.toml")
+            e.as_ref().is_ok_and(|e| {
+                e.path().extension().is_some_and(|x| x == "toml") && e.file_name() != "notes.toml"
+            })
         })
         .count();
     assert_eq!(results.len(), bundled, "{so}");

@@ -213,9 +213,10 @@ pub fn scene(path: &Path) -> anyhow::Result<hdot_sim::scene::Scene> {
                         .map_err(|e| format!("cannot read {}: {e}", file.display()))?;
                     Ok((file, text))
                 }
-                Entry::Bundled(n, text) => {
-                    Ok((PathBuf::from(format!("derivations/{n}.toml")), text.to_owned()))
-                }
+                Entry::Bundled(n, text) => Ok((
+                    PathBuf::from(format!("derivations/{n}.toml")),
+                    text.to_owned(),
+                )),
             }
         })
     };

@@ -108,7 +108,11 @@ fn decimals_as_fractions(text: &str) -> String {
         if frac.is_empty() && !has_exp {
             out.push_str(&text[i..j]);
         } else {
-            let mantissa = format!("{}{frac}", &text[i..int_end]);
+            let digits = format!("{}{frac}", &text[i..int_end]);
+            let mantissa = match digits.trim_start_matches('0') {
+                "" => "0",
+                m => m,
+            };
             let scale = exp - frac.len() as i64;
             let zeros = |n: i64| "0".repeat(n.clamp(0, 4096) as usize);
             if scale >= 0 {
