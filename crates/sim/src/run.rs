@@ -436,6 +436,10 @@ fn rate_scale(scene: &Scene) -> f64 {
     match &scene.kind {
         SceneKind::Free { w0, .. } | SceneKind::HeavyTop { w0, .. } => w0.norm(),
         SceneKind::FixedAxis { y0, .. } => y0[1].abs(),
+        SceneKind::Derived(ds) => {
+            let n = ds.y0.len() / 2;
+            ds.y0[n..].iter().fold(0.0, |m: f64, v| m.max(v.abs()))
+        }
     }
 }
 

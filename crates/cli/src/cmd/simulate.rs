@@ -60,7 +60,6 @@ fn is_input_error(e: &SimError) -> bool {
             | SimError::NotConverged { .. }
             | SimError::TooManySteps { .. }
             | SimError::NonFiniteResult { .. }
-            | SimError::CoordinateSingularity { .. }
             | SimError::Output(_)
     )
 }
