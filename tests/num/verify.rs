@@ -52,14 +52,6 @@ law!(fixed_axis_moments_equal_sum_about_o, "fixed-axis");
 law!(kinetic_energy_equals_sum_of_half_m_v2, "kinetic-energy");
 law!(parallel_axis_equals_inertia_about_p, "parallel-axis");
 law!(
-    gyroscope_moments_equal_sum_of_r_cross_m_a_of_the_rotor,
-    "gyroscope"
-);
-law!(
-    steady_precession_couple_equals_sum_of_r_cross_m_a,
-    "steady-precession"
-);
-law!(
     non_spinning_frame_moments_equal_sum_of_r_cross_m_a,
     "gyroscope-axisymmetric-frame"
 );
@@ -126,7 +118,6 @@ const PERTURBATIONS: &[(&str, &str, &str, u32)] = &[
     ("dalembert", "M_O", "m", 0),
     ("euler-general", "M", "I_xy", 0),
     ("fixed-axis", "M", "I_yz", 0),
-    ("gyroscope", "M", "Ip", 0),
     ("gyroscope-axisymmetric-frame", "Q", "Omega_3", 0),
     ("impulse-momentum", "omega", "F_x", 0),
     ("kinetic-energy", "T", "I_zx", 0),
@@ -134,7 +125,6 @@ const PERTURBATIONS: &[(&str, &str, &str, u32)] = &[
     ("plane-motion", "H", "I_zx", 0),
     ("principal-axis-stability", "k_1", "A", 0),
     ("rotating-frame-kinematics", "a", "x", 1),
-    ("steady-precession", "M_steady", "Ip", 0),
     ("torque-free-axisymmetric", "spin", "I", 0),
 ];
 

@@ -352,7 +352,11 @@ fn draw(d: &Derivation, rng: &mut ChaCha8Rng) -> Result<(Draw, Values), VerifyEr
         .iter()
         .flat_map(|b| {
             let mut v = b.mass.as_ref().map(Poly::atoms).unwrap_or_default();
-            v.extend(b.mass_centre.0.iter().flat_map(Poly::atoms));
+            v.extend(
+                b.mass_centre
+                    .iter()
+                    .flat_map(|c| c.0.iter().flat_map(Poly::atoms)),
+            );
             v.extend(b.inertia.0.iter().flatten().flat_map(Poly::atoms));
             v
         })
@@ -446,9 +450,9 @@ fn body_equations(
         .iter()
         .map(|p| (p.clone(), mass, mass, format!("the mass of {}", b.name)))
         .collect();
-    for k in 0..3 {
+    for k in (0..3).filter(|_| b.mass_centre.is_some()) {
         eqs.push((
-            b.mass_centre.0[k].clone(),
+            b.mass_centre.as_ref().expect("declared").0[k].clone(),
             c[k],
             extent,
             format!("component {} of the mass centre of {}", k + 1, b.name),

@@ -19,7 +19,7 @@
 //! | family (file) | derivations | bodies |
 //! |---|---|---|
 //! | [`rigid`] | `euler-general`, `angular-momentum`, `fixed-axis`, `kinetic-energy`, `parallel-axis`, `angular-momentum-about-point`, `dalembert`, `plane-motion`, `impulse-momentum` | any; principal (mirrored in the three coordinate planes); symmetric about the xy plane (mirrored) |
-//! | [`gyro`] | `gyroscope`, `steady-precession`, `gyroscope-axisymmetric-frame` | axisymmetric (N ≥ 3 rotated copies about z) |
+//! | [`gyro`] | `gyroscope-axisymmetric-frame` | axisymmetric (N ≥ 3 rotated copies about z) |
 //! | [`free`] | `torque-free-axisymmetric`, `principal-axis-stability` | axisymmetric, elongated or flattened; triaxial principal |
 //! | [`motion`] | `rotating-frame-kinematics` (and the rotation chains the others use) | none: a point on a quadratic path in a rotating frame |
 //!
@@ -72,7 +72,6 @@ pub const SUPPORTED: &[&str] = &[
     "dalembert",
     "euler-general",
     "fixed-axis",
-    "gyroscope",
     "gyroscope-axisymmetric-frame",
     "impulse-momentum",
     "kinetic-energy",
@@ -80,7 +79,6 @@ pub const SUPPORTED: &[&str] = &[
     "plane-motion",
     "principal-axis-stability",
     "rotating-frame-kinematics",
-    "steady-precession",
     "torque-free-axisymmetric",
 ];
 
@@ -153,15 +151,6 @@ pub const COVERAGE: &[Coverage] = &[
             ),
         ],
         kinematic: &[],
-        not_compared: &[],
-    },
-    Coverage {
-        derivation: "gyroscope",
-        compared: &[(
-            "H, M, M_transport",
-            "Σ m r × v, Σ m r × R̈ q about O, axisymmetric rotor",
-        )],
-        kinematic: &[("Omega, omega", "Rᵀ Ṙ, Ṙ Rᵀ of the rotation chains")],
         not_compared: &[],
     },
     Coverage {
@@ -244,18 +233,6 @@ pub const COVERAGE: &[Coverage] = &[
         compared: &[],
         kinematic: &[("v, a", "ṗ, p̈ of p = R(t) r(t) by the product rule")],
         not_compared: &[("r", RESTATES)],
-    },
-    Coverage {
-        derivation: "steady-precession",
-        compared: &[
-            ("H, M", "Σ m r × v, Σ m r × R̈ q about O"),
-            (
-                "M_steady, M_right_angle",
-                "the same with θ̇ = φ̈ = ψ̈ = 0 (and θ = π/2)",
-            ),
-        ],
-        kinematic: &[],
-        not_compared: &[],
     },
     Coverage {
         derivation: "torque-free-axisymmetric",
@@ -504,8 +481,6 @@ pub fn check_named(
         "dalembert" => rigid::dalembert,
         "plane-motion" => rigid::plane_motion,
         "impulse-momentum" => rigid::impulse_momentum,
-        "gyroscope" => gyro::gyroscope,
-        "steady-precession" => gyro::steady_precession,
         "gyroscope-axisymmetric-frame" => gyro::axisymmetric_frame,
         "torque-free-axisymmetric" => free::torque_free_axisymmetric,
         "principal-axis-stability" => free::principal_axis_stability,

@@ -119,8 +119,9 @@ pub struct Body {
     pub centre: Option<String>,
     /// Its mass (an expression of constants), when the file names it.
     pub mass: Option<Poly>,
-    /// G from the reference point, in the body frame's components.
-    pub mass_centre: Vec3,
+    /// G from the reference point, in the body frame's components (zero
+    /// for a body about its centre; `None` when the file leaves it free).
+    pub mass_centre: Option<Vec3>,
     /// The inertia tensor about the reference point in the body axes.
     pub inertia: Mat3,
     /// The symmetry that makes `inertia`'s form true.
@@ -742,20 +743,12 @@ fn body(
                     "the reference point is the mass centre, so `mass_centre` is zero",
                 ));
             }
-            v
+            Some(v)
         }
-        None => Vec3::zero(),
+        None if centre.as_deref() == Some(point.as_str()) => Some(Vec3::zero()),
+        // G wherever the drawn body has it (no step may use its position).
+        None => None,
     };
-    if centre.as_deref() != Some(point.as_str()) && b.mass_centre.is_none() && centre.is_some() {
-        // G at the reference point: allowed, but say so explicitly.
-        let n = b.name.get_ref().len();
-        return Err(cx.diag_string(
-            &b.name,
-            0,
-            n,
-            "give `mass_centre`, G from the reference point (`[0, 0, 0] in …` when they coincide)",
-        ));
-    }
     let (ast, base) = parse_spanned(cx, &b.inertia)?;
     let inertia = match cx.eval(&ast, base)? {
         Value::Matrix(m) => m,
