@@ -20,6 +20,8 @@ mod exact_separatrix;
 mod charts;
 // run.rs: error estimates of closed forms, --check, non-finite refusal.
 mod honest;
+// run.rs: the pilot-based method choice for a heavy top.
+mod pilot;
 // Test support: a 32-digit Taylor integrator of the torque-free body.
 mod reference;
 // integrate.rs: orders, invariants, step control.

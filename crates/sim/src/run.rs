@@ -12,7 +12,7 @@
 //! | free, asymmetric | `elliptic` | closed form through Jacobi elliptic functions |
 //! | free, integrated (`--method`, not a splitting) | `precession-angle` | H is fixed in space: ω and one angle about H, ω projected onto E and \|H\| |
 //! | heavy top in steady precession | `steady-precession` | §7's relation holds: θ, φ̇, ψ̇ constant |
-//! | heavy top otherwise | `rigid-body` with the method cheapest for the tolerance | no closed form here; the bundled work-precision data rank the methods |
+//! | heavy top otherwise | `rigid-body` with the method and setting cheapest for the requested error | no closed form here; measured on this scene by pilots ([`pilot_choice`]) |
 //! | derived (a derivation's equations of motion) | `derived`, integrated with DOP853 | the scene asks for exactly what a file derived; no built-in closed form is known to cover it |
 //!
 //! `--model` and `--method` override: a method alone means "integrate the
@@ -392,37 +392,141 @@ pub fn plan(scene: &Scene, req: &Request) -> Result<Plan, SimError> {
                     Some(Step::Tolerance(t)) => t,
                     Some(Step::Fixed(_)) | None => DEFAULT_TOL,
                 };
-                let rows = bundled_heavy_top_data();
-                match cheapest(&rows, tol) {
-                    Some(row) => Ok(Plan {
-                        model: Model::RigidBody,
-                        method: Some(row.method),
-                        step: Some(row.step),
-                        t_end,
-                        reason: format!(
-                            "heavy top: no closed form here, so integrate; {} at {} is the cheapest method \
-                             reaching error ≤ {tol:e} in the bundled work-precision data ({:.3e} s there)",
-                            row.method,
-                            step_label(row.step),
-                            row.wall_s
-                        ),
-                        check: req.check,
-                    }),
-                    None => integrated(
-                        Model::RigidBody,
-                        Some(Method::Dop853),
-                        format!(
-                            "heavy top: no closed form here; no bundled run reaches {tol:e}, so dop853 at that tolerance"
-                        ),
-                    )
-                    .map(|mut p| {
-                        p.step = Some(Step::Tolerance(tol));
-                        p
-                    }),
-                }
+                let (method, step, reason) = pilot_choice(scene, t_end, tol)?;
+                Ok(Plan {
+                    model: Model::RigidBody,
+                    method: Some(method),
+                    step: Some(step),
+                    t_end,
+                    reason,
+                    check: req.check,
+                })
             }
         },
     }
+}
+
+/// Safety factor of the pilot-based choice: the predicted error must be
+/// at most the requested one divided by this.
+pub const PILOT_SAFETY: f64 = 3.0;
+
+/// Chooses method and step for a heavy top by measuring on this scene:
+/// pilots over the whole run at two loose settings (dop853 and dopri5 at
+/// tol 1e-5 and 1e-7, rk4 at `dt = T/4000` and `T/8000`) against DOP853 at
+/// tol 1e-14, fits `error ∝ setting^p` and `evaluations ∝ setting^(−q)`,
+/// and picks the candidate whose setting predicted to reach
+/// `requested / PILOT_SAFETY` needs the fewest predicted evaluations (all
+/// candidates evaluate the same right-hand side). Loose settings cost little; the
+/// reference is the one the report measures against.
+pub fn pilot_choice(
+    scene: &Scene,
+    t_end: f64,
+    requested: f64,
+) -> Result<(Method, Step, String), SimError> {
+    let (body, y0) = free_body(scene).expect("heavy top");
+    let fallback = |why: &str| {
+        (
+            Method::Dop853,
+            Step::Tolerance(requested.clamp(1e-13, 1e-3)),
+            format!(
+                "heavy top: no closed form here, so integrate; {why}, so dop853 at tol = the requested error {requested:e}"
+            ),
+        )
+    };
+    if t_end <= 0.0 {
+        return Ok(fallback("T = 0 leaves nothing to measure"));
+    }
+    let (reference, _) = reference_state(scene, t_end)?;
+    let pilot = |method: Method, step: Step| -> Option<(f64, u64)> {
+        let (y, stats) = integrate(
+            &body,
+            method,
+            step,
+            0.0,
+            y0,
+            t_end,
+            Limits::default(),
+            |_, _| Ok(()),
+        )
+        .ok()?;
+        let e = state_distance(&y, &reference);
+        (e.is_finite() && e > 0.0 && e < 1.0).then_some((e, stats.evaluations.max(1)))
+    };
+    let target = requested / PILOT_SAFETY;
+    let mut best: Option<(f64, Method, Step, String)> = None;
+    for method in [Method::Dop853, Method::Dopri5, Method::Rk4] {
+        let adaptive = method.is_adaptive();
+        let (xa, xb) = if adaptive {
+            (1e-5, 1e-7)
+        } else {
+            (t_end / 4000.0, t_end / 8000.0)
+        };
+        let mk = |x: f64| {
+            if adaptive {
+                Step::Tolerance(x)
+            } else {
+                Step::Fixed(x)
+            }
+        };
+        let (Some((ea, na)), Some((eb, nb))) = (pilot(method, mk(xa)), pilot(method, mk(xb)))
+        else {
+            continue;
+        };
+        let lx = (xa / xb).ln();
+        let p = (ea / eb).ln() / lx;
+        // A fixed-step method's error cannot fall faster than its order
+        // (a steeper pilot slope is pre-asymptotic): rk4 is of order 4.
+        let p = if adaptive { p } else { p.min(4.0) };
+        let q = (nb as f64 / na as f64).ln() / lx;
+        if !(p > 0.5 && p < 12.0 && q.is_finite()) {
+            continue;
+        }
+        let x = xb * (target / eb).powf(1.0 / p);
+        let x = if adaptive {
+            x.clamp(1e-13, 1e-3)
+        } else {
+            x.clamp(t_end / 1e7, t_end / 10.0)
+        };
+        // Three significant digits, never above the fitted setting: one a
+        // person can read and repeat.
+        let x: f64 = format!("{:.2e}", x * 0.995).parse().unwrap_or(x);
+        let predicted_error = eb * (x / xb).powf(p);
+        if predicted_error > target * 1.0001 {
+            continue;
+        }
+        let evals = nb as f64 * (x / xb).powf(-q);
+        // The candidates evaluate the same right-hand side: evaluations are
+        // the cost (deterministic, unlike wall time).
+        let cost = evals;
+        let step = if adaptive {
+            Step::Tolerance(x)
+        } else {
+            Step::Fixed(t_end / (t_end / x).ceil())
+        };
+        let why = format!(
+            "{method}: error ∝ {v}^{p:.2}, evaluations ∝ {v}^-{q:.2} (pilot errors {ea:.2e} at {}, {eb:.2e} at {}); \
+             predicted error {predicted_error:.2e} with {evals:.0} evaluations",
+            step_label(mk(xa)),
+            step_label(mk(xb)),
+            v = if adaptive { "tol" } else { "dt" },
+        );
+        if best.as_ref().is_none_or(|b| cost < b.0) {
+            best = Some((cost, method, step, why));
+        }
+    }
+    Ok(match best {
+        Some((_, method, step, why)) => (
+            method,
+            step,
+            format!(
+                "heavy top: no closed form here, so integrate; measured on this scene by pilots over [0, T] at two \
+                 loose settings per method against dop853 at tol={REFERENCE_TOL:e}: the cheapest setting predicted \
+                 to reach {requested:e}/{PILOT_SAFETY} is {method} at {} — {why}",
+                step_label(step)
+            ),
+        ),
+        None => fallback("no pilot gave a usable fit"),
+    })
 }
 
 /// The error a closed form must stay within, per unit of phase `|ω| T`
