@@ -333,3 +333,27 @@ fn bundled_derived_scenes_run() {
         p_psi.relative
     );
 }
+
+/// Without --method, --tol is the error the run must reach: the tolerance
+/// is fitted on the scene by two pilot runs, and the error at T meets it.
+#[test]
+fn a_requested_error_is_met_by_a_tolerance_fitted_on_the_scene() {
+    let scene = Scene::from_file(&example("sim-derived-heavy-top.toml")).expect("scene");
+    for target in [1e-6, 1e-9] {
+        let r = run_scene(
+            &scene,
+            Request {
+                step: Some(Step::Tolerance(target)),
+                t_end: Some(2.0),
+                ..Request::default()
+            },
+        );
+        let e = r.error.expect("error");
+        assert!(e <= target, "requested {target:e}, reached {e:e}");
+        assert!(
+            r.plan.reason.contains("fitted on this scene"),
+            "{}",
+            r.plan.reason
+        );
+    }
+}

@@ -142,6 +142,10 @@ pub struct Plan {
     /// `--check` asked for.
     #[serde(skip)]
     pub check: bool,
+    /// The error the run must reach, when the tolerance is to be fitted on
+    /// the scene before the run (derived scenes without `--method`).
+    #[serde(skip)]
+    pub fit_error: Option<f64>,
 }
 
 fn ser_display<S: serde::Serializer, T: fmt::Display>(v: &T, s: S) -> Result<S::Ok, S::Error> {
@@ -205,6 +209,7 @@ pub fn plan(scene: &Scene, req: &Request) -> Result<Plan, SimError> {
                 t_end,
                 reason,
                 check: req.check,
+                fit_error: None,
             })
         };
     let closed = |model: Model, reason: &str| Plan {
@@ -214,6 +219,7 @@ pub fn plan(scene: &Scene, req: &Request) -> Result<Plan, SimError> {
         t_end,
         reason: reason.to_string(),
         check: req.check,
+        fit_error: None,
     };
     if req.model == Some(Model::Derived) && !matches!(scene.kind, SceneKind::Derived(_)) {
         return Err(not_applicable(
@@ -235,7 +241,20 @@ pub fn plan(scene: &Scene, req: &Request) -> Result<Plan, SimError> {
                              cover them, so they are integrated in the derivation's coordinates (dop853)"
                         .to_string(),
                 },
-            ),
+            )
+            .map(|mut p| {
+                // Without --method, the tolerance is fitted on the scene so
+                // that the error at T reaches --tol (run/derived.rs).
+                if req.method.is_none() && !matches!(req.step, Some(Step::Fixed(_))) {
+                    let target = match req.step {
+                        Some(Step::Tolerance(t)) => t,
+                        _ => DEFAULT_TOL,
+                    };
+                    p.fit_error = Some(target);
+                    p.step = Some(Step::Tolerance(target));
+                }
+                p
+            }),
             Some(other) => Err(not_applicable(
                 other,
                 scene,
@@ -400,6 +419,7 @@ pub fn plan(scene: &Scene, req: &Request) -> Result<Plan, SimError> {
                     t_end,
                     reason,
                     check: req.check,
+                    fit_error: None,
                 })
             }
         },

@@ -77,6 +77,53 @@ fn reference_n<const N: usize>(ds: &DerivedScene, t_end: f64) -> Result<[f64; N]
     .map(|(y, _)| y)
 }
 
+/// The DOP853 tolerance at which the error at `t_end` (against
+/// `reference`) should be `target`, measured on this scene: two pilot runs
+/// at `target` and `target/100` fit `error ≈ C tol^p`, and the tolerance
+/// predicted for `target/3` is taken (a factor 3 of safety on the fit).
+/// Returns the tolerance and what was measured.
+fn fit_tolerance<const N: usize>(
+    ds: &DerivedScene,
+    t_end: f64,
+    target: f64,
+    reference: &[f64; N],
+) -> Result<(f64, String), SimError> {
+    let error_at = |tol: f64| -> Result<(f64, u64), SimError> {
+        let (y, stats) = integrate_n(
+            &ds.model,
+            Method::Dop853,
+            Step::Tolerance(tol),
+            start::<N>(ds),
+            t_end,
+            |_, _| Ok(()),
+        )?;
+        Ok((distance(ds, t_end, &y, reference), stats.evaluations))
+    };
+    let (lo, hi) = (1e-13, 1e-2);
+    let ta = target.clamp(lo, hi);
+    let tb = (ta * 1e-2).max(lo);
+    let (ea, na) = error_at(ta)?;
+    let (eb, nb) = error_at(tb)?;
+    let p = if ea > eb && eb > 0.0 && ta > tb {
+        ((ea / eb).ln() / (ta / tb).ln()).clamp(0.3, 1.5)
+    } else {
+        1.0
+    };
+    let tol = if ea <= 0.0 {
+        ta
+    } else {
+        (ta * (target / 3.0 / ea).powf(1.0 / p)).clamp(lo, hi)
+    };
+    Ok((
+        tol,
+        format!(
+            "tolerance fitted on this scene: dop853 reached {ea:.2e} at tol={ta:.0e} and {eb:.2e} at tol={tb:.0e} \
+             ({} evaluations), error ∝ tol^{p:.2}, so tol={tol:.1e} for an error ≤ {target:e}",
+            na + nb
+        ),
+    ))
+}
+
 /// What the error of a derived run measures.
 pub fn error_measure(ds: &DerivedScene) -> String {
     match &ds.frame {
@@ -153,8 +200,15 @@ fn run_n<const N: usize>(
     rec: &mut Recorder<'_, '_>,
     report: &mut Report,
 ) -> Result<(), SimError> {
-    let (method, step) = method_step(plan)?;
+    let (method, mut step) = method_step(plan)?;
     let y0 = start::<N>(ds);
+    let reference = reference_n::<N>(ds, plan.t_end)?;
+    if let (Some(target), Method::Dop853) = (plan.fit_error, method) {
+        let (tol, why) = fit_tolerance::<N>(ds, plan.t_end, target, &reference)?;
+        step = Step::Tolerance(tol);
+        report.plan.step = Some(step);
+        report.plan.reason = format!("{}; {why}", report.plan.reason);
+    }
     let active = rec.active();
     let clock = Instant::now();
     let (y, stats) = integrate_n(&ds.model, method, step, y0, plan.t_end, |t, y| {
@@ -167,7 +221,6 @@ fn run_n<const N: usize>(
         Ok(())
     })?;
     report.wall_s = clock.elapsed().as_secs_f64();
-    let reference = reference_n::<N>(ds, plan.t_end)?;
     report.reference = format!("dop853 at tol={REFERENCE_TOL:e} on the same derived equations");
     report.error_basis = format!("measured against the reference: {}", error_measure(ds));
     report.error = Some(distance(ds, plan.t_end, &y, &reference));
