@@ -185,6 +185,13 @@ fn not_applicable(model: Model, scene: &Scene, reason: &str) -> SimError {
     }
 }
 
+/// Why only `derived` runs a derived scene (plan and run refuse alike).
+const ONLY_DERIVED: &str =
+    "a derived scene is described by its derivation's equations; only `derived` runs them";
+/// Why `derived` runs only a derived scene.
+const NOT_DERIVED: &str =
+    "only a scene of kind \"derived\" names a derivation's equations of motion";
+
 /// Chooses the model (and method) for a scene: see the module docs.
 pub fn plan(scene: &Scene, req: &Request) -> Result<Plan, SimError> {
     let t_end = req.t_end.unwrap_or(scene.t_end);
@@ -222,11 +229,7 @@ pub fn plan(scene: &Scene, req: &Request) -> Result<Plan, SimError> {
         fit_error: None,
     };
     if req.model == Some(Model::Derived) && !matches!(scene.kind, SceneKind::Derived(_)) {
-        return Err(not_applicable(
-            Model::Derived,
-            scene,
-            "only a scene of kind \"derived\" names a derivation's equations of motion",
-        ));
+        return Err(not_applicable(Model::Derived, scene, NOT_DERIVED));
     }
     match &scene.kind {
         SceneKind::Derived(_) => match req.model {
@@ -258,7 +261,7 @@ pub fn plan(scene: &Scene, req: &Request) -> Result<Plan, SimError> {
             Some(other) => Err(not_applicable(
                 other,
                 scene,
-                "a derived scene is described by its derivation's equations; only `derived` runs them",
+                ONLY_DERIVED,
             )),
         },
         SceneKind::FixedAxis { .. } => match req.model {
@@ -1022,18 +1025,10 @@ pub fn run(scene: &Scene, plan: &Plan, out: &mut Output<'_>) -> Result<Report, S
     match (&scene.kind, plan.model) {
         (SceneKind::Derived(ds), Model::Derived) => derived::run(ds, plan, &mut rec, &mut report)?,
         (SceneKind::Derived(_), m) => {
-            return Err(not_applicable(
-                m,
-                scene,
-                "a derived scene is described by its derivation's equations; only `derived` runs them",
-            ));
+            return Err(not_applicable(m, scene, ONLY_DERIVED));
         }
         (_, Model::Derived) => {
-            return Err(not_applicable(
-                Model::Derived,
-                scene,
-                "only a scene of kind \"derived\" names a derivation's equations of motion",
-            ));
+            return Err(not_applicable(Model::Derived, scene, NOT_DERIVED));
         }
         (SceneKind::FixedAxis { shaft, y0 }, Model::FixedAxis) => {
             let start = Instant::now();

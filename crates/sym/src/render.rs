@@ -338,8 +338,9 @@ fn sympy(d: &Derivation) -> String {
     let mut labels = Vec::new();
     let mut motion = Vec::new();
     for s in d.steps.iter().filter(|s| s.show) {
-        // Equations of motion to continue with: solved accelerations as a
-        // dict {q'': …}, a mass matrix and a forcing as Matrix objects.
+        // Values to continue with in SymPy: solved unknowns as a dict
+        // {q'': …}, arrays (a mass matrix) and unlabelled lists (a forcing,
+        // Lagrange's equations) as Matrix objects.
         let printed: Vec<String> = s
             .components
             .iter()
@@ -374,7 +375,7 @@ fn sympy(d: &Derivation) -> String {
                     rows.join("\n")
                 ));
             }
-            Value::List { .. } if s.formula.trim_start().starts_with("forcing(") => {
+            Value::List { .. } => {
                 motion.push(format!(
                     "{} = Matrix([{}])",
                     var(&s.name),
@@ -431,8 +432,8 @@ fn sympy(d: &Derivation) -> String {
     if !motion.is_empty() {
         let _ = writeln!(
             o,
-            "\n# Equations of motion: accelerations solved for ({{q'': value}}), and the mass-matrix form\n\
-             # M q'' = f as Matrix objects (M.LUsolve(f) gives q'' where M can be inverted)."
+            "\n# Solved values as {{unknown: value}}; arrays and lists as Matrix objects (for equations\n\
+             # of motion in the form M q'' = f, M.LUsolve(f) gives q'' where M can be inverted)."
         );
         for m in &motion {
             let _ = writeln!(o, "{m}");

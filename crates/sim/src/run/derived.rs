@@ -11,13 +11,10 @@ use std::time::Instant;
 
 use nalgebra::Matrix3;
 
-use super::{Drift, FrameState, Plan, Recorder, Report, Row, method_step, timed};
+use super::{Drift, FrameState, Plan, REFERENCE_TOL, Recorder, Report, Row, method_step, timed};
 use crate::models::derived::{DerivedModel, DerivedSystem, MAX_DOF};
 use crate::scene::DerivedScene;
 use crate::{Limits, Method, SimError, Stats, Step, integrate};
-
-/// Tolerance of the reference run on the same equations.
-pub const REFERENCE_TOL: f64 = super::REFERENCE_TOL;
 
 /// Calls `$f::<N>(args)` for the state length `$len` (2, 4, …, 2·MAX_DOF).
 macro_rules! with_len {
