@@ -143,14 +143,6 @@ fn verify_passes_on_every_bundled_derivation() {
         .count();
     assert_eq!(results.len(), bundled, "{so}");
     for l in results {
-        // Equations-of-motion files without declarations yet (issue 9).
-        if ["gimballed-gyroscope ", "rolling-disk "]
-            .iter()
-            .any(|f| l.starts_with(f))
-        {
-            assert!(l.contains("nothing compared"), "{l}");
-            continue;
-        }
         assert!(l.trim_end().ends_with("pass"), "{l}");
     }
     // Steps that are not compared, and kinematic ones, are said so.

@@ -214,8 +214,6 @@ fn verify_is_seeded_and_covers_every_bundled_derivation() {
         })
         .map(|p| p.file_stem().unwrap().to_string_lossy().into_owned())
         .filter(|n| derivation(n).steps.iter().all(|s| s.meaning.is_none()))
-        // Equations-of-motion files still without declarations (issue 9).
-        .filter(|n| !["gimballed-gyroscope", "rolling-disk"].contains(&n.as_str()))
         .collect();
     names.sort();
     assert_eq!(names, SUPPORTED);

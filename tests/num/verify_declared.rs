@@ -295,3 +295,93 @@ proptest::proptest! {
         proptest::prop_assert!(r.passed(), "{:?}", r.worst());
     }
 }
+
+/// A wheel rolling along a straight line, driven by a torque: the rolling
+/// rule under `[motion]`, the contact point's material velocity declared
+/// to vanish, and Lagrange's equation with the torque as `applied(…)`.
+const WHEEL: &str = r#"
+title = "wheel"
+source = "test"
+[symbols]
+constants = ["m", "r", "A", "B", "C"]
+time = ["x", "theta", "M_a"]
+[[frame]]
+name = "W"
+parent = "N"
+rotation = "y(theta)"
+[motion]
+given = ["x' = r*theta'"]
+vanishes = ["point_velocity(wheel, C)"]
+[[point]]
+name = "O"
+fixed = true
+[[point]]
+name = "G"
+from = "O"
+at = "[x, 0, r] in N"
+[[point]]
+name = "C"
+from = "G"
+at = "[0, 0, -r] in N"
+[[body]]
+name = "wheel"
+frame = "W"
+point = "G"
+mass = "m"
+mass_centre = "[0, 0, 0] in W"
+inertia = "principal(A, B, C)"
+symmetry = "principal"
+[[step]]
+name = "v_C"
+value = "[x', 0, 0] in N + cross(express(angvel(W), N), [0, 0, -r] in N)"
+means = "point_velocity(wheel, C)"
+[[step]]
+name = "T"
+value = "subst(m*x'^2/2 + B*theta'^2/2, x' = r*theta')"
+means = "kinetic_energy(wheel)"
+[[step]]
+name = "L"
+value = "lagrange(T, 0, [theta], list(M_a))"
+means = "list(along(moment(wheel, G), [0, 1, 0] in N) + along(force(wheel), [r, 0, 0] in N) - applied(M_a))"
+"#;
+
+#[test]
+fn a_rolling_wheel_with_a_driving_torque_passes() {
+    let r = check(&load(WHEEL), &OPTS).unwrap();
+    assert!(r.passed(), "{r:#?}");
+    let names: Vec<&str> = r.steps.iter().map(|s| s.step.as_str()).collect();
+    assert_eq!(names, ["v_C", "T", "L", "[motion] vanishes"]);
+    // A wrong rolling rule fails at the constraint (and where it is used).
+    let wrong = WHEEL.replace("x' = r*theta'", "x' = -r*theta'");
+    let r = check(&load(&wrong), &OPTS).unwrap();
+    let failed: Vec<&str> = r
+        .steps
+        .iter()
+        .filter(|s| !s.passed)
+        .map(|s| s.step.as_str())
+        .collect();
+    assert!(failed.contains(&"[motion] vanishes"), "{failed:?}");
+    // The torque with the wrong sign fails in Lagrange's equation only.
+    let wrong = WHEEL.replace("list(M_a))\"", "list(-M_a))\"");
+    let r = check(&load(&wrong), &OPTS).unwrap();
+    let failed: Vec<&str> = r
+        .steps
+        .iter()
+        .filter(|s| !s.passed)
+        .map(|s| s.step.as_str())
+        .collect();
+    assert_eq!(failed, ["L"]);
+}
+
+#[test]
+fn the_point_of_a_body_is_of_one_body_and_applied_is_scalar() {
+    let text = WHEEL.replace(
+        "point_velocity(wheel, C)\"\n[[step]]",
+        "point_velocity(system, C)\"\n[[step]]",
+    );
+    let e = check(&load(&text), &OPTS).unwrap_err().to_string();
+    assert!(e.contains("one body"), "{e}");
+    let text = WHEEL.replace("- applied(M_a))", "- applied([M_a, 0, 0] in N))");
+    let e = err(&text);
+    assert!(e.contains("test.toml:") && e.contains("scalar"), "{e}");
+}

@@ -499,6 +499,54 @@ fn apply(d: &Derivation, values: &mut Values, rules: &[Rule]) -> Result<(), Veri
     Ok(())
 }
 
+/// Applies a step's `given`, then `[motion]`'s rules (whose derived
+/// rates follow the step's conditions: rolling with θ̈ = 0 keeps the
+/// rolling rates), then the step's `given` again (which wins).
+fn constrain(d: &Derivation, values: &mut Values, given: &[Rule]) -> Result<(), VerifyError> {
+    apply(d, values, given)?;
+    apply(d, values, &d.physics.motion)?;
+    apply(d, values, given)
+}
+
+/// Measures each of `[motion] vanishes` in one draw: zero along every
+/// motion the rules allow.
+fn compare_vanishing(
+    d: &Derivation,
+    draw: &Draw,
+    values: &Values,
+) -> Result<Vec<Vec<Comparison>>, VerifyError> {
+    let mut values = values.clone();
+    constrain(d, &mut values, &[])?;
+    let w = World::build(d, draw, &values, &[])?;
+    bind_knowns(d, &w, &mut values)?;
+    let w = World::build(d, draw, &values, &[])?;
+    d.physics
+        .vanishes
+        .iter()
+        .map(|(m, text)| {
+            let (v, scale) = meaning_value(&w, m)?;
+            let direct = v.components(&w, None);
+            let labels: Vec<String> = match direct.len() {
+                1 => vec![text.clone()],
+                _ => ["X", "Y", "Z"]
+                    .iter()
+                    .map(|a| format!("{text}.{a}"))
+                    .collect(),
+            };
+            Ok(direct
+                .iter()
+                .zip(labels)
+                .map(|(x, quantity)| Comparison {
+                    quantity,
+                    derived: 0.0,
+                    direct: *x,
+                    scale: scale + f64::MIN_POSITIVE,
+                })
+                .collect())
+        })
+        .collect()
+}
+
 /// Binds the symbols of `[[known]]` from the measured quantities (and
 /// their time derivatives, for point and frame kinematics).
 fn bind_knowns(d: &Derivation, w: &World<'_>, values: &mut Values) -> Result<(), VerifyError> {
@@ -708,6 +756,10 @@ fn meaning_value(w: &World<'_>, m: &Meaning) -> Result<(Val, f64), VerifyError> 
         Meaning::Solves(x) | Meaning::MassMatrix(x, _) | Meaning::Forcing(x, _) => {
             meaning_value(w, x)?
         }
+        Meaning::Applied(p) => {
+            let (v, s) = w.values.eval(p)?;
+            (Val::Scalar(v), s)
+        }
     })
 }
 
@@ -796,7 +848,7 @@ fn compare_step(
     values: &Values,
 ) -> Result<Vec<Comparison>, VerifyError> {
     let mut values = values.clone();
-    apply(d, &mut values, &c.meaning.given)?;
+    constrain(d, &mut values, &c.meaning.given)?;
     let w = World::build(d, draw, &values, &coordinate(&c.meaning.meaning))?;
     bind_knowns(d, &w, &mut values)?;
     let w = World::build(d, draw, &values, &coordinate(&c.meaning.meaning))?;
@@ -811,6 +863,7 @@ fn compare_step(
         for a in unknowns {
             zero.set(*a, 0.0, 0.0);
         }
+        constrain(d, &mut zero, &c.meaning.given)?;
         let (x0, mut scale) = at(&zero)?;
         let direct: Vec<f64> = if matches!(c.meaning.meaning, Meaning::Forcing(..)) {
             x0.iter().map(|v| -v).collect()
@@ -819,6 +872,7 @@ fn compare_step(
             for a in unknowns {
                 let mut unit = zero.clone();
                 unit.set(*a, 1.0, 1.0);
+                constrain(d, &mut unit, &c.meaning.given)?;
                 let (xj, sj) = at(&unit)?;
                 scale = scale.max(sj);
                 cols.push(xj.iter().zip(&x0).map(|(p, q)| p - q).collect::<Vec<f64>>());
@@ -853,16 +907,19 @@ fn compare_step(
         for (a, (v, s)) in labels.iter().zip(derived.iter().zip(&dscale)) {
             solved.set(*a, *v, *s);
         }
+        constrain(d, &mut solved, &c.meaning.given)?;
         let (residual, rscale) = at(&solved)?;
         let mut zero = solved.clone();
         for a in labels {
             zero.set(*a, 0.0, 0.0);
         }
+        constrain(d, &mut zero, &c.meaning.given)?;
         let (x0, _) = at(&zero)?;
         let mut scale = rscale;
         for (j, a) in labels.iter().enumerate() {
             let mut unit = zero.clone();
             unit.set(*a, 1.0, 1.0);
+            constrain(d, &mut unit, &c.meaning.given)?;
             let (xj, _) = at(&unit)?;
             let col: f64 = xj
                 .iter()
@@ -917,6 +974,20 @@ fn coordinate(m: &Meaning) -> Vec<Atom> {
     out
 }
 
+/// What a meaning is measured as, for reports.
+fn against_of(m: &Meaning) -> String {
+    m.quantities()
+        .iter()
+        .map(|(q, _)| measure(*q).measured_as)
+        .fold(Vec::new(), |mut v, s| {
+            if !v.contains(&s) {
+                v.push(s);
+            }
+            v
+        })
+        .join(", ")
+}
+
 /// Verifies every step of `d` that has a meaning, on `options.draws`
 /// random bodies and motions.
 ///
@@ -968,19 +1039,7 @@ pub fn check_with(
         .collect();
     let mut per_step: BTreeMap<usize, StepCheck> = BTreeMap::new();
     for (k, c) in compiled.iter().enumerate() {
-        let against = c
-            .meaning
-            .meaning
-            .quantities()
-            .iter()
-            .map(|(q, _)| measure(*q).measured_as)
-            .fold(Vec::new(), |mut v, s| {
-                if !v.contains(&s) {
-                    v.push(s);
-                }
-                v
-            })
-            .join(", ");
+        let against = against_of(&c.meaning.meaning);
         per_step.insert(
             k,
             StepCheck {
@@ -993,14 +1052,32 @@ pub fn check_with(
             },
         );
     }
+    let vanishing = d.physics.vanishes.len();
+    for (j, (m, text)) in d.physics.vanishes.iter().enumerate() {
+        per_step.insert(
+            compiled.len() + j,
+            StepCheck {
+                step: "[motion] vanishes".into(),
+                means: text.clone(),
+                against: against_of(m),
+                max_error: 0.0,
+                worst: None,
+                passed: true,
+            },
+        );
+    }
     let mut rng = ChaCha8Rng::seed_from_u64(options.seed);
     let mut draws = 0;
-    if !compiled.is_empty() {
+    if !compiled.is_empty() || vanishing > 0 {
         for _ in 0..options.draws.max(1) {
             let (dr, mut values) = draw(d, &mut rng)?;
             apply(d, &mut values, &d.physics.motion)?;
-            for (k, c) in compiled.iter().enumerate() {
-                let cs = compare_step(d, c, &dr, &values)?;
+            let steps = compiled
+                .iter()
+                .map(|c| compare_step(d, c, &dr, &values))
+                .collect::<Result<Vec<_>, _>>()?;
+            let vanish = compare_vanishing(d, &dr, &values)?;
+            for (k, cs) in steps.into_iter().chain(vanish).enumerate() {
                 let s = per_step.get_mut(&k).expect("inserted");
                 for cmp in cs {
                     let e = cmp.relative_error();

@@ -122,6 +122,16 @@ pub static REGISTRY: &[Measure] = &[
         measured_as: "Σ m g · ∂r/∂q",
         compute: generalized_weight,
     },
+    Measure {
+        quantity: Quantity::PointVelocity,
+        measured_as: "ṙ_O + Ṙ q of the body's point q = Rᵀ (r_P − r_O)",
+        compute: point_velocity,
+    },
+    Measure {
+        quantity: Quantity::PointAcceleration,
+        measured_as: "r̈_O + R̈ q of the body's point q = Rᵀ (r_P − r_O)",
+        compute: point_acceleration,
+    },
 ];
 
 /// The registry entry of `q`.
@@ -331,4 +341,32 @@ fn generalized_weight(w: &World<'_>, a: &[Arg]) -> Out {
         (p.m * g.dot(&p.dr[k]), p.m * g.norm() * p.dr[k].norm())
     });
     Ok((Measured::Scalar(v), s))
+}
+
+/// The material point of one body at a point's place: `r = r_O + R q`
+/// with q fixed in the body, differentiated as the particles are.
+fn material(w: &World<'_>, a: &[Arg], order: usize) -> Out {
+    let Bodies::One(i) = bodies(&a[0]) else {
+        return Err(VerifyError::Declaration {
+            derivation: w.d.name.clone(),
+            message: "the point of a body is the point of one body, not of `system`".into(),
+        });
+    };
+    let b = &w.d.physics.bodies[i];
+    let (o, p) = (&w.points[&b.point], point(w, &a[1]));
+    let r = &w.frames[b.frame];
+    let q = r[0].transpose() * (p.r[0] - o.r[0]);
+    let mag = (p.mag[0] + o.mag[0]) * r[order].norm();
+    Ok((
+        Measured::Vector(o.r[order] + r[order] * q),
+        o.mag[order] + mag,
+    ))
+}
+
+fn point_velocity(w: &World<'_>, a: &[Arg]) -> Out {
+    material(w, a, 1)
+}
+
+fn point_acceleration(w: &World<'_>, a: &[Arg]) -> Out {
+    material(w, a, 2)
 }

@@ -38,6 +38,10 @@ pub struct Physics {
     pub knowns: Vec<Known>,
     /// Rules every motion satisfies (`[motion] given`).
     pub motion: Vec<Rule>,
+    /// Quantities that vanish along every motion the rules allow
+    /// (`[motion] vanishes`: a rolling contact's velocity), each with its
+    /// text; the verifier measures them.
+    pub vanishes: Vec<(Meaning, String)>,
 }
 
 /// How a frame moves relative to its parent.
@@ -244,6 +248,10 @@ pub enum Quantity {
     GeneralizedMomentum,
     /// Σ m g · ∂r/∂q.
     GeneralizedWeight,
+    /// ṙ of the body's material point at a point's place.
+    PointVelocity,
+    /// r̈ of the body's material point at a point's place.
+    PointAcceleration,
 }
 
 /// The signature of a quantity: the single description of its name,
@@ -348,6 +356,18 @@ pub static QUANTITIES: &[QuantitySig] = &[
         &[K::Body, K::Coordinate],
         Shape::Scalar,
     ),
+    sig(
+        Quantity::PointVelocity,
+        "point_velocity",
+        &[K::Body, K::Point],
+        Shape::Vector,
+    ),
+    sig(
+        Quantity::PointAcceleration,
+        "point_acceleration",
+        &[K::Body, K::Point],
+        Shape::Vector,
+    ),
 ];
 
 const fn sig(
@@ -404,6 +424,9 @@ pub enum Meaning {
     MassMatrix(Box<Meaning>, Vec<Atom>),
     /// `forcing(X, [q1'', …])`: the step is −X at q̈ = 0.
     Forcing(Box<Meaning>, Vec<Atom>),
+    /// `applied(e)`: a scalar the file states (an applied torque or
+    /// generalized force such as `M_a`), evaluated, not measured.
+    Applied(Poly),
 }
 
 impl Meaning {
@@ -412,7 +435,7 @@ impl Meaning {
         match self {
             Meaning::Quantity(q, _) => q.sig().shape,
             Meaning::Sum(terms) => terms[0].1.shape(),
-            Meaning::Along(..) => Shape::Scalar,
+            Meaning::Along(..) | Meaning::Applied(_) => Shape::Scalar,
             Meaning::List(items) => Shape::List(items.len()),
             Meaning::Solves(x) | Meaning::MassMatrix(x, _) | Meaning::Forcing(x, _) => x.shape(),
         }
@@ -428,6 +451,7 @@ impl Meaning {
             | Meaning::MassMatrix(m, _)
             | Meaning::Forcing(m, _) => m.quantities(),
             Meaning::List(items) => items.iter().flat_map(Meaning::quantities).collect(),
+            Meaning::Applied(_) => Vec::new(),
         }
     }
 }
@@ -593,6 +617,22 @@ pub(crate) fn declarations(cx: &Context<'_>, raw: &RawFile) -> R<Physics> {
     if let Some(m) = &raw.motion {
         for r in &m.given {
             ph.motion.push(rule(cx, r)?);
+        }
+        for v in &m.vanishes {
+            let m = meaning(cx, &ph, v)?;
+            if !matches!(m.shape(), Shape::Scalar | Shape::Vector) {
+                let n = v.get_ref().len();
+                return Err(cx.diag_string(
+                    v,
+                    0,
+                    n,
+                    format!(
+                        "`vanishes` takes a scalar or vector quantity; this is {}",
+                        m.shape().describe()
+                    ),
+                ));
+            }
+            ph.vanishes.push((m, v.get_ref().clone()));
         }
     }
     Ok(ph)
@@ -1069,6 +1109,13 @@ impl MeaningParser<'_, '_> {
                 let (v, f) = self.cx.vector(&args[1], self.base)?;
                 return Ok(Meaning::Along(Box::new(m), v, f));
             }
+            "applied" => {
+                let [e] = args else {
+                    return self.err(ast, "applied(e) takes one scalar expression");
+                };
+                let p = self.cx.scalar(e, self.base)?;
+                return Ok(Meaning::Applied(self.cx.unfold(&p)));
+            }
             "solves" => {
                 if args.len() != 1 {
                     return self.err(ast, "solves(X) takes one meaning");
@@ -1115,7 +1162,7 @@ impl MeaningParser<'_, '_> {
             return self.err(
                 ast,
                 format!(
-                    "unknown quantity `{func}`; quantities: {}, and list, along, solves, mass_matrix, forcing",
+                    "unknown quantity `{func}`; quantities: {}, and list, along, applied, solves, mass_matrix, forcing",
                     quantity_names()
                 ),
             );

@@ -78,6 +78,8 @@ pub(crate) struct RawKnown {
 pub(crate) struct RawMotion {
     #[serde(default)]
     pub given: Vec<Spanned<String>>,
+    #[serde(default)]
+    pub vanishes: Vec<Spanned<String>>,
 }
 
 /// `[limits]`: overrides of [`crate::limits::Limits`].
