@@ -487,9 +487,12 @@ fn apply(d: &Derivation, values: &mut Values, rules: &[Rule]) -> Result<(), Veri
             RuleValue::Expr(p) => {
                 let mut q = p.clone();
                 for n in from..=MAX_ORDER {
-                    let (v, s) = values
-                        .eval(&q)
-                        .map_err(|e| e.in_step(d, &format!("given {}", r.text)))?;
+                    let (v, s) = match values.eval(&q) {
+                        Ok(x) => x,
+                        // Derivatives beyond those drawn (a rule in a rate).
+                        Err(_) if n > from => break,
+                        Err(e) => return Err(e.in_step(d, &format!("given {}", r.text))),
+                    };
                     values.set(nth(base, n), v, s);
                     q = q.dt();
                 }

@@ -1,178 +1,19 @@
-//! Torque-free motion: the axisymmetric body under no force, and the
-//! stability of spin about a principal axis.
+//! Torque-free motion: the stability of spin about a principal axis.
 //!
 //! Here the derived steps are consequences of the equations of motion
 //! (a solve, a linearisation, a sign), so the direct side is numeric
-//! linear algebra on the particle inertia: ω solved from `I ω = H` with
-//! the particle tensor (LU), ω decomposed along Z and the symmetry axis,
-//! the Jacobian of Euler's equations built from central differences of
+//! linear algebra on the particle inertia: the Jacobian of Euler's equations built from central differences of
 //! particle sums (exact for a quadratic) and its eigenvalues. Nothing on
 //! the direct side uses the textbook formula being checked.
 
 use hdot_sym::derivation::Derivation;
 use nalgebra::{Matrix3, Vector3};
 
-use super::bodies::{axisymmetric, map_particles};
-use super::motion::Attitude;
-use super::rigid::{about_g, principal_body};
+use super::bodies::map_particles;
+use super::rigid::principal_body;
 use super::{Binding, Comparison, State, VerifyError, compare, compare_scaled};
 use crate::cloud::ParticleCloud;
 use crate::sums::{self, Motion};
-
-/// `torque-free-axisymmetric`. The body (axisymmetric about z, G at the
-/// origin) is set at `F = R_z(φ) R_y(θ)`, turned by ψ about its axis, with
-/// `H_G = h Z`, `h = 1 + |v|`, θ in (0.1, π − 0.1). In F's axes, ω is
-/// solved from the particle tensor, `I ω = Fᵀ h Z` (LU). Compared:
-/// `H` with Σ m r × (ω × r); `omega` with the solved ω; `tan_gamma`
-/// (which reads 0 = −ω_x I′ cos θ − ω_z I sin θ) with
-/// `|ω| (sin γ I′ cos θ − cos γ I sin θ)`, γ the angle between the solved ω
-/// and z; `precession` and `spin` with the components of ω along Z and z
-/// (ω = φ̇ Z + ψ̇ k, by cross products); `kinematics` with ω of the chain
-/// `F R_z(ψ)` for random φ̇, ψ̇ (θ̇ = 0); `elongated` and `flattened` with
-/// the sign of φ̇ ψ̇ so obtained for the body stretched to
-/// `Σ m z² = (1 + stretch) Σ m x²`, and squeezed to the inverse ratio,
-/// with θ in (0.1, π/2 − 0.1).
-pub fn torque_free_axisymmetric(
-    d: &Derivation,
-    cloud: &ParticleCloud,
-    state: &State,
-) -> Result<Vec<Comparison>, VerifyError> {
-    let (c, _) = about_g(cloud, &nalgebra::Rotation3::identity())?;
-    let body = axisymmetric(&c, state.fold)?;
-    let (phi, psi) = (state.angles.x, state.angles.z);
-    let u = state.angles.y.abs() / std::f64::consts::PI;
-    let theta = 0.1 + u * (std::f64::consts::PI - 0.2);
-    let h = 1.0 + state.v.norm();
-    let sol = precession_of(d, &body, phi, theta, psi, h)?;
-
-    let mut b = Binding::default();
-    b.scalar("I", 0, sol.i);
-    b.scalar("Ip", 0, sol.ip);
-    b.scalar("H_G", 0, h);
-    b.scalar("theta", 0, theta);
-    let mut out = compare(d, "H", &b, sol.h.as_slice())?;
-    out.extend(compare(d, "omega", &b, sol.omega.as_slice())?);
-    let w = sol.omega.norm();
-    let gamma = sol.omega.xy().norm().atan2(sol.omega.z);
-    let residual = w * (gamma.sin() * sol.ip * theta.cos() - gamma.cos() * sol.i * theta.sin());
-    out.extend(compare_scaled(
-        d,
-        "tan_gamma",
-        &b,
-        &[residual],
-        &[w * (sol.ip + sol.i)],
-    )?);
-    out.extend(compare_scaled(
-        d,
-        "precession",
-        &b,
-        &[sol.phi_dot],
-        &[sol.cond],
-    )?);
-    out.extend(compare_scaled(d, "spin", &b, &[sol.psi_dot], &[sol.cond])?);
-
-    // Kinematics: random rates, θ constant.
-    let rates = Vector3::new(state.omega.x, 0.0, state.omega.z);
-    let f = Attitude::about(2, phi, rates.x, 0.0).then(&Attitude::about(1, theta, 0.0, 0.0));
-    let r = f.then(&Attitude::about(2, psi, rates.z, 0.0));
-    b.vector(["phi", "theta", "psi"], 1, &rates);
-    out.extend(compare(
-        d,
-        "kinematics",
-        &b,
-        f.to_own(&r.omega_world()).as_slice(),
-    )?);
-
-    // The verdicts, on a stretched and a squeezed copy, 0 < θ < 90°.
-    let theta = 0.1 + u * (std::f64::consts::FRAC_PI_2 - 0.2);
-    for (step, ratio) in [
-        ("elongated", 1.0 + state.stretch),
-        ("flattened", 1.0 / (1.0 + state.stretch)),
-    ] {
-        let shaped = reshaped(&body, ratio)?;
-        let sol = precession_of(d, &shaped, phi, theta, psi, h)?;
-        let sign = (sol.phi_dot * sol.psi_dot).signum();
-        out.extend(compare(d, step, &b, &[sign])?);
-    }
-    Ok(out)
-}
-
-/// What the torque-free body does, from particle sums and numerics only.
-struct Precession {
-    i: f64,
-    ip: f64,
-    /// Σ m r × (ω × r) in F.
-    h: Vector3<f64>,
-    /// ω solved from I ω = H, in F.
-    omega: Vector3<f64>,
-    phi_dot: f64,
-    psi_dot: f64,
-    /// |ω| / sin θ: the magnitude of the terms of the decomposition.
-    cond: f64,
-}
-
-fn precession_of(
-    d: &Derivation,
-    body: &ParticleCloud,
-    phi: f64,
-    theta: f64,
-    psi: f64,
-    h: f64,
-) -> Result<Precession, VerifyError> {
-    let spun = nalgebra::Rotation3::from_axis_angle(&Vector3::z_axis(), psi);
-    let in_f = map_particles(body, |p, m| [(spun * p, m)])?;
-    let tensor = sums::moments(&in_f, Vector3::zeros()).inertia();
-    let [ix, iy, iz] = tensor.moments();
-    let f = Attitude::about(2, phi, 0.0, 0.0).then(&Attitude::about(1, theta, 0.0, 0.0));
-    let z_f = f.to_own(&Vector3::z());
-    let omega = tensor
-        .matrix()
-        .lu()
-        .solve(&(z_f * h))
-        .ok_or_else(|| VerifyError::Singular {
-            derivation: d.name.clone(),
-            what: "the particle inertia",
-        })?;
-    let motion = Motion {
-        omega,
-        ..Motion::default()
-    };
-    let hh = sums::kinetics(&in_f, &motion, Vector3::zeros(), Vector3::zeros()).h_g;
-    // ω = a Z + b k: ω × k = a Z × k, ω × Z = b k × Z.
-    let k = Vector3::z();
-    let (zk, kz) = (z_f.cross(&k), k.cross(&z_f));
-    let a = omega.cross(&k).dot(&zk) / zk.norm_squared();
-    let bb = omega.cross(&z_f).dot(&kz) / kz.norm_squared();
-    Ok(Precession {
-        i: iz,
-        ip: 0.5 * (ix + iy),
-        h: hh,
-        omega,
-        phi_dot: a,
-        psi_dot: bb,
-        cond: omega.norm() / zk.norm(),
-    })
-}
-
-/// The axisymmetric `body` (G at the origin) with `Σ m z² = ratio Σ m x²`:
-/// z scaled down, or the body split in two halves moved apart along z.
-fn reshaped(body: &ParticleCloud, ratio: f64) -> Result<ParticleCloud, VerifyError> {
-    let mo = sums::moments(body, Vector3::zeros());
-    let [xx, _, zz, ..] = mo.second;
-    let target = ratio * xx;
-    if zz > target {
-        let s = (target / zz).sqrt();
-        Ok(map_particles(body, |p, m| {
-            [(Vector3::new(p.x, p.y, s * p.z), m)]
-        })?)
-    } else {
-        let c = ((target - zz) / mo.mass).sqrt();
-        let up = Vector3::new(0.0, 0.0, c);
-        Ok(map_particles(body, |p, m| {
-            [(p + up, 0.5 * m), (p - up, 0.5 * m)]
-        })?)
-    }
-}
 
 /// `principal-axis-stability`. The body is principal by symmetry (the
 /// cloud mirrored in three planes), made triaxial (pairs of point masses

@@ -19,9 +19,10 @@
 //! | family (file) | derivations | bodies |
 //! |---|---|---|
 //! | [`rigid`] | `euler-general`, `angular-momentum`, `fixed-axis`, `kinetic-energy`, `parallel-axis`, `angular-momentum-about-point`, `dalembert`, `plane-motion`, `impulse-momentum` | any; principal (mirrored in the three coordinate planes); symmetric about the xy plane (mirrored) |
-//! | [`gyro`] | `gyroscope-axisymmetric-frame` | axisymmetric (N ≥ 3 rotated copies about z) |
-//! | [`free`] | `torque-free-axisymmetric`, `principal-axis-stability` | axisymmetric, elongated or flattened; triaxial principal |
-//! | [`motion`] | `rotating-frame-kinematics` (and the rotation chains the others use) | none: a point on a quadratic path in a rotating frame |
+//! | [`free`] | `principal-axis-stability` | triaxial principal |
+//!
+//! (The rotation chains of [`motion`] are shared with the simulation's
+//! tests.)
 //!
 //! Steps that only restate the symbols (`r = [x, y, z]`, `F̂ = [F_x, F_y,
 //! F_z]`) are not compared: evaluating them returns the bound values
@@ -40,7 +41,6 @@
 mod bodies;
 mod declared;
 pub mod free;
-pub mod gyro;
 pub mod motion;
 pub mod quantities;
 pub mod rigid;
@@ -72,14 +72,11 @@ pub const SUPPORTED: &[&str] = &[
     "dalembert",
     "euler-general",
     "fixed-axis",
-    "gyroscope-axisymmetric-frame",
     "impulse-momentum",
     "kinetic-energy",
     "parallel-axis",
     "plane-motion",
     "principal-axis-stability",
-    "rotating-frame-kinematics",
-    "torque-free-axisymmetric",
 ];
 
 /// What a derivation's check compares, step by step.
@@ -154,18 +151,6 @@ pub const COVERAGE: &[Coverage] = &[
         not_compared: &[],
     },
     Coverage {
-        derivation: "gyroscope-axisymmetric-frame",
-        compared: &[
-            (
-                "H, Q",
-                "Σ m r × v, Σ m r × R̈ q in a frame turning with the body but not spinning",
-            ),
-            ("Q_euler", "Σ m r × R̈ q in body axes"),
-        ],
-        kinematic: &[],
-        not_compared: &[("omega", RESTATES)],
-    },
-    Coverage {
         derivation: "impulse-momentum",
         compared: &[(
             "v, omega",
@@ -226,30 +211,6 @@ pub const COVERAGE: &[Coverage] = &[
             ),
         ],
         kinematic: &[],
-        not_compared: &[],
-    },
-    Coverage {
-        derivation: "rotating-frame-kinematics",
-        compared: &[],
-        kinematic: &[("v, a", "ṗ, p̈ of p = R(t) r(t) by the product rule")],
-        not_compared: &[("r", RESTATES)],
-    },
-    Coverage {
-        derivation: "torque-free-axisymmetric",
-        compared: &[
-            (
-                "H",
-                "Σ m r × v with ω solved from I ω = H (particle tensor)",
-            ),
-            ("omega", "the solved ω"),
-            ("tan_gamma", "γ = ∠(ω, z) of the solved ω"),
-            ("precession, spin", "ω decomposed along Z and z"),
-            (
-                "elongated, flattened",
-                "sign of φ̇ ψ̇ so decomposed, stretched bodies",
-            ),
-        ],
-        kinematic: &[("kinematics", "Ṙ Rᵀ of the rotation chain")],
         not_compared: &[],
     },
 ];
@@ -481,10 +442,7 @@ pub fn check_named(
         "dalembert" => rigid::dalembert,
         "plane-motion" => rigid::plane_motion,
         "impulse-momentum" => rigid::impulse_momentum,
-        "gyroscope-axisymmetric-frame" => gyro::axisymmetric_frame,
-        "torque-free-axisymmetric" => free::torque_free_axisymmetric,
         "principal-axis-stability" => free::principal_axis_stability,
-        "rotating-frame-kinematics" => motion::rotating_frame_kinematics,
         _ => return None,
     };
     Some(f(d, cloud, state))

@@ -5,15 +5,9 @@
 //! formula for ω. Angular velocities are read off as `Ṙ Rᵀ` (world) and
 //! `Rᵀ Ṙ` (own axes); particles move as `p = c + R q`, so `p̈ = c̈ + R̈ q`
 //! with no α × r or ω × (ω × r).
-//!
-//! `rotating-frame-kinematics` is kinematics of one point, not a particle
-//! sum: its `v` and `a` are compared with `ṗ` and `p̈` of
-//! `p(t) = R(t) r(t)` for a quadratic path `r(t)` in the frame's axes.
 
-use hdot_sym::derivation::Derivation;
 use nalgebra::{Matrix3, Vector3};
 
-use super::{Binding, Comparison, State, VerifyError, compare};
 use crate::cloud::ParticleCloud;
 use crate::sums::{self, Block, Kernel};
 
@@ -133,34 +127,4 @@ impl Kernel for PathKernel {
 /// (body coordinates about O) carried by `attitude`.
 pub fn path_sums(body: &ParticleCloud, attitude: &Attitude) -> PathSums {
     sums::reduce(body, &PathKernel(*attitude))
-}
-
-/// `rotating-frame-kinematics`: the frame turns as `R_z(φ) R_y(θ) R_x(ψ)`
-/// (`angles`, rates `omega`, accelerations `alpha`); the point's
-/// coordinates in it are `r + ṙ t + r̈ t²/2` (`offset`, `v`, `a`). The
-/// derived `v` and `a` (frame axes) are compared with `Rᵀ ṗ` and `Rᵀ p̈`,
-/// `p = R r`, differentiated by the product rule. No body is involved.
-pub fn rotating_frame_kinematics(
-    d: &Derivation,
-    _cloud: &ParticleCloud,
-    state: &State,
-) -> Result<Vec<Comparison>, VerifyError> {
-    let (q, qd, qdd) = (state.angles, state.omega, state.alpha);
-    let f = Attitude::about(2, q.x, qd.x, qdd.x)
-        .then(&Attitude::about(1, q.y, qd.y, qdd.y))
-        .then(&Attitude::about(0, q.z, qd.z, qdd.z));
-    let (r, rd, rdd) = (state.offset, state.v, state.a);
-    let pd = f.rd * r + f.r * rd;
-    let pdd = f.rdd * r + 2.0 * f.rd * rd + f.r * rdd;
-    let mut b = Binding::default();
-    let xyz = ["x", "y", "z"];
-    b.vector(xyz, 0, &r);
-    b.vector(xyz, 1, &rd);
-    b.vector(xyz, 2, &rdd);
-    let big = ["Omega_x", "Omega_y", "Omega_z"];
-    b.vector(big, 0, &f.omega_own());
-    b.vector(big, 1, &f.omega_own_rate());
-    let mut out = compare(d, "v", &b, f.to_own(&pd).as_slice())?;
-    out.extend(compare(d, "a", &b, f.to_own(&pdd).as_slice())?);
-    Ok(out)
 }

@@ -199,8 +199,13 @@ impl<'d> World<'d> {
                     axis,
                     angle,
                 } => {
+                    // A constant angle (a fixed tilt) has no rates.
                     let q = (0..ORDERS as u32)
-                        .map(|n| values.time(*angle, n).map(|(v, _)| v))
+                        .map(|n| match n {
+                            0 => values.get(*angle).map(|(v, _)| v),
+                            _ if !angle.is_time_dependent() => Some(0.0),
+                            _ => values.time(*angle, n).map(|(v, _)| v),
+                        })
                         .collect::<Option<Vec<f64>>>();
                     let q = q.ok_or_else(|| VerifyError::unbound(d, "frame", *angle))?;
                     let rot = rotation_jet(*axis, [q[0], q[1], q[2], q[3]]);

@@ -269,7 +269,6 @@ impl<'a> Context<'a> {
                     ));
                 };
                 let base = self.content_start(rot);
-                let ast = self.parse_at(rot.get_ref(), base)?;
                 let parent_frame = &self.frames[pi];
                 let bad = || {
                     format!(
@@ -277,22 +276,38 @@ impl<'a> Context<'a> {
                         parent_frame.axes[2]
                     )
                 };
-                let AstKind::Call { func, args } = &ast.kind else {
-                    return Err(self.at(base, ast.span, bad()));
-                };
-                let Some(k) = parent_frame.axes.iter().position(|a| a == func) else {
-                    return Err(self.at(
-                        base,
-                        ast.span,
-                        format!(
-                            "`{func}` is not an axis of frame {}; {}",
-                            parent_frame.name,
-                            bad()
-                        ),
-                    ));
-                };
-                let [arg] = args.as_slice() else {
-                    return Err(self.at(base, ast.span, bad()));
+                // Axes named by numbers (`3(beta)`) are not names the
+                // expression parser reads as a function: split them off.
+                let text = rot.get_ref();
+                let lead = text.len() - text.trim_start().len();
+                let numbered = parent_frame.axes.iter().position(|a| {
+                    a.starts_with(|c: char| c.is_ascii_digit())
+                        && text[lead..].starts_with(&format!("{a}("))
+                });
+                let (k, arg, base) = if let Some(k) = numbered {
+                    let off = lead + parent_frame.axes[k].len();
+                    let arg = self.parse_at(&text[off..], base + off)?;
+                    (k, arg, base + off)
+                } else {
+                    let ast = self.parse_at(text, base)?;
+                    let AstKind::Call { func, args } = &ast.kind else {
+                        return Err(self.at(base, ast.span, bad()));
+                    };
+                    let Some(k) = parent_frame.axes.iter().position(|a| a == func) else {
+                        return Err(self.at(
+                            base,
+                            ast.span,
+                            format!(
+                                "`{func}` is not an axis of frame {}; {}",
+                                parent_frame.name,
+                                bad()
+                            ),
+                        ));
+                    };
+                    let [arg] = args.as_slice() else {
+                        return Err(self.at(base, ast.span, bad()));
+                    };
+                    (k, arg.clone(), base)
                 };
                 let AstKind::Name { name: q, primes: 0 } = &arg.kind else {
                     return Err(self.at(
