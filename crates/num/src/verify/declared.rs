@@ -333,7 +333,10 @@ fn draw(d: &Derivation, rng: &mut ChaCha8Rng) -> Result<(Draw, Values), VerifyEr
         let fold = rng.gen_range(3..=6);
         let mut cloud = symmetric(&random_body(rng)?, b.symmetry, fold)?;
         let mp = cloud.mass_properties();
-        if b.about_centre() {
+        // About its centre, or G declared at the reference point: G moved
+        // to the origin (along the symmetry axis or in the symmetry plane,
+        // where the symmetry puts it, so the symmetry is kept).
+        if b.about_centre() || b.mass_centre.as_ref().is_some_and(|c| c.is_zero()) {
             let g = mp.center;
             cloud = map_particles(&cloud, |p, m| [(p - g, m)])?;
         }
