@@ -24,3 +24,5 @@ mod eval;
 mod verify;
 // Verification from declarations.
 mod verify_declared;
+// Mutated derivations rejected by verification (issue 9).
+mod mutation;
