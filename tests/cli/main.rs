@@ -245,7 +245,7 @@ fn simulate_refuses_what_f64_cannot_carry_and_reports_estimates() {
         std::fs::write(
             &p,
             format!(
-                "name = \"t\"\nkind = \"free\"\nt_end = 10.0\n[body]\nprincipal_moments = [1.0, 2.0, 3.0]\n[initial]\n{initial}\n"
+                "name = \"t\"\nkind = \"free\"\nt_end = 10.0\n[[body]]\nprincipal_moments = [1.0, 2.0, 3.0]\nmass = 1.0\n[initial]\n{initial}\n"
             ),
         )
         .unwrap();

@@ -41,6 +41,9 @@ fn value() -> impl Strategy<Value = String> {
             "{ x_axis = [1e160, 1e160, 0.0] }",
             "{ axis = [0.0, 0.0, 1.0], angle_deg = 30.0 }",
             "{ euler_deg = [1.0, 2.0] }",
+            "{ euler_angles = [1.0, 2.0] }",
+            "\"point\"",
+            "[0.0, 0.0, -9.81]",
             "\"T\"",
         ])
         .prop_map(str::to_owned),
@@ -100,6 +103,8 @@ fn scene() -> impl Strategy<Value = String> {
                 "angle",
                 "rate",
                 "spin",
+                "bearings",
+                "fixed_point",
             ]),
             value(),
         )

@@ -10,7 +10,7 @@ use hdot_sim::scene::Scene;
 
 fn scene(body: &str, initial: &str, t_end: f64) -> Scene {
     let text = format!(
-        "name = \"test\"\nkind = \"free\"\nt_end = {t_end:e}\n[body]\n{body}\n[initial]\n{initial}\n"
+        "name = \"test\"\nkind = \"free\"\nt_end = {t_end:e}\n[[body]]\n{body}\n[initial]\n{initial}\n"
     );
     Scene::parse(&text, Path::new("test.toml")).unwrap()
 }
@@ -23,7 +23,7 @@ fn run_default(s: &Scene, req: Request) -> run::Report {
 #[test]
 fn a_closed_form_reports_an_estimate_and_check_agrees_with_it() {
     let s = scene(
-        "principal_moments = [0.6, 0.8, 1.0]",
+        "principal_moments = [0.6, 0.8, 1.0]\nmass = 1.0",
         "angular_velocity = [3.0, 0.5, -0.9]",
         50.0,
     );
@@ -97,7 +97,7 @@ fn the_estimate_sees_a_wrong_closed_form() {
 fn a_spin_1e_12_off_the_intermediate_axis_gets_a_finite_flipping_exact_run() {
     // Issue 11: this prism got a NaN attitude and an unchanged ω at T = 1000.
     let s = scene(
-        "shape = { kind = \"prism\", mass = 1.0, a = 0.3, b = 0.2, c = 0.1 }",
+        "shape = \"prism\"\nmass = 1.0\na = 0.3\nb = 0.2\nc = 0.1",
         "angular_velocity = [1e-12, 10.0, 0.0]",
         1000.0,
     );
@@ -120,7 +120,7 @@ fn a_spin_1e_12_off_the_intermediate_axis_gets_a_finite_flipping_exact_run() {
 
 #[test]
 fn overflowing_momentum_is_refused_naming_the_field() {
-    let text = "name = \"big\"\nkind = \"free\"\nt_end = 1.0\n[body]\nprincipal_moments = [1.0, 2.0, 3.0]\n\
+    let text = "name = \"big\"\nkind = \"free\"\nt_end = 1.0\n[[body]]\nprincipal_moments = [1.0, 2.0, 3.0]\nmass = 1.0\n\
                 [initial]\nangular_momentum = [1e200, 1.0, 1.0]\n";
     let err = Scene::parse(text, Path::new("big.toml")).unwrap_err();
     assert!(
@@ -138,7 +138,7 @@ fn overflowing_momentum_is_refused_naming_the_field() {
 #[test]
 fn end_times_beyond_f64_resolution_are_refused() {
     let s = scene(
-        "principal_moments = [1.0, 2.0, 3.0]",
+        "principal_moments = [1.0, 2.0, 3.0]\nmass = 1.0",
         "angular_velocity = [1e-6, 1.0, 1e-6]",
         10.0,
     );

@@ -18,6 +18,8 @@ mod exact;
 mod exact_separatrix;
 // Charts of where methods fail near the separatrix.
 mod charts;
+// scene.rs: the bodies of every scene (the shared `[[body]]` schema).
+mod bodies;
 // run.rs: error estimates of closed forms, --check, non-finite refusal.
 mod honest;
 // run.rs: the pilot-based method choice for a heavy top.

@@ -10,9 +10,11 @@ use hdot_sim::scene::Scene;
 use hdot_sim::{Method, Step};
 
 fn top(spin: f64, theta: f64, distance: f64, t_end: f64) -> Scene {
+    let below = -distance;
     let text = format!(
-        "name = \"top\"\nkind = \"heavy-top\"\nt_end = {t_end:e}\n[body]\nprincipal_moments = [0.002, 0.002, 0.003]\n\
-         [top]\nmass = 0.6\ndistance = {distance:e}\n[initial]\neuler_angles = [0.0, {theta:e}, 0.0]\n\
+        "name = \"top\"\nkind = \"heavy-top\"\nt_end = {t_end:e}\ng = [0.0, 0.0, -9.81]\n\
+         [[body]]\nprincipal_moments = [0.002, 0.002, 0.003]\nmass = 0.6\n\
+         [top]\nfixed_point = [0.0, 0.0, {below:e}]\n[initial]\neuler_angles = [0.0, {theta:e}, 0.0]\n\
          angular_velocity = [0.3, -0.2, {spin:e}]\n"
     );
     Scene::parse(&text, Path::new("top.toml")).unwrap()

@@ -8,8 +8,9 @@ const FREE: &str = r#"
 name = "test body"
 kind = "free"
 t_end = 10.0
-[body]
+[[body]]
 principal_moments = [0.6, 0.8, 1.0]
+mass = 1.0
 [initial]
 attitude = ATTITUDE
 angular_momentum = [1.8, 0.4, -0.9]
@@ -41,7 +42,7 @@ rejects! {
     unknown_field: Scene::parse(&FREE.replace("ATTITUDE", "[1.0, 0.0, 0.0, 0.0]\nspin = 3"), Path::new("bad.toml"))
         => SimError::Parse { .. }, "bad.toml";
     impossible_inertia: Scene::parse(&FREE.replace("[0.6, 0.8, 1.0]", "[0.1, 0.2, 1.0]").replace("ATTITUDE", "[1.0, 0.0, 0.0, 0.0]"), Path::new("bad.toml"))
-        => SimError::BadField { .. }, "triangle";
+        => SimError::Bodies(_), "triangle";
     missing_file: Scene::from_file(Path::new("no/such/scene.toml")) => SimError::Io { .. }, "no/such/scene.toml";
     unknown_method: "rk5".parse::<Method>() => SimError::UnknownName { .. }, "dop853";
     unknown_model: "newton".parse::<Model>() => SimError::UnknownName { .. }, "elliptic";
@@ -191,7 +192,7 @@ fn bundled_scenes_simulate_with_every_method() {
             );
         }
     }
-    assert_eq!(n, 10, "ten bundled scenes");
+    assert_eq!(n, 11, "eleven bundled scenes");
 }
 
 #[test]

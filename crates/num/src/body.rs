@@ -62,6 +62,26 @@ impl Pose {
     }
 }
 
+/// The rotation of the Eulerian angles (φ, θ, ψ) in radians, the one
+/// convention of every scene (`docs/scenes.md`) and of the Eulerian-angle
+/// models: precession φ about the fixed Z, nutation θ about the line of
+/// nodes, spin ψ about the body z, `R = R_Z(φ) R_y(θ) R_z(ψ)` (z-y-z, as in
+/// `docs/equations.md` §7).
+///
+/// # Example
+/// ```
+/// use hdot_num::body::eulerian_rotation;
+/// use hdot_num::nalgebra::Vector3;
+/// // θ tips the body z axis from Z towards X (φ = 0).
+/// let z = eulerian_rotation(0.0, 0.5, 1.0) * Vector3::z();
+/// assert!((z - Vector3::new(0.5f64.sin(), 0.0, 0.5f64.cos())).norm() < 1e-15);
+/// ```
+pub fn eulerian_rotation(phi: f64, theta: f64, psi: f64) -> UnitQuaternion<f64> {
+    UnitQuaternion::from_axis_angle(&Vector3::z_axis(), phi)
+        * UnitQuaternion::from_axis_angle(&Vector3::y_axis(), theta)
+        * UnitQuaternion::from_axis_angle(&Vector3::z_axis(), psi)
+}
+
 /// A homogeneous primitive, in its local frame: origin at its mass centre,
 /// axis of symmetry along local z unless said otherwise.
 #[derive(Debug, Clone, Copy, PartialEq)]

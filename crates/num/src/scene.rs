@@ -1,7 +1,9 @@
 //! Scenes (TOML) and worked problems: mass properties, the resultant
 //! force and moment a motion requires, impulses, and named unknowns.
 //!
-//! The format is documented in `docs/cli-numeric.md`; in short:
+//! The format is documented in `docs/scenes.md` (what moves: `g`,
+//! `[[body]]`, `[[cloud]]`, shared with `hdot simulate`, read by [`bodies`])
+//! and `docs/cli-numeric.md` (the problem); in short:
 //!
 //! ```toml
 //! name = "rod on a vertical axle"
@@ -14,7 +16,7 @@
 //! mass = 3.0                     # or weight = 29.43 (needs g)
 //! position = [0.5, 0.8, 0.0]     # of the body's G
 //! rotation = { x_axis = [0.5, 0.8, 0.0] }  # or { z_axis = [...] },
-//!                                # { axis = [...], angle_deg = 30 }, { euler_deg = [r, p, y] }
+//!                                # { axis = [...], angle_deg = 30 }, { euler_angles = [φ, θ, ψ] }
 //!
 //! [motion]                       # instantaneous motion (or [impulse])
 //! omega = [0.0, 15.0, 0.0]
@@ -32,9 +34,10 @@ use std::path::{Path, PathBuf};
 
 use nalgebra::{Rotation3, Unit, UnitQuaternion, Vector3};
 use serde::Deserialize;
+use serde::de::IgnoredAny;
 use toml::Spanned;
 
-use crate::body::{Body, Composite, MassProperties, Part, Pose, Primitive};
+use crate::body::{Body, Composite, MassProperties, Part, Pose, Primitive, eulerian_rotation};
 use crate::cloud::ParticleCloud;
 use crate::discretize::{Discretization, DiscretizedComposite};
 use crate::inertia::{Inertia, Principal};
@@ -67,12 +70,14 @@ type RF = Spanned<f64>;
 struct RawScene {
     name: Option<String>,
     description: Option<String>,
-    g: Option<RV>,
+    // Read by [`bodies`], the schema every scene shares.
+    #[allow(dead_code)]
+    g: Option<IgnoredAny>,
     reference: Option<RV>,
-    #[serde(default)]
-    body: Vec<Spanned<RawBody>>,
-    #[serde(default)]
-    cloud: Vec<Spanned<RawCloud>>,
+    #[allow(dead_code)]
+    body: Option<IgnoredAny>,
+    #[allow(dead_code)]
+    cloud: Option<IgnoredAny>,
     motion: Option<Spanned<RawMotion>>,
     impulse: Option<Spanned<RawImpulse>>,
     #[serde(default)]
@@ -83,11 +88,23 @@ struct RawScene {
     constraint: Vec<Spanned<RawConstraint>>,
 }
 
+/// The part of every scene that says what moves: gravity, `[[body]]` and
+/// `[[cloud]]` (unknown keys are left to the scene's own reader).
+#[derive(Debug, Deserialize)]
+struct RawBodies {
+    g: Option<RV>,
+    #[serde(default)]
+    body: Vec<Spanned<RawBody>>,
+    #[serde(default)]
+    cloud: Vec<Spanned<RawCloud>>,
+}
+
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawBody {
     name: Option<String>,
-    shape: String,
+    shape: Option<String>,
+    principal_moments: Option<RV>,
     mass: Option<RF>,
     weight: Option<RF>,
     position: Option<RV>,
@@ -109,7 +126,9 @@ struct RawRotation {
     angle_deg: Option<RF>,
     x_axis: Option<RV>,
     z_axis: Option<RV>,
-    euler_deg: Option<RV>,
+    euler_angles: Option<RV>,
+    /// Refused (roll–pitch–yaw, replaced by `euler_angles`).
+    euler_deg: Option<IgnoredAny>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -250,164 +269,15 @@ impl Scene {
             let line = e.span().map(|s| line_of(text, s.start)).unwrap_or(0);
             cx.err(line, "-", e.message().to_string())
         })?;
-        let g = raw.g.as_ref().map(|g| cx.vec3("g", g)).transpose()?;
         let reference = raw
             .reference
             .as_ref()
             .map(|r| cx.vec3("reference", r))
             .transpose()?;
-        let mut parts = Vec::new();
-        for (i, sb) in raw.body.iter().enumerate() {
-            let line = line_of(text, sb.span().start);
-            let b = sb.get_ref();
-            let f = |name: &str| format!("body[{i}].{name}");
-            let dim = |name: &'static str, v: &Option<RF>| match v {
-                Some(v) => cx.scalar(&f(name), v),
-                None => Err(cx.err(line, &f(name), format!("missing for shape {:?}", b.shape))),
-            };
-            let shape = match b.shape.as_str() {
-                "rod" => Primitive::Rod {
-                    length: dim("length", &b.length)?,
-                },
-                "plate" => Primitive::Plate {
-                    a: dim("a", &b.a)?,
-                    b: dim("b", &b.b)?,
-                },
-                "prism" => Primitive::Prism {
-                    a: dim("a", &b.a)?,
-                    b: dim("b", &b.b)?,
-                    c: dim("c", &b.c)?,
-                },
-                "disk" => Primitive::Disk {
-                    radius: dim("radius", &b.radius)?,
-                },
-                "cylinder" => Primitive::Cylinder {
-                    radius: dim("radius", &b.radius)?,
-                    length: dim("length", &b.length)?,
-                },
-                "hollow_cylinder" => Primitive::HollowCylinder {
-                    inner: dim("inner", &b.inner)?,
-                    outer: dim("outer", &b.outer)?,
-                    length: dim("length", &b.length)?,
-                },
-                "ring" => Primitive::Ring {
-                    radius: dim("radius", &b.radius)?,
-                },
-                "sphere" => Primitive::Sphere {
-                    radius: dim("radius", &b.radius)?,
-                },
-                "spherical_shell" => Primitive::SphericalShell {
-                    radius: dim("radius", &b.radius)?,
-                },
-                "cone" => Primitive::Cone {
-                    radius: dim("radius", &b.radius)?,
-                    height: dim("height", &b.height)?,
-                },
-                other => {
-                    return Err(cx.err(line, &f("shape"), format!("unknown shape {other:?}")));
-                }
-            };
-            let (mass, mass_field) = match (&b.mass, &b.weight) {
-                (Some(m), None) => (cx.scalar(&f("mass"), m)?, m),
-                (None, Some(w)) => {
-                    let wv = cx.scalar(&f("weight"), w)?;
-                    let gn = g
-                        .map(|g| safe_norm(&v3(g)))
-                        .filter(|n| *n > 0.0)
-                        .ok_or_else(|| {
-                            cx.err(
-                                cx.line(w),
-                                &f("weight"),
-                                "a weight needs a non-zero g".into(),
-                            )
-                        })?;
-                    (wv / gn, w)
-                }
-                (Some(m), Some(_)) => {
-                    return Err(cx.err(
-                        cx.line(m),
-                        &f("mass"),
-                        "give mass or weight, not both".into(),
-                    ));
-                }
-                (None, None) => {
-                    return Err(cx.err(line, &f("mass"), "missing (or weight)".into()));
-                }
-            };
-            let position = match &b.position {
-                Some(p) => cx.vec3(&f("position"), p)?,
-                None => [0.0; 3],
-            };
-            let rotation = match &b.rotation {
-                None => UnitQuaternion::identity(),
-                Some(r) => rotation_of(&cx, &f("rotation"), r)?,
-            };
-            let pose = Pose {
-                position: v3(position),
-                rotation,
-            };
-            // The line of the key a body error is about.
-            let line_of_field = |field: &str| -> usize {
-                let v = match field {
-                    "mass" => Some(mass_field),
-                    "length" => b.length.as_ref(),
-                    "a" => b.a.as_ref(),
-                    "b" => b.b.as_ref(),
-                    "c" => b.c.as_ref(),
-                    "radius" => b.radius.as_ref(),
-                    "inner" => b.inner.as_ref(),
-                    "outer" => b.outer.as_ref(),
-                    "height" => b.height.as_ref(),
-                    _ => None,
-                };
-                v.map_or(line, |v| cx.line(v))
-            };
-            let body = Body::try_new(shape, mass, pose).map_err(|e| {
-                let field = match &e {
-                    crate::BodyError::NonPositiveMass { .. } => "mass",
-                    crate::BodyError::BadDimension { field, .. }
-                    | crate::BodyError::NotFinite { field, .. } => field,
-                    _ => "-",
-                };
-                cx.err(line_of_field(field), &f(field), e.to_string())
-            })?;
-            let p = body.mass_properties();
-            if !props_finite(&p) {
-                return Err(cx.err(
-                    line,
-                    &f("shape"),
-                    "the mass properties overflow (mass or dimensions too large)".into(),
-                ));
-            }
-            let _ = &b.name;
-            parts.push(Part::Solid(body));
-        }
-        for (i, sc) in raw.cloud.iter().enumerate() {
-            let line = line_of(text, sc.span().start);
-            let p = file
-                .parent()
-                .unwrap_or(Path::new("."))
-                .join(&sc.get_ref().file);
-            let c = ParticleCloud::from_csv_path(&p)
-                .map_err(|e| cx.err(line, &format!("cloud[{i}].file"), e.to_string()))?;
-            parts.push(Part::Cloud(c));
-        }
-        // The parts together must stay finite too (two masses near the
-        // largest f64 sum past it).
-        let all: Vec<MassProperties> = parts.iter().map(Part::mass_properties).collect();
-        match MassProperties::combine(&all) {
-            Ok(p) if props_finite(&p) => {}
-            Ok(_) | Err(crate::BodyError::NotFinite { .. }) => {
-                return Err(cx.err(
-                    0,
-                    "body",
-                    "the mass properties of the bodies together overflow (masses summing past the largest number, or bodies too far apart)".into(),
-                ));
-            }
-            Err(_) => {}
-        }
-        let body = Composite::try_new(parts)
-            .map_err(|_| cx.err(0, "body", "the scene has no body and no cloud".into()))?;
+        let Bodies { g, body, .. } = bodies(file, text)?;
+        let g = g.map(|g| [g.x, g.y, g.z]);
+        let body =
+            body.ok_or_else(|| cx.err(0, "body", "the scene has no body and no cloud".into()))?;
 
         let props = body.mass_properties();
         let problem = match (&raw.motion, &raw.impulse) {
@@ -617,6 +487,296 @@ impl Scene {
     }
 }
 
+/// What moves in a scene: gravity and the rigid body the `[[body]]` and
+/// `[[cloud]]` tables make. Every scene shares this schema (`hdot dynamics`
+/// and `hdot simulate` alike; `docs/scenes.md`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Bodies {
+    /// Gravity `g`, if given (a vector, in the scene's axes).
+    pub g: Option<Vector3<f64>>,
+    /// Line of `g` (0 when absent).
+    pub g_line: usize,
+    /// All bodies and clouds together; `None` when there are none.
+    pub body: Option<Composite>,
+}
+
+/// Reads the shared part of a scene (`g`, `[[body]]`, `[[cloud]]`) from its
+/// text; other keys are left to the scene's own reader. `file` names the
+/// scene in errors and anchors relative cloud paths.
+pub fn bodies(file: &Path, text: &str) -> Result<Bodies, SceneError> {
+    let cx = Cx { file, text };
+    let raw: RawBodies = toml::from_str(text).map_err(|e| {
+        let line = e.span().map(|s| line_of(text, s.start)).unwrap_or(0);
+        if let Some(err) = old_body_table(&cx) {
+            return err;
+        }
+        cx.err(line, "-", e.message().to_string())
+    })?;
+    let g = raw.g.as_ref().map(|g| cx.vec3("g", g)).transpose()?;
+    let g_line = raw.g.as_ref().map_or(0, |g| cx.line(g));
+    let mut parts = Vec::new();
+    for (i, sb) in raw.body.iter().enumerate() {
+        let line = line_of(text, sb.span().start);
+        let b = sb.get_ref();
+        let f = |name: &str| format!("body[{i}].{name}");
+        let (mass, mass_field) = match (&b.mass, &b.weight) {
+            (Some(m), None) => (cx.scalar(&f("mass"), m)?, m),
+            (None, Some(w)) => {
+                let wv = cx.scalar(&f("weight"), w)?;
+                let gn = g
+                    .map(|g| safe_norm(&v3(g)))
+                    .filter(|n| *n > 0.0)
+                    .ok_or_else(|| {
+                        cx.err(
+                            cx.line(w),
+                            &f("weight"),
+                            "a weight needs a non-zero g".into(),
+                        )
+                    })?;
+                (wv / gn, w)
+            }
+            (Some(m), Some(_)) => {
+                return Err(cx.err(
+                    cx.line(m),
+                    &f("mass"),
+                    "give mass or weight, not both".into(),
+                ));
+            }
+            (None, None) => {
+                return Err(cx.err(line, &f("mass"), "missing (or weight)".into()));
+            }
+        };
+        let position = match &b.position {
+            Some(p) => cx.vec3(&f("position"), p)?,
+            None => [0.0; 3],
+        };
+        let rotation = match &b.rotation {
+            None => UnitQuaternion::identity(),
+            Some(r) => rotation_of(&cx, &f("rotation"), r)?,
+        };
+        let pose = Pose {
+            position: v3(position),
+            rotation,
+        };
+        let shape_name = match (&b.shape, &b.principal_moments) {
+            (Some(s), None) => s.as_str(),
+            (None, Some(pm)) => {
+                let m = check_part_mass(&cx, &f("mass"), mass_field, mass)?;
+                parts.push(Part::Cloud(equivalent_points(
+                    &cx,
+                    &f("principal_moments"),
+                    pm,
+                    m,
+                    &pose,
+                )?));
+                continue;
+            }
+            (Some(_), Some(pm)) => {
+                return Err(cx.err(
+                    cx.line(pm),
+                    &f("principal_moments"),
+                    "give `shape` or `principal_moments`, not both".into(),
+                ));
+            }
+            (None, None) => {
+                return Err(cx.err(line, &f("shape"), "missing (or `principal_moments`)".into()));
+            }
+        };
+        if shape_name == "point" {
+            let m = check_part_mass(&cx, &f("mass"), mass_field, mass)?;
+            let c = ParticleCloud::try_from_particles([(pose.position, m)])
+                .map_err(|e| cx.err(line, &f("position"), e.to_string()))?;
+            parts.push(Part::Cloud(c));
+            continue;
+        }
+        let dim = |name: &'static str, v: &Option<RF>| match v {
+            Some(v) => cx.scalar(&f(name), v),
+            None => Err(cx.err(line, &f(name), format!("missing for shape {shape_name:?}"))),
+        };
+        let shape = match shape_name {
+            "rod" => Primitive::Rod {
+                length: dim("length", &b.length)?,
+            },
+            "plate" => Primitive::Plate {
+                a: dim("a", &b.a)?,
+                b: dim("b", &b.b)?,
+            },
+            "prism" => Primitive::Prism {
+                a: dim("a", &b.a)?,
+                b: dim("b", &b.b)?,
+                c: dim("c", &b.c)?,
+            },
+            "disk" => Primitive::Disk {
+                radius: dim("radius", &b.radius)?,
+            },
+            "cylinder" => Primitive::Cylinder {
+                radius: dim("radius", &b.radius)?,
+                length: dim("length", &b.length)?,
+            },
+            "hollow_cylinder" => Primitive::HollowCylinder {
+                inner: dim("inner", &b.inner)?,
+                outer: dim("outer", &b.outer)?,
+                length: dim("length", &b.length)?,
+            },
+            "ring" => Primitive::Ring {
+                radius: dim("radius", &b.radius)?,
+            },
+            "sphere" => Primitive::Sphere {
+                radius: dim("radius", &b.radius)?,
+            },
+            "spherical_shell" => Primitive::SphericalShell {
+                radius: dim("radius", &b.radius)?,
+            },
+            "cone" => Primitive::Cone {
+                radius: dim("radius", &b.radius)?,
+                height: dim("height", &b.height)?,
+            },
+            other => {
+                return Err(cx.err(line, &f("shape"), format!("unknown shape {other:?}")));
+            }
+        };
+        // The line of the key a body error is about.
+        let line_of_field = |field: &str| -> usize {
+            let v = match field {
+                "mass" => Some(mass_field),
+                "length" => b.length.as_ref(),
+                "a" => b.a.as_ref(),
+                "b" => b.b.as_ref(),
+                "c" => b.c.as_ref(),
+                "radius" => b.radius.as_ref(),
+                "inner" => b.inner.as_ref(),
+                "outer" => b.outer.as_ref(),
+                "height" => b.height.as_ref(),
+                _ => None,
+            };
+            v.map_or(line, |v| cx.line(v))
+        };
+        let body = Body::try_new(shape, mass, pose).map_err(|e| {
+            let field = match &e {
+                crate::BodyError::NonPositiveMass { .. } => "mass",
+                crate::BodyError::BadDimension { field, .. }
+                | crate::BodyError::NotFinite { field, .. } => field,
+                _ => "-",
+            };
+            cx.err(line_of_field(field), &f(field), e.to_string())
+        })?;
+        let p = body.mass_properties();
+        if !props_finite(&p) {
+            return Err(cx.err(
+                line,
+                &f("shape"),
+                "the mass properties overflow (mass or dimensions too large)".into(),
+            ));
+        }
+        let _ = &b.name;
+        parts.push(Part::Solid(body));
+    }
+    for (i, sc) in raw.cloud.iter().enumerate() {
+        let line = line_of(text, sc.span().start);
+        let p = file
+            .parent()
+            .unwrap_or(Path::new("."))
+            .join(&sc.get_ref().file);
+        let c = ParticleCloud::from_csv_path(&p)
+            .map_err(|e| cx.err(line, &format!("cloud[{i}].file"), e.to_string()))?;
+        parts.push(Part::Cloud(c));
+    }
+    // The parts together must stay finite too (two masses near the
+    // largest f64 sum past it).
+    let all: Vec<MassProperties> = parts.iter().map(Part::mass_properties).collect();
+    match MassProperties::combine(&all) {
+        Ok(p) if props_finite(&p) => {}
+        Ok(_) | Err(crate::BodyError::NotFinite { .. }) => {
+            return Err(cx.err(
+                0,
+                "body",
+                "the mass properties of the bodies together overflow (masses summing past the largest number, or bodies too far apart)".into(),
+            ));
+        }
+        Err(_) => {}
+    }
+    let body = if parts.is_empty() {
+        None
+    } else {
+        Some(Composite::try_new(parts).map_err(|e| cx.err(0, "body", e.to_string()))?)
+    };
+    Ok(Bodies {
+        g: g.map(v3),
+        g_line,
+        body,
+    })
+}
+
+/// A part's mass, checked positive and finite (for the parts that are not
+/// primitives, whose mass [`Body::try_new`] checks).
+fn check_part_mass(cx: &Cx<'_>, field: &str, at: &RF, mass: f64) -> Result<f64, SceneError> {
+    crate::body::check_mass("body", mass).map_err(|e| cx.err(cx.line(at), field, e.to_string()))?;
+    Ok(mass)
+}
+
+/// A part known by its mass and principal moments about its G (in its
+/// local axes): six particles of mass m/6 at ±a, ±b, ±c on the local axes,
+/// with the same mass, centre and inertia, `I_x = (m/3)(b² + c²)` and so on
+/// (a real body exists for these moments exactly when the triangle
+/// inequalities hold, and then a², b², c² ≥ 0).
+fn equivalent_points(
+    cx: &Cx<'_>,
+    field: &str,
+    v: &RV,
+    mass: f64,
+    pose: &Pose,
+) -> Result<ParticleCloud, SceneError> {
+    let [ix, iy, iz] = cx.vec3(field, v)?;
+    let bad = |message: String| cx.err(cx.line(v), field, message);
+    Inertia::try_new(nalgebra::Matrix3::from_diagonal(&Vector3::new(ix, iy, iz)))
+        .map_err(|e| bad(e.to_string()))?;
+    let k = 1.5 / mass;
+    let half = |a: f64, b: f64, c: f64| (k * (b + c - a)).max(0.0).sqrt();
+    let (a, b, c) = (half(ix, iy, iz), half(iy, iz, ix), half(iz, ix, iy));
+    let points = [
+        Vector3::new(a, 0.0, 0.0),
+        Vector3::new(-a, 0.0, 0.0),
+        Vector3::new(0.0, b, 0.0),
+        Vector3::new(0.0, -b, 0.0),
+        Vector3::new(0.0, 0.0, c),
+        Vector3::new(0.0, 0.0, -c),
+    ];
+    let cloud =
+        ParticleCloud::try_from_particles(points.map(|p| (pose.transform_point(&p), mass / 6.0)))
+            .map_err(|e| bad(e.to_string()))?;
+    if !props_finite(&cloud.mass_properties()) {
+        return Err(bad(
+            "the mass properties overflow (mass or moments too large)".into(),
+        ));
+    }
+    Ok(cloud)
+}
+
+/// A `[body]` table (one body, the former `hdot simulate` form) instead of
+/// `[[body]]` tables: the error names the new form.
+fn old_body_table(cx: &Cx<'_>) -> Option<SceneError> {
+    let table: toml::Table = toml::from_str(cx.text).ok()?;
+    if !table.get("body")?.is_table() {
+        return None;
+    }
+    let line = cx
+        .text
+        .lines()
+        .position(|l| l.trim_start().starts_with("[body]"))
+        .map_or(0, |i| i + 1);
+    Some(
+        cx.err(
+            line,
+            "body",
+            "a body is given by `[[body]]` tables (two brackets), one per part: \
+         `shape = \"cylinder\"`, `mass = …`, its dimensions, `position`, `rotation`; or \
+         `principal_moments = [I_1, I_2, I_3]` and `mass = …` (the former `[body]` table with \
+         `shape = { kind = … }` is no longer read; see docs/scenes.md)"
+                .into(),
+        ),
+    )
+}
+
 /// The file being read, for errors that name a line and a field.
 struct Cx<'a> {
     file: &'a Path,
@@ -705,11 +865,21 @@ fn rotation_of(
 ) -> Result<UnitQuaternion<f64>, SceneError> {
     let r = sr.get_ref();
     let line = line_of(cx.text, sr.span().start);
+    if r.euler_deg.is_some() {
+        return Err(cx.err(
+            line,
+            &format!("{field}.euler_deg"),
+            "roll–pitch–yaw angles are no longer read: give the Eulerian angles \
+             `euler_angles = [φ, θ, ψ]` in radians (z-y-z, R = R_Z(φ) R_y(θ) R_z(ψ), the \
+             convention of every scene; docs/scenes.md), or `{ axis = […], angle_deg = … }`"
+                .into(),
+        ));
+    }
     let given = [
         r.axis.is_some() || r.angle_deg.is_some(),
         r.x_axis.is_some(),
         r.z_axis.is_some(),
-        r.euler_deg.is_some(),
+        r.euler_angles.is_some(),
     ]
     .iter()
     .filter(|b| **b)
@@ -718,7 +888,7 @@ fn rotation_of(
         return Err(cx.err(
             line,
             field,
-            "give exactly one of {axis, angle_deg}, x_axis, z_axis, euler_deg".to_string(),
+            "give exactly one of {axis, angle_deg}, x_axis, z_axis, euler_angles".to_string(),
         ));
     }
     let sub = |n: &str| format!("{field}.{n}");
@@ -738,13 +908,9 @@ fn rotation_of(
             }),
         );
     }
-    if let Some(e) = &r.euler_deg {
-        let [r_, p, y] = cx.vec3(&sub("euler_deg"), e)?;
-        return Ok(UnitQuaternion::from_euler_angles(
-            r_.to_radians(),
-            p.to_radians(),
-            y.to_radians(),
-        ));
+    if let Some(e) = &r.euler_angles {
+        let [phi, theta, psi] = cx.vec3(&sub("euler_angles"), e)?;
+        return Ok(eulerian_rotation(phi, theta, psi));
     }
     let axis = match &r.axis {
         Some(a) => Unit::new_unchecked(cx.unit(&sub("axis"), a)?),

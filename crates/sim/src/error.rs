@@ -40,6 +40,10 @@ pub enum SimError {
         /// The parser's message (it names line and column).
         message: String,
     },
+    /// What moves in a scene (`g`, `[[body]]`, `[[cloud]]`), read by the
+    /// schema every scene shares: names file, line and field.
+    #[error(transparent)]
+    Bodies(#[from] hdot_num::scene::SceneError),
     /// A scene file that cannot be read.
     #[error("{file}: {source}")]
     Io {

@@ -44,7 +44,7 @@ pub mod scene;
 mod system;
 mod tableau;
 
-pub use body::{PrincipalMoments, Shape};
+pub use body::PrincipalMoments;
 pub use error::SimError;
 pub use integrate::{Limits, Method, Stats, Step, fixed_step_count, integrate};
 /// Re-exported so that users (and the tests) name the same nalgebra version.

@@ -1,28 +1,32 @@
 //! Scenes: TOML files describing a body, its supports and its initial
-//! motion. The format is documented in `docs/simulation.md`; every scene
+//! motion. The format is documented in `docs/simulation.md`; what moves
+//! (`g`, `[[body]]`, `[[cloud]]`) is the schema every scene shares,
+//! `docs/scenes.md`, read by [`hdot_num::scene::bodies`]. Every scene
 //! bundled in `docs/examples/sim-*.toml` is an example of it.
 //!
 //! ```toml
 //! name = "torque-free asymmetric body"
 //! kind = "free"                        # free | heavy-top | fixed-axis | derived
 //! t_end = 100.0
-//! [body]
-//! principal_moments = [0.6, 0.8, 1.0]  # or: shape = { kind = "prism", mass = 1, a = 1, b = 2, c = 3 }
+//! [[body]]                             # or shape = "prism", a = 1, b = 2, c = 3; several make a composite
+//! principal_moments = [0.6, 0.8, 1.0]
+//! mass = 1.0
 //! [initial]
 //! attitude = [1.0, 0.0, 0.0, 0.0]      # unit quaternion (w, x, y, z); or euler_angles = [φ, θ, ψ]
-//! angular_momentum = [1.8, 0.4, -0.9]  # body axes; or angular_velocity = [...]
+//! angular_momentum = [1.8, 0.4, -0.9]  # in the tables' axes; or angular_velocity = [...]
 //! ```
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+use hdot_num::scene::{Bodies, bodies};
+use nalgebra::{Matrix3, Quaternion, Rotation3, UnitQuaternion, Vector3};
 use serde::Deserialize;
+use serde::de::IgnoredAny;
 
 use crate::exact::SteadyTop;
 use crate::models::Shaft;
-use crate::models::euler_angles::quaternion_from_angles;
-use crate::{PrincipalMoments, Shape, SimError};
+use crate::{PrincipalMoments, SimError};
 
 mod derived;
 pub use derived::{DerivedScene, Resolve, resolve_near};
@@ -39,7 +43,11 @@ struct RawScene {
     description: String,
     kind: String,
     t_end: f64,
-    body: Option<RawBody>,
+    // `g`, `[[body]]` and `[[cloud]]`: the schema every scene shares, read
+    // by `hdot_num::scene::bodies`.
+    g: Option<IgnoredAny>,
+    body: Option<IgnoredAny>,
+    cloud: Option<IgnoredAny>,
     initial: Option<RawInitial>,
     top: Option<RawTop>,
     shaft: Option<RawShaft>,
@@ -47,13 +55,6 @@ struct RawScene {
     derivation: Option<derived::RawDerivation>,
     constants: Option<BTreeMap<String, f64>>,
     inputs: Option<BTreeMap<String, String>>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawBody {
-    principal_moments: Option<[f64; 3]>,
-    shape: Option<Shape>,
 }
 
 #[derive(Debug, Deserialize, Default)]
@@ -80,32 +81,22 @@ struct RawSteady {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawTop {
-    distance: f64,
-    #[serde(default = "default_g")]
-    g: f64,
-    mass: Option<f64>,
-}
-
-fn default_g() -> f64 {
-    9.81
+    fixed_point: Option<[f64; 3]>,
+    // Former keys, refused with the new ones named.
+    distance: Option<IgnoredAny>,
+    g: Option<IgnoredAny>,
+    mass: Option<IgnoredAny>,
 }
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawShaft {
-    rotor_moment: f64,
     bearings: [f64; 2],
     #[serde(default)]
-    masses: Vec<RawMass>,
-    #[serde(default)]
     friction: f64,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawMass {
-    mass: f64,
-    at: [f64; 3],
+    // Former keys, refused with the new ones named.
+    rotor_moment: Option<IgnoredAny>,
+    masses: Option<IgnoredAny>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -257,51 +248,88 @@ impl Scene {
         };
         let kind = match raw.kind.as_str() {
             "free" | "heavy-top" => {
-                let body = raw
-                    .body
-                    .ok_or_else(|| bad("body", "missing table [body]".into()))?;
-                let (moments_g, mass) = match (body.principal_moments, body.shape) {
-                    (Some(m), None) => (m, None),
-                    (None, Some(s)) => {
-                        s.validate().map_err(|e| bad("body.shape", e))?;
-                        (s.moments(), Some(s.mass()))
-                    }
-                    _ => {
-                        return Err(bad(
-                            "body",
-                            "give exactly one of `principal_moments` and `shape`".into(),
-                        ));
-                    }
-                };
+                let Bodies { g, g_line, body } = bodies(file, text)?;
+                let body = body.ok_or_else(|| bad("body", NO_BODY.into()))?;
+                let props = body.mass_properties();
                 let heavy = raw.kind == "heavy-top";
-                let (moments, weight_arm) = if heavy {
-                    let top = raw
-                        .top
-                        .ok_or_else(|| bad("top", "missing table [top]".into()))?;
-                    let m = top.mass.or(mass).ok_or_else(|| {
+                let (about, axis3, weight_arm) = if heavy {
+                    let top = raw.top.ok_or_else(|| {
                         bad(
-                            "top.mass",
-                            "needed when the body gives `principal_moments`".into(),
+                            "top",
+                            "missing table [top] (fixed_point = [x, y, z])".into(),
                         )
                     })?;
-                    if !(top.distance.is_finite() && top.distance > 0.0) {
+                    if let Some((key, _)) = [
+                        ("distance", top.distance.is_some()),
+                        ("mass", top.mass.is_some()),
+                        ("g", top.g.is_some()),
+                    ]
+                    .iter()
+                    .find(|(_, set)| *set)
+                    {
                         return Err(bad(
-                            "top.distance",
-                            format!("must be positive, got {}", top.distance),
+                            &format!("top.{key}"),
+                            "no longer read: the mass comes from the `[[body]]` tables, the pivot is \
+                             `top.fixed_point = [x, y, z]` in the body's axes (a distance l below G on \
+                             the axis: [0, 0, -l] for a body centred at the origin), and gravity is \
+                             `g = [0.0, 0.0, -9.81]` at the top of the file (docs/scenes.md)"
+                                .into(),
                         ));
                     }
-                    if !(m.is_finite() && m > 0.0 && top.g.is_finite() && top.g > 0.0) {
-                        return Err(bad("top", "mass and g must be positive".into()));
+                    let o = top.fixed_point.ok_or_else(|| {
+                        bad(
+                            "top.fixed_point",
+                            "missing: the pivot O in the body's axes".into(),
+                        )
+                    })?;
+                    let o = finite3(o, "top.fixed_point")?;
+                    let g = g.ok_or_else(|| {
+                        bad(
+                            "g",
+                            "a heavy top needs gravity: `g = [0.0, 0.0, -9.81]` (space Z up)"
+                                .into(),
+                        )
+                    })?;
+                    let gn = g.norm();
+                    if !(gn > 0.0 && gn.is_finite() && g.x.hypot(g.y) <= 1e-12 * gn && g.z < 0.0) {
+                        return Err(bad(
+                            "g",
+                            format!(
+                                "line {g_line}: the heavy top's space Z is up, so gravity points along −Z: \
+                                 give g = [0.0, 0.0, -g] (got {:?})",
+                                [g.x, g.y, g.z]
+                            ),
+                        ));
                     }
-                    let l2 = m * top.distance * top.distance;
-                    // Parallel axes (§11): about O the transverse moments gain m l².
-                    let about_o = [moments_g[0] + l2, moments_g[1] + l2, moments_g[2]];
-                    (about_o, m * top.g * top.distance)
+                    let arm = props.center - o;
+                    let l = arm.norm();
+                    if l.is_nan() || l <= 0.0 {
+                        return Err(bad(
+                            "top.fixed_point",
+                            "the pivot is at the mass centre: no gravity torque (give a free scene)".into(),
+                        ));
+                    }
+                    (
+                        *props.inertia_about(&o).matrix(),
+                        Some(arm),
+                        props.mass * gn * l,
+                    )
                 } else {
-                    (moments_g, 0.0)
+                    if raw.top.is_some() {
+                        return Err(bad(
+                            "top",
+                            "only a scene of kind \"heavy-top\" has a pivot".into(),
+                        ));
+                    }
+                    (*props.inertia_g.matrix(), None, 0.0)
                 };
+                let (moments, axes) = body_axes(&about, axis3).map_err(|m| bad("body", m))?;
                 let moments =
                     PrincipalMoments::new(moments).map_err(|e| bad("body", e.to_string()))?;
+                // ω and H are given in the axes of the [[body]] tables; the
+                // models take them in the body (principal) axes.
+                let to_body = axes.transpose();
+                let axes_q = UnitQuaternion::from_rotation_matrix(&axes);
                 let i = moments.get();
                 let (q0, w0, steady) = if let Some(s) = initial.steady_precession {
                     if !heavy {
@@ -351,7 +379,7 @@ impl Scene {
                         }
                         (None, Some(e)) => {
                             let e = finite3(e, "initial.euler_angles")?;
-                            quaternion_from_angles(e.x, e.y, e.z)
+                            hdot_num::body::eulerian_rotation(e.x, e.y, e.z)
                         }
                         (None, None) => UnitQuaternion::identity(),
                         _ => {
@@ -379,9 +407,10 @@ impl Scene {
                             ),
                         )
                     };
+                    let q0 = q0 * axes_q;
                     let w0 = match (initial.angular_momentum, initial.angular_velocity) {
                         (Some(h), None) => {
-                            let h = finite3(h, "initial.angular_momentum")?;
+                            let h = to_body * finite3(h, "initial.angular_momentum")?;
                             let w = Vector3::new(h.x / i[0], h.y / i[1], h.z / i[2]);
                             if !in_range(&w) {
                                 return Err(overflow("initial.angular_momentum", &h));
@@ -389,7 +418,7 @@ impl Scene {
                             w
                         }
                         (None, Some(w)) => {
-                            let w = finite3(w, "initial.angular_velocity")?;
+                            let w = to_body * finite3(w, "initial.angular_velocity")?;
                             if !in_range(&w) {
                                 return Err(overflow("initial.angular_velocity", &w));
                             }
@@ -429,8 +458,16 @@ impl Scene {
                 let motor = raw
                     .motor
                     .ok_or_else(|| bad("motor", "missing table [motor]".into()))?;
-                if !(s.rotor_moment.is_finite() && s.rotor_moment >= 0.0) {
-                    return Err(bad("shaft.rotor_moment", "must be non-negative".into()));
+                if s.rotor_moment.is_some() || s.masses.is_some() {
+                    return Err(bad(
+                        if s.masses.is_some() { "shaft.masses" } else { "shaft.rotor_moment" },
+                        "no longer read: what turns is given by `[[body]]` tables in the shaft's axes \
+                         (z along the shaft through the origin), e.g. a point mass \
+                         `[[body]] shape = \"point\", mass = 0.05, position = [0.04, 0.0, 0.06]`, and a \
+                         balanced rotor `[[body]] shape = \"disk\"` or `principal_moments = […]` with \
+                         its mass (docs/scenes.md)"
+                            .into(),
+                    ));
                 }
                 if !(s.bearings[0].is_finite()
                     && s.bearings[1].is_finite()
@@ -441,27 +478,19 @@ impl Scene {
                         "two distinct finite positions needed".into(),
                     ));
                 }
-                let (mut iz, mut ixz, mut iyz, mut m, mut mx, mut my) =
-                    (s.rotor_moment, 0.0, 0.0, 0.0, 0.0, 0.0);
-                for (k, p) in s.masses.iter().enumerate() {
-                    if !(p.mass.is_finite() && p.mass > 0.0 && p.at.iter().all(|x| x.is_finite())) {
-                        return Err(bad(
-                            &format!("shaft.masses[{k}]"),
-                            "mass must be positive, position finite".into(),
-                        ));
-                    }
-                    let [x, y, z] = p.at;
-                    iz += p.mass * (x * x + y * y);
-                    ixz += p.mass * x * z;
-                    iyz += p.mass * y * z;
-                    m += p.mass;
-                    mx += p.mass * x;
-                    my += p.mass * y;
-                }
-                if iz <= 0.0 {
+                let Bodies { body, .. } = bodies(file, text)?;
+                let body = body.ok_or_else(|| bad("body", NO_BODY.into()))?;
+                let props = body.mass_properties();
+                // Inertia about the origin O on the axis, in the shaft's
+                // axes: I_z on the diagonal, products ∫xz dm = −I[0][2].
+                let about_o = props.inertia_about(&Vector3::zeros());
+                let io = about_o.matrix();
+                let (iz, ixz, iyz) = (io[(2, 2)], -io[(0, 2)], -io[(1, 2)]);
+                if !(iz > 0.0 && iz.is_finite()) {
                     return Err(bad(
-                        "shaft",
-                        "the moment about the axis must be positive".into(),
+                        "body",
+                        "the moment about the shaft's axis (z through the origin) must be positive"
+                            .into(),
                     ));
                 }
                 let no_load = motor.no_load_speed.unwrap_or(f64::INFINITY);
@@ -475,9 +504,9 @@ impl Scene {
                     i_z: iz,
                     i_xz: ixz,
                     i_yz: iyz,
-                    mass: m,
-                    xbar: if m > 0.0 { mx / m } else { 0.0 },
-                    ybar: if m > 0.0 { my / m } else { 0.0 },
+                    mass: props.mass,
+                    xbar: props.center.x,
+                    ybar: props.center.y,
                     stall_torque: motor.stall_torque,
                     no_load_speed: no_load,
                     friction: s.friction,
@@ -491,7 +520,9 @@ impl Scene {
             }
             "derived" => {
                 let builtin = [
+                    ("g", raw.g.is_some()),
                     ("body", raw.body.is_some()),
+                    ("cloud", raw.cloud.is_some()),
                     ("top", raw.top.is_some()),
                     ("shaft", raw.shaft.is_some()),
                     ("motor", raw.motor.is_some()),
@@ -516,7 +547,7 @@ impl Scene {
                     return Err(bad(
                         field,
                         "a derived scene gives its state as `initial.coordinates` and `initial.rates` \
-                         and its parameters under `[constants]`"
+                         and its parameters (masses, moments, g) under `[constants]`"
                             .into(),
                     ));
                 }
@@ -550,6 +581,71 @@ impl Scene {
             kind,
         })
     }
+}
+
+/// Why a free body, heavy top or shaft without `[[body]]` tables is refused.
+const NO_BODY: &str = "no `[[body]]` or `[[cloud]]` table: give what moves, e.g. `[[body]]` with \
+     `shape = \"cylinder\"`, `mass`, `radius`, `length` (docs/scenes.md)";
+
+/// Relative size of the products of inertia (to the trace) under which
+/// the axes of the `[[body]]` tables are taken as the body's principal axes.
+const DIAGONAL_TOL: f64 = 1e-12;
+
+/// The body axes of a simulation: principal axes of `inertia` (about G, or
+/// about the pivot O; in the axes of the `[[body]]` tables), with axis 3
+/// along `axis3` (from O to G) when given. The tables' own axes are kept
+/// when they are principal already (so that ω is given in them as
+/// written); otherwise the principal axes are found. Returns the moments
+/// and the rotation whose columns are the body axes in the tables' axes.
+fn body_axes(
+    inertia: &Matrix3<f64>,
+    axis3: Option<Vector3<f64>>,
+) -> Result<([f64; 3], Rotation3<f64>), String> {
+    let trace = inertia.trace();
+    let off = inertia[(0, 1)]
+        .abs()
+        .max(inertia[(0, 2)].abs())
+        .max(inertia[(1, 2)].abs());
+    let along_z = axis3.is_none_or(|a| a.x.hypot(a.y) <= DIAGONAL_TOL * a.norm() && a.z > 0.0);
+    if off <= DIAGONAL_TOL * trace && along_z {
+        return Ok((
+            [inertia[(0, 0)], inertia[(1, 1)], inertia[(2, 2)]],
+            Rotation3::identity(),
+        ));
+    }
+    let Some(a) = axis3 else {
+        let p = hdot_num::Inertia::new_unchecked(*inertia).principal();
+        return Ok((p.moments.into(), p.axes));
+    };
+    let e3 = a.normalize();
+    let ie3 = inertia * e3;
+    let i3 = e3.dot(&ie3);
+    if (ie3 - e3 * i3).norm() > 1e-9 * trace {
+        return Err(
+            "the mass centre G is not on a principal axis of inertia through the pivot O: the built-in \
+             heavy top needs G on such an axis (the axis of a symmetric top); a derived scene \
+             integrates other bodies"
+                .into(),
+        );
+    }
+    // Principal axes in the plane normal to e3.
+    let u = if e3.x.abs() < 0.9 {
+        Vector3::x()
+    } else {
+        Vector3::y()
+    };
+    let u = (u - e3 * e3.dot(&u)).normalize();
+    let v = e3.cross(&u);
+    let (uu, vv, uv) = (
+        u.dot(&(inertia * u)),
+        v.dot(&(inertia * v)),
+        u.dot(&(inertia * v)),
+    );
+    let alpha = 0.5 * (2.0 * uv).atan2(uu - vv);
+    let e1 = u * alpha.cos() + v * alpha.sin();
+    let e2 = e3.cross(&e1);
+    let axes = Rotation3::from_matrix_unchecked(Matrix3::from_columns(&[e1, e2, e3]));
+    Ok(([e1.dot(&(inertia * e1)), e2.dot(&(inertia * e2)), i3], axes))
 }
 
 /// A heavy top given by attitude and ω is in steady precession when θ̇ = 0,

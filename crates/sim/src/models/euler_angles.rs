@@ -29,10 +29,9 @@ pub struct EulerAngleBody {
 }
 
 /// Attitude quaternion `R_Z(φ) R_y(θ) R_z(ψ)`.
+/// The one convention of every scene: [`hdot_num::body::eulerian_rotation`].
 pub fn quaternion_from_angles(phi: f64, theta: f64, psi: f64) -> UnitQuaternion<f64> {
-    UnitQuaternion::from_axis_angle(&Vector3::z_axis(), phi)
-        * UnitQuaternion::from_axis_angle(&Vector3::y_axis(), theta)
-        * UnitQuaternion::from_axis_angle(&Vector3::z_axis(), psi)
+    hdot_num::body::eulerian_rotation(phi, theta, psi)
 }
 
 /// Eulerian angles `(φ, θ, ψ)` of an attitude, θ ∈ [0, π].
