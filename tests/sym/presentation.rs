@@ -226,3 +226,51 @@ collect = ["w_1'", "w_2'", "w_3'", "w_1", "w_2", "w_3"]
         ]
     );
 }
+
+/// A solved form is distributed over its sum when its terms have
+/// different constant divisors (the divisor cancelled in some), each term
+/// with its own constant ratio; a divisor every term shares, or one that
+/// holds sin θ, stays under the bracket. A spherical pendulum with a rod
+/// of moment J about the pivot, written for this test.
+#[test]
+fn new_problems_print_solved_forms_term_by_term() {
+    let out = printed(
+        r#"
+title = "A spherical pendulum, written for this test"
+source = "test"
+[symbols]
+constants = ["J", "m", "g", "l", "F", "G"]
+time = ["phi", "theta", "x"]
+[[step]]
+name = "T"
+value = "J*(theta'^2 + phi'^2*sin(theta)^2)/2"
+show = false
+[[step]]
+name = "V"
+value = "-l*g*m*cos(theta)"
+show = false
+[[step]]
+name = "L"
+value = "lagrange(T, V, [phi, theta])"
+show = false
+[[step]]
+name = "acc"
+value = "solve(L, [phi'', theta''])"
+[[step]]
+name = "push"
+value = "solve(J*x'' - F - G, [x''])"
+[[step]]
+name = "both"
+value = "F*x'/J - F*x'/m"
+"#,
+    );
+    assert_eq!(
+        out,
+        [
+            "−2 φ\u{307} θ\u{307} cos θ/sin θ",
+            "φ\u{307}² sin θ cos θ − (m g l/J) sin θ",
+            "(F + G)/J",
+            "F (m − J) x\u{307}/(m J)",
+        ]
+    );
+}

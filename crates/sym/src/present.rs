@@ -11,7 +11,9 @@
 //!    factored (rational content, common monomial, sign pulled out so that
 //!    the bracket starts with a plus) and printed as
 //!    `[number] [constant symbols] [bracket] [rates, sin and cos]` (sin and
-//!    cos follow the bracket even of a constant angle).
+//!    cos follow the bracket even of a constant angle). A bracket whose
+//!    terms have different constant divisors (a solved form) is not put
+//!    over one divisor: each term keeps its own ratio, `(m g l/I′) sin θ`.
 //! 3. **Factor by known factors** (a step's `factor` list, such as A − B
 //!    and A − C): a bracket equal to their product, or to one of them,
 //!    times a monomial and a number is printed as that product; the
@@ -150,7 +152,16 @@ fn term_order(a: &[(Atom, i32)], b: &[(Atom, i32)]) -> std::cmp::Ordering {
 
 /// `key · Σ terms` with the sum factored.
 fn group_node(e: &mut Expr, key: &Monomial, terms: &[(Monomial, Rational)], known: &[Poly]) -> Id {
-    let terms = print_sorted(terms, true);
+    let mut terms = print_sorted(terms, true);
+    let distribute = distributes(&terms);
+    if distribute {
+        // Terms that were not divided first (θ̈ = φ̇² sin θ cos θ − (I/I′) …),
+        // each derivative order on its own.
+        terms.sort_by_key(|t| {
+            let top = t.1.factors().iter().map(|f| f.0.order()).max();
+            (Reverse(top), has_divisor(t.1))
+        });
+    }
     // Content: rational gcd with the sign of the first printed term, and the
     // common monomial.
     let mut content = terms.iter().fold(Rational::ZERO, |g, t| g.gcd(t.2));
@@ -163,6 +174,13 @@ fn group_node(e: &mut Expr, key: &Monomial, terms: &[(Monomial, Rational)], know
             break;
         }
         common = common.gcd(t.1);
+    }
+    if distribute {
+        // Only common rates leave the bracket (½ (I′ + m L² + I L²/r²) φ̇²);
+        // constants, sin and cos stay with each term.
+        common = common
+            .split(|a| a.is_time_dependent() && matches!(a.kind(), AtomKind::Var { .. }))
+            .0;
     }
     let inv = content.recip().expect("non-zero content");
     let plain = common.is_one() && inv.is_one();
@@ -196,15 +214,16 @@ fn group_node(e: &mut Expr, key: &Monomial, terms: &[(Monomial, Rational)], know
         let ids: Vec<Id> = terms
             .iter()
             .map(|(sorted, m, c)| {
-                if plain {
-                    let mut f = sorted.to_vec();
-                    conventional(&mut f);
-                    e.term_node(&f, c)
+                let (mut f, c) = if plain {
+                    (sorted.to_vec(), (*c).clone())
                 } else {
-                    let m = m.div(&common);
-                    let mut f = m.sorted_for_print();
-                    conventional(&mut f);
-                    e.term_node(&f, &(*c * &inv))
+                    (m.div(&common).sorted_for_print(), *c * &inv)
+                };
+                conventional(&mut f);
+                if distribute {
+                    ratio_term(e, &f, &c)
+                } else {
+                    e.term_node(&f, &c)
                 }
             })
             .collect();
@@ -223,11 +242,7 @@ fn group_node(e: &mut Expr, key: &Monomial, terms: &[(Monomial, Rational)], know
     // gravity, then by name: m g l, I′ θ̇); constants named by a Greek
     // letter (a constant rate Ω) and sin/cos (even of a constant angle)
     // follow the bracket with the rates.
-    let leading = |a: Atom| {
-        !a.is_time_dependent()
-            && matches!(a.kind(), AtomKind::Var { .. })
-            && crate::symbols::greek(a.name().split('_').next().unwrap_or("")).is_none()
-    };
+    let leading = leading_constant;
     let mut lead: Vec<(Atom, i32)> = factors.iter().copied().filter(|f| leading(f.0)).collect();
     lead.sort_by_key(|f| constant_class(f.0));
     for (a, x) in lead {
@@ -242,6 +257,80 @@ fn group_node(e: &mut Expr, key: &Monomial, terms: &[(Monomial, Rational)], know
     }
     let m = e.mul(ids);
     if negative { e.push(Node::Neg(m)) } else { m }
+}
+
+/// A constant symbol that leads a product (`m g l`), as opposed to a rate,
+/// sin or cos, or a constant named by a Greek letter (a constant rate Ω),
+/// which follow the bracket.
+fn leading_constant(a: Atom) -> bool {
+    !a.is_time_dependent()
+        && matches!(a.kind(), AtomKind::Var { .. })
+        && crate::symbols::greek(a.name().split('_').next().unwrap_or("")).is_none()
+}
+
+/// True when the monomial divides by something (a negative power).
+fn has_divisor(m: &Monomial) -> bool {
+    m.factors().iter().any(|f| f.1 < 0)
+}
+
+/// Whether a bracket's constant divisor is distributed over its terms
+/// rather than written once under the whole bracket: when some terms are
+/// divided by a constant and others not at all, as a solved form is after
+/// the divisor cancelled in some terms, and nothing time-dependent divides
+/// (a divisor such as sin θ keeps the bracket one fraction:
+/// φ̈ = (I ω_z − 2 I′ φ̇ cos θ) θ̇/(I′ sin θ)). Terms that all share their
+/// divisor keep it under the bracket, (F_z y_P − F_y z_P)/I_x, and terms
+/// all divided by different constants go over their common denominator,
+/// H_G (I′ − I) cos θ/(I I′).
+fn distributes(terms: &[crate::expr::PrintTerm<'_>]) -> bool {
+    if terms.len() < 2 {
+        return false;
+    }
+    let divisor = |m: &Monomial| -> Option<Vec<(Atom, i32)>> {
+        let d: Vec<(Atom, i32)> = m.factors().iter().copied().filter(|f| f.1 < 0).collect();
+        d.iter().all(|f| leading_constant(f.0)).then_some(d)
+    };
+    let Some(first) = divisor(terms[0].1) else {
+        return false;
+    };
+    let (mut differ, mut undivided) = (false, first.is_empty());
+    for t in &terms[1..] {
+        let Some(d) = divisor(t.1) else { return false };
+        differ |= d != first;
+        undivided |= d.is_empty();
+    }
+    differ && undivided
+}
+
+/// `c · factors` for a term of a distributed bracket: constant factors
+/// over a constant divisor, followed by rates, sin and cos, are written
+/// as a ratio in front, `(m g l/I′) sin θ`, as a textbook writes a solved
+/// form; a term of constants only is one fraction (`I L²/r²`).
+fn ratio_term(e: &mut Expr, factors: &[(Atom, i32)], c: &Rational) -> Id {
+    type Factors = Vec<(Atom, i32)>;
+    let (constants, rest): (Factors, Factors) =
+        factors.iter().copied().partition(|f| leading_constant(f.0));
+    let numerator = constants.iter().any(|f| f.1 > 0);
+    let denominator = constants.iter().any(|f| f.1 < 0);
+    if rest.is_empty() || !numerator || !denominator {
+        return e.term_node(factors, c);
+    }
+    let mut ids = Vec::new();
+    let mag = c.abs();
+    if !mag.is_one() {
+        ids.push(e.push(Node::Num(mag)));
+    }
+    let ratio: Vec<Id> = constants.iter().map(|&(a, x)| e.atom_pow(a, x)).collect();
+    ids.push(e.mul(ratio));
+    for &(a, x) in &rest {
+        ids.push(e.atom_pow(a, x));
+    }
+    let m = e.mul(ids);
+    if c.is_negative() {
+        e.push(Node::Neg(m))
+    } else {
+        m
+    }
 }
 
 /// Chooses between `sin² θ` and `1 − cos² θ` so that the group has the
@@ -343,11 +432,7 @@ fn cyclic_difference(
 /// first as [`constant_class`] orders them (`2 m g l cos θ`), the rest as
 /// they were, two rates of one cyclic family in cyclic order.
 fn conventional(fs: &mut [(Atom, i32)]) {
-    let constant = |a: Atom| {
-        !a.is_time_dependent()
-            && matches!(a.kind(), AtomKind::Var { .. })
-            && crate::symbols::greek(a.name().split('_').next().unwrap_or("")).is_none()
-    };
+    let constant = leading_constant;
     fs.sort_by_key(|&(a, _)| {
         if constant(a) {
             (0, constant_class(a))

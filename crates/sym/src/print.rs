@@ -48,6 +48,12 @@ pub trait Style {
     fn parens(&self) -> (&'static str, &'static str) {
         ("(", ")")
     }
+    /// Whether a fraction that is a factor of a product, such as the ratio
+    /// in `(m g l/I′) sin θ`, needs parentheses (not when it is set as a
+    /// built-up fraction).
+    fn paren_fraction_factor(&self) -> bool {
+        true
+    }
 }
 
 /// Prints `e` in the given style.
@@ -180,6 +186,14 @@ fn write_product(e: &Expr, factors: &[Id], style: &Cached, out: &mut String) {
             out.push_str(style.inner.mul_sep(e.node(factors[k - 1]), e.node(f)));
         }
         match e.node(f) {
+            Node::Mul(fs)
+                if !style.inner.paren_fraction_factor()
+                    && fs
+                        .iter()
+                        .any(|g| matches!(e.node(*g), Node::Pow(_, k) if *k < 0)) =>
+            {
+                write(e, f, style, out)
+            }
             Node::Add(_) | Node::Mul(_) | Node::Neg(_) => paren(e, f, style, out),
             _ => write(e, f, style, out),
         }
@@ -461,6 +475,9 @@ impl Style for Latex {
     }
     fn parens(&self) -> (&'static str, &'static str) {
         (r"\left(", r"\right)")
+    }
+    fn paren_fraction_factor(&self) -> bool {
+        false
     }
     fn fraction(&self, num: &str, dens: &[String]) -> String {
         format!(r"\frac{{{num}}}{{{}}}", dens.join(" "))
