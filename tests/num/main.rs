@@ -26,3 +26,5 @@ mod verify;
 mod verify_declared;
 // Mutated derivations rejected by verification (issue 9).
 mod mutation;
+// A user's own crate: check(&derivation, &Options) and verify::strategy.
+mod user_crate;

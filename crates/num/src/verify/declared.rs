@@ -323,15 +323,22 @@ fn random_vector(rng: &mut impl Rng, s: f64) -> Vector3<f64> {
 
 /// Draws bodies, free motions and symbol values; binds the bodies'
 /// symbols.
-fn draw(d: &Derivation, rng: &mut ChaCha8Rng) -> Result<(Draw, Values), VerifyError> {
+fn draw(
+    d: &Derivation,
+    rng: &mut ChaCha8Rng,
+    given: Option<&[ParticleCloud]>,
+) -> Result<(Draw, Values), VerifyError> {
     let ph = &d.physics;
     let mut values = Values::default();
     let mut bodies = Vec::new();
     let mut centres = Vec::new();
     let mut eqs = Vec::new();
-    for b in &ph.bodies {
+    for (k, b) in ph.bodies.iter().enumerate() {
         let fold = rng.gen_range(3..=6);
-        let mut cloud = symmetric(&random_body(rng)?, b.symmetry, fold)?;
+        let mut cloud = match given {
+            Some(g) => g[k].clone(),
+            None => symmetric(&random_body(rng)?, b.symmetry, fold)?,
+        };
         let mp = cloud.mass_properties();
         // About its centre, or G declared at the reference point: G moved
         // to the origin (along the symmetry axis or in the symmetry plane,
@@ -1038,6 +1045,45 @@ pub fn check_with(
     options: &Options,
     tick: &mut dyn FnMut(),
 ) -> Result<Report, VerifyError> {
+    run(d, options, None, tick)
+}
+
+/// [`check`] on the given bodies instead of drawn ones: one particle cloud
+/// per `[[body]]`, in the body's own axes about its reference point (G is
+/// moved to the point when the body is declared about its centre or with
+/// `mass_centre` zero). Only the motions and the other symbols are drawn,
+/// `options.draws` times. The bodies must have the declared symmetry: a
+/// declared form they do not have is reported as an error naming the
+/// entry, as for drawn bodies. With the `proptest` feature,
+/// [`super::strategy::declared_bodies`] generates them.
+///
+/// # Errors
+/// As [`check`]; also when `bodies` does not have one cloud per declared
+/// body.
+pub fn check_bodies(
+    d: &Derivation,
+    bodies: &[ParticleCloud],
+    options: &Options,
+) -> Result<Report, VerifyError> {
+    if bodies.len() != d.physics.bodies.len() {
+        return Err(declaration(
+            d,
+            format!(
+                "{} bodies given for {} declared",
+                bodies.len(),
+                d.physics.bodies.len()
+            ),
+        ));
+    }
+    run(d, options, Some(bodies), &mut || {})
+}
+
+fn run(
+    d: &Derivation,
+    options: &Options,
+    given: Option<&[ParticleCloud]>,
+    tick: &mut dyn FnMut(),
+) -> Result<Report, VerifyError> {
     let compiled: Vec<Compiled<'_>> = d
         .steps
         .iter()
@@ -1076,7 +1122,7 @@ pub fn check_with(
     let mut draws = 0;
     if !compiled.is_empty() || vanishing > 0 {
         for _ in 0..options.draws.max(1) {
-            let (dr, mut values) = draw(d, &mut rng)?;
+            let (dr, mut values) = draw(d, &mut rng, given)?;
             apply(d, &mut values, &d.physics.motion)?;
             let steps = compiled
                 .iter()

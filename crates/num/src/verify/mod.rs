@@ -44,6 +44,8 @@ pub mod free;
 pub mod motion;
 pub mod quantities;
 pub mod rigid;
+#[cfg(feature = "proptest")]
+pub mod strategy;
 pub mod world;
 
 use std::collections::HashMap;
@@ -56,7 +58,9 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
 pub use bodies::{random_body, random_cloud, random_state};
-pub use declared::{Draw, Options, Report, StepCheck, Values, check, check_with, symmetric};
+pub use declared::{
+    Draw, Options, Report, StepCheck, Values, check, check_bodies, check_with, symmetric,
+};
 
 use crate::cloud::ParticleCloud;
 use crate::error::BodyError;
