@@ -379,8 +379,14 @@ fn the_point_of_a_body_is_of_one_body_and_applied_is_scalar() {
         "point_velocity(wheel, C)\"\n[[step]]",
         "point_velocity(system, C)\"\n[[step]]",
     );
-    let e = check(&load(&text), &OPTS).unwrap_err().to_string();
-    assert!(e.contains("one body"), "{e}");
+    let e = err(&text);
+    assert!(e.contains("test.toml:") && e.contains("one body"), "{e}");
+    let text = WHEEL.replace(
+        "vanishes = [\"point_velocity(wheel, C)\"]",
+        "vanishes = [\"inertia(wheel, G, W)\"]",
+    );
+    let e = err(&text);
+    assert!(e.contains("test.toml:") && e.contains("`vanishes`"), "{e}");
     let text = WHEEL.replace("- applied(M_a))", "- applied([M_a, 0, 0] in N))");
     let e = err(&text);
     assert!(e.contains("test.toml:") && e.contains("scalar"), "{e}");

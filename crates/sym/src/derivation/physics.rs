@@ -1184,6 +1184,16 @@ impl MeaningParser<'_, '_> {
             .zip(args)
             .map(|(k, a)| self.arg(*k, a))
             .collect::<R<Vec<_>>>()?;
+        if matches!(
+            sig.quantity,
+            Quantity::PointVelocity | Quantity::PointAcceleration
+        ) && parsed[0] == Arg::Body(Bodies::System)
+        {
+            return self.err(
+                &args[0],
+                format!("`{func}` is the motion of one body's point: name the body, not `system`"),
+            );
+        }
         Ok(Meaning::Quantity(sig.quantity, parsed))
     }
 
