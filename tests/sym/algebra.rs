@@ -55,8 +55,48 @@ fn tree_scale(e: &Expr, v: &mut dyn FnMut(Atom) -> f64) -> f64 {
     positive.eval(&mut abs)
 }
 
+/// The same atom with the name `…_r` (a symbol none of the strategies
+/// draw), so that `renamed(p)` shares no variable with `p`.
+fn renamed(a: Atom) -> Atom {
+    let name = |n: &str| format!("{n}_r");
+    match a.kind() {
+        AtomKind::Var {
+            name: n,
+            time: false,
+            ..
+        } => Atom::constant(&name(n)),
+        AtomKind::Var { name: n, order, .. } => Atom::time(&name(n), order),
+        AtomKind::Sin(q) => Atom::sin(renamed(q)).expect("angle"),
+        AtomKind::Cos(q) => Atom::cos(renamed(q)).expect("angle"),
+    }
+}
+
 proptest! {
     #![proptest_config(config())]
+
+    /// A product of polynomials that share no variable (its own path,
+    /// without hashing) has exactly `n · m` terms, as
+    /// `product_terms_at_least` predicts, and renaming back gives the
+    /// product computed with the variables shared.
+    #[test]
+    fn products_of_unrelated_factors_are_known_in_advance(a in expr(), b in expr()) {
+        let (a, b) = (a.to_poly(), b.to_poly());
+        let r = b.subst(&mut |x| Some(Poly::atom(renamed(x))));
+        let product = &a * &r;
+        prop_assert_eq!(Poly::product_terms_at_least(&[&a, &r]), product.len() as u64);
+        let back = product.subst(&mut |x| {
+            b.atoms().into_iter().find(|&y| renamed(y) == x).map(Poly::atom)
+        });
+        prop_assert_eq!(back, &a * &b);
+    }
+
+    /// The advance bound of a product never exceeds its real term count.
+    #[test]
+    fn the_product_bound_is_a_lower_bound(a in expr(), b in expr(), c in expr()) {
+        let (a, b, c) = (a.to_poly(), b.to_poly(), c.to_poly());
+        let bound = Poly::product_terms_at_least(&[&a, &b, &c]);
+        prop_assert!(bound <= (&(&a * &b) * &c).len() as u64);
+    }
 
     /// Expanding the default presentation of a canonical form gives it back.
     #[test]

@@ -76,7 +76,7 @@ fn printed_shape_matches_the_expectation_or_is_argued() {
         let d = load(&path).unwrap();
         for s in d.steps.iter().filter(|s| s.show) {
             for c in &s.checks {
-                let Some((_, e)) = s.components.iter().find(|(k, _)| *k == c.component) else {
+                let Some((_, e)) = s.components().iter().find(|(k, _)| *k == c.component) else {
                     continue;
                 };
                 let printed = norm(&hdot_sym::print::unicode(e));
@@ -144,7 +144,7 @@ expect = [{expect}]
     assert!(a.all_hold() && b.all_hold());
     let show = |d: &hdot_sym::derivation::Derivation| {
         d.steps[0]
-            .components
+            .components()
             .iter()
             .map(|(_, e)| hdot_sym::print::unicode(e))
             .collect::<Vec<_>>()
@@ -159,7 +159,7 @@ fn printed(text: &str) -> Vec<String> {
         .iter()
         .filter(|s| s.show)
         .flat_map(|s| {
-            s.components
+            s.components()
                 .iter()
                 .map(|(_, e)| hdot_sym::print::unicode(e))
         })

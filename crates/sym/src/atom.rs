@@ -100,6 +100,12 @@ fn intern_name(name: &str) -> &'static str {
 
 /// # Construction
 impl Atom {
+    /// The interned index (stable within a process only: never printed or
+    /// used for order that a user sees).
+    pub(crate) fn id(self) -> u32 {
+        self.0
+    }
+
     /// A constant symbol.
     pub fn constant(name: &str) -> Atom {
         intern(AtomKind::Var {

@@ -15,7 +15,7 @@
 //! ```
 //! let d = hdot_sym::chain::derivation(2).unwrap();
 //! let hdot = d.steps.iter().find(|s| s.name == "Hdot").unwrap();
-//! assert_eq!(hdot.components.len(), 3);
+//! assert_eq!(hdot.components().len(), 3);
 //! ```
 
 use crate::derivation::{Derivation, Diagnostic, load_str};

@@ -187,7 +187,7 @@ impl StepBlock {
     /// The block of step `s`.
     pub fn of(s: &Step) -> StepBlock {
         let equations = s
-            .components
+            .components()
             .iter()
             .map(|(c, e)| Equation {
                 lhs: step_lhs(s, c),

@@ -66,6 +66,31 @@ impl Rational {
         }
     }
 
+    /// The value as a big integer when it is an integer whose big form is
+    /// at hand (or cheap to make), else `None`.
+    fn big_integer(&self) -> Option<std::borrow::Cow<'_, BigInt>> {
+        use std::borrow::Cow;
+        match self {
+            Rational::Small(n, 1) => Some(Cow::Owned(BigInt::from(*n))),
+            Rational::Small(..) => None,
+            Rational::Big(b) if b.is_integer() => Some(Cow::Borrowed(b.numer())),
+            Rational::Big(_) => None,
+        }
+    }
+
+    /// `self ∘ rhs` for two integers at least one of which is big, without
+    /// the gcd reduction `num-rational` performs (its binary gcd against a
+    /// denominator of one costs time quadratic in the digits: thousands of
+    /// bits made the squaring chain of issue 13 take half a minute).
+    fn big_integer_op(
+        &self,
+        rhs: &Rational,
+        op: fn(&BigInt, &BigInt) -> BigInt,
+    ) -> Option<Rational> {
+        let (a, b) = (self.big_integer()?, rhs.big_integer()?);
+        Some(Self::from_big(BigRational::from_integer(op(&a, &b))))
+    }
+
     fn to_big(&self) -> BigRational {
         match self {
             Rational::Small(n, d) => BigRational::new_raw(BigInt::from(*n), BigInt::from(*d)),
@@ -229,6 +254,9 @@ impl std::ops::Add for &Rational {
                 return Rational::from_i128(n, den);
             }
         }
+        if let Some(r) = self.big_integer_op(rhs, |a, b| a + b) {
+            return r;
+        }
         Rational::from_big(self.to_big() + rhs.to_big())
     }
 }
@@ -253,6 +281,9 @@ impl std::ops::Mul for &Rational {
             }
             // Products of two i64 always fit in i128.
             return Rational::from_i128(*a as i128 * *c as i128, *b as i128 * *d as i128);
+        }
+        if let Some(r) = self.big_integer_op(rhs, |a, b| a * b) {
+            return r;
         }
         Rational::from_big(self.to_big() * rhs.to_big())
     }
@@ -321,6 +352,20 @@ mod tests {
             -Rational::int(i64::MIN),
             Rational::parse("9223372036854775808").unwrap()
         );
+    }
+
+    #[test]
+    fn big_integers_stay_exact() {
+        let two_200 = Rational::int(2).pow(200);
+        let one = Rational::ONE;
+        let p = &(&two_200 + &one) * &(&two_200 - &one);
+        assert_eq!(p, &Rational::int(2).pow(400) - &one);
+        assert!(p.is_integer());
+        // Back to the machine-word form when small again.
+        let q = &(&two_200 + &Rational::int(5)) - &two_200;
+        assert_eq!(q, Rational::Small(5, 1));
+        let half = Rational::new(1, 2).unwrap();
+        assert_eq!(&(&two_200 * &half) * &Rational::int(2), two_200);
     }
 
     #[test]

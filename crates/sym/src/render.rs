@@ -187,7 +187,7 @@ fn unicode(d: &Derivation) -> String {
         if let Value::Vector(_, f) = &s.value {
             let _ = writeln!(o, "   (components in frame {f})");
         }
-        for (c, e) in &s.components {
+        for (c, e) in s.components() {
             let _ = writeln!(o, "   {} = {}", step_lhs_unicode(s, c), print::unicode(e));
         }
         write_checks_unicode(&mut o, s);
@@ -342,7 +342,7 @@ fn sympy(d: &Derivation) -> String {
         // {q'': …}, arrays (a mass matrix) and unlabelled lists (a forcing,
         // Lagrange's equations) as Matrix objects.
         let printed: Vec<String> = s
-            .components
+            .components()
             .iter()
             .map(|(_, e)| print::print(e, &style))
             .collect();
@@ -396,7 +396,7 @@ fn sympy(d: &Derivation) -> String {
             Value::List { labels, .. } if !labels.is_empty() => labels.clone(),
             _ => Vec::new(),
         };
-        for (k, (c, e)) in s.components.iter().enumerate() {
+        for (k, (c, e)) in s.components().iter().enumerate() {
             let lhs = match unknowns.get(k) {
                 Some(&a) => {
                     let mut x = Expr::new();

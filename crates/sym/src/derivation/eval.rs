@@ -536,8 +536,11 @@ impl<'a> Context<'a> {
             }
             AstKind::Neg(x) => Ok(self.eval(x, base)?.map(&mut |p| -p)),
             AstKind::Mul(items) => {
-                let mut acc = self.eval(&items[0], base)?;
-                for it in &items[1..] {
+                // Every factor first (a divisor as its inverse), so that the
+                // term budget of the whole product is checked before any of
+                // it is expanded.
+                let mut factors = Vec::with_capacity(items.len());
+                for it in items {
                     if let AstKind::Recip(d) = &it.kind {
                         let p = self.scalar(d, base)?;
                         let Some(inv) = p.inverse_divisor() else {
@@ -548,10 +551,32 @@ impl<'a> Context<'a> {
                             };
                             return err(d.span, format!("{what}: {}", crate::poly::DIVISOR_RULE));
                         };
+                        factors.push((it, Value::Scalar(inv), true));
+                    } else {
+                        factors.push((it, self.eval(it, base)?, false));
+                    }
+                }
+                let scalars: Vec<&Poly> = factors
+                    .iter()
+                    .filter_map(|(_, v, _)| match v {
+                        Value::Scalar(p) => Some(p),
+                        _ => None,
+                    })
+                    .collect();
+                if scalars.len() > 1 {
+                    let n = Poly::product_terms_at_least(&scalars);
+                    crate::limits::allow_terms(usize::try_from(n).unwrap_or(usize::MAX));
+                }
+                let mut factors = factors.into_iter();
+                let (_, mut acc, _) = factors.next().expect("a product has factors");
+                for (it, v, divisor) in factors {
+                    if divisor {
+                        let Value::Scalar(inv) = v else {
+                            unreachable!("a divisor is a scalar")
+                        };
                         acc = acc.map(&mut |x| x * &inv);
                         continue;
                     }
-                    let v = self.eval(it, base)?;
                     acc = match (acc, v) {
                         (Value::Scalar(a), Value::Scalar(b)) => Value::Scalar(&a * &b),
                         (Value::Scalar(s), v) | (v, Value::Scalar(s)) => v.map(&mut |x| &s * x),

@@ -109,9 +109,10 @@ pub struct Step {
     pub presentation: Presentation,
     /// Names of the axes its components refer to.
     pub axes: [String; 3],
-    /// The presented components: (component label, textbook-form tree);
-    /// empty for hidden steps (see [`Step::presented`]).
-    pub components: Vec<(String, Expr)>,
+    /// The presented components, computed on first use (see
+    /// [`Step::components`]): a derivation that fails at a later step, or
+    /// whose output is never printed, pays nothing for presenting it.
+    presented: std::sync::OnceLock<Vec<(String, Expr)>>,
     /// Expectation checks, one per component, when the file states one.
     pub checks: Vec<Check>,
     /// What the step means physically (`means`), when the file says.
@@ -129,12 +130,21 @@ impl Step {
         self.value.components()
     }
 
-    /// The presented components, computed now for a hidden step.
+    /// The presented components of a shown step: (component label,
+    /// textbook-form tree); empty for hidden steps (see
+    /// [`Step::presented`]).
+    pub fn components(&self) -> &[(String, Expr)] {
+        if self.show { self.presented_ref() } else { &[] }
+    }
+
+    /// The presented components, hidden steps included.
     pub fn presented(&self) -> Vec<(String, Expr)> {
-        if !self.components.is_empty() {
-            return self.components.clone();
-        }
-        present_components(&self.value, &self.axes, &self.presentation)
+        self.presented_ref().to_vec()
+    }
+
+    fn presented_ref(&self) -> &[(String, Expr)] {
+        self.presented
+            .get_or_init(|| present_components(&self.value, &self.axes, &self.presentation))
     }
 }
 
@@ -365,20 +375,13 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
                 let value = cx.eval_step(s)?;
                 let presentation = cx.presentation(s, &abbreviations)?;
                 let axes = cx.axes_of(&value);
-                // Only shown steps are presented (hidden ones are printed nowhere
-                // but JSON, which presents them on demand).
-                let components = if s.show {
-                    present_components(&value, &axes, &presentation)
-                } else {
-                    Vec::new()
-                };
                 let checks = cx.checks(s, &value, &abbreviations, &presentation, &axes)?;
                 let meaning = physics::step_meaning(&cx, &physics, s, &value)?;
-                out = Some((value, presentation, axes, components, checks, meaning));
+                out = Some((value, presentation, axes, checks, meaning));
                 Ok(())
             },
         )?;
-        let (value, presentation, axes, components, checks, meaning) = out.expect("evaluated");
+        let (value, presentation, axes, checks, meaning) = out.expect("evaluated");
         cx.bind(s.name.get_ref(), value.clone());
         steps.push(Step {
             name: s.name.get_ref().clone(),
@@ -389,7 +392,7 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
             value,
             presentation,
             axes,
-            components,
+            presented: std::sync::OnceLock::new(),
             checks,
             meaning,
             conserved: s.conserved,
