@@ -190,7 +190,7 @@ name = "M"
 value = "l*g*m*sin(theta)"
 "#,
     );
-    assert_eq!(out[0], "(I′ sin² θ + J) φ\u{307}", "{out:?}");
+    assert_eq!(out[0], "(J + I′ sin² θ) φ\u{307}", "{out:?}");
     assert_eq!(out[1], "(1/2) I′ (φ\u{307}² sin² θ + θ\u{307}²)", "{out:?}");
     assert_eq!(out[2], "m g l sin θ", "{out:?}");
 }
@@ -271,6 +271,52 @@ value = "F*x'/J - F*x'/m"
             "φ\u{307}² sin θ cos θ − (m g l/J) sin θ",
             "(F + G)/J",
             "F (m − J) x\u{307}/(m J)",
+        ]
+    );
+}
+
+/// Bracket order and signs: terms of constants only lead their order of
+/// derivative (J + I cos² θ + I′ sin² θ); a minus sign is pulled out of a
+/// bracket only when more of its terms are negative than positive, and
+/// never over kinds of terms (the `m` terms, the couple) of opposite signs:
+/// m z ẍ − m x z̈ + ḣ, not −(m x z̈ − m z ẍ − ḣ); with as many negative
+/// terms as positive the bracket leads with a positive one. Names not in any bundled
+/// file, written for this test.
+#[test]
+fn new_problems_print_brackets_with_fewest_negative_terms() {
+    let out = printed(
+        r#"
+title = "Brackets and signs, written for this test"
+source = "test"
+[symbols]
+constants = ["Ip", "Iq", "K", "m"]
+time = ["x", "z", "h", "phi", "theta"]
+[[step]]
+name = "inertia"
+value = "Iq*cos(theta)^2 + Ip*sin(theta)^2 + K"
+[[step]]
+name = "moment"
+value = "-m*x*z'' + m*z*x'' + h'"
+[[step]]
+name = "mixed"
+value = "-m*x*z'' - m*z*x'' + h'"
+[[step]]
+name = "pulled"
+value = "-Ip*(phi''*sin(theta) + 2*theta'*phi'*cos(theta)) + Iq*theta'"
+collect = ["Ip", "Iq"]
+[[step]]
+name = "tie"
+value = "-x*h + z*h"
+"#,
+    );
+    assert_eq!(
+        out,
+        [
+            "K + I′ sin² θ + Iq cos² θ",
+            "m z x\u{308} − m x z\u{308} + h\u{307}",
+            "h\u{307} − m x z\u{308} − m z x\u{308}",
+            "−I′ (φ\u{308} sin θ + 2 φ\u{307} θ\u{307} cos θ) + Iq θ\u{307}",
+            "(z − x) h",
         ]
     );
 }

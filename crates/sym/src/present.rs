@@ -8,8 +8,9 @@
 //!    (ψ̈ := ω̇_z + φ̇ θ̇ sin θ − φ̈ cos θ).
 //! 2. **Collect** the terms by a chosen list of atoms (the kinematic ones,
 //!    ω, ω̇, or the inertia ones, I, I′): each group's coefficient is
-//!    factored (rational content, common monomial, sign pulled out so that
-//!    the bracket starts with a plus) and printed as
+//!    factored (rational content, common monomial, and the sign pulled out
+//!    only when that leaves fewer negative terms inside and the bracket does
+//!    not mix kinds of terms of opposite signs) and printed as
 //!    `[number] [constant symbols] [bracket] [rates, sin and cos]` (sin and
 //!    cos follow the bracket even of a constant angle). A bracket whose
 //!    terms have different constant divisors (a solved form) is not put
@@ -20,7 +21,8 @@
 //!    product is checked by canonical equality, never assumed.
 //!
 //! Groups are ordered by the position of their atoms in the collect list;
-//! terms inside a bracket by highest derivative first, then by name. The
+//! terms inside a bracket by highest derivative first, then terms of
+//! constants only (J + I′ sin² θ), then by name. The
 //! order depends only on names, never on interning order.
 //!
 //! # Example
@@ -154,19 +156,36 @@ fn term_order(a: &[(Atom, i32)], b: &[(Atom, i32)]) -> std::cmp::Ordering {
 fn group_node(e: &mut Expr, key: &Monomial, terms: &[(Monomial, Rational)], known: &[Poly]) -> Id {
     let mut terms = print_sorted(terms, true);
     let distribute = distributes(&terms);
-    if distribute {
-        // Terms that were not divided first (θ̈ = φ̇² sin θ cos θ − (I/I′) …),
-        // each derivative order on its own.
-        terms.sort_by_key(|t| {
-            let top = t.1.factors().iter().map(|f| f.0.order()).max();
-            (Reverse(top), has_divisor(t.1))
-        });
-    }
-    // Content: rational gcd with the sign of the first printed term, and the
-    // common monomial.
+    // Highest derivative first; then terms of constants only (J + I′ sin² θ);
+    // in a distributed bracket the terms that were not divided before the
+    // divided ones (θ̈ = φ̇² sin θ cos θ − (I/I′) …); then by name.
+    terms.sort_by_key(|t| {
+        let top = t.1.factors().iter().map(|f| f.0.order()).max();
+        let timed = t.1.factors().iter().any(|f| f.0.is_time_dependent());
+        (
+            Reverse(top.unwrap_or(0)),
+            timed,
+            distribute && has_divisor(t.1),
+        )
+    });
+    // Content: rational gcd, with the minus sign pulled out only when that
+    // leaves fewer negative terms inside the bracket and the bracket does
+    // not mix kinds of terms of opposite signs; otherwise the bracket leads
+    // with a positive term.
     let mut content = terms.iter().fold(Rational::ZERO, |g, t| g.gcd(t.2));
-    if terms.first().is_some_and(|t| t.2.is_negative()) {
+    if cyclic_pair_of_constants(&terms) {
+        // Rule 3 decides the sign of a difference of one cyclic family:
+        // −(A − C) ω_2 ω_3, as Euler's equations are written.
+        if terms[0].2.is_negative() {
+            content = -content;
+        }
+    } else if pull_sign(&terms) {
         content = -content;
+    } else if terms[0].2.is_negative()
+        && let Some(k) = terms.iter().position(|t| !t.2.is_negative())
+    {
+        let t = terms.remove(k);
+        terms.insert(0, t);
     }
     let mut common = terms[0].1.clone();
     for t in &terms[1..] {
@@ -266,6 +285,50 @@ fn leading_constant(a: Atom) -> bool {
     !a.is_time_dependent()
         && matches!(a.kind(), AtomKind::Var { .. })
         && crate::symbols::greek(a.name().split('_').next().unwrap_or("")).is_none()
+}
+
+/// Two terms, each a single constant of one cyclic family (I_x and I_z,
+/// A and C), times a common factor.
+fn cyclic_pair_of_constants(terms: &[crate::expr::PrintTerm<'_>]) -> bool {
+    let [t0, t1] = terms else { return false };
+    let common = t0.1.gcd(t1.1);
+    let single = |m: &Monomial| match m.div(&common).factors() {
+        [(a, 1)] if !a.is_time_dependent() => cyclic_place(*a).map(|p| p.0),
+        _ => None,
+    };
+    matches!((single(t0.1), single(t1.1)), (Some(a), Some(b)) if a == b)
+}
+
+/// Whether a group's minus sign goes in front of its bracket: for a single
+/// term, when it is negative; for a sum, when more of its terms are
+/// negative than positive and it does not mix kinds of opposite signs —
+/// terms of one kind (the same constant factors: `m` terms, `I′` terms, the
+/// terms without constants) all positive and those of another all
+/// negative. So −I′ (φ̈ sin θ + 2 φ̇ θ̇ cos θ), but m z ẍ − m x z̈ + ḣ_y
+/// rather than −(m x z̈ − m z ẍ − ḣ_y), and I ω_z cos θ − I′ φ̇ − I′ φ̇ cos² θ
+/// rather than −(I′ φ̇ + I′ φ̇ cos² θ − I ω_z cos θ).
+fn pull_sign(terms: &[crate::expr::PrintTerm<'_>]) -> bool {
+    let negative = terms.iter().filter(|t| t.2.is_negative()).count();
+    if terms.len() == 1 {
+        return negative == 1;
+    }
+    if 2 * negative <= terms.len() {
+        return false;
+    }
+    // Per kind: (any positive, any negative).
+    let mut kinds: BTreeMap<Monomial, (bool, bool)> = BTreeMap::new();
+    for t in terms {
+        let kind = t.1.split(leading_constant).0;
+        let e = kinds.entry(kind).or_default();
+        if t.2.is_negative() {
+            e.1 = true;
+        } else {
+            e.0 = true;
+        }
+    }
+    let all_positive = kinds.values().any(|&(p, n)| p && !n);
+    let all_negative = kinds.values().any(|&(p, n)| n && !p);
+    !(all_positive && all_negative)
 }
 
 /// True when the monomial divides by something (a negative power).
