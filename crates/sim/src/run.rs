@@ -17,6 +17,16 @@
 //!
 //! `--model` and `--method` override: a method alone means "integrate the
 //! rigid-body (or one-degree-of-freedom) equations with it".
+//!
+//! # The registry
+//!
+//! Each model is one [`ModelEntry`] of [`MODELS`]: what it applies to, why
+//! it is chosen, whether it integrates, when it is refused and how it runs.
+//! [`plan`] refuses a requested model through its entry and chooses among
+//! the rest by the rule above; [`run`] runs the planned model through its
+//! entry, and every integrated model records its rows through the one
+//! `integrate_recorded`. The `derived` model is the entry whose run is
+//! [`derived`]'s.
 
 use std::fmt;
 use std::io::Write;
@@ -228,8 +238,10 @@ pub fn plan(scene: &Scene, req: &Request) -> Result<Plan, SimError> {
         check: req.check,
         fit_error: None,
     };
-    if req.model == Some(Model::Derived) && !matches!(scene.kind, SceneKind::Derived(_)) {
-        return Err(not_applicable(Model::Derived, scene, NOT_DERIVED));
+    // Whether a requested model applies is its registry entry's to say;
+    // what follows only chooses (and explains) among those that do.
+    if let Some(m) = req.model {
+        check_applies(m, scene)?;
     }
     match &scene.kind {
         SceneKind::Derived(_) => match req.model {
@@ -258,11 +270,7 @@ pub fn plan(scene: &Scene, req: &Request) -> Result<Plan, SimError> {
                 }
                 p
             }),
-            Some(other) => Err(not_applicable(
-                other,
-                scene,
-                ONLY_DERIVED,
-            )),
+            Some(other) => Err(not_applicable(other, scene, ONLY_DERIVED)),
         },
         SceneKind::FixedAxis { .. } => match req.model {
             None | Some(Model::FixedAxis) => Ok(match req.method {
@@ -277,11 +285,7 @@ pub fn plan(scene: &Scene, req: &Request) -> Result<Plan, SimError> {
                     format!("one-degree-of-freedom equation (§6) integrated with {m} as requested"),
                 )?,
             }),
-            Some(other) => Err(not_applicable(
-                other,
-                scene,
-                "the bearings constrain the body to one degree of freedom; only `fixed-axis` describes it",
-            )),
+            Some(other) => Err(not_applicable(other, scene, "only `fixed-axis` describes a shaft")),
         },
         SceneKind::Free { moments, q0, w0 } => {
             let exact = TorqueFree::new(moments.get(), *q0, *w0)?;
@@ -290,40 +294,8 @@ pub fn plan(scene: &Scene, req: &Request) -> Result<Plan, SimError> {
                 _ => Model::SteadyPrecession,
             };
             match (req.model, req.method) {
-                (Some(Model::Derived), _) => unreachable!("refused above for a scene that is not derived"),
-                (Some(Model::FixedAxis), _) => Err(not_applicable(
-                    Model::FixedAxis,
-                    scene,
-                    "the body is free: no bearing fixes its axis (a spin about a principal axis is \
-                     found by the closed form as a permanent rotation)",
-                )),
-                (Some(Model::SteadyPrecession), _) if closed_model != Model::SteadyPrecession => {
-                    Err(not_applicable(
-                        Model::SteadyPrecession,
-                        scene,
-                        "the body is not axisymmetric (three distinct moments): its motion is not a steady precession",
-                    ))
-                }
-                (Some(Model::Elliptic), _) if closed_model != Model::Elliptic => {
-                    Err(not_applicable(
-                        Model::Elliptic,
-                        scene,
-                        "the elliptic form needs three distinct moments and a motion that is not a permanent rotation; \
-                     use steady-precession",
-                    ))
-                }
-                (Some(m @ (Model::SteadyPrecession | Model::Elliptic)), _) => {
-                    Ok(closed(m, "closed form, as requested"))
-                }
-                (Some(Model::PrecessionAngle), _) if w0.norm() == 0.0 => Err(not_applicable(
-                    Model::PrecessionAngle,
-                    scene,
-                    "the body is at rest: H = 0 defines no invariable axis",
-                )),
-                (
-                    Some(m @ (Model::PrecessionAngle | Model::RigidBody | Model::EulerAngles)),
-                    method,
-                ) => integrated(
+                (Some(m), _) if !m.entry().integrated => Ok(closed(m, "closed form, as requested")),
+                (Some(m), method) => integrated(
                     m,
                     method,
                     format!("{m} integration as requested (reference: the closed form)"),
@@ -380,24 +352,7 @@ pub fn plan(scene: &Scene, req: &Request) -> Result<Plan, SimError> {
             }
         }
         SceneKind::HeavyTop { steady, .. } => match (req.model, req.method) {
-            (Some(m @ (Model::FixedAxis | Model::Elliptic)), _) => Err(not_applicable(
-                m,
-                scene,
-                "a heavy top on a fixed point has three degrees of freedom and a gravity torque",
-            )),
-            (Some(Model::PrecessionAngle), _) => Err(not_applicable(
-                Model::PrecessionAngle,
-                scene,
-                "gravity turns H in space, so the attitude is not fixed by body H and one angle about it",
-            )),
-            (Some(Model::SteadyPrecession), _) if steady.is_none() => Err(not_applicable(
-                Model::SteadyPrecession,
-                scene,
-                "the initial state does not satisfy §7's steady-precession relation (or θ̇ ≠ 0)",
-            )),
-            (Some(Model::SteadyPrecession), _) => {
-                Ok(closed(Model::SteadyPrecession, "closed form, as requested"))
-            }
+            (Some(m), _) if !m.entry().integrated => Ok(closed(m, "closed form, as requested")),
             (Some(m), method) => integrated(m, method, format!("{m} integration as requested")),
             (None, Some(method)) => integrated(
                 Model::RigidBody,
@@ -987,10 +942,229 @@ fn shaft_reactions(shaft: &Shaft, w: f64) -> [f64; 7] {
     ]
 }
 
+/// One model of the motion: what it applies to, why it is chosen, and how
+/// it runs. [`plan`] asks the entry whether a requested model applies and
+/// [`run`] runs the planned model through it; adding a model is adding an
+/// entry to [`MODELS`] (the `derived` one is `run/derived.rs`).
+pub struct ModelEntry {
+    /// The model.
+    pub model: Model,
+    /// The scenes it applies to.
+    pub applies_to: &'static str,
+    /// Why it is the model chosen there (the rule of the module docs).
+    pub why: &'static str,
+    /// Whether it integrates equations of motion (else a closed form;
+    /// `fixed-axis` has both and integrates when a method is given).
+    pub integrated: bool,
+    /// Why it does not apply to a scene; `None` when it does.
+    refusal: fn(&Scene) -> Result<Option<&'static str>, SimError>,
+    /// Runs a planned scene, filling the report.
+    run: RunFn,
+}
+
+/// How a model runs: the scene, its plan, the recorder of streamed or
+/// stored rows, and the report to fill.
+type RunFn = fn(&Scene, &Plan, &mut Recorder<'_, '_>, &mut Report) -> Result<(), SimError>;
+
+/// Every model, in the order of [`Model::ALL`].
+pub const MODELS: [ModelEntry; 7] = [
+    ModelEntry {
+        model: Model::FixedAxis,
+        applies_to: "a shaft in two bearings (kind fixed-axis)",
+        why: "one degree of freedom, linear motor law: a closed form, or integrated with --method; bearing reactions from §6",
+        integrated: false,
+        refusal: refuse_fixed_axis,
+        run: run_fixed_axis,
+    },
+    ModelEntry {
+        model: Model::SteadyPrecession,
+        applies_to: "a free axisymmetric body or a permanent rotation; a heavy top started in steady precession",
+        why: "closed form (§7, §9): θ, φ̇, ψ̇ constant, no integration",
+        integrated: false,
+        refusal: refuse_steady_precession,
+        run: run_closed_form,
+    },
+    ModelEntry {
+        model: Model::Elliptic,
+        applies_to: "a free body with three distinct moments",
+        why: "closed form through Jacobi elliptic functions, no integration",
+        integrated: false,
+        refusal: refuse_elliptic,
+        run: run_closed_form,
+    },
+    ModelEntry {
+        model: Model::PrecessionAngle,
+        applies_to: "a free body that turns (H ≠ 0)",
+        why: "H is fixed in space: ω and one angle about H (4 components), projected onto the invariants",
+        integrated: true,
+        refusal: refuse_precession_angle,
+        run: run_precession_angle,
+    },
+    ModelEntry {
+        model: Model::RigidBody,
+        applies_to: "a free body or a heavy top",
+        why: "Euler's equations with a unit-quaternion attitude: no singular attitude; the heavy top's integrated model",
+        integrated: true,
+        refusal: refuse_body_model,
+        run: run_rigid_body,
+    },
+    ModelEntry {
+        model: Model::EulerAngles,
+        applies_to: "a free body or a heavy top (away from θ = 0, π)",
+        why: "Euler's equations with Eulerian angles, for comparison: singular at sin θ = 0",
+        integrated: true,
+        refusal: refuse_body_model,
+        run: run_euler_angles,
+    },
+    ModelEntry {
+        model: Model::Derived,
+        applies_to: "a scene of kind derived (a derivation's equations of motion)",
+        why: "the scene asks for exactly what a file derived; integrated in its coordinates",
+        integrated: true,
+        refusal: refuse_derived,
+        run: derived::run,
+    },
+];
+
+impl Model {
+    /// The model's entry in [`MODELS`].
+    pub fn entry(self) -> &'static ModelEntry {
+        MODELS
+            .iter()
+            .find(|e| e.model == self)
+            .expect("every model has an entry")
+    }
+}
+
+/// Refuses `model` on `scene` when its entry says it does not apply.
+fn check_applies(model: Model, scene: &Scene) -> Result<(), SimError> {
+    match (model.entry().refusal)(scene)? {
+        Some(why) => Err(not_applicable(model, scene, why)),
+        None => Ok(()),
+    }
+}
+
+/// Why a model of a rigid body (free or heavy top) does not apply.
+fn refuse_non_body(scene: &Scene) -> Option<&'static str> {
+    match &scene.kind {
+        SceneKind::Derived(_) => Some(ONLY_DERIVED),
+        SceneKind::FixedAxis { .. } => Some(
+            "the bearings constrain the body to one degree of freedom; only `fixed-axis` describes it",
+        ),
+        SceneKind::Free { .. } | SceneKind::HeavyTop { .. } => None,
+    }
+}
+
+fn refuse_body_model(scene: &Scene) -> Result<Option<&'static str>, SimError> {
+    Ok(refuse_non_body(scene))
+}
+
+fn refuse_derived(scene: &Scene) -> Result<Option<&'static str>, SimError> {
+    Ok((!matches!(scene.kind, SceneKind::Derived(_))).then_some(NOT_DERIVED))
+}
+
+fn refuse_fixed_axis(scene: &Scene) -> Result<Option<&'static str>, SimError> {
+    Ok(match &scene.kind {
+        SceneKind::FixedAxis { .. } => None,
+        SceneKind::Derived(_) => Some(ONLY_DERIVED),
+        SceneKind::Free { .. } => Some(
+            "the body is free: no bearing fixes its axis (a spin about a principal axis is \
+             found by the closed form as a permanent rotation)",
+        ),
+        SceneKind::HeavyTop { .. } => Some(HEAVY_TOP_DOF),
+    })
+}
+
+/// Why a closed form of the free body is not the heavy top's.
+const HEAVY_TOP_DOF: &str =
+    "a heavy top on a fixed point has three degrees of freedom and a gravity torque";
+
+fn refuse_steady_precession(scene: &Scene) -> Result<Option<&'static str>, SimError> {
+    Ok(match &scene.kind {
+        SceneKind::Free { moments, q0, w0 } => match TorqueFree::new(moments.get(), *q0, *w0)? {
+            TorqueFree::Elliptic(_) => Some(
+                "the body is not axisymmetric (three distinct moments): its motion is not a steady precession",
+            ),
+            _ => None,
+        },
+        SceneKind::HeavyTop { steady: None, .. } => {
+            Some("the initial state does not satisfy §7's steady-precession relation (or θ̇ ≠ 0)")
+        }
+        SceneKind::HeavyTop { .. } => None,
+        _ => refuse_non_body(scene),
+    })
+}
+
+fn refuse_elliptic(scene: &Scene) -> Result<Option<&'static str>, SimError> {
+    Ok(match &scene.kind {
+        SceneKind::Free { moments, q0, w0 } => match TorqueFree::new(moments.get(), *q0, *w0)? {
+            TorqueFree::Elliptic(_) => None,
+            _ => Some(
+                "the elliptic form needs three distinct moments and a motion that is not a permanent rotation; \
+                     use steady-precession",
+            ),
+        },
+        SceneKind::HeavyTop { .. } => Some(HEAVY_TOP_DOF),
+        _ => refuse_non_body(scene),
+    })
+}
+
+fn refuse_precession_angle(scene: &Scene) -> Result<Option<&'static str>, SimError> {
+    Ok(match &scene.kind {
+        SceneKind::Free { w0, .. } if w0.norm() == 0.0 => {
+            Some("the body is at rest: H = 0 defines no invariable axis")
+        }
+        SceneKind::Free { .. } => None,
+        SceneKind::HeavyTop { .. } => Some(
+            "gravity turns H in space, so the attitude is not fixed by body H and one angle about it",
+        ),
+        _ => refuse_non_body(scene),
+    })
+}
+
+/// Integrates `sys` from `y0` over `[0, t_end]`, recording the row
+/// `row(t, y)` of every accepted step when output is asked for: the one
+/// integrate-and-record block of every integrated model. Returns the state
+/// at `t_end`, the counts and the wall time.
+fn integrate_recorded<const N: usize, S: crate::System<N>>(
+    sys: &S,
+    (method, step): (Method, Step),
+    y0: [f64; N],
+    t_end: f64,
+    rec: &mut Recorder<'_, '_>,
+    row: impl Fn(f64, &[f64; N]) -> Vec<f64>,
+) -> Result<([f64; N], Stats, f64), SimError> {
+    let active = rec.active();
+    let start = Instant::now();
+    let (y, stats) = integrate(
+        sys,
+        method,
+        step,
+        0.0,
+        y0,
+        t_end,
+        Limits::default(),
+        |t, y| {
+            if active {
+                rec.record(row(t, y))?;
+            }
+            Ok(())
+        },
+    )?;
+    Ok((y, stats, start.elapsed().as_secs_f64()))
+}
+
+/// A row `[t, y…]`.
+fn time_and_state<const N: usize>(t: f64, y: &[f64; N]) -> Vec<f64> {
+    let mut row = Vec::with_capacity(N + 1);
+    row.push(t);
+    row.extend_from_slice(y);
+    row
+}
+
 /// Runs a scene as planned.
 pub fn run(scene: &Scene, plan: &Plan, out: &mut Output<'_>) -> Result<Report, SimError> {
-    let t_end = plan.t_end;
-    let check = plan.check;
+    check_applies(plan.model, scene)?;
     let mut report = Report {
         scene: scene.name.clone(),
         kind: scene.kind.name(),
@@ -1022,240 +1196,208 @@ pub fn run(scene: &Scene, plan: &Plan, out: &mut Output<'_>) -> Result<Report, S
         rows: vec![],
         bytes: 0,
     };
-    match (&scene.kind, plan.model) {
-        (SceneKind::Derived(ds), Model::Derived) => derived::run(ds, plan, &mut rec, &mut report)?,
-        (SceneKind::Derived(_), m) => {
-            return Err(not_applicable(m, scene, ONLY_DERIVED));
-        }
-        (_, Model::Derived) => {
-            return Err(not_applicable(Model::Derived, scene, NOT_DERIVED));
-        }
-        (SceneKind::FixedAxis { shaft, y0 }, Model::FixedAxis) => {
-            let start = Instant::now();
-            let (y, stats) = match (plan.method, plan.step) {
-                (Some(method), Some(step)) => {
-                    let active = rec.active();
-                    integrate(
-                        shaft,
-                        method,
-                        step,
-                        0.0,
-                        *y0,
-                        t_end,
-                        Limits::default(),
-                        |t, y| {
-                            if active {
-                                let mut row = vec![t, y[0], y[1]];
-                                row.extend_from_slice(&shaft_reactions(shaft, y[1])[..4]);
-                                rec.record(row)?;
-                            }
-                            Ok(())
-                        },
-                    )?
-                }
-                _ => {
-                    let y = shaft.exact(y0, t_end);
-                    let mut row = vec![t_end, y[0], y[1]];
-                    row.extend_from_slice(&shaft_reactions(shaft, y[1])[..4]);
-                    if rec.active() {
-                        rec.record(row)?;
-                    }
-                    (y, Stats::default())
-                }
-            };
-            report.wall_s = start.elapsed().as_secs_f64();
-            let exact = shaft.exact(y0, t_end);
-            report.reference = "closed form of the one-degree-of-freedom equation".into();
-            if plan.method.is_some() {
-                report.error = Some(((y[0] - exact[0]).powi(2) + (y[1] - exact[1]).powi(2)).sqrt());
-                report.error_basis = "measured against the closed form".into();
-            } else {
-                let w = y0[1].abs();
-                let time_scale = if w > 0.0 { 1.0 / w } else { t_end };
-                report.error = Some(closed_form_estimate(
-                    shaft,
-                    &|t| shaft.exact(y0, t),
-                    y0,
-                    t_end,
-                    time_scale,
-                    ESTIMATE_SAMPLES,
-                    euclid,
-                )?);
-                report.error_basis = ESTIMATE_BASIS.into();
-                if check {
-                    let (yc, _) = integrate(
-                        shaft,
-                        Method::Dop853,
-                        Step::Tolerance(CHECK_TOL),
-                        0.0,
-                        *y0,
-                        t_end,
-                        Limits::default(),
-                        |_, _| Ok(()),
-                    )?;
-                    report.check = Some(Check {
-                        against: format!("dop853 at tol={CHECK_TOL:e}"),
-                        difference: euclid(&y, &yc),
-                    });
-                }
-            }
-            report.reactions = Some(shaft_reactions(shaft, y[1]));
-            report.final_state = y.to_vec();
-            set_stats(&mut report, stats);
-        }
-        (SceneKind::FixedAxis { .. }, m) => {
-            return Err(not_applicable(
-                m,
-                scene,
-                "only `fixed-axis` describes a shaft",
-            ));
-        }
-        (_, Model::FixedAxis) => {
-            return Err(not_applicable(
-                Model::FixedAxis,
-                scene,
-                "no bearing fixes the axis of this body",
-            ));
-        }
-        (_, Model::SteadyPrecession | Model::Elliptic) => {
-            let (body, y0) = free_body(scene).expect("free or heavy top");
-            let start = Instant::now();
-            let (y, name) = reference_state(scene, t_end)?;
-            report.wall_s = start.elapsed().as_secs_f64();
-            if rec.active() {
-                let mut row = vec![t_end];
-                row.extend_from_slice(&y);
-                rec.record(row)?;
-            }
-            report.reference = format!("none: this run is the {name}");
-            report.error = Some(body_closed_form_estimate(scene, t_end, ESTIMATE_SAMPLES)?);
-            report.error_basis = ESTIMATE_BASIS.into();
-            if check {
-                let (yc, _) = integrate(
-                    &body,
-                    Method::Dop853,
-                    Step::Tolerance(CHECK_TOL),
-                    0.0,
-                    y0,
-                    t_end,
-                    Limits::default(),
-                    |_, _| Ok(()),
-                )?;
-                report.check = Some(Check {
-                    against: format!("dop853 at tol={CHECK_TOL:e}"),
-                    difference: state_distance(&y, &yc),
-                });
-            }
-            report.drifts = free_drifts(&body, &y0, &y);
-            report.final_state = y.to_vec();
-        }
-        (SceneKind::Free { moments, q0, w0 }, Model::PrecessionAngle) => {
-            let (body, y0) = free_body(scene).expect("free");
-            let (method, step) = method_step(plan)?;
-            let (sys, z0) = PrecessionAngle::new(moments.get(), q0, w0).ok_or_else(|| {
-                not_applicable(
-                    Model::PrecessionAngle,
-                    scene,
-                    "the body is at rest: H = 0 defines no invariable axis",
-                )
-            })?;
-            let active = rec.active();
-            let start = Instant::now();
-            let (z, stats) = integrate(
-                &sys,
-                method,
-                step,
-                0.0,
-                z0,
-                t_end,
-                Limits::default(),
-                |t, z| {
-                    if active {
-                        let mut row = vec![t];
-                        row.extend_from_slice(&sys.full_state(z));
-                        rec.record(row)?;
-                    }
-                    Ok(())
-                },
-            )?;
-            report.wall_s = start.elapsed().as_secs_f64();
-            let y = sys.full_state(&z);
-            finish_free(scene, &body, &y0, &y, t_end, &mut report)?;
-            set_stats(&mut report, stats);
-        }
-        (_, Model::PrecessionAngle) => {
-            return Err(not_applicable(
-                Model::PrecessionAngle,
-                scene,
-                "only a torque-free body keeps H fixed in space",
-            ));
-        }
-        (_, Model::RigidBody) => {
-            let (body, y0) = free_body(scene).expect("free or heavy top");
-            let (method, step) = method_step(plan)?;
-            let active = rec.active();
-            let start = Instant::now();
-            let (y, stats) = integrate(
-                &body,
-                method,
-                step,
-                0.0,
-                y0,
-                t_end,
-                Limits::default(),
-                |t, y| {
-                    if active {
-                        let mut row = vec![t];
-                        row.extend_from_slice(y);
-                        rec.record(row)?;
-                    }
-                    Ok(())
-                },
-            )?;
-            report.wall_s = start.elapsed().as_secs_f64();
-            finish_free(scene, &body, &y0, &y, t_end, &mut report)?;
-            set_stats(&mut report, stats);
-        }
-        (_, Model::EulerAngles) => {
-            let (body, y0) = free_body(scene).expect("free or heavy top");
-            let (method, step) = method_step(plan)?;
-            let (phi, theta, psi) =
-                crate::models::euler_angles::angles_from_quaternion(&attitude(&y0));
-            let e0 = [phi, theta, psi, y0[4], y0[5], y0[6]];
-            let sys = EulerAngleBody {
-                moments: body.moments,
-                weight_arm: body.gravity.map_or(0.0, |g| g.weight_arm),
-            };
-            let active = rec.active();
-            let start = Instant::now();
-            let (e, stats) = integrate(
-                &sys,
-                method,
-                step,
-                0.0,
-                e0,
-                t_end,
-                Limits::default(),
-                |t, y| {
-                    if active {
-                        let mut row = vec![t];
-                        row.extend_from_slice(y);
-                        rec.record(row)?;
-                    }
-                    Ok(())
-                },
-            )?;
-            report.wall_s = start.elapsed().as_secs_f64();
-            let y = to_quaternion_state(&e);
-            finish_free(scene, &body, &y0, &y, t_end, &mut report)?;
-            set_stats(&mut report, stats);
-        }
-    }
+    (plan.model.entry().run)(scene, plan, &mut rec, &mut report)?;
     if rec.out.store {
         report.trajectory = Some(std::mem::take(&mut rec.rows));
     }
     refuse_non_finite(&report)?;
     Ok(report)
+}
+
+/// The error of running `model` on a scene its entry should have refused.
+fn wrong_kind(model: Model, scene: &Scene) -> SimError {
+    not_applicable(
+        model,
+        scene,
+        "the scene is not of a kind this model describes",
+    )
+}
+
+fn run_fixed_axis(
+    scene: &Scene,
+    plan: &Plan,
+    rec: &mut Recorder<'_, '_>,
+    report: &mut Report,
+) -> Result<(), SimError> {
+    let SceneKind::FixedAxis { shaft, y0 } = &scene.kind else {
+        return Err(wrong_kind(plan.model, scene));
+    };
+    let t_end = plan.t_end;
+    let row = |t: f64, y: &[f64; 2]| {
+        let mut row = vec![t, y[0], y[1]];
+        row.extend_from_slice(&shaft_reactions(shaft, y[1])[..4]);
+        row
+    };
+    let (y, stats) = match (plan.method, plan.step) {
+        (Some(method), Some(step)) => {
+            let (y, stats, wall) = integrate_recorded(shaft, (method, step), *y0, t_end, rec, row)?;
+            report.wall_s = wall;
+            (y, stats)
+        }
+        _ => {
+            let start = Instant::now();
+            let y = shaft.exact(y0, t_end);
+            report.wall_s = start.elapsed().as_secs_f64();
+            if rec.active() {
+                rec.record(row(t_end, &y))?;
+            }
+            (y, Stats::default())
+        }
+    };
+    let exact = shaft.exact(y0, t_end);
+    report.reference = "closed form of the one-degree-of-freedom equation".into();
+    if plan.method.is_some() {
+        report.error = Some(((y[0] - exact[0]).powi(2) + (y[1] - exact[1]).powi(2)).sqrt());
+        report.error_basis = "measured against the closed form".into();
+    } else {
+        let w = y0[1].abs();
+        let time_scale = if w > 0.0 { 1.0 / w } else { t_end };
+        report.error = Some(closed_form_estimate(
+            shaft,
+            &|t| shaft.exact(y0, t),
+            y0,
+            t_end,
+            time_scale,
+            ESTIMATE_SAMPLES,
+            euclid,
+        )?);
+        report.error_basis = ESTIMATE_BASIS.into();
+        if plan.check {
+            let (yc, _) = integrate(
+                shaft,
+                Method::Dop853,
+                Step::Tolerance(CHECK_TOL),
+                0.0,
+                *y0,
+                t_end,
+                Limits::default(),
+                |_, _| Ok(()),
+            )?;
+            report.check = Some(Check {
+                against: format!("dop853 at tol={CHECK_TOL:e}"),
+                difference: euclid(&y, &yc),
+            });
+        }
+    }
+    report.reactions = Some(shaft_reactions(shaft, y[1]));
+    report.final_state = y.to_vec();
+    set_stats(report, stats);
+    Ok(())
+}
+
+fn run_closed_form(
+    scene: &Scene,
+    plan: &Plan,
+    rec: &mut Recorder<'_, '_>,
+    report: &mut Report,
+) -> Result<(), SimError> {
+    let (body, y0) = free_body(scene).ok_or_else(|| wrong_kind(plan.model, scene))?;
+    let t_end = plan.t_end;
+    let start = Instant::now();
+    let (y, name) = reference_state(scene, t_end)?;
+    report.wall_s = start.elapsed().as_secs_f64();
+    if rec.active() {
+        rec.record(time_and_state(t_end, &y))?;
+    }
+    report.reference = format!("none: this run is the {name}");
+    report.error = Some(body_closed_form_estimate(scene, t_end, ESTIMATE_SAMPLES)?);
+    report.error_basis = ESTIMATE_BASIS.into();
+    if plan.check {
+        let (yc, _) = integrate(
+            &body,
+            Method::Dop853,
+            Step::Tolerance(CHECK_TOL),
+            0.0,
+            y0,
+            t_end,
+            Limits::default(),
+            |_, _| Ok(()),
+        )?;
+        report.check = Some(Check {
+            against: format!("dop853 at tol={CHECK_TOL:e}"),
+            difference: state_distance(&y, &yc),
+        });
+    }
+    report.drifts = free_drifts(&body, &y0, &y);
+    report.final_state = y.to_vec();
+    Ok(())
+}
+
+fn run_precession_angle(
+    scene: &Scene,
+    plan: &Plan,
+    rec: &mut Recorder<'_, '_>,
+    report: &mut Report,
+) -> Result<(), SimError> {
+    let SceneKind::Free { moments, q0, w0 } = &scene.kind else {
+        return Err(wrong_kind(plan.model, scene));
+    };
+    let (body, y0) = free_body(scene).ok_or_else(|| wrong_kind(plan.model, scene))?;
+    let (sys, z0) = PrecessionAngle::new(moments.get(), q0, w0).ok_or_else(|| {
+        not_applicable(
+            Model::PrecessionAngle,
+            scene,
+            "the body is at rest: H = 0 defines no invariable axis",
+        )
+    })?;
+    let (z, stats, wall) =
+        integrate_recorded(&sys, method_step(plan)?, z0, plan.t_end, rec, |t, z| {
+            time_and_state(t, &sys.full_state(z))
+        })?;
+    report.wall_s = wall;
+    let y = sys.full_state(&z);
+    finish_free(scene, &body, &y0, &y, plan.t_end, report)?;
+    set_stats(report, stats);
+    Ok(())
+}
+
+fn run_rigid_body(
+    scene: &Scene,
+    plan: &Plan,
+    rec: &mut Recorder<'_, '_>,
+    report: &mut Report,
+) -> Result<(), SimError> {
+    let (body, y0) = free_body(scene).ok_or_else(|| wrong_kind(plan.model, scene))?;
+    let (y, stats, wall) = integrate_recorded(
+        &body,
+        method_step(plan)?,
+        y0,
+        plan.t_end,
+        rec,
+        time_and_state,
+    )?;
+    report.wall_s = wall;
+    finish_free(scene, &body, &y0, &y, plan.t_end, report)?;
+    set_stats(report, stats);
+    Ok(())
+}
+
+fn run_euler_angles(
+    scene: &Scene,
+    plan: &Plan,
+    rec: &mut Recorder<'_, '_>,
+    report: &mut Report,
+) -> Result<(), SimError> {
+    let (body, y0) = free_body(scene).ok_or_else(|| wrong_kind(plan.model, scene))?;
+    let (phi, theta, psi) = crate::models::euler_angles::angles_from_quaternion(&attitude(&y0));
+    let e0 = [phi, theta, psi, y0[4], y0[5], y0[6]];
+    let sys = EulerAngleBody {
+        moments: body.moments,
+        weight_arm: body.gravity.map_or(0.0, |g| g.weight_arm),
+    };
+    let (e, stats, wall) = integrate_recorded(
+        &sys,
+        method_step(plan)?,
+        e0,
+        plan.t_end,
+        rec,
+        time_and_state,
+    )?;
+    report.wall_s = wall;
+    let y = to_quaternion_state(&e);
+    finish_free(scene, &body, &y0, &y, plan.t_end, report)?;
+    set_stats(report, stats);
+    Ok(())
 }
 
 /// Number of points along a closed-form run where its defect is sampled.

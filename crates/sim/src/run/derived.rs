@@ -7,13 +7,14 @@
 //! is read, while the integrators take fixed-size arrays; [`with_len`]
 //! dispatches on it once, up to [`MAX_DOF`] coordinates.
 
-use std::time::Instant;
-
 use nalgebra::Matrix3;
 
-use super::{Drift, FrameState, Plan, REFERENCE_TOL, Recorder, Report, Row, method_step, timed};
+use super::{
+    Drift, FrameState, Plan, REFERENCE_TOL, Recorder, Report, Row, integrate_recorded, method_step,
+    time_and_state, timed, wrong_kind,
+};
 use crate::models::derived::{DerivedModel, DerivedSystem, MAX_DOF};
-use crate::scene::DerivedScene;
+use crate::scene::{DerivedScene, Scene, SceneKind};
 use crate::{Limits, Method, SimError, Stats, Step, integrate};
 
 /// Calls `$f::<N>(args)` for the state length `$len` (2, 4, …, 2·MAX_DOF).
@@ -181,13 +182,17 @@ fn drifts(ds: &DerivedScene, y0: &[f64], t: f64, y: &[f64]) -> Vec<Drift> {
         .collect()
 }
 
-/// Runs a derived scene as planned, filling `report`.
+/// Runs a derived scene as planned, filling `report` (the `derived`
+/// entry of [`super::MODELS`]).
 pub(super) fn run(
-    ds: &DerivedScene,
+    scene: &Scene,
     plan: &Plan,
     rec: &mut Recorder<'_, '_>,
     report: &mut Report,
 ) -> Result<(), SimError> {
+    let SceneKind::Derived(ds) = &scene.kind else {
+        return Err(wrong_kind(plan.model, scene));
+    };
     with_len!(ds.y0.len(), run_n(ds, plan, rec, report))
 }
 
@@ -206,18 +211,15 @@ fn run_n<const N: usize>(
         report.plan.step = Some(step);
         report.plan.reason = format!("{}; {why}", report.plan.reason);
     }
-    let active = rec.active();
-    let clock = Instant::now();
-    let (y, stats) = integrate_n(&ds.model, method, step, y0, plan.t_end, |t, y| {
-        if active {
-            let mut row = Vec::with_capacity(N + 1);
-            row.push(t);
-            row.extend_from_slice(y);
-            rec.record(row)?;
-        }
-        Ok(())
-    })?;
-    report.wall_s = clock.elapsed().as_secs_f64();
+    let (y, stats, wall) = integrate_recorded(
+        &DerivedSystem::<N>(&ds.model),
+        (method, step),
+        y0,
+        plan.t_end,
+        rec,
+        time_and_state,
+    )?;
+    report.wall_s = wall;
     report.reference = format!("dop853 at tol={REFERENCE_TOL:e} on the same derived equations");
     report.error_basis = format!("measured against the reference: {}", error_measure(ds));
     report.error = Some(distance(ds, plan.t_end, &y, &reference));
