@@ -320,3 +320,65 @@ value = "-x*h + z*h"
         ]
     );
 }
+
+/// Labels that are mathematics: an expression of the symbols, a partial
+/// derivative, and `0`, which prints the equation as `… = 0` (every
+/// component of a vector, without a subscript on the zero). A file written
+/// for this test; a label that is not an expression of the symbols is an
+/// error naming the field.
+#[test]
+fn new_problems_print_labels_as_mathematics() {
+    let text = |label: &str| {
+        format!(
+            r#"
+title = "Labels, written for this test"
+source = "test"
+[symbols]
+constants = ["J", "k"]
+time = ["phi", "theta"]
+[[step]]
+name = "T"
+value = "J*(theta'^2 + phi'^2*sin(theta)^2)/2"
+[[step]]
+name = "p"
+label = "partial(T, theta')"
+value = "partial(T, theta')"
+[[step]]
+name = "coupled"
+label = "{label}"
+value = "phi''*sin(theta)"
+[[step]]
+name = "balance"
+label = "0"
+value = "[J*theta'' + k*theta, J*phi'', 0] in N"
+"#
+        )
+    };
+    let d = hdot_sym::derivation::load_str("labels.toml", &text("phi''*sin(theta)")).unwrap();
+    let unicode = hdot_sym::render::render(&d, hdot_sym::render::Format::Unicode);
+    for line in [
+        "   ∂T/∂θ\u{307} = J θ\u{307}\n",
+        "   φ\u{308} sin θ = φ\u{308} sin θ\n",
+        "   J θ\u{308} + k θ = 0\n",
+        "   J φ\u{308} = 0\n",
+        "   0 = 0\n",
+    ] {
+        assert!(unicode.contains(line), "{line:?} not in\n{unicode}");
+    }
+    assert!(!unicode.contains("0_x"), "{unicode}");
+    let latex = hdot_sym::render::render(&d, hdot_sym::render::Format::Latex);
+    for part in [
+        r"\frac{\partial T}{\partial \dot{\theta}} &= J \dot{\theta}",
+        r"\ddot{\phi} \sin\theta &= ",
+        r"J \ddot{\theta} + k \theta &= 0",
+    ] {
+        assert!(latex.contains(part), "{part:?} not in\n{latex}");
+    }
+    let err = hdot_sym::derivation::load_str("labels.toml", &text("phi''*sin(thet)"))
+        .expect_err("an unknown symbol in a label is refused")
+        .to_string();
+    assert!(
+        err.contains("label") && err.contains("labels.toml"),
+        "{err}"
+    );
+}

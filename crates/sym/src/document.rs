@@ -111,6 +111,94 @@ pub enum Lhs {
     Label(String, String),
     /// An expression: the unknown of a solved list (θ̈).
     Expr(Expr),
+    /// A label that is mathematics, with a component (empty for a scalar):
+    /// (φ̈ sin θ)_x, ∂T/∂θ̇.
+    Math(LabelMath, String),
+}
+
+/// A step label written as mathematics rather than a name: an expression
+/// of the file's symbols (`phi''*sin(theta)` prints φ̈ sin θ), a partial
+/// derivative (`partial(T, theta')` prints ∂T/∂θ̇), or `0`, which prints
+/// the equation as `… = 0`.
+#[derive(Clone, Debug)]
+pub enum LabelMath {
+    /// An expression as written.
+    Expr(Expr),
+    /// ∂f/∂q: the name of f (a label word) and q.
+    Partial(String, crate::atom::Atom),
+    /// The equation is `result = 0`.
+    Zero,
+}
+
+impl LabelMath {
+    /// Reads a label: `None` for a plain name (`Sigma M`, `I_x(P)`); a
+    /// label with `*`, `/` or `^`, or one written `partial(f, q)`, must be
+    /// an expression of the declared symbols (the error says why not).
+    pub fn parse(label: &str, symbols: &crate::Symbols) -> Result<Option<LabelMath>, String> {
+        let t = label.trim();
+        if t == "0" {
+            return Ok(Some(LabelMath::Zero));
+        }
+        if let Some(args) = t.strip_prefix("partial(").and_then(|a| a.strip_suffix(')')) {
+            let Some((f, q)) = args.split_once(',') else {
+                return Err(format!(
+                    "`{t}`: write a partial derivative as partial(T, theta')"
+                ));
+            };
+            let q = q.trim();
+            let base = q.trim_end_matches('\'');
+            let primes = (q.len() - base.len()) as u32;
+            let atom = symbols
+                .atom(base, primes, crate::parse::Span::default())
+                .map_err(|e| format!("`{t}`: {}", e.message))?;
+            return Ok(Some(LabelMath::Partial(f.trim().to_owned(), atom)));
+        }
+        if !t.contains(['*', '/', '^']) {
+            return Ok(None);
+        }
+        symbols
+            .expr(t)
+            .map(|e| Some(LabelMath::Expr(e)))
+            .map_err(|e| {
+                format!(
+                    "`{t}` is not an expression of the declared symbols: {}",
+                    e.message
+                )
+            })
+    }
+
+    fn latex(&self) -> String {
+        match self {
+            LabelMath::Expr(e) => print::latex(e),
+            LabelMath::Partial(f, q) => format!(
+                r"\frac{{\partial {}}}{{\partial {}}}",
+                crate::render::latex_label(f, ""),
+                print::Style::atom(&print::Latex, *q)
+            ),
+            LabelMath::Zero => "0".to_owned(),
+        }
+    }
+
+    fn unicode(&self) -> String {
+        match self {
+            LabelMath::Expr(e) => print::unicode(e),
+            LabelMath::Partial(f, q) => format!(
+                "∂{}/∂{}",
+                crate::render::unicode_label(f, ""),
+                print::Style::atom(&print::Unicode, *q)
+            ),
+            LabelMath::Zero => "0".to_owned(),
+        }
+    }
+
+    /// Whether the body needs parentheses before a component subscript.
+    fn compound(&self) -> bool {
+        match self {
+            LabelMath::Expr(e) => !matches!(e.node(e.root()), crate::expr::Node::Atom(_)),
+            LabelMath::Partial(..) => true,
+            LabelMath::Zero => false,
+        }
+    }
 }
 
 impl Lhs {
@@ -119,6 +207,10 @@ impl Lhs {
         match self {
             Lhs::Label(l, c) => crate::render::latex_label(l, c),
             Lhs::Expr(e) => print::latex(e),
+            Lhs::Math(LabelMath::Zero, _) => "0".to_owned(),
+            Lhs::Math(m, c) if c.is_empty() => m.latex(),
+            Lhs::Math(m, c) if m.compound() => format!(r"\left({}\right)_{{{c}}}", m.latex()),
+            Lhs::Math(m, c) => format!("{}_{{{c}}}", m.latex()),
         }
     }
 
@@ -127,7 +219,16 @@ impl Lhs {
         match self {
             Lhs::Label(l, c) => crate::render::unicode_label(l, c),
             Lhs::Expr(e) => print::unicode(e),
+            Lhs::Math(LabelMath::Zero, _) => "0".to_owned(),
+            Lhs::Math(m, c) if c.is_empty() => m.unicode(),
+            Lhs::Math(m, c) if m.compound() => format!("({})_{c}", m.unicode()),
+            Lhs::Math(m, c) => format!("{}_{c}", m.unicode()),
         }
+    }
+
+    /// True for `0`: the equation is printed `result = 0`.
+    pub fn is_zero(&self) -> bool {
+        matches!(self, Lhs::Math(LabelMath::Zero, _))
     }
 }
 
@@ -180,7 +281,10 @@ pub fn step_lhs(s: &Step, component: &str) -> Lhs {
         e.push(crate::expr::Node::Atom(*a));
         return Lhs::Expr(e);
     }
-    Lhs::Label(s.label.clone(), component.to_owned())
+    match &s.label_math {
+        Some(m) => Lhs::Math(m.clone(), component.to_owned()),
+        None => Lhs::Label(s.label.clone(), component.to_owned()),
+    }
 }
 
 impl StepBlock {

@@ -409,7 +409,15 @@ fn symbol_list(names: &[String]) -> String {
 
 fn equations_lines(eqs: &[Equation], width: f32) -> Vec<String> {
     eqs.iter()
-        .flat_map(|e| equation_lines(&e.lhs.latex(), &print::latex(&e.rhs), width))
+        .flat_map(|e| {
+            let rhs = print::latex(&e.rhs);
+            // `result = 0` when it fits on a line, else `0 = …` broken.
+            if e.lhs.is_zero() && math_width(&rhs) + 4.0 <= width {
+                vec![format!("{rhs} &= 0")]
+            } else {
+                equation_lines(&e.lhs.latex(), &rhs, width)
+            }
+        })
         .collect()
 }
 

@@ -188,7 +188,12 @@ fn unicode(d: &Derivation) -> String {
             let _ = writeln!(o, "   (components in frame {f})");
         }
         for (c, e) in s.components() {
-            let _ = writeln!(o, "   {} = {}", step_lhs_unicode(s, c), print::unicode(e));
+            let lhs = crate::document::step_lhs(s, c);
+            if lhs.is_zero() {
+                let _ = writeln!(o, "   {} = 0", print::unicode(e));
+            } else {
+                let _ = writeln!(o, "   {} = {}", lhs.unicode(), print::unicode(e));
+            }
         }
         write_checks_unicode(&mut o, s);
     }

@@ -103,6 +103,10 @@ pub struct Step {
     pub formula: String,
     /// Whether the step is printed.
     pub show: bool,
+    /// The label when it is mathematics rather than a name (see
+    /// [`crate::document::LabelMath`]): `phi''*sin(theta)`,
+    /// `partial(T, theta')`, `0`.
+    pub label_math: Option<crate::document::LabelMath>,
     /// The value.
     pub value: Value,
     /// How to present it.
@@ -382,6 +386,18 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
             },
         )?;
         let (value, presentation, axes, checks, meaning) = out.expect("evaluated");
+        let label_math = match &s.label {
+            Some(l) => crate::document::LabelMath::parse(l, &cx.symbols).map_err(|m| {
+                let n = s.name.get_ref();
+                cx.diag_string(
+                    &s.name,
+                    0,
+                    n.len(),
+                    format!("step `{n}`, field `label`: {m}"),
+                )
+            })?,
+            None => None,
+        };
         cx.bind(s.name.get_ref(), value.clone());
         steps.push(Step {
             name: s.name.get_ref().clone(),
@@ -389,6 +405,7 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
             doc: s.doc.clone(),
             formula: s.value.get_ref().clone(),
             show: s.show,
+            label_math,
             value,
             presentation,
             axes,
