@@ -382,3 +382,50 @@ value = "[J*theta'' + k*theta, J*phi'', 0] in N"
         "{err}"
     );
 }
+
+/// The order of constant factors is a file setting: `[symbols] order`
+/// puts the names listed first, in that order, in every product (alone,
+/// inside a bracket and in a solved form's ratio); without it the
+/// conventional order holds (m g l). A name that is not a declared
+/// constant is refused. A file written for this test.
+#[test]
+fn constant_order_is_a_file_setting() {
+    let text = |order: &str| {
+        format!(
+            r#"
+title = "A pendulum, written for this test"
+source = "test"
+[symbols]
+constants = ["m", "g", "l", "k"]
+time = ["theta"]
+{order}
+[[step]]
+name = "M"
+value = "l*g*m*sin(theta)"
+[[step]]
+name = "E"
+value = "m*l^2*theta'^2/2 - m*g*l*cos(theta) + k*l*g*theta"
+[[step]]
+name = "acc"
+value = "solve(m*l^2*theta'' + m*g*l*sin(theta) - k*g*theta', [theta''])"
+"#
+        )
+    };
+    let conventional = printed(&text(""));
+    assert_eq!(conventional[0], "m g l sin θ", "{conventional:?}");
+    let own = printed(&text(r#"order = ["l", "k", "g", "m"]"#));
+    assert_eq!(own[0], "l g m sin θ", "{own:?}");
+    assert_eq!(
+        own[1..],
+        [
+            "(1/2) l (l m θ\u{307}² + 2 k g θ − 2 g m cos θ)",
+            "g (k θ\u{307} − l m sin θ)/(l² m)"
+        ],
+        "{own:?}"
+    );
+    assert_ne!(own[1..], conventional[1..], "{conventional:?}");
+    let err = hdot_sym::derivation::load_str("order.toml", &text(r#"order = ["l", "theta"]"#))
+        .expect_err("a time-dependent name in order is refused")
+        .to_string();
+    assert!(err.contains("order") && err.contains("theta"), "{err}");
+}

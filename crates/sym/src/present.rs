@@ -55,6 +55,9 @@ pub struct Presentation {
     /// Known factors, such as `A − B` and `A − C`: a bracket that equals their
     /// product (or one of them) times a monomial is printed as that product.
     pub factors: Vec<Poly>,
+    /// The file's order of constant factors (`[symbols] order`): the names
+    /// listed come first, in this order, before the conventional one.
+    pub constant_order: Vec<String>,
 }
 
 /// Folds the abbreviation `name := def` into `p`. Returns `p` unchanged when
@@ -137,7 +140,7 @@ pub fn present(p: &Poly, pres: &Presentation) -> Expr {
     let ids: Vec<Id> = groups
         .iter()
         .filter(|(_, ts)| !ts.is_empty())
-        .map(|(k, ts)| group_node(&mut e, k, ts, &pres.factors))
+        .map(|(k, ts)| group_node(&mut e, k, ts, pres))
         .collect();
     e.add(ids);
     e
@@ -153,7 +156,14 @@ fn term_order(a: &[(Atom, i32)], b: &[(Atom, i32)]) -> std::cmp::Ordering {
 }
 
 /// `key · Σ terms` with the sum factored.
-fn group_node(e: &mut Expr, key: &Monomial, terms: &[(Monomial, Rational)], known: &[Poly]) -> Id {
+fn group_node(
+    e: &mut Expr,
+    key: &Monomial,
+    terms: &[(Monomial, Rational)],
+    pres: &Presentation,
+) -> Id {
+    let known = &pres.factors[..];
+    let order = &pres.constant_order[..];
     let mut terms = print_sorted(terms, true);
     let distribute = distributes(&terms);
     // Highest derivative first; then terms of constants only (J + I′ sin² θ);
@@ -238,7 +248,7 @@ fn group_node(e: &mut Expr, key: &Monomial, terms: &[(Monomial, Rational)], know
                 } else {
                     (m.div(&common).sorted_for_print(), *c * &inv)
                 };
-                conventional(&mut f);
+                conventional(&mut f, order);
                 if distribute {
                     ratio_term(e, &f, &c)
                 } else {
@@ -263,7 +273,7 @@ fn group_node(e: &mut Expr, key: &Monomial, terms: &[(Monomial, Rational)], know
     // follow the bracket with the rates.
     let leading = leading_constant;
     let mut lead: Vec<(Atom, i32)> = factors.iter().copied().filter(|f| leading(f.0)).collect();
-    lead.sort_by_key(|f| constant_class(f.0));
+    lead.sort_by_key(|f| constant_class(f.0, order));
     for (a, x) in lead {
         ids.push(e.atom_pow(a, x));
     }
@@ -430,11 +440,13 @@ fn merge_trig_squares(ts: &mut Vec<(Monomial, Rational)>) {
     }
 }
 
-/// The conventional place of a constant factor: mass first, then
-/// inertia, then gravity, then the others (lengths) — `m g l`, `I′ θ̇` —
-/// each class by name.
-fn constant_class(a: Atom) -> (u8, &'static str) {
+/// The place of a constant factor: the names of the file's own order
+/// (`[symbols] order`) first, in that order; then the conventional one —
+/// mass first, then inertia, then gravity, then the others (lengths),
+/// `m g l`, `I′ θ̇` — each class by name.
+fn constant_class(a: Atom, order: &[String]) -> (usize, u8, &'static str) {
     let name = a.name();
+    let own = order.iter().position(|n| n == name).unwrap_or(order.len());
     let base = name.split('_').next().unwrap_or(name);
     let class = match base {
         "m" | "M" | "mass" => 0,
@@ -442,7 +454,7 @@ fn constant_class(a: Atom) -> (u8, &'static str) {
         "g" => 2,
         _ => 3,
     };
-    (class, name)
+    (own, class, name)
 }
 
 /// The position of a subscript or letter in a cyclic order (x → y → z,
@@ -494,13 +506,13 @@ fn cyclic_difference(
 /// The factors of a term inside a bracket in conventional order: constants
 /// first as [`constant_class`] orders them (`2 m g l cos θ`), the rest as
 /// they were, two rates of one cyclic family in cyclic order.
-fn conventional(fs: &mut [(Atom, i32)]) {
+fn conventional(fs: &mut [(Atom, i32)], order: &[String]) {
     let constant = leading_constant;
     fs.sort_by_key(|&(a, _)| {
         if constant(a) {
-            (0, constant_class(a))
+            (0, constant_class(a, order))
         } else {
-            (1, (0, ""))
+            (1, (0, 0, ""))
         }
     });
     cyclic_pair(fs);

@@ -28,6 +28,8 @@ pub(crate) struct Context<'a> {
     values: HashMap<String, Value>,
     /// Symbols declared small (first order), for `linearize`.
     pub small: Vec<Atom>,
+    /// The file's order of constant factors (`[symbols] order`).
+    pub constant_order: Vec<String>,
     /// Constants declared positive, for `sign`.
     pub positive: Vec<Atom>,
     /// Abbreviations declared so far, in order.
@@ -47,6 +49,7 @@ impl<'a> Context<'a> {
             frames: vec![n],
             values: HashMap::new(),
             small: Vec::new(),
+            constant_order: Vec::new(),
             positive: Vec::new(),
             abbrevs: Vec::new(),
         }
@@ -127,6 +130,30 @@ impl<'a> Context<'a> {
     }
 
     /// Records a constant symbol, or sin/cos of a constant angle, as positive.
+    /// A name of `[symbols] order`: a declared constant, listed once.
+    pub fn declare_order(&mut self, s: &Spanned<String>) -> R<()> {
+        let name = s.get_ref();
+        let (from, to) = (0, name.len());
+        if !matches!(self.symbols.get(name), Some(Decl::Constant)) {
+            return Err(self.diag_string(
+                s,
+                from,
+                to,
+                format!("`{name}` in [symbols] order is not a declared constant"),
+            ));
+        }
+        if self.constant_order.contains(name) {
+            return Err(self.diag_string(
+                s,
+                from,
+                to,
+                format!("`{name}` is listed twice in order"),
+            ));
+        }
+        self.constant_order.push(name.clone());
+        Ok(())
+    }
+
     pub fn declare_positive(&mut self, s: &Spanned<String>) -> R<()> {
         let base = self.content_start(s);
         let ast = self.parse_at(s.get_ref(), base)?;
@@ -718,7 +745,10 @@ impl<'a> Context<'a> {
 
     /// The presentation of a step: atoms to collect by, abbreviations to fold.
     pub fn presentation(&self, s: &RawStep, abbrevs: &[Abbreviation]) -> R<Presentation> {
-        let mut pres = Presentation::default();
+        let mut pres = Presentation {
+            constant_order: self.constant_order.clone(),
+            ..Presentation::default()
+        };
         if let Some(list) = &s.collect {
             let spans = string_contents(self.text, list.span().start, list.span().end);
             for (k, item) in list.get_ref().iter().enumerate() {

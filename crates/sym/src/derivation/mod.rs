@@ -320,6 +320,9 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
     for s in &raw.symbols.positive {
         cx.declare_positive(s)?;
     }
+    for s in &raw.symbols.order {
+        cx.declare_order(s)?;
+    }
     // Abbreviations: time-dependent names standing for an expression.
     let mut abbreviations = Vec::new();
     for a in &raw.abbreviations {

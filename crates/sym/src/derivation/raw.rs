@@ -105,6 +105,9 @@ pub(crate) struct RawSymbols {
     /// Declared constants known to be positive, for `sign`.
     #[serde(default)]
     pub positive: Vec<Spanned<String>>,
+    /// The order constant factors are written in a product (present.rs).
+    #[serde(default)]
+    pub order: Vec<Spanned<String>>,
 }
 
 #[derive(Debug, Deserialize)]
