@@ -446,9 +446,12 @@ fn failure_lines(fails: &[(Equation, Equation)], width: f32) -> String {
     lines.join(" \\\\\n")
 }
 
+/// Ω of a frame inside a line of text: plain parentheses and a permitted
+/// break after each comma, so that a long Ω wraps instead of running into
+/// the margin (a `\left(…\right)` group cannot be broken).
 fn omega_inline(f: &crate::document::FrameItem) -> String {
     let c: Vec<String> = f.omega.iter().map(|e| print::latex(&e.rhs)).collect();
-    format!(r"\left({}\right)", c.join(",\\ "))
+    format!("({})", c.join(",\\ \\allowbreak "))
 }
 
 /// Escapes code (a formula as written) for `\texttt`: every character is

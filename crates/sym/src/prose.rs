@@ -405,8 +405,8 @@ fn letter(c: char) -> String {
     }
 }
 
-/// Text for LaTeX: special characters escaped, typographic punctuation
-/// as LaTeX ligatures; any notation that is not in a math piece is kept
+/// Text for LaTeX: special characters escaped, a permitted line break
+/// after a slash, typographic punctuation as LaTeX ligatures; any notation that is not in a math piece is kept
 /// visible as its code point.
 fn latex_plain(s: &str) -> String {
     let mut o = String::with_capacity(s.len());
@@ -422,6 +422,8 @@ fn latex_plain(s: &str) -> String {
             '<' => o.push_str(r"\textless{}"),
             '>' => o.push_str(r"\textgreater{}"),
             '|' => o.push_str(r"\textbar{}"),
+            // A path such as docs/equations.md may break after a slash.
+            '/' => o.push_str(r"/\allowbreak{}"),
             c if c.is_ascii() => o.push(c),
             c => {
                 if let Some(t) = text_symbol(c) {
