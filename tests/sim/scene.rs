@@ -261,3 +261,64 @@ fn torque_free_integration_uses_the_precession_angle_model() {
     .unwrap_err();
     assert!(err.to_string().contains("gravity turns H"), "{err}");
 }
+
+/// The model registry decides applicability once: for every bundled scene
+/// and every model, `plan` accepts `--model M` exactly when M's entry does
+/// not refuse the scene, and `run` refuses a plan naming a model the entry
+/// refuses, with the same reason.
+#[test]
+fn plan_and_run_agree_with_the_registry_on_every_bundled_scene() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/examples");
+    let mut accepted = 0;
+    let mut refused = 0;
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_name().unwrap().to_string_lossy().to_string();
+        if !(name.starts_with("sim-") && name.ends_with(".toml")) {
+            continue;
+        }
+        let scene = Scene::from_file(&path).unwrap();
+        let t_end = scene.t_end.min(0.05);
+        let default = run::plan(
+            &scene,
+            &Request {
+                t_end: Some(t_end),
+                ..Request::default()
+            },
+        )
+        .unwrap();
+        for model in Model::ALL {
+            let req = Request {
+                model: Some(model),
+                t_end: Some(t_end),
+                ..Request::default()
+            };
+            match run::plan(&scene, &req) {
+                Ok(plan) => {
+                    accepted += 1;
+                    assert_eq!(plan.model, model, "{name}");
+                    let r = run::run(&scene, &plan, &mut Output::default())
+                        .unwrap_or_else(|e| panic!("{name} {model}: {e}"));
+                    assert!(r.error.is_some_and(f64::is_finite), "{name} {model}");
+                }
+                Err(SimError::ModelNotApplicable { reason, .. }) => {
+                    refused += 1;
+                    // A plan naming it anyway (the scene's default plan with
+                    // the model swapped) is refused by run for the same reason.
+                    let forged = run::Plan {
+                        model,
+                        ..default.clone()
+                    };
+                    match run::run(&scene, &forged, &mut Output::default()) {
+                        Err(SimError::ModelNotApplicable { reason: r, .. }) => {
+                            assert_eq!(r, reason, "{name} {model}")
+                        }
+                        other => panic!("{name} {model}: run gave {other:?}"),
+                    }
+                }
+                Err(e) => panic!("{name} {model}: {e}"),
+            }
+        }
+    }
+    assert!(accepted > 10 && refused > 10, "{accepted} / {refused}");
+}

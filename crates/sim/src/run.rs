@@ -1013,7 +1013,7 @@ pub const MODELS: [ModelEntry; 7] = [
         applies_to: "a free body or a heavy top (away from θ = 0, π)",
         why: "Euler's equations with Eulerian angles, for comparison: singular at sin θ = 0",
         integrated: true,
-        refusal: refuse_body_model,
+        refusal: refuse_euler_angles,
         run: run_euler_angles,
     },
     ModelEntry {
@@ -1057,6 +1057,20 @@ fn refuse_non_body(scene: &Scene) -> Option<&'static str> {
 
 fn refuse_body_model(scene: &Scene) -> Result<Option<&'static str>, SimError> {
     Ok(refuse_non_body(scene))
+}
+
+fn refuse_euler_angles(scene: &Scene) -> Result<Option<&'static str>, SimError> {
+    if let Some(why) = refuse_non_body(scene) {
+        return Ok(Some(why));
+    }
+    let (_, y0) = free_body(scene).expect("a free body or heavy top");
+    let (_, theta, _) = crate::models::euler_angles::angles_from_quaternion(&attitude(&y0));
+    Ok(
+        (theta.sin() < crate::models::euler_angles::SIN_THETA_MIN).then_some(
+            "the initial attitude has nutation θ = 0 or π, where Eulerian angles are singular; \
+         use rigid-body (quaternion attitude)",
+        ),
+    )
 }
 
 fn refuse_derived(scene: &Scene) -> Result<Option<&'static str>, SimError> {
