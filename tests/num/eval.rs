@@ -91,6 +91,48 @@ fn shared_powers_and_prefixes_are_computed_once() {
     assert!(tape.len() <= 3, "{} instructions", tape.len());
 }
 
+/// Constants given values at compile time are folded into the
+/// coefficients: they are no inputs, and the outputs agree with the
+/// reference evaluated with the same values.
+#[test]
+fn known_constants_are_folded_into_coefficients() {
+    let mut rng = ChaCha8Rng::seed_from_u64(1);
+    let known = |a: Atom| match a.name() {
+        "a" => Some(1.7),
+        "b" => Some(-0.6),
+        "c" => Some(2.3),
+        _ => None,
+    };
+    for _ in 0..100 {
+        let polys: Vec<Poly> = (0..rng.gen_range(1..4))
+            .map(|_| poly(&expression(&mut rng)))
+            .collect();
+        let tape = Tape::compile_with(&polys, &mut |a| known(a));
+        assert!(tape.atoms().iter().all(|&a| known(a).is_none()));
+        let mut values = std::collections::HashMap::new();
+        let mut value = |a: Atom| {
+            known(a).unwrap_or_else(|| *values.entry(a).or_insert_with(|| rng.gen_range(-2.0..2.0)))
+        };
+        let inputs: Vec<f64> = tape.atoms().iter().map(|&a| value(a)).collect();
+        let mut out = vec![0.0; polys.len()];
+        tape.eval(&inputs, &mut out);
+        // The tolerance: the reference's own Σ |terms| with these values.
+        let full = Tape::compile(&polys);
+        let all: Vec<f64> = full.atoms().iter().map(|&a| value(a)).collect();
+        let mut scale = vec![0.0; polys.len()];
+        full.eval_abs(&all, &mut scale);
+        for (k, p) in polys.iter().enumerate() {
+            let reference = p.eval(&mut |a| value(a));
+            let tol = 64.0 * f64::EPSILON * scale[k];
+            assert!(
+                (out[k] - reference).abs() <= tol,
+                "output {k}: {} vs {reference} (tol {tol})",
+                out[k]
+            );
+        }
+    }
+}
+
 #[test]
 fn constants_and_zero_compile() {
     let tape = Tape::compile(&[poly("0"), poly("5/2")]);

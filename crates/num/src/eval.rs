@@ -38,13 +38,57 @@ use std::collections::HashMap;
 use hdot_sym::atom::Atom;
 use hdot_sym::poly::Poly;
 
-/// One instruction; operands and destination are slot indices.
+/// One instruction; operands and destination are slot indices. Powers
+/// are products (by squaring) of the atom or of its reciprocal: no call
+/// to `powi` per evaluation.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Op {
-    /// `slot[dst] = slot[src].powi(exp)`.
-    Pow { dst: u32, src: u32, exp: i32 },
+    /// `slot[dst] = 1 / slot[src]`.
+    Recip { dst: u32, src: u32 },
     /// `slot[dst] = slot[a] * slot[b]`.
     Mul { dst: u32, a: u32, b: u32 },
+}
+
+/// The slot of `a^e` (`e ≠ 0`), emitting the products (and reciprocal)
+/// it needs once: `x⁵ = (x²)² · x`, `x⁻² = (1/x)²`.
+fn power_slot(
+    a: Atom,
+    e: i32,
+    atom_slot: &HashMap<Atom, u32>,
+    powers: &mut HashMap<(Atom, i32), u32>,
+    ops: &mut Vec<Op>,
+    next: &mut u32,
+) -> u32 {
+    if e == 1 {
+        return atom_slot[&a];
+    }
+    if let Some(&s) = powers.get(&(a, e)) {
+        return s;
+    }
+    let s = if e == -1 {
+        ops.push(Op::Recip {
+            dst: *next,
+            src: atom_slot[&a],
+        });
+        *next += 1;
+        *next - 1
+    } else if e % 2 == 0 {
+        let h = power_slot(a, e / 2, atom_slot, powers, ops, next);
+        emit_mul(ops, next, h, h)
+    } else {
+        let unit = e.signum();
+        let p = power_slot(a, e - unit, atom_slot, powers, ops, next);
+        let one = power_slot(a, unit, atom_slot, powers, ops, next);
+        emit_mul(ops, next, p, one)
+    };
+    powers.insert((a, e), s);
+    s
+}
+
+fn emit_mul(ops: &mut Vec<Op>, next: &mut u32, a: u32, b: u32) -> u32 {
+    ops.push(Op::Mul { dst: *next, a, b });
+    *next += 1;
+    *next - 1
 }
 
 /// A term of an output: coefficient times a slot (`None` for the constant
@@ -73,11 +117,46 @@ pub struct Tape {
 impl Tape {
     /// Compiles `polys`; output `k` of [`Tape::eval`] is `polys[k]`.
     pub fn compile(polys: &[Poly]) -> Tape {
+        Tape::compile_with(polys, &mut |_| None)
+    }
+
+    /// Compiles `polys` with the atoms that `known` gives a value fixed for
+    /// good (the constants of a model): their powers are multiplied into
+    /// the coefficients now, they are no inputs, and terms left with the
+    /// same monomial are merged. `m g l / I′ · sin θ` costs one product per
+    /// evaluation, not a reciprocal power and three products.
+    pub fn compile_with(polys: &[Poly], known: &mut dyn FnMut(Atom) -> Option<f64>) -> Tape {
+        let mut value: HashMap<Atom, Option<f64>> = HashMap::new();
+        let folded: Vec<Vec<(Vec<(Atom, i32)>, f64)>> = polys
+            .iter()
+            .map(|p| {
+                let mut out: Vec<(Vec<(Atom, i32)>, f64)> = Vec::new();
+                let mut index: HashMap<Vec<(Atom, i32)>, usize> = HashMap::new();
+                for (m, c) in p.terms() {
+                    let mut coef = c.to_f64();
+                    let mut rest = Vec::new();
+                    for &(a, e) in m.factors() {
+                        match *value.entry(a).or_insert_with(|| known(a)) {
+                            Some(v) => coef *= v.powi(e),
+                            None => rest.push((a, e)),
+                        }
+                    }
+                    match index.get(&rest) {
+                        Some(&k) => out[k].1 += coef,
+                        None => {
+                            index.insert(rest.clone(), out.len());
+                            out.push((rest, coef));
+                        }
+                    }
+                }
+                out
+            })
+            .collect();
         let mut atoms: Vec<Atom> = Vec::new();
         let mut atom_slot: HashMap<Atom, u32> = HashMap::new();
-        for p in polys {
-            for (m, _) in p.terms() {
-                for &(a, _) in m.factors() {
+        for p in &folded {
+            for (m, _) in p {
+                for &(a, _) in m {
                     atom_slot.entry(a).or_insert_with(|| {
                         atoms.push(a);
                         (atoms.len() - 1) as u32
@@ -91,9 +170,8 @@ impl Tape {
         let mut prefixes: HashMap<Vec<(Atom, i32)>, u32> = HashMap::new();
         let mut terms = Vec::new();
         let mut ends = Vec::with_capacity(polys.len());
-        for p in polys {
-            for (m, c) in p.terms() {
-                let factors = m.factors();
+        for p in &folded {
+            for (factors, c) in p {
                 let mut acc: Option<u32> = None;
                 for (j, &(a, e)) in factors.iter().enumerate() {
                     let key = &factors[..=j];
@@ -101,20 +179,7 @@ impl Tape {
                         acc = Some(s);
                         continue;
                     }
-                    let pw = *powers.entry((a, e)).or_insert_with(|| {
-                        let src = atom_slot[&a];
-                        if e == 1 {
-                            src
-                        } else {
-                            ops.push(Op::Pow {
-                                dst: next,
-                                src,
-                                exp: e,
-                            });
-                            next += 1;
-                            next - 1
-                        }
-                    });
+                    let pw = power_slot(a, e, &atom_slot, &mut powers, &mut ops, &mut next);
                     let s = match acc {
                         None => pw,
                         Some(prev) => {
@@ -132,7 +197,7 @@ impl Tape {
                 }
                 terms.push(Term {
                     slot: acc,
-                    coef: c.to_f64(),
+                    coef: *c,
                 });
             }
             ends.push(terms.len());
@@ -191,15 +256,29 @@ impl Tape {
     /// [`Tape::eval`] (or, with `abs`, [`Tape::eval_abs`]) reusing `scratch`.
     pub fn eval_with(&self, inputs: &[f64], scratch: &mut Vec<f64>, out: &mut [f64], abs: bool) {
         assert_eq!(inputs.len(), self.atoms.len(), "one input per atom");
-        assert_eq!(out.len(), self.ends.len(), "one output per polynomial");
         scratch.clear();
         scratch.extend_from_slice(inputs);
         scratch.resize(self.slots, 0.0);
+        self.eval_slots(scratch, out, abs);
+    }
+
+    /// The number of slots [`Tape::eval_slots`] needs.
+    pub fn slots(&self) -> usize {
+        self.slots
+    }
+
+    /// [`Tape::eval_with`] on a buffer the caller provides (on the stack,
+    /// say) whose first `atoms().len()` entries hold the inputs; the rest
+    /// is overwritten.
+    ///
+    /// # Panics
+    /// When `slots.len() < self.slots()` or `out.len() != outputs()`.
+    pub fn eval_slots(&self, slots: &mut [f64], out: &mut [f64], abs: bool) {
+        assert_eq!(out.len(), self.ends.len(), "one output per polynomial");
+        let scratch = &mut slots[..self.slots];
         for op in &self.ops {
             match *op {
-                Op::Pow { dst, src, exp } => {
-                    scratch[dst as usize] = scratch[src as usize].powi(exp)
-                }
+                Op::Recip { dst, src } => scratch[dst as usize] = 1.0 / scratch[src as usize],
                 Op::Mul { dst, a, b } => {
                     scratch[dst as usize] = scratch[a as usize] * scratch[b as usize]
                 }

@@ -131,7 +131,8 @@ pub struct DerivedModel {
     /// The derivation's frames, in order (`None` where the frame's motion
     /// is not a function of the coordinates).
     frames: Vec<Option<FrameChain>>,
-    scratch: RefCell<(Vec<f64>, Vec<f64>)>,
+    /// The slots of the tapes' evaluation (see [`DerivedModel::eval`]).
+    scratch: RefCell<Vec<f64>>,
 }
 
 #[derive(Debug, Clone)]
@@ -340,7 +341,7 @@ impl DerivedModel {
             divisors,
             conserved,
             frames,
-            scratch: RefCell::new((Vec::new(), Vec::new())),
+            scratch: RefCell::new(Vec::new()),
         })
     }
 }
@@ -357,7 +358,14 @@ struct Resolver<'a> {
 
 impl Resolver<'_> {
     fn compile(&self, polys: &[Poly]) -> Result<Compiled, SimError> {
-        let tape = Tape::compile(polys);
+        // Constants (and sin, cos of constant angles) are folded into the
+        // coefficients: only the state and the inputs are read per
+        // evaluation. A constant without a value stays an input, and its
+        // source is the error below.
+        let tape = Tape::compile_with(polys, &mut |a| match self.source(a) {
+            Ok(Source::Value(v)) => Some(v),
+            _ => None,
+        });
         let sources = tape
             .atoms()
             .iter()
@@ -486,26 +494,33 @@ impl DerivedModel {
         Ok(y)
     }
 
-    fn inputs_for(&self, c: &Compiled, t: f64, y: &[f64], into: &mut Vec<f64>) {
+    /// Writes the value of each input of `c` at `(t, y)` into `into`.
+    fn inputs_into(&self, c: &Compiled, t: f64, y: &[f64], into: &mut [f64]) {
         let n = self.dof();
-        into.clear();
-        into.extend(c.sources.iter().map(|s| match *s {
-            Source::Coordinate(i) => y[i],
-            Source::Rate(i) => y[n + i],
-            Source::SinOf(i) => y[i].sin(),
-            Source::CosOf(i) => y[i].cos(),
-            Source::Value(v) => v,
-            Source::Input(k) => self.inputs[k].1.eval(t),
-            Source::SinInput(k) => self.inputs[k].1.eval(t).sin(),
-            Source::CosInput(k) => self.inputs[k].1.eval(t).cos(),
-        }));
+        for (v, s) in into.iter_mut().zip(&c.sources) {
+            *v = match *s {
+                Source::Coordinate(i) => y[i],
+                Source::Rate(i) => y[n + i],
+                Source::SinOf(i) => y[i].sin(),
+                Source::CosOf(i) => y[i].cos(),
+                Source::Value(v) => v,
+                Source::Input(k) => self.inputs[k].1.eval(t),
+                Source::SinInput(k) => self.inputs[k].1.eval(t).sin(),
+                Source::CosInput(k) => self.inputs[k].1.eval(t).cos(),
+            };
+        }
     }
 
+    /// Evaluates `c` at `(t, y)` in the model's scratch buffer (sized once:
+    /// an evaluation allocates nothing).
     fn eval(&self, c: &Compiled, t: f64, y: &[f64], out: &mut [f64]) {
-        let mut scratch = self.scratch.borrow_mut();
-        let (inputs, tmp) = &mut *scratch;
-        self.inputs_for(c, t, y, inputs);
-        c.tape.eval_with(inputs, tmp, out, false);
+        let mut buf = self.scratch.borrow_mut();
+        let slots = c.tape.slots();
+        if buf.len() < slots {
+            buf.resize(slots, 0.0);
+        }
+        self.inputs_into(c, t, y, &mut buf[..c.sources.len()]);
+        c.tape.eval_slots(&mut buf, out, false);
     }
 
     /// The accelerations q̈ at `(t, y)`; `None` when the mass matrix cannot
