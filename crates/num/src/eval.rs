@@ -2,10 +2,13 @@
 //!
 //! [`Tape::compile`] turns one or several [`Poly`]s into a straight-line
 //! program: each distinct atom is one input slot, each distinct power of an
-//! atom is computed once, monomials that share a prefix of factors share
-//! the partial product, and each output is accumulated with a compensated
-//! (Neumaier) sum. Evaluating is then a loop over a few arrays with no
-//! hashing and no allocation beyond one scratch buffer.
+//! atom is computed once (by products and at most one reciprocal), a prefix
+//! of factors shared by several monomials is computed once into a slot
+//! (the rest of a monomial is multiplied in a register), and each output is
+//! accumulated with a compensated (Neumaier) sum. Atoms whose values are
+//! fixed at compile time (a model's constants, [`Tape::compile_with`]) are
+//! folded into the coefficients. Evaluating is then a loop over a few arrays
+//! with no hashing and no allocation beyond one scratch buffer.
 //!
 //! ## Why hand-written
 //!
@@ -91,13 +94,20 @@ fn emit_mul(ops: &mut Vec<Op>, next: &mut u32, a: u32, b: u32) -> u32 {
     *next - 1
 }
 
-/// A term of an output: coefficient times a slot (`None` for the constant
-/// monomial 1).
+/// A term of an output: coefficient times a slot (a prefix product shared
+/// with other terms; `None` for none) times the factors
+/// `rest[start..end]` (slots of powers), multiplied in a register.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Term {
     slot: Option<u32>,
+    start: u32,
+    end: u32,
     coef: f64,
 }
+
+/// A monomial's factors left after folding the known atoms, and its
+/// coefficient.
+type FoldedTerm = (Vec<(Atom, i32)>, f64);
 
 /// A compiled set of polynomials.
 ///
@@ -108,6 +118,7 @@ struct Term {
 pub struct Tape {
     atoms: Vec<Atom>,
     ops: Vec<Op>,
+    rest: Vec<u32>,
     terms: Vec<Term>,
     ends: Vec<usize>,
     slots: usize,
@@ -127,10 +138,10 @@ impl Tape {
     /// evaluation, not a reciprocal power and three products.
     pub fn compile_with(polys: &[Poly], known: &mut dyn FnMut(Atom) -> Option<f64>) -> Tape {
         let mut value: HashMap<Atom, Option<f64>> = HashMap::new();
-        let folded: Vec<Vec<(Vec<(Atom, i32)>, f64)>> = polys
+        let folded: Vec<Vec<FoldedTerm>> = polys
             .iter()
             .map(|p| {
-                let mut out: Vec<(Vec<(Atom, i32)>, f64)> = Vec::new();
+                let mut out: Vec<FoldedTerm> = Vec::new();
                 let mut index: HashMap<Vec<(Atom, i32)>, usize> = HashMap::new();
                 for (m, c) in p.terms() {
                     let mut coef = c.to_f64();
@@ -168,12 +179,28 @@ impl Tape {
         let mut ops = Vec::new();
         let mut powers: HashMap<(Atom, i32), u32> = HashMap::new();
         let mut prefixes: HashMap<Vec<(Atom, i32)>, u32> = HashMap::new();
+        // How many terms share each prefix: only a shared one is stored in
+        // a slot; a term's own factors are multiplied in a register (a
+        // chain of stored products is a chain of store-to-load latencies).
+        let mut uses: HashMap<&[(Atom, i32)], usize> = HashMap::new();
+        for p in &folded {
+            for (factors, _) in p {
+                for j in 0..factors.len() {
+                    *uses.entry(&factors[..=j]).or_insert(0) += 1;
+                }
+            }
+        }
+        let mut rest = Vec::new();
         let mut terms = Vec::new();
         let mut ends = Vec::with_capacity(polys.len());
         for p in &folded {
             for (factors, c) in p {
+                let shared = (0..factors.len())
+                    .rev()
+                    .find(|&j| j > 0 && uses[&factors[..=j]] > 1)
+                    .map_or(0, |j| j + 1);
                 let mut acc: Option<u32> = None;
-                for (j, &(a, e)) in factors.iter().enumerate() {
+                for (j, &(a, e)) in factors[..shared].iter().enumerate() {
                     let key = &factors[..=j];
                     if let Some(&s) = prefixes.get(key) {
                         acc = Some(s);
@@ -195,8 +222,21 @@ impl Tape {
                     prefixes.insert(key.to_vec(), s);
                     acc = Some(s);
                 }
+                let start = rest.len() as u32;
+                for &(a, e) in &factors[shared..] {
+                    rest.push(power_slot(
+                        a,
+                        e,
+                        &atom_slot,
+                        &mut powers,
+                        &mut ops,
+                        &mut next,
+                    ));
+                }
                 terms.push(Term {
                     slot: acc,
+                    start,
+                    end: rest.len() as u32,
                     coef: *c,
                 });
             }
@@ -205,6 +245,7 @@ impl Tape {
         Tape {
             atoms,
             ops,
+            rest,
             terms,
             ends,
             slots: next as usize,
@@ -289,6 +330,9 @@ impl Tape {
             let (mut sum, mut comp) = (0.0f64, 0.0f64);
             for t in &self.terms[start..end] {
                 let mut v = t.slot.map_or(t.coef, |s| t.coef * scratch[s as usize]);
+                for &f in &self.rest[t.start as usize..t.end as usize] {
+                    v *= scratch[f as usize];
+                }
                 if abs {
                     v = v.abs();
                 }
