@@ -4,7 +4,9 @@
 
 use std::path::Path;
 
-use hdot_num::verify::{COVERAGE, Comparison, SUPPORTED, check_named as check};
+use hdot_num::verify::{
+    COVERAGE, Comparison, Options, SUPPORTED, check as declared, check_named as check,
+};
 use hdot_sym::atom::AtomKind;
 use hdot_sym::derivation::Derivation;
 use hdot_sym::poly::Poly;
@@ -41,26 +43,9 @@ macro_rules! law {
 }
 
 law!(
-    eulers_general_moments_equal_sum_of_r_cross_m_a,
-    "euler-general"
-);
-law!(
-    h_equals_sum_of_r_cross_m_v_and_t_rot_half_m_v2,
-    "angular-momentum"
-);
-law!(fixed_axis_moments_equal_sum_about_o, "fixed-axis");
-law!(kinetic_energy_equals_sum_of_half_m_v2, "kinetic-energy");
-law!(parallel_axis_equals_inertia_about_p, "parallel-axis");
-law!(
     impulse_momentum_matches_the_particle_solve,
     "impulse-momentum"
 );
-law!(dalembert_force_and_moment_equal_particle_sums, "dalembert");
-law!(
-    h_about_a_point_equals_sum_of_r_cross_m_v,
-    "angular-momentum-about-point"
-);
-law!(plane_motion_h_and_lamina_moment_equal_sums, "plane-motion");
 law!(
     stability_coefficient_matches_the_jacobians_eigenvalues,
     "principal-axis-stability"
@@ -101,17 +86,54 @@ fn mutated(d: &Derivation, step: &str, name: &str, order: u32) -> Derivation {
 /// One perturbation per binding: the step, and the symbol whose terms
 /// get the wrong sign (`*`: the whole step).
 const PERTURBATIONS: &[(&str, &str, &str, u32)] = &[
-    ("angular-momentum", "H", "I_xy", 0),
-    ("angular-momentum-about-point", "H_O", "m", 0),
-    ("dalembert", "M_O", "m", 0),
-    ("euler-general", "M", "I_xy", 0),
-    ("fixed-axis", "M", "I_yz", 0),
     ("impulse-momentum", "omega", "F_x", 0),
-    ("kinetic-energy", "T", "I_zx", 0),
-    ("parallel-axis", "Ixy_P", "m", 0),
-    ("plane-motion", "H", "I_zx", 0),
     ("principal-axis-stability", "k_1", "A", 0),
 ];
+
+/// Bundled files verified from their declarations: the step, and the
+/// symbol whose terms get the wrong sign (`*`: the whole step).
+const DECLARED_PERTURBATIONS: &[(&str, &str, &str, u32)] = &[
+    ("euler-general", "M", "I_xy", 0),
+    ("euler-general", "M_principal", "I_x", 0),
+    ("euler-general", "I_G", "I_yz", 0),
+    ("angular-momentum", "H", "I_xy", 0),
+    ("angular-momentum", "H_along_x", "I_zx", 0),
+    ("angular-momentum", "H_principal", "I_y", 0),
+    ("angular-momentum", "T_rot", "I_zx", 0),
+    ("angular-momentum-about-point", "H_O", "m", 0),
+    ("angular-momentum-about-point", "H_O_general", "m", 0),
+    ("angular-momentum-about-point", "vbar", "*", 0),
+    ("dalembert", "F", "*", 0),
+    ("dalembert", "M_O", "m", 0),
+    ("dalembert", "Hdot_G", "I_x", 0),
+    ("fixed-axis", "M", "I_yz", 0),
+    ("fixed-axis", "M_symmetric", "I_z", 0),
+    ("fixed-axis", "M_steady", "I_zx", 0),
+    ("kinetic-energy", "T", "I_zx", 0),
+    ("kinetic-energy", "T_principal", "m", 0),
+    ("kinetic-energy", "T_O", "m", 0),
+    ("parallel-axis", "I_P", "m", 0),
+    ("parallel-axis", "H_point", "*", 0),
+    ("plane-motion", "H", "I_zx", 0),
+    ("plane-motion", "H_lamina", "I_z", 0),
+    ("plane-motion", "M_lamina", "I_z", 0),
+];
+
+/// The declared checks fail when one group of terms of a step gets the
+/// wrong sign, naming that step.
+#[test]
+fn declared_checks_fail_when_the_derived_result_is_perturbed() {
+    for &(name, step, symbol, order) in DECLARED_PERTURBATIONS {
+        let d = mutated(&derivation(name), step, symbol, order);
+        let r = declared(&d, &Options { draws: 8, seed: 3 }).expect("binds");
+        let s = r.steps.iter().find(|s| s.step == step).expect("compared");
+        assert!(!s.passed, "{name}: {step} with −{symbol} still passes");
+        assert!(
+            r.steps.iter().filter(|t| t.step != step).all(|t| t.passed),
+            "{name}: only {step} was perturbed"
+        );
+    }
+}
 
 proptest! {
     #![proptest_config(ProptestConfig { cases: 16, rng_seed: proptest::test_runner::RngSeed::Fixed(1), ..ProptestConfig::default() })]
@@ -152,38 +174,25 @@ proptest! {
 /// about its xy plane, fails: the check sees the missing products.
 #[test]
 fn lamina_form_fails_on_an_unsymmetric_body() {
-    use rand::SeedableRng;
     let d = derivation("plane-motion");
     let mut d2 = d.clone();
     // H := H_lamina, compared on the general body.
     let lamina = d.steps.iter().find(|s| s.name == "H_lamina").unwrap();
     let h = d2.steps.iter_mut().find(|s| s.name == "H").unwrap();
     h.value = lamina.value.clone();
-    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
-    let mut failed = 0;
-    for _ in 0..20 {
-        let body = hdot_num::verify::random_cloud(&mut rng).unwrap();
-        let state = hdot_num::verify::random_state(&mut rng);
-        let cs = check(&d2, &body, &state).unwrap().unwrap();
-        failed += usize::from(
-            cs.iter()
-                .any(|c| c.quantity.starts_with("H.") && !c.passes()),
-        );
-    }
-    assert_eq!(failed, 20);
+    let r = declared(&d2, &Options { draws: 20, seed: 3 }).unwrap();
+    let h = r.steps.iter().find(|s| s.step == "H").unwrap();
+    assert!(!h.passed && h.worst.as_ref().unwrap().quantity.starts_with("H."));
+    assert!(r.steps.iter().filter(|s| s.step != "H").all(|s| s.passed));
 }
 
 #[test]
 fn verify_is_seeded_and_covers_every_bundled_derivation() {
     let d = derivation("euler-general");
-    let a = hdot_num::verify::verify(&d, 5, 7, &mut || {})
-        .unwrap()
-        .unwrap();
-    let b = hdot_num::verify::verify(&d, 5, 7, &mut || {})
-        .unwrap()
-        .unwrap();
-    assert_eq!(a, b);
-    assert!(a.passed && a.bodies == 5);
+    let o = Options { draws: 5, seed: 7 };
+    let a = declared(&d, &o).unwrap();
+    assert_eq!(a, declared(&d, &o).unwrap());
+    assert!(a.passed() && a.draws == 5);
     // Every bundled derivation declares its meanings, or (until it does)
     // has a binding and a coverage entry.
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../derivations");
@@ -205,7 +214,7 @@ fn verify_is_seeded_and_covers_every_bundled_derivation() {
     assert_eq!(covered, SUPPORTED);
     assert_eq!(PERTURBATIONS.len(), SUPPORTED.len());
     // A derivation the checks do not know has no binding.
-    let mut other = derivation("dalembert");
+    let mut other = derivation("impulse-momentum");
     other.name = "not-a-bundled-derivation".into();
     assert!(hdot_num::verify::verify(&other, 5, 7, &mut || {}).is_none());
 }

@@ -200,6 +200,99 @@ value = "angvel(B)"
     assert_eq!(r.not_compared, ["w"]);
 }
 
+/// A body pivoted at a point O of its own, its inertia given about G: a
+/// step's `symmetry` makes the body symmetric for that step only, and
+/// `O' = 0` puts the free point O at rest for that step only.
+const PIVOT: &str = r#"
+title = "pivot"
+source = "test"
+[symbols]
+constants = ["m", "A", "B", "C", "D", "E", "F", "a", "b", "c"]
+time = ["w_x", "w_y", "w_z"]
+[[frame]]
+name = "K"
+angular_velocity = "[w_x, w_y, w_z]"
+[[point]]
+name = "O"
+[[body]]
+name = "b"
+frame = "K"
+point = "O"
+mass = "m"
+mass_centre = "[a, b, c] in K"
+inertia = "inertia(A, B, C, D, E, F)"
+inertia_about = "G"
+[[step]]
+name = "H_G"
+value = "inertia(A, B, C, D, E, F) * angvel(K)"
+means = "angular_momentum(b, G)"
+[[step]]
+name = "H_G_principal"
+value = "principal(A, B, C) * angvel(K)"
+means = "angular_momentum(b, G)"
+symmetry = { b = "principal" }
+[[step]]
+name = "v_G"
+value = "cross(angvel(K), [a, b, c] in K)"
+means = "velocity(G)"
+given = ["O' = 0"]
+[[step]]
+name = "H_O"
+value = "cross([a, b, c] in K, m*v_G) + H_G"
+means = "angular_momentum(b, O)"
+given = ["O' = 0"]
+"#;
+
+#[test]
+fn step_conditions_on_symmetry_and_rest_hold_for_that_step_only() {
+    let r = check(&load(PIVOT), &OPTS).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(r.steps.len(), 4);
+    assert!(r.passed(), "{r:#?}");
+    // Without the condition the same step fails: the drawn body has
+    // products of inertia, and O moves.
+    for (from, to, step) in [
+        ("symmetry = { b = \"principal\" }\n", "", "H_G_principal"),
+        ("given = [\"O' = 0\"]\n", "", "v_G"),
+    ] {
+        let text = PIVOT.replacen(from, to, 1);
+        assert_ne!(text, PIVOT);
+        let r = check(&load(&text), &OPTS).unwrap_or_else(|e| panic!("{e}"));
+        let s = r.steps.iter().find(|s| s.step == step).unwrap();
+        assert!(!s.passed, "{step} passes without its condition");
+        assert!(r.steps.iter().filter(|s| s.step != step).all(|s| s.passed));
+    }
+}
+
+#[test]
+fn bad_step_conditions_are_located() {
+    let e = err(&PIVOT.replace("{ b = \"principal\" }", "{ rotor = \"principal\" }"));
+    assert!(
+        e.contains("unknown body `rotor`") && e.contains("test.toml:"),
+        "{e}"
+    );
+    let e = err(&PIVOT.replace("{ b = \"principal\" }", "{ b = \"round\" }"));
+    assert!(e.contains("expected `none`, `principal`"), "{e}");
+    let e = err(&PIVOT.replacen("given = [\"O' = 0\"]", "given = [\"O' = 1\"]", 1));
+    assert!(e.contains("at rest"), "{e}");
+    let e = err(&PIVOT.replace(
+        "[[point]]\nname = \"O\"\n",
+        "[[point]]\nname = \"O\"\nfixed = true\n",
+    ));
+    assert!(e.contains("only a point that moves freely"), "{e}");
+    let e = err(&PIVOT.replace("inertia_about = \"G\"", "inertia_about = \"Q\""));
+    assert!(
+        e.contains("`inertia_about` is the reference point (O) or the body's centre (G)"),
+        "{e}"
+    );
+    let e = err(&PIVOT.replace("mass_centre = \"[a, b, c] in K\"\n", ""));
+    assert!(e.contains("`mass_centre` says where the centre is"), "{e}");
+    let e = err(&PIVOT.replace("means = \"angular_momentum(b, G)\"\nsymmetry", "symmetry"));
+    assert!(
+        e.contains("`symmetry` is the condition of a step's `means`"),
+        "{e}"
+    );
+}
+
 #[test]
 fn a_zero_declared_without_its_symmetry_is_an_error_naming_the_entry() {
     let d = load(&TOP.replace("symmetry = \"axisymmetric z\"", ""));

@@ -146,6 +146,10 @@ impl Values {
         self.map.insert(a, (v, size.abs()));
     }
 
+    fn unset(&mut self, a: Atom) {
+        self.map.remove(&a);
+    }
+
     fn bound(&self, a: Atom) -> bool {
         self.get(a).is_some()
     }
@@ -176,6 +180,11 @@ impl Values {
 /// points.
 #[derive(Clone, Debug)]
 pub struct Draw {
+    /// Each body with its declared symmetry, about the point its inertia
+    /// is about (G moved to the origin when that is the centre).
+    bases: Vec<ParticleCloud>,
+    /// The rotated copies an axisymmetric body is made of.
+    folds: Vec<usize>,
     bodies: Vec<ParticleCloud>,
     centres: Vec<Vector3<f64>>,
     attitudes: HashMap<usize, Matrix3<f64>>,
@@ -330,31 +339,19 @@ fn draw(
 ) -> Result<(Draw, Values), VerifyError> {
     let ph = &d.physics;
     let mut values = Values::default();
-    let mut bodies = Vec::new();
-    let mut centres = Vec::new();
     let mut eqs = Vec::new();
+    let mut bases = Vec::new();
+    let mut folds = Vec::new();
     for (k, b) in ph.bodies.iter().enumerate() {
         let fold = rng.gen_range(3..=6);
-        let mut cloud = match given {
-            Some(g) => g[k].clone(),
-            None => symmetric(&random_body(rng)?, b.symmetry, fold)?,
+        let cloud = match given {
+            // Given bodies have their symmetry already.
+            Some(g) => base_body(b, &g[k], Symmetry::None, fold)?,
+            None => base_body(b, &random_body(rng)?, b.symmetry, fold)?,
         };
-        let mp = cloud.mass_properties();
-        // About its centre, or G declared at the reference point: G moved
-        // to the origin (along the symmetry axis or in the symmetry plane,
-        // where the symmetry puts it, so the symmetry is kept).
-        if b.about_centre() || b.mass_centre.as_ref().is_some_and(|c| c.is_zero()) {
-            let g = mp.center;
-            cloud = map_particles(&cloud, |p, m| [(p - g, m)])?;
-        }
-        let mp = cloud.mass_properties();
-        let c = mp.center;
-        let i = inertia_about_origin(&cloud);
-        // The body's extent: the size positions are computed to.
-        let extent = (i.trace() / mp.mass).sqrt() + c.norm();
-        eqs.extend(body_equations(b, mp.mass, &c, extent, &i));
-        bodies.push(cloud);
-        centres.push(c);
+        eqs.extend(body_equations(b, &cloud));
+        bases.push(cloud);
+        folds.push(fold);
     }
     // Symbols the bodies and knowns bind are left unbound here.
     let declared: Vec<Atom> = ph
@@ -365,6 +362,7 @@ fn draw(
             v.extend(
                 b.mass_centre
                     .iter()
+                    .filter(|_| !b.inertia_about_centre)
                     .flat_map(|c| c.0.iter().flat_map(Poly::atoms)),
             );
             v.extend(b.inertia.0.iter().flatten().flat_map(Poly::atoms));
@@ -399,6 +397,13 @@ fn draw(
         }
     }
     bind_all(d, &mut values, eqs)?;
+    let mut bodies = Vec::new();
+    let mut centres = Vec::new();
+    for (b, base) in ph.bodies.iter().zip(&bases) {
+        let (cloud, c) = place(d, b, base, &values)?;
+        bodies.push(cloud);
+        centres.push(c);
+    }
     let mut attitudes = HashMap::new();
     for (i, m) in ph.frames.iter().enumerate() {
         if *m == FrameMotion::AngularVelocity {
@@ -429,6 +434,8 @@ fn draw(
     }
     Ok((
         Draw {
+            bases,
+            folds,
             bodies,
             centres,
             attitudes,
@@ -448,19 +455,66 @@ fn inertia_about_origin(c: &ParticleCloud) -> Matrix3<f64> {
         .sum()
 }
 
-fn body_equations(
+/// The body `b` drawn as `cloud`, given the symmetry `symmetry` (about
+/// the origin) and moved so that the origin is the point its inertia is
+/// about.
+fn base_body(
     b: &Body,
-    mass: f64,
-    c: &Vector3<f64>,
-    extent: f64,
-    i: &Matrix3<f64>,
-) -> Vec<(Poly, f64, f64, String)> {
+    cloud: &ParticleCloud,
+    symmetry: Symmetry,
+    fold: usize,
+) -> Result<ParticleCloud, VerifyError> {
+    let cloud = symmetric(cloud, symmetry, fold)?;
+    // About its centre, or G declared at the reference point: G moved to
+    // the origin (along the symmetry axis or in the symmetry plane, where
+    // the symmetry puts it, so the symmetry is kept).
+    if b.about_centre()
+        || b.inertia_about_centre
+        || b.mass_centre.as_ref().is_some_and(|c| c.is_zero())
+    {
+        let g = cloud.mass_properties().center;
+        return Ok(map_particles(&cloud, |p, m| [(p - g, m)])?);
+    }
+    Ok(cloud)
+}
+
+/// The body about its reference point and its centre from there: `base`
+/// itself, or `base` moved by the declared `mass_centre` when its inertia
+/// is about the centre.
+fn place(
+    d: &Derivation,
+    b: &Body,
+    base: &ParticleCloud,
+    values: &Values,
+) -> Result<(ParticleCloud, Vector3<f64>), VerifyError> {
+    if !b.inertia_about_centre {
+        return Ok((base.clone(), base.mass_properties().center));
+    }
+    let mc = b.mass_centre.as_ref().expect("validated by hdot-sym");
+    let mut c = Vector3::zeros();
+    for k in 0..3 {
+        c[k] = values
+            .eval(&mc.0[k])
+            .map_err(|e| e.in_step(d, &format!("mass_centre of {}", b.name)))?
+            .0;
+    }
+    Ok((map_particles(base, |p, m| [(p + c, m)])?, c))
+}
+
+/// The declarations of `b` as equations on the particles of `cloud`
+/// (about the point its inertia is about).
+fn body_equations(b: &Body, cloud: &ParticleCloud) -> Vec<(Poly, f64, f64, String)> {
+    let mp = cloud.mass_properties();
+    let (mass, c) = (mp.mass, mp.center);
+    let i = inertia_about_origin(cloud);
+    // The body's extent: the size positions are computed to.
+    let extent = (i.trace() / mass).sqrt() + c.norm();
     let mut eqs: Vec<_> = b
         .mass
         .iter()
         .map(|p| (p.clone(), mass, mass, format!("the mass of {}", b.name)))
         .collect();
-    for k in (0..3).filter(|_| b.mass_centre.is_some()) {
+    for k in (0..3).filter(|_| b.mass_centre.is_some() && !b.inertia_about_centre) {
         eqs.push((
             b.mass_centre.as_ref().expect("declared").0[k].clone(),
             c[k],
@@ -853,6 +907,51 @@ impl Compiled<'_> {
     }
 }
 
+/// The draw and values of a step whose `symmetry` gives bodies more
+/// symmetry, or whose `given` sets free points at rest: the bodies copied
+/// into the symmetric form (about the point their inertia is about) and
+/// their symbols bound again, the points' motion cut from the order
+/// given. `None` when the step has neither.
+fn for_step(
+    d: &Derivation,
+    m: &StepMeaning,
+    draw: &Draw,
+    values: &Values,
+) -> Result<Option<(Draw, Values)>, VerifyError> {
+    if m.symmetry.is_empty() && m.at_rest.is_empty() {
+        return Ok(None);
+    }
+    let (mut draw, mut values) = (draw.clone(), values.clone());
+    let mut eqs = Vec::new();
+    for &(i, sym) in &m.symmetry {
+        let b = &d.physics.bodies[i];
+        let base = base_body(b, &draw.bases[i], sym, draw.folds[i])?;
+        let e = body_equations(b, &base);
+        for (p, ..) in &e {
+            for a in p.atoms() {
+                values.unset(a);
+            }
+        }
+        eqs.extend(e);
+        draw.bases[i] = base;
+    }
+    bind_all(d, &mut values, eqs)?;
+    apply(d, &mut values, &d.physics.motion)?;
+    for &(i, _) in &m.symmetry {
+        let (cloud, c) = place(d, &d.physics.bodies[i], &draw.bases[i], &values)?;
+        draw.bodies[i] = cloud;
+        draw.centres[i] = c;
+    }
+    for (name, order) in &m.at_rest {
+        let p = draw.points.get_mut(name).expect("validated: a free point");
+        for n in *order..ORDERS {
+            p.r[n] = Vector3::zeros();
+            p.mag[n] = 0.0;
+        }
+    }
+    Ok(Some((draw, values)))
+}
+
 /// Compares one step in one draw.
 fn compare_step(
     d: &Derivation,
@@ -860,6 +959,11 @@ fn compare_step(
     draw: &Draw,
     values: &Values,
 ) -> Result<Vec<Comparison>, VerifyError> {
+    let stepped = for_step(d, c.meaning, draw, values)?;
+    let (draw, values) = match &stepped {
+        Some((dr, v)) => (dr, v),
+        None => (draw, values),
+    };
     let mut values = values.clone();
     constrain(d, &mut values, &c.meaning.given)?;
     let w = World::build(d, draw, &values, &coordinate(&c.meaning.meaning))?;

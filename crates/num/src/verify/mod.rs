@@ -18,7 +18,7 @@
 //!
 //! | family (file) | derivations | bodies |
 //! |---|---|---|
-//! | [`rigid`] | `euler-general`, `angular-momentum`, `fixed-axis`, `kinetic-energy`, `parallel-axis`, `angular-momentum-about-point`, `dalembert`, `plane-motion`, `impulse-momentum` | any; principal (mirrored in the three coordinate planes); symmetric about the xy plane (mirrored) |
+//! | [`rigid`] | `impulse-momentum` | principal (mirrored in the three coordinate planes) |
 //! | [`free`] | `principal-axis-stability` | triaxial principal |
 //!
 //! (The rotation chains of [`motion`] are shared with the simulation's
@@ -70,18 +70,7 @@ use crate::eval::Tape;
 pub const TOLERANCE_ULPS: f64 = 256.0;
 
 /// The derivations with a numeric check, by file stem.
-pub const SUPPORTED: &[&str] = &[
-    "angular-momentum",
-    "angular-momentum-about-point",
-    "dalembert",
-    "euler-general",
-    "fixed-axis",
-    "impulse-momentum",
-    "kinetic-energy",
-    "parallel-axis",
-    "plane-motion",
-    "principal-axis-stability",
-];
+pub const SUPPORTED: &[&str] = &["impulse-momentum", "principal-axis-stability"];
 
 /// What a derivation's check compares, step by step.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -103,58 +92,6 @@ const RESTATES: &str = "restates the symbols (nothing to compare)";
 /// Per derivation: each step and what it is compared against.
 pub const COVERAGE: &[Coverage] = &[
     Coverage {
-        derivation: "angular-momentum",
-        compared: &[
-            ("H, T_rot, H_along_x", "Σ m r × v, Σ ½ m v²"),
-            ("H_principal", "Σ m r × v, body mirrored in three planes"),
-        ],
-        kinematic: &[],
-        not_compared: &[("omega", RESTATES)],
-    },
-    Coverage {
-        derivation: "angular-momentum-about-point",
-        compared: &[
-            ("H_G", "Σ m r′ × v′"),
-            ("H_O_general", "Σ m r × v about O, any motion"),
-            ("vbar", "Σ m v / m, body turning about O"),
-            ("H_O", "Σ m r × v about the fixed point O"),
-        ],
-        kinematic: &[],
-        not_compared: &[("rbar", RESTATES)],
-    },
-    Coverage {
-        derivation: "dalembert",
-        compared: &[
-            ("F", "Σ m a"),
-            ("M_O", "Σ m r × a about O (Ḣ_G bound from Σ m r′ × a)"),
-            ("Hdot_G", "Σ m r′ × a, principal body"),
-        ],
-        kinematic: &[],
-        not_compared: &[("rbar", RESTATES)],
-    },
-    Coverage {
-        derivation: "euler-general",
-        compared: &[
-            ("I_G", "the tensor as a map: Σ m r × (e_k × r) per axis"),
-            ("H, M", "Σ m r × v, Σ m r × a"),
-            ("M_principal", "Σ m r × a, body mirrored in three planes"),
-        ],
-        kinematic: &[],
-        not_compared: &[],
-    },
-    Coverage {
-        derivation: "fixed-axis",
-        compared: &[
-            ("H, M, M_steady", "Σ m r × v, Σ m r × a about O on the axis"),
-            (
-                "M_symmetric",
-                "Σ m r × a, body mirrored in the xy plane through O",
-            ),
-        ],
-        kinematic: &[],
-        not_compared: &[],
-    },
-    Coverage {
         derivation: "impulse-momentum",
         compared: &[(
             "v, omega",
@@ -162,39 +99,6 @@ pub const COVERAGE: &[Coverage] = &[
         )],
         kinematic: &[],
         not_compared: &[("Fhat, r_P", RESTATES)],
-    },
-    Coverage {
-        derivation: "kinetic-energy",
-        compared: &[
-            ("T, T_O, H_G", "Σ ½ m v², Σ m r′ × v′"),
-            ("T_principal", "Σ ½ m v², body mirrored in three planes"),
-        ],
-        kinematic: &[],
-        not_compared: &[("v", RESTATES)],
-    },
-    Coverage {
-        derivation: "parallel-axis",
-        compared: &[
-            (
-                "I_P, Ix_P, Iy_P, Iz_P, Ixy_P, Iyz_P, Izx_P",
-                "the particle inertia about P",
-            ),
-            ("H_point", "H_P − H_G, particle sums about P and G"),
-        ],
-        kinematic: &[],
-        not_compared: &[("d, w", RESTATES)],
-    },
-    Coverage {
-        derivation: "plane-motion",
-        compared: &[
-            ("H", "Σ m r′ × v′, ω along z"),
-            (
-                "H_lamina, M_lamina",
-                "Σ m r′ × v′, Σ m r′ × a, body mirrored in xy",
-            ),
-        ],
-        kinematic: &[],
-        not_compared: &[],
     },
     Coverage {
         derivation: "principal-axis-stability",
@@ -437,14 +341,6 @@ pub fn check_named(
     state: &State,
 ) -> Option<Result<Vec<Comparison>, VerifyError>> {
     let f: CheckFn = match d.name.as_str() {
-        "euler-general" => rigid::euler_general,
-        "angular-momentum" => rigid::angular_momentum,
-        "fixed-axis" => rigid::fixed_axis,
-        "kinetic-energy" => rigid::kinetic_energy,
-        "parallel-axis" => rigid::parallel_axis,
-        "angular-momentum-about-point" => rigid::angular_momentum_about_point,
-        "dalembert" => rigid::dalembert,
-        "plane-motion" => rigid::plane_motion,
         "impulse-momentum" => rigid::impulse_momentum,
         "principal-axis-stability" => free::principal_axis_stability,
         _ => return None,
@@ -476,24 +372,6 @@ impl Binding {
     pub(crate) fn vector(&mut self, names: [&'static str; 3], order: u32, v: &Vector3<f64>) {
         for (name, x) in names.into_iter().zip(v.iter()) {
             self.set(name, order, *x, v.norm());
-        }
-    }
-
-    /// Moments and products as integrals (`I_xy = ∫xy dm`), all sized by
-    /// `Σ m |r|²`.
-    pub(crate) fn inertia(&mut self, i: &crate::Inertia) {
-        let size = 0.5 * i.trace();
-        let [ix, iy, iz] = i.moments();
-        let [ixy, iyz, izx] = i.products();
-        for (n, v) in [
-            ("I_x", ix),
-            ("I_y", iy),
-            ("I_z", iz),
-            ("I_xy", ixy),
-            ("I_yz", iyz),
-            ("I_zx", izx),
-        ] {
-            self.set(n, 0, v, size);
         }
     }
 
@@ -594,7 +472,3 @@ pub(crate) fn compare_scaled(
         })
         .collect())
 }
-
-pub(crate) const OMEGA: [&str; 3] = ["omega_x", "omega_y", "omega_z"];
-pub(crate) const VEL: [&str; 3] = ["v_x", "v_y", "v_z"];
-pub(crate) const BAR: [&str; 3] = ["xbar", "ybar", "zbar"];

@@ -66,7 +66,7 @@ impl<'a> Context<'a> {
         &self.frames[self.frame_index(name).expect("frame exists")]
     }
 
-    fn diag(&self, start: usize, end: usize, msg: impl Into<String>) -> Diagnostic {
+    pub(crate) fn diag(&self, start: usize, end: usize, msg: impl Into<String>) -> Diagnostic {
         Diagnostic::at(self.path, self.text, start, end, msg)
     }
 

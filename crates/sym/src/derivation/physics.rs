@@ -126,8 +126,13 @@ pub struct Body {
     /// G from the reference point, in the body frame's components (zero
     /// for a body about its centre; `None` when the file leaves it free).
     pub mass_centre: Option<Vec3>,
-    /// The inertia tensor about the reference point in the body axes.
+    /// The inertia tensor in the body axes, about the reference point, or
+    /// about the centre when `inertia_about_centre`.
     pub inertia: Mat3,
+    /// `inertia` is about the mass centre while the reference point is
+    /// another point (`inertia_about = "G"`); `mass_centre` then places G
+    /// from the reference point.
+    pub inertia_about_centre: bool,
     /// The symmetry that makes `inertia`'s form true.
     pub symmetry: Symmetry,
 }
@@ -486,6 +491,12 @@ pub struct StepMeaning {
     pub text: String,
     /// Conditions of this step (besides `[motion]`'s).
     pub given: Vec<Rule>,
+    /// Free points at rest for this step (`O' = 0`): the name and the
+    /// derivative order from which the point's motion vanishes.
+    pub at_rest: Vec<(String, usize)>,
+    /// Symmetries bodies have for this step (body index, symmetry), on top
+    /// of their declared one.
+    pub symmetry: Vec<(usize, Symmetry)>,
 }
 
 /// The frame's rotation (axis, angle) when its matrix is a rotation about
@@ -789,6 +800,34 @@ fn body(
         // G wherever the drawn body has it (no step may use its position).
         None => None,
     };
+    let inertia_about_centre = match &b.inertia_about {
+        None => false,
+        Some(a) if Some(a.get_ref()) == centre.as_ref() => {
+            if mass_centre.is_none() {
+                return Err(cx.diag_string(
+                    a,
+                    0,
+                    a.get_ref().len(),
+                    "with the inertia about the centre, `mass_centre` says where the centre is from the reference point",
+                ));
+            }
+            centre.as_deref() != Some(point.as_str())
+        }
+        Some(a) if a.get_ref() == &point => false,
+        Some(a) => {
+            return Err(cx.diag_string(
+                a,
+                0,
+                a.get_ref().len(),
+                format!(
+                    "`inertia_about` is the reference point ({point}) or the body's centre ({})",
+                    centre
+                        .as_deref()
+                        .unwrap_or("unnamed: name it with `centre`")
+                ),
+            ));
+        }
+    };
     let (ast, base) = parse_spanned(cx, &b.inertia)?;
     let inertia = match cx.eval(&ast, base)? {
         Value::Matrix(m) => m,
@@ -831,6 +870,7 @@ fn body(
         mass,
         mass_centre,
         inertia,
+        inertia_about_centre,
         symmetry,
     })
 }
@@ -916,15 +956,45 @@ pub(crate) fn step_meaning(
                 "`given` is the condition of a step's `means`; this step has none",
             ));
         }
+        if let Some(t) = &s.symmetry {
+            let span = t.span();
+            return Err(cx.diag(
+                span.start,
+                span.end,
+                "`symmetry` is the condition of a step's `means`; this step has none",
+            ));
+        }
         return Ok(None);
     };
     let meaning = meaning(cx, ph, means)?;
     check_shape(cx, means, &meaning, value)?;
-    let given = s.given.iter().map(|r| rule(cx, r)).collect::<R<Vec<_>>>()?;
+    let mut given = Vec::new();
+    let mut at_rest = Vec::new();
+    for r in &s.given {
+        match point_at_rest(cx, ph, r)? {
+            Some(p) => at_rest.push(p),
+            None => given.push(rule(cx, r)?),
+        }
+    }
+    let mut symmetry = Vec::new();
+    for (name, sym) in s.symmetry.iter().flat_map(|t| t.get_ref()) {
+        let table = s.symmetry.as_ref().expect("present");
+        let Some(i) = ph.bodies.iter().position(|b| &b.name == name) else {
+            let known: Vec<String> = ph.bodies.iter().map(|b| b.name.clone()).collect();
+            let span = table.span();
+            return Err(cx.diag(span.start, span.end, unknown("body", name, &known)));
+        };
+        symmetry.push((
+            i,
+            self::symmetry(cx, sym, &cx.frames[ph.bodies[i].frame].axes)?,
+        ));
+    }
     Ok(Some(StepMeaning {
         meaning,
         text: means.get_ref().clone(),
         given,
+        at_rest,
+        symmetry,
     }))
 }
 
@@ -1281,6 +1351,49 @@ fn quantity_names() -> String {
         .map(|s| s.name)
         .collect::<Vec<_>>()
         .join(", ")
+}
+
+/// `P' = 0` (`P'' = 0`, …) for a point P that the verifier moves freely:
+/// the point's velocity (acceleration, …) vanishes. `None` when the
+/// condition is not about a point.
+fn point_at_rest(
+    cx: &Context<'_>,
+    ph: &Physics,
+    s: &Spanned<String>,
+) -> R<Option<(String, usize)>> {
+    let Some((lhs, rhs)) = s.get_ref().split_once('=') else {
+        return Ok(None);
+    };
+    let name = lhs.trim().trim_end_matches('\'');
+    let order = lhs.trim().len() - name.len();
+    let declared = ph.points.iter().find(|p| p.name == name);
+    let centre = ph.bodies.iter().find(|b| b.centre.as_deref() == Some(name));
+    if declared.is_none() && centre.is_none() {
+        return Ok(None);
+    }
+    let n = s.get_ref().len();
+    if order == 0 || rhs.trim() != "0" {
+        return Err(cx.diag_string(
+            s,
+            0,
+            n,
+            format!("a condition on point {name} is `{name}' = 0` (at rest) or `{name}'' = 0` (no acceleration)"),
+        ));
+    }
+    let free = match (declared, centre) {
+        (Some(p), _) => p.kind == PointKind::Free,
+        (None, Some(b)) => b.about_centre(),
+        (None, None) => false,
+    };
+    if !free {
+        return Err(cx.diag_string(
+            s,
+            0,
+            n,
+            format!("point {name} moves as its declaration says; only a point that moves freely (a `[[point]]` without `fixed` or `from`, or the centre of a body about its centre) can be set at rest"),
+        ));
+    }
+    Ok(Some((name.to_owned(), order)))
 }
 
 /// Parses a rule `q = e`, `q' = e`, `q = pi/2`.

@@ -61,6 +61,9 @@ pub(crate) struct RawBody {
     pub mass: Option<Spanned<String>>,
     pub mass_centre: Option<Spanned<String>>,
     pub inertia: Spanned<String>,
+    /// The point `inertia` is about: the reference point (default) or the
+    /// body's centre.
+    pub inertia_about: Option<Spanned<String>>,
     pub symmetry: Option<Spanned<String>>,
 }
 
@@ -155,6 +158,9 @@ pub(crate) struct RawStep {
     /// Conditions on the motion under which `means` holds.
     #[serde(default)]
     pub given: Vec<Spanned<String>>,
+    /// Symmetries the bodies have for this step's `means` (besides their
+    /// own): `{ body = "principal" }`.
+    pub symmetry: Option<Spanned<std::collections::BTreeMap<String, Spanned<String>>>>,
     /// The step's value stays constant along every motion the equations
     /// of the file describe (a simulation reports its drift).
     #[serde(default)]
