@@ -234,6 +234,44 @@ fn verify_reads_declarations_under_any_name() {
     assert_eq!(out.status.code(), Some(1));
 }
 
+/// Every bundled file that declares its model gives the same verification
+/// report copied under another name as under its own (nothing is looked
+/// up by file name).
+#[test]
+fn every_declared_bundled_file_verifies_the_same_under_another_name() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut compared = 0;
+    for e in std::fs::read_dir(repo_root().join("derivations")).unwrap() {
+        let path = e.unwrap().path();
+        let stem = path.file_stem().unwrap().to_string_lossy().into_owned();
+        if path.extension().is_none_or(|x| x != "toml") || stem == "notes" {
+            continue;
+        }
+        let text_in = std::fs::read_to_string(&path).unwrap();
+        if !text_in.contains("\nmeans = ") {
+            continue;
+        }
+        let copy = dir.path().join("renamed-copy.toml");
+        std::fs::write(&copy, &text_in).unwrap();
+        // The report, words only (the name column's padding differs).
+        let run = |p: &str| {
+            let out = hdot(&["verify", p, "--bodies", "3", "--steps"]);
+            let words = text(&out.stdout)
+                .replace("renamed-copy", &stem)
+                .split_whitespace()
+                .collect::<Vec<_>>()
+                .join(" ");
+            (out.status.code(), words)
+        };
+        let (code0, so0) = run(&stem);
+        assert_eq!(code0, Some(0), "{so0}");
+        assert!(so0.contains(" pass "), "{so0}");
+        assert_eq!(run(copy.to_str().unwrap()), (code0, so0), "{stem}");
+        compared += 1;
+    }
+    assert!(compared >= 19, "{compared} files declare their model");
+}
+
 /// Issue 11: non-finite and overflowing input refused (exit 2), a requested
 /// error that is not met is a failure (exit 1), closed forms report an
 /// estimate.
