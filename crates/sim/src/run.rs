@@ -1632,47 +1632,6 @@ impl Row {
             self.status.replace(',', ";")
         )
     }
-
-    /// Parses a line written by [`Row::csv`].
-    pub fn parse_csv(line: &str) -> Option<Row> {
-        let f: Vec<&str> = line.splitn(10, ',').collect();
-        if f.len() != 10 {
-            return None;
-        }
-        let value: f64 = f[2].parse().ok()?;
-        Some(Row {
-            method: f[0].parse().ok()?,
-            step: match f[1] {
-                "dt" => Step::Fixed(value),
-                "tol" => Step::Tolerance(value),
-                _ => return None,
-            },
-            error: f[3].parse().ok()?,
-            wall_s: f[4].parse().ok()?,
-            evaluations: f[5].parse().ok()?,
-            steps: f[6].parse().ok()?,
-            energy_drift: f[7].parse().ok()?,
-            momentum_drift: f[8].parse().ok()?,
-            status: f[9].to_string(),
-        })
-    }
-}
-
-/// The heavy-top sweep bundled at build time (`crates/sim/data/`), made by
-/// `hdot work-precision docs/examples/sim-heavy-top.toml`.
-pub fn bundled_heavy_top_data() -> Vec<Row> {
-    include_str!("../data/work-precision-heavy-top.csv")
-        .lines()
-        .skip(1)
-        .filter_map(Row::parse_csv)
-        .collect()
-}
-
-/// The successful row of least wall time whose error is at most `tol`.
-pub fn cheapest(rows: &[Row], tol: f64) -> Option<&Row> {
-    rows.iter()
-        .filter(|r| r.status == "ok" && r.error <= tol)
-        .min_by(|a, b| a.wall_s.total_cmp(&b.wall_s))
 }
 
 /// Steps and tolerances the sweep tries for a method over `[0, t_end]`.

@@ -4,7 +4,7 @@
 //! angle `q_i` about its parent's axis z, x, y, z, x, y, … in turn. Each
 //! body has a general inertia tensor (six symbols of its own, `I_ix`,
 //! `I_iy`, `I_iz`, `I_ixy`, `I_iyz`, `I_izx`) in its own axes. The total
-//! angular momentum is H = Σ [I_i] ω_i expressed in N, and Ḣ is its time
+//! angular momentum is H = Σ \[I_i\] ω_i expressed in N, and Ḣ is its time
 //! derivative in N, whose three components are expanded to canonical form.
 //!
 //! The family is generated as an ordinary derivation file, so it runs

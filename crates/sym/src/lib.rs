@@ -19,7 +19,7 @@
 //! derivation file (TOML) → [`derivation::load`] (parses, resolves names,
 //! reports errors at file:line:column, evaluates the steps on canonical
 //! [`Poly`] values, checks expectations) →
-//! [`present`] (textbook form as an [`Expr`] tree) → [`print`] / [`render`]
+//! [`present`] (textbook form as an [`Expr`] tree) → [`print`](mod@print) / [`render`]
 //! (Unicode, LaTeX, Markdown, SymPy, JSON).
 //!
 //! ## Design

@@ -1,5 +1,5 @@
 //! Lecture notes and slides: a [`Document`] (derivations arranged by a
-//! [`Course`]) rendered as a LaTeX article ([`latex_document`]), as one
+//! [`Course`](crate::document::Course)) rendered as a LaTeX article ([`latex_document`]), as one
 //! Markdown page ([`markdown_document`]), as LaTeX Beamer slides
 //! ([`slides_document`]); one derivation as a LaTeX fragment to `\input`
 //! in a lecturer's own document ([`latex_fragment`]) or as Markdown

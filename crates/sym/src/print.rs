@@ -1,6 +1,6 @@
 //! Printers: source syntax, Unicode text, LaTeX and SymPy.
 //!
-//! One precedence-aware walk over an [`Expr`] ([`print`]) is shared by all
+//! One precedence-aware walk over an [`Expr`] ([`print()`]) is shared by all
 //! four; a [`Style`] says how atoms, numbers, products and powers look.
 //! Parentheses follow one rule set in every style, the one that makes the
 //! source syntax round-trip: a sum inside a sum or product, a product or a

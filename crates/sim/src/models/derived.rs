@@ -5,7 +5,7 @@
 //!
 //! What is integrated is exactly what was derived: the polynomials of the
 //! steps, with abbreviations expanded, evaluated at the state. Each atom of
-//! the compiled equations gets its value from one [`Source`]: a
+//! the compiled equations gets its value from one `Source`: a
 //! coordinate or its rate (from the state), sin or cos of a coordinate,
 //! a constant (from the scene), or an applied input given as a function of
 //! time (from the scene, see [`TimeFunction`]).

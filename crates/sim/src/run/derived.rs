@@ -4,7 +4,7 @@
 //! report as the built-in models.
 //!
 //! The state has `2 × dof` components, a number known only when the scene
-//! is read, while the integrators take fixed-size arrays; [`with_len`]
+//! is read, while the integrators take fixed-size arrays; `with_len`
 //! dispatches on it once, up to [`MAX_DOF`] coordinates.
 
 use nalgebra::Matrix3;

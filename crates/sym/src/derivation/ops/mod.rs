@@ -2,9 +2,9 @@
 //! self-describing entries (STYLE.md 14).
 //!
 //! Each operation lives in its own file and is declared once, as an
-//! [`Op`]: its names, its signature, one line of documentation and its
+//! `Op`: its names, its signature, one line of documentation and its
 //! evaluation. The evaluator looks functions up here, the error for an
-//! unknown function lists [`OPS`], and the function table of
+//! unknown function lists `OPS`, and the function table of
 //! `docs/derivation-format.md` is generated from it (a test keeps the
 //! document in step with [`catalogue`]).
 
