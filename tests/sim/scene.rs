@@ -279,6 +279,15 @@ fn plan_and_run_agree_with_the_registry_on_every_bundled_scene() {
         }
         let scene = Scene::from_file(&path).unwrap();
         let t_end = scene.t_end.min(0.05);
+        // The work-precision sweep measures a model of the registry that
+        // applies to the scene.
+        let swept = run::sweep_model(&scene).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let req = Request {
+            model: Some(swept),
+            t_end: Some(t_end),
+            ..Request::default()
+        };
+        assert!(run::plan(&scene, &req).is_ok(), "{name}: sweeps {swept}");
         let default = run::plan(
             &scene,
             &Request {

@@ -960,11 +960,20 @@ pub struct ModelEntry {
     refusal: fn(&Scene) -> Result<Option<&'static str>, SimError>,
     /// Runs a planned scene, filling the report.
     run: RunFn,
+    /// One run of the work-precision sweep (`hdot work-precision`) on the
+    /// integrated system of the scenes this model applies to; `None` for
+    /// models the sweep does not measure (closed forms, and the
+    /// comparison models of the same scenes).
+    sweep: Option<SweepFn>,
 }
 
 /// How a model runs: the scene, its plan, the recorder of streamed or
 /// stored rows, and the report to fill.
 type RunFn = fn(&Scene, &Plan, &mut Recorder<'_, '_>, &mut Report) -> Result<(), SimError>;
+
+/// One sweep run: the scene, the row to fill (its method and step set), the
+/// end time and the least wall time spent repeating the run to time it.
+type SweepFn = fn(&Scene, &mut Row, f64, f64) -> Result<(), SimError>;
 
 /// Every model, in the order of [`Model::ALL`].
 pub const MODELS: [ModelEntry; 7] = [
@@ -975,6 +984,7 @@ pub const MODELS: [ModelEntry; 7] = [
         integrated: false,
         refusal: refuse_fixed_axis,
         run: run_fixed_axis,
+        sweep: Some(sweep_fixed_axis),
     },
     ModelEntry {
         model: Model::SteadyPrecession,
@@ -983,6 +993,7 @@ pub const MODELS: [ModelEntry; 7] = [
         integrated: false,
         refusal: refuse_steady_precession,
         run: run_closed_form,
+        sweep: None,
     },
     ModelEntry {
         model: Model::Elliptic,
@@ -991,6 +1002,7 @@ pub const MODELS: [ModelEntry; 7] = [
         integrated: false,
         refusal: refuse_elliptic,
         run: run_closed_form,
+        sweep: None,
     },
     ModelEntry {
         model: Model::PrecessionAngle,
@@ -999,6 +1011,7 @@ pub const MODELS: [ModelEntry; 7] = [
         integrated: true,
         refusal: refuse_precession_angle,
         run: run_precession_angle,
+        sweep: None,
     },
     ModelEntry {
         model: Model::RigidBody,
@@ -1007,6 +1020,7 @@ pub const MODELS: [ModelEntry; 7] = [
         integrated: true,
         refusal: refuse_body_model,
         run: run_rigid_body,
+        sweep: Some(sweep_rigid_body),
     },
     ModelEntry {
         model: Model::EulerAngles,
@@ -1015,6 +1029,7 @@ pub const MODELS: [ModelEntry; 7] = [
         integrated: true,
         refusal: refuse_euler_angles,
         run: run_euler_angles,
+        sweep: None,
     },
     ModelEntry {
         model: Model::Derived,
@@ -1023,6 +1038,7 @@ pub const MODELS: [ModelEntry; 7] = [
         integrated: true,
         refusal: refuse_derived,
         run: derived::run,
+        sweep: Some(derived::sweep_one),
     },
 ];
 
@@ -1661,11 +1677,12 @@ pub fn work_precision(
     min_time: f64,
     mut progress: impl FnMut(&Row),
 ) -> Result<Vec<Row>, SimError> {
+    let entry = sweep_entry(scene)?;
     let mut rows = vec![];
     for method in Method::ALL {
         let mut previous_error = f64::INFINITY;
         for step in sweep_steps(method, t_end) {
-            let row = sweep_one(scene, method, step, t_end, min_time)?;
+            let row = sweep_one(entry, scene, method, step, t_end, min_time)?;
             let err = row.error;
             progress(&row);
             rows.push(row);
@@ -1699,7 +1716,27 @@ fn timed<T>(
     Ok((out, start.elapsed().as_secs_f64() / reps as f64))
 }
 
+/// The model whose sweep `hdot work-precision` measures on `scene`: the
+/// first entry of [`MODELS`] with a sweep that applies to it.
+pub fn sweep_model(scene: &Scene) -> Result<Model, SimError> {
+    sweep_entry(scene).map(|e| e.model)
+}
+
+fn sweep_entry(scene: &Scene) -> Result<&'static ModelEntry, SimError> {
+    for entry in &MODELS {
+        if entry.sweep.is_some() && (entry.refusal)(scene)?.is_none() {
+            return Ok(entry);
+        }
+    }
+    Err(not_applicable(
+        Model::RigidBody,
+        scene,
+        "no integrated model of this scene has a work-precision sweep",
+    ))
+}
+
 fn sweep_one(
+    entry: &ModelEntry,
     scene: &Scene,
     method: Method,
     step: Step,
@@ -1717,63 +1754,82 @@ fn sweep_one(
         momentum_drift: f64::NAN,
         status: "ok".into(),
     };
-    match &scene.kind {
-        SceneKind::Derived(ds) => derived::sweep_one(ds, &mut row, t_end, min_time)?,
-        SceneKind::FixedAxis { shaft, y0 } => {
-            let run = || {
-                integrate(
-                    shaft,
-                    method,
-                    step,
-                    0.0,
-                    *y0,
-                    t_end,
-                    Limits::default(),
-                    |_, _| Ok(()),
-                )
-            };
-            match timed(min_time, run) {
-                Ok(((y, stats), wall)) => {
-                    let e = shaft.exact(y0, t_end);
-                    row.error = ((y[0] - e[0]).powi(2) + (y[1] - e[1]).powi(2)).sqrt();
-                    row.wall_s = wall;
-                    row.evaluations = stats.evaluations;
-                    row.steps = stats.steps;
-                    row.energy_drift = relative(shaft.energy(&y), shaft.energy(&e));
-                }
-                Err(e) => row.status = e.to_string(),
-            }
-        }
-        _ => {
-            let (body, y0) = free_body(scene).expect("free or heavy top");
-            let (reference, _) = reference_state(scene, t_end)?;
-            let run = || {
-                integrate(
-                    &body,
-                    method,
-                    step,
-                    0.0,
-                    y0,
-                    t_end,
-                    Limits::default(),
-                    |_, _| Ok(()),
-                )
-            };
-            match timed(min_time, run) {
-                Ok(((y, stats), wall)) => {
-                    row.error = state_distance(&y, &reference);
-                    row.wall_s = wall;
-                    row.evaluations = stats.evaluations;
-                    row.steps = stats.steps;
-                    let d = free_drifts(&body, &y0, &y);
-                    row.energy_drift = d[0].relative;
-                    row.momentum_drift = d[1].relative;
-                }
-                Err(e) => row.status = e.to_string(),
-            }
-        }
-    }
+    let sweep = entry.sweep.expect("chosen by sweep_entry");
+    sweep(scene, &mut row, t_end, min_time)?;
     Ok(row)
+}
+
+/// One sweep run of a shaft, measured against its closed form.
+fn sweep_fixed_axis(
+    scene: &Scene,
+    row: &mut Row,
+    t_end: f64,
+    min_time: f64,
+) -> Result<(), SimError> {
+    let SceneKind::FixedAxis { shaft, y0 } = &scene.kind else {
+        return Err(wrong_kind(Model::FixedAxis, scene));
+    };
+    let run = || {
+        integrate(
+            shaft,
+            row.method,
+            row.step,
+            0.0,
+            *y0,
+            t_end,
+            Limits::default(),
+            |_, _| Ok(()),
+        )
+    };
+    match timed(min_time, run) {
+        Ok(((y, stats), wall)) => {
+            let e = shaft.exact(y0, t_end);
+            row.error = ((y[0] - e[0]).powi(2) + (y[1] - e[1]).powi(2)).sqrt();
+            row.wall_s = wall;
+            row.evaluations = stats.evaluations;
+            row.steps = stats.steps;
+            row.energy_drift = relative(shaft.energy(&y), shaft.energy(&e));
+        }
+        Err(e) => row.status = e.to_string(),
+    }
+    Ok(())
+}
+
+/// One sweep run of a free body or heavy top in the quaternion model,
+/// measured against the reference state.
+fn sweep_rigid_body(
+    scene: &Scene,
+    row: &mut Row,
+    t_end: f64,
+    min_time: f64,
+) -> Result<(), SimError> {
+    let (body, y0) = free_body(scene).ok_or_else(|| wrong_kind(Model::RigidBody, scene))?;
+    let (reference, _) = reference_state(scene, t_end)?;
+    let run = || {
+        integrate(
+            &body,
+            row.method,
+            row.step,
+            0.0,
+            y0,
+            t_end,
+            Limits::default(),
+            |_, _| Ok(()),
+        )
+    };
+    match timed(min_time, run) {
+        Ok(((y, stats), wall)) => {
+            row.error = state_distance(&y, &reference);
+            row.wall_s = wall;
+            row.evaluations = stats.evaluations;
+            row.steps = stats.steps;
+            let d = free_drifts(&body, &y0, &y);
+            row.energy_drift = d[0].relative;
+            row.momentum_drift = d[1].relative;
+        }
+        Err(e) => row.status = e.to_string(),
+    }
+    Ok(())
 }
 
 /// Writes the work-precision chart (error against wall time, log–log, one

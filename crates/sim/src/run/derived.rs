@@ -10,8 +10,8 @@
 use nalgebra::Matrix3;
 
 use super::{
-    Drift, FrameState, Plan, REFERENCE_TOL, Recorder, Report, Row, integrate_recorded, method_step,
-    time_and_state, timed, wrong_kind,
+    Drift, FrameState, Model, Plan, REFERENCE_TOL, Recorder, Report, Row, integrate_recorded,
+    method_step, time_and_state, timed, wrong_kind,
 };
 use crate::models::derived::{DerivedModel, DerivedSystem, MAX_DOF};
 use crate::scene::{DerivedScene, Scene, SceneKind};
@@ -251,11 +251,14 @@ pub fn frame_state(ds: &DerivedScene, t: f64, y: &[f64]) -> Option<FrameState> {
 
 /// One run of the work-precision sweep on a derived scene.
 pub(super) fn sweep_one(
-    ds: &DerivedScene,
+    scene: &Scene,
     row: &mut Row,
     t_end: f64,
     min_time: f64,
 ) -> Result<(), SimError> {
+    let SceneKind::Derived(ds) = &scene.kind else {
+        return Err(wrong_kind(Model::Derived, scene));
+    };
     with_len!(ds.y0.len(), sweep_n(ds, row, t_end, min_time))
 }
 
