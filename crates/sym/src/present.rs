@@ -412,32 +412,45 @@ fn ratio_term(e: &mut Expr, factors: &[(Atom, i32)], c: &Rational) -> Id {
 /// prints φ̇² sin² θ and I′ − I′ cos² θ + J prints J + I′ sin² θ. Exact:
 /// the term expands back to the pair.
 fn merge_trig_squares(ts: &mut Vec<(Monomial, Rational)>) {
-    let mut k = 0;
-    while k < ts.len() {
+    // Each term's partner is looked up in an ordered index of the monomials
+    // (n log n: a result of many terms must not make display quadratic).
+    let mut index: BTreeMap<Monomial, usize> = ts
+        .iter()
+        .enumerate()
+        .map(|(i, (m, _))| (m.clone(), i))
+        .collect();
+    let mut removed = vec![false; ts.len()];
+    for k in 0..ts.len() {
+        if removed[k] {
+            continue;
+        }
         let (m, c) = ts[k].clone();
         let cos2 = m.factors().iter().find_map(|&(a, x)| match a.kind() {
             AtomKind::Cos(q) if x >= 2 => Some((a, q)),
             _ => None,
         });
         let Some((cos, q)) = cos2 else {
-            k += 1;
             continue;
         };
         let rest = m.div(&Monomial::atom(cos, 2));
-        let partner = ts
-            .iter()
-            .position(|(m2, c2)| *m2 == rest && (c2 + &c).is_zero());
-        match (partner, Atom::sin(q)) {
-            (Some(j), Some(sin)) => {
-                ts[j] = (rest.mul(&Monomial::atom(sin, 2)), ts[j].1.clone());
-                ts.remove(k);
-                if j < k {
-                    k -= 1;
-                }
-            }
-            _ => k += 1,
+        let partner = index
+            .get(&rest)
+            .copied()
+            .filter(|&j| !removed[j] && (&ts[j].1 + &c).is_zero());
+        if let (Some(j), Some(sin)) = (partner, Atom::sin(q)) {
+            let merged = rest.mul(&Monomial::atom(sin, 2));
+            index.remove(&rest);
+            index.insert(merged.clone(), j);
+            ts[j].0 = merged;
+            index.remove(&m);
+            removed[k] = true;
         }
     }
+    let mut k = 0;
+    ts.retain(|_| {
+        k += 1;
+        !removed[k - 1]
+    });
 }
 
 /// The place of a constant factor: the names of the file's own order
