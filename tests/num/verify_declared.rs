@@ -484,3 +484,75 @@ fn the_point_of_a_body_is_of_one_body_and_applied_is_scalar() {
     let e = err(&text);
     assert!(e.contains("test.toml:") && e.contains("scalar"), "{e}");
 }
+
+/// A plate at rest, its principal axes B turned by a fixed angle β from N,
+/// struck at a point given in B by an impulse given in N: v̄ and ω after
+/// the blow against the particles' impulse–momentum solve.
+const STRUCK: &str = r#"
+title = "struck plate"
+source = "test"
+[symbols]
+constants = ["m", "A", "Bm", "C", "beta", "F_1", "F_2", "F_3", "a", "b", "c", "u_1", "u_2", "u_3", "w_1", "w_2", "w_3"]
+[[frame]]
+name = "B"
+parent = "N"
+rotation = "z(beta)"
+[[point]]
+name = "Q"
+from = "G"
+at = "[a, b, c] in B"
+[[body]]
+name = "plate"
+frame = "B"
+point = "G"
+mass = "m"
+inertia = "principal(A, Bm, C)"
+symmetry = "principal"
+[[step]]
+name = "J"
+value = "[F_1, F_2, F_3] in N"
+[[step]]
+name = "v"
+value = "solve(m*[u_1, u_2, u_3] in N - J, [u_1, u_2, u_3])"
+means = "velocity_after_impulse(plate, Q, [F_1, F_2, F_3] in N)"
+[[step]]
+name = "w"
+value = "solve(principal(A, Bm, C) * ([w_1, w_2, w_3] in B) - cross([a, b, c] in B, express(J, B)), [w_1, w_2, w_3])"
+means = "angular_velocity_after_impulse(plate, Q, [F_1, F_2, F_3] in N)"
+"#;
+
+#[test]
+fn a_struck_body_written_here_passes_and_a_wrong_one_fails() {
+    let r = check(&load(STRUCK), &OPTS).unwrap_or_else(|e| panic!("{e}"));
+    let compared: Vec<&str> = r.steps.iter().map(|s| s.step.as_str()).collect();
+    assert_eq!(compared, ["v", "w"]);
+    assert!(r.passed(), "{r:#?}");
+    // Two moments swapped in the step (not in the declaration).
+    let d = load(&STRUCK.replace(
+        "value = \"solve(principal(A, Bm, C)",
+        "value = \"solve(principal(Bm, A, C)",
+    ));
+    let r = check(&d, &OPTS).unwrap();
+    let failed: Vec<&str> = r
+        .steps
+        .iter()
+        .filter(|s| !s.passed)
+        .map(|s| s.step.as_str())
+        .collect();
+    assert_eq!(failed, ["w"]);
+    assert!(r.worst().unwrap().quantity.starts_with("w."));
+    // The moment arm about the wrong point (r_P taken as zero).
+    let d = load(&STRUCK.replace("cross([a, b, c] in B", "cross([0, b, c] in B"));
+    assert!(!check(&d, &OPTS).unwrap().passed());
+    // The response of one body, to a vector impulse.
+    let e = err(&STRUCK.replace(
+        "velocity_after_impulse(plate, Q,",
+        "velocity_after_impulse(system, Q,",
+    ));
+    assert!(
+        e.contains("test.toml:") && e.contains("one free body"),
+        "{e}"
+    );
+    let e = err(&STRUCK.replace("Q, [F_1, F_2, F_3] in N)\"\n[[step]]", "Q, m)\"\n[[step]]"));
+    assert!(e.contains("test.toml:") && e.contains("vector"), "{e}");
+}

@@ -18,7 +18,6 @@
 //!
 //! | family (file) | derivations | bodies |
 //! |---|---|---|
-//! | [`rigid`] | `impulse-momentum` | principal (mirrored in the three coordinate planes) |
 //! | [`free`] | `principal-axis-stability` | triaxial principal |
 //!
 //! (The rotation chains of [`motion`] are shared with the simulation's
@@ -70,7 +69,7 @@ use crate::eval::Tape;
 pub const TOLERANCE_ULPS: f64 = 256.0;
 
 /// The derivations with a numeric check, by file stem.
-pub const SUPPORTED: &[&str] = &["impulse-momentum", "principal-axis-stability"];
+pub const SUPPORTED: &[&str] = &["principal-axis-stability"];
 
 /// What a derivation's check compares, step by step.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -87,41 +86,28 @@ pub struct Coverage {
     pub not_compared: &'static [(&'static str, &'static str)],
 }
 
-const RESTATES: &str = "restates the symbols (nothing to compare)";
-
 /// Per derivation: each step and what it is compared against.
-pub const COVERAGE: &[Coverage] = &[
-    Coverage {
-        derivation: "impulse-momentum",
-        compared: &[(
-            "v, omega",
-            "solution of Σ m v = F̂, Σ m r′ × v = r_P × F̂ (6 × 6, particle sums)",
-        )],
-        kinematic: &[],
-        not_compared: &[("Fhat, r_P", RESTATES)],
-    },
-    Coverage {
-        derivation: "principal-axis-stability",
-        compared: &[
-            ("M", "Σ m r × a, disturbed spin"),
-            (
-                "L",
-                "central difference of Σ m r × a (exact for a quadratic)",
-            ),
-            (
-                "eps3_rate, eps2_acc",
-                "J ε, J² ε with J = −I⁻¹ ∂(ω × Iω)/∂ω from particle sums",
-            ),
-            ("k_1", "−λ²/Ω², λ the largest eigenvalue of J"),
-            (
-                "sign_*",
-                "sign of −λ² for spin about the largest, middle, smallest moment",
-            ),
-        ],
-        kinematic: &[],
-        not_compared: &[],
-    },
-];
+pub const COVERAGE: &[Coverage] = &[Coverage {
+    derivation: "principal-axis-stability",
+    compared: &[
+        ("M", "Σ m r × a, disturbed spin"),
+        (
+            "L",
+            "central difference of Σ m r × a (exact for a quadratic)",
+        ),
+        (
+            "eps3_rate, eps2_acc",
+            "J ε, J² ε with J = −I⁻¹ ∂(ω × Iω)/∂ω from particle sums",
+        ),
+        ("k_1", "−λ²/Ω², λ the largest eigenvalue of J"),
+        (
+            "sign_*",
+            "sign of −λ² for spin about the largest, middle, smallest moment",
+        ),
+    ],
+    kinematic: &[],
+    not_compared: &[],
+}];
 
 /// What the check of `name` compares, when it has one.
 pub fn coverage(name: &str) -> Option<&'static Coverage> {
@@ -207,10 +193,10 @@ impl VerifyError {
 /// - `omega`, `alpha`: ω and α (body axes); for derivations in Eulerian
 ///   angles the rates (φ̇, θ̇, ψ̇) and accelerations of `angles`; for
 ///   `principal-axis-stability` the spin Ω (from `omega.x`) and ε̇.
-/// - `v`: v̄ (body axes); the impulse F̂; the disturbance ε; the point's
+/// - `v`: v̄ (body axes); the disturbance ε; the point's
 ///   velocity in the rotating frame; H_G = 1 + |v| for the torque-free body.
 /// - `a`: ā; the point's acceleration in the rotating frame.
-/// - `axes`, `offset`: the derivation's body axes and G − O (or G − P, r_P,
+/// - `axes`, `offset`: the derivation's body axes and G − O (or G − P,
 ///   the point's position, the height of G above O on a rotor's axis).
 /// - `angles`, `spin`: Eulerian angles; the body's spin angle, rate and
 ///   acceleration relative to a frame that does not spin with it.
@@ -341,7 +327,6 @@ pub fn check_named(
     state: &State,
 ) -> Option<Result<Vec<Comparison>, VerifyError>> {
     let f: CheckFn = match d.name.as_str() {
-        "impulse-momentum" => rigid::impulse_momentum,
         "principal-axis-stability" => free::principal_axis_stability,
         _ => return None,
     };

@@ -3,7 +3,7 @@
 //! particle sum and the magnitudes its round-off is relative to.
 
 use hdot_sym::derivation::physics::{Arg, Bodies, Quantity};
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::{Matrix3, Matrix6, Vector3, Vector6};
 
 use super::VerifyError;
 use super::world::{World, vee};
@@ -131,6 +131,16 @@ pub static REGISTRY: &[Measure] = &[
         quantity: Quantity::PointAcceleration,
         measured_as: "r̈_O + R̈ q of the body's point q = Rᵀ (r_P − r_O)",
         compute: point_acceleration,
+    },
+    Measure {
+        quantity: Quantity::VelocityAfterImpulse,
+        measured_as: "v̄ solving Σ m v = F̂, Σ m (r − r_G) × v = (r_P − r_G) × F̂ over the particles",
+        compute: velocity_after_impulse,
+    },
+    Measure {
+        quantity: Quantity::AngularVelocityAfterImpulse,
+        measured_as: "ω solving Σ m v = F̂, Σ m (r − r_G) × v = (r_P − r_G) × F̂ over the particles",
+        compute: angular_velocity_after_impulse,
     },
 ];
 
@@ -369,4 +379,77 @@ fn point_velocity(w: &World<'_>, a: &[Arg]) -> Out {
 
 fn point_acceleration(w: &World<'_>, a: &[Arg]) -> Out {
     material(w, a, 2)
+}
+
+/// The velocities a body at rest takes under an impulse F̂ at a point P:
+/// particle velocities `v = v̄ + ω × (r − r_G)` (rigid) with
+/// `Σ m v = F̂` and `Σ m (r − r_G) × v = (r_P − r_G) × F̂` (momenta after =
+/// impulses, about G taken from the particles). The 6 × 6 system's
+/// columns are the particle momenta of unit v̄ and unit ω — sums over the
+/// particles, no inertia formula — solved by LU. Returns (v̄, ω) in N's
+/// axes with their magnitudes.
+fn after_impulse(w: &World<'_>, a: &[Arg]) -> Result<[(Vector3<f64>, f64); 2], VerifyError> {
+    let Bodies::One(_) = bodies(&a[0]) else {
+        return Err(VerifyError::Declaration {
+            derivation: w.d.name.clone(),
+            message: "the response to an impulse is that of one body, not of `system`".into(),
+        });
+    };
+    let ps = w.particles(bodies(&a[0]));
+    let p = point(w, &a[1]).r[0];
+    let Arg::Vector(f, frame) = &a[2] else {
+        unreachable!("validated by hdot-sym")
+    };
+    let fi =
+        w.d.frames
+            .iter()
+            .position(|x| &x.name == frame)
+            .expect("validated by hdot-sym");
+    let mut local = Vector3::zeros();
+    for (k, c) in f.0.iter().enumerate() {
+        local[k] = w.values.eval(c).map_err(|e| e.in_step(w.d, "impulse"))?.0;
+    }
+    let fhat = w.frames[fi][0] * local;
+    let m: f64 = ps.iter().map(|q| q.m).sum();
+    let g = ps.iter().map(|q| q.r[0] * q.m).sum::<Vector3<f64>>() / m;
+    let mut sys = Matrix6::zeros();
+    for q in &ps {
+        let rho = q.r[0] - g;
+        for j in 0..3 {
+            let e = Vector3::ith(j, 1.0);
+            // v̄ = e_j: v = e_j.
+            let (lin, ang) = (e * q.m, rho.cross(&e) * q.m);
+            // ω = e_j: v = e_j × ρ.
+            let u = e.cross(&rho);
+            let (lin_w, ang_w) = (u * q.m, rho.cross(&u) * q.m);
+            for k in 0..3 {
+                sys[(k, j)] += lin[k];
+                sys[(k + 3, j)] += ang[k];
+                sys[(k, j + 3)] += lin_w[k];
+                sys[(k + 3, j + 3)] += ang_w[k];
+            }
+        }
+    }
+    let h = (p - g).cross(&fhat);
+    let rhs = Vector6::new(fhat.x, fhat.y, fhat.z, h.x, h.y, h.z);
+    let x = sys.lu().solve(&rhs).ok_or_else(|| VerifyError::Singular {
+        derivation: w.d.name.clone(),
+        what: "the impulse–momentum system of the particles",
+    })?;
+    let v = Vector3::new(x[0], x[1], x[2]);
+    let omega = Vector3::new(x[3], x[4], x[5]);
+    Ok([
+        (v, v.norm() + fhat.norm() / m),
+        (omega, omega.norm() * (1.0 + (p - g).norm())),
+    ])
+}
+
+fn velocity_after_impulse(w: &World<'_>, a: &[Arg]) -> Out {
+    let [(v, s), _] = after_impulse(w, a)?;
+    Ok((Measured::Vector(v), s))
+}
+
+fn angular_velocity_after_impulse(w: &World<'_>, a: &[Arg]) -> Out {
+    let [_, (omega, s)] = after_impulse(w, a)?;
+    Ok((Measured::Vector(omega), s))
 }

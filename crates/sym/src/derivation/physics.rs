@@ -175,6 +175,9 @@ pub enum Arg {
     Frame(usize),
     /// A coordinate (a time symbol).
     Coordinate(Atom),
+    /// A vector expression of the file's symbols (abbreviations unfolded)
+    /// and the frame it is written in: an impulse F̂.
+    Vector(Vec3, String),
 }
 
 /// The kind of an argument, for signatures.
@@ -188,6 +191,8 @@ pub enum ArgKind {
     Frame,
     /// A time symbol.
     Coordinate,
+    /// A vector expression (`[F_x, F_y, F_z] in N`, or a step's name).
+    Vector,
 }
 
 /// The shape of a quantity or a meaning.
@@ -257,6 +262,13 @@ pub enum Quantity {
     PointVelocity,
     /// r̈ of the body's material point at a point's place.
     PointAcceleration,
+    /// v̄ of a body at rest just after an impulse F̂ at a point: the v̄ of
+    /// the particle velocities v = v̄ + ω × (r − r_G) that satisfy
+    /// Σ m v = F̂ and Σ m (r − r_G) × v = (r_P − r_G) × F̂.
+    VelocityAfterImpulse,
+    /// ω of a body at rest just after an impulse F̂ at a point (the same
+    /// solve).
+    AngularVelocityAfterImpulse,
 }
 
 /// The signature of a quantity: the single description of its name,
@@ -371,6 +383,18 @@ pub static QUANTITIES: &[QuantitySig] = &[
         Quantity::PointAcceleration,
         "point_acceleration",
         &[K::Body, K::Point],
+        Shape::Vector,
+    ),
+    sig(
+        Quantity::VelocityAfterImpulse,
+        "velocity_after_impulse",
+        &[K::Body, K::Point, K::Vector],
+        Shape::Vector,
+    ),
+    sig(
+        Quantity::AngularVelocityAfterImpulse,
+        "angular_velocity_after_impulse",
+        &[K::Body, K::Point, K::Vector],
         Shape::Vector,
     ),
 ];
@@ -1264,10 +1288,25 @@ impl MeaningParser<'_, '_> {
                 format!("`{func}` is the motion of one body's point: name the body, not `system`"),
             );
         }
+        if matches!(
+            sig.quantity,
+            Quantity::VelocityAfterImpulse | Quantity::AngularVelocityAfterImpulse
+        ) && parsed[0] == Arg::Body(Bodies::System)
+        {
+            return self.err(
+                &args[0],
+                format!("`{func}` is the response of one free body: name the body, not `system`"),
+            );
+        }
         Ok(Meaning::Quantity(sig.quantity, parsed))
     }
 
     fn arg(&self, kind: ArgKind, a: &Ast) -> R<Arg> {
+        if kind == ArgKind::Vector {
+            let (v, f) = self.cx.vector(a, self.base)?;
+            let v = Vec3(v.0.map(|c| self.cx.unfold(&c)));
+            return Ok(Arg::Vector(v, f));
+        }
         let AstKind::Name { name, primes } = &a.kind else {
             return self.err(a, format!("expected a {} name", kind_name(kind)));
         };
@@ -1318,6 +1357,7 @@ impl MeaningParser<'_, '_> {
                     self.err(a, unknown("frame", name, &known))
                 }
             },
+            ArgKind::Vector => unreachable!("handled above"),
             ArgKind::Coordinate => match self.cx.symbols.get(name) {
                 Some(Decl::Time) if *primes == 0 => Ok(Arg::Coordinate(Atom::time(name, 0))),
                 _ => self.err(
@@ -1335,6 +1375,7 @@ fn kind_name(k: ArgKind) -> &'static str {
         ArgKind::Point => "point",
         ArgKind::Frame => "frame",
         ArgKind::Coordinate => "coordinate",
+        ArgKind::Vector => "vector",
     }
 }
 
