@@ -3,7 +3,7 @@
 //! particle sum and the magnitudes its round-off is relative to.
 
 use hdot_sym::derivation::physics::{Arg, Bodies, Quantity};
-use nalgebra::{Matrix3, Matrix6, Vector3, Vector6};
+use nalgebra::{Matrix3, Vector3};
 
 use super::VerifyError;
 use super::world::{World, vee};
@@ -384,10 +384,14 @@ fn point_acceleration(w: &World<'_>, a: &[Arg]) -> Out {
 /// The velocities a body at rest takes under an impulse F̂ at a point P:
 /// particle velocities `v = v̄ + ω × (r − r_G)` (rigid) with
 /// `Σ m v = F̂` and `Σ m (r − r_G) × v = (r_P − r_G) × F̂` (momenta after =
-/// impulses, about G taken from the particles). The 6 × 6 system's
-/// columns are the particle momenta of unit v̄ and unit ω — sums over the
-/// particles, no inertia formula — solved by LU. Returns (v̄, ω) in N's
-/// axes with their magnitudes.
+/// impulses, about G taken from the particles). About G the two balances
+/// separate (`Σ m (r − r_G) = 0`), so they are solved separately: `v̄` is
+/// F̂ over the particles' mass, and ω solves the 3 × 3 system whose
+/// columns are the particle momenta `Σ m ρ × (e_j × ρ)` of a unit ω — sums
+/// over the particles, no inertia formula — by LU. (Solved as one 6 × 6
+/// system, the round-off of `Σ m ρ` coupled a large ω of a thin body into
+/// v̄.) Returns (v̄, ω) in N's axes with their magnitudes (ω's scaled by
+/// the condition of the inertia it is divided by).
 fn after_impulse(w: &World<'_>, a: &[Arg]) -> Result<[(Vector3<f64>, f64); 2], VerifyError> {
     let Bodies::One(_) = bodies(&a[0]) else {
         return Err(VerifyError::Declaration {
@@ -412,36 +416,33 @@ fn after_impulse(w: &World<'_>, a: &[Arg]) -> Result<[(Vector3<f64>, f64); 2], V
     let fhat = w.frames[fi][0] * local;
     let m: f64 = ps.iter().map(|q| q.m).sum();
     let g = ps.iter().map(|q| q.r[0] * q.m).sum::<Vector3<f64>>() / m;
-    let mut sys = Matrix6::zeros();
+    let mut sys = Matrix3::zeros();
     for q in &ps {
         let rho = q.r[0] - g;
         for j in 0..3 {
-            let e = Vector3::ith(j, 1.0);
-            // v̄ = e_j: v = e_j.
-            let (lin, ang) = (e * q.m, rho.cross(&e) * q.m);
-            // ω = e_j: v = e_j × ρ.
-            let u = e.cross(&rho);
-            let (lin_w, ang_w) = (u * q.m, rho.cross(&u) * q.m);
+            // ω = e_j: v = e_j × ρ, angular momentum m ρ × v.
+            let u = Vector3::ith(j, 1.0).cross(&rho);
+            let ang = rho.cross(&u) * q.m;
             for k in 0..3 {
-                sys[(k, j)] += lin[k];
-                sys[(k + 3, j)] += ang[k];
-                sys[(k, j + 3)] += lin_w[k];
-                sys[(k + 3, j + 3)] += ang_w[k];
+                sys[(k, j)] += ang[k];
             }
         }
     }
     let h = (p - g).cross(&fhat);
-    let rhs = Vector6::new(fhat.x, fhat.y, fhat.z, h.x, h.y, h.z);
-    let x = sys.lu().solve(&rhs).ok_or_else(|| VerifyError::Singular {
+    let omega = sys.lu().solve(&h).ok_or_else(|| VerifyError::Singular {
         derivation: w.d.name.clone(),
         what: "the impulse–momentum system of the particles",
     })?;
-    let v = Vector3::new(x[0], x[1], x[2]);
-    let omega = Vector3::new(x[3], x[4], x[5]);
-    Ok([
-        (v, v.norm() + fhat.norm() / m),
-        (omega, omega.norm() * (1.0 + (p - g).norm())),
-    ])
+    let v = fhat / m;
+    // ω is the impulse's moment divided by the particle inertia J. Its
+    // round-off: J's entries to round-off of the largest (a thin body's
+    // small moment, and ω along it, carry the condition number ‖J‖ ‖J⁻¹‖
+    // times it), and the moment arm r_P − r_G to round-off of |r_P| + |r_G|
+    // (times ‖J⁻¹‖ |F̂|). The scale says so (Frobenius norms).
+    let inverse = sys.try_inverse().unwrap_or_else(Matrix3::zeros);
+    let omega_scale = omega.norm() * sys.norm() * inverse.norm()
+        + inverse.norm() * (p.norm() + g.norm()) * fhat.norm();
+    Ok([(v, v.norm() + fhat.norm() / m), (omega, omega_scale)])
 }
 
 fn velocity_after_impulse(w: &World<'_>, a: &[Arg]) -> Out {
