@@ -77,17 +77,9 @@ impl Model {
         Model::Derived,
     ];
 
-    /// Command-line name.
+    /// Command-line name (its entry's).
     pub fn name(self) -> &'static str {
-        match self {
-            Model::FixedAxis => "fixed-axis",
-            Model::SteadyPrecession => "steady-precession",
-            Model::Elliptic => "elliptic",
-            Model::PrecessionAngle => "precession-angle",
-            Model::RigidBody => "rigid-body",
-            Model::EulerAngles => "euler-angles",
-            Model::Derived => "derived",
-        }
+        self.entry().name
     }
 }
 
@@ -885,12 +877,12 @@ pub fn reference_state(scene: &Scene, t: f64) -> Result<([f64; 7], String), SimE
             Ok((y, format!("dop853 at tol={REFERENCE_TOL:e}")))
         }
         SceneKind::FixedAxis { .. } => Err(SimError::ModelNotApplicable {
-            model: "rigid-body".into(),
+            model: Model::RigidBody.name().into(),
             scene: scene.name.clone(),
             reason: "a shaft has a one-degree-of-freedom state".into(),
         }),
         SceneKind::Derived(_) => Err(SimError::ModelNotApplicable {
-            model: "rigid-body".into(),
+            model: Model::RigidBody.name().into(),
             scene: scene.name.clone(),
             reason: "a derived scene's state is its derivation's coordinates and rates".into(),
         }),
@@ -949,6 +941,8 @@ fn shaft_reactions(shaft: &Shaft, w: f64) -> [f64; 7] {
 pub struct ModelEntry {
     /// The model.
     pub model: Model,
+    /// Its command-line name (`--model`).
+    pub name: &'static str,
     /// The scenes it applies to.
     pub applies_to: &'static str,
     /// Why it is the model chosen there (the rule of the module docs).
@@ -979,6 +973,7 @@ type SweepFn = fn(&Scene, &mut Row, f64, f64) -> Result<(), SimError>;
 pub const MODELS: [ModelEntry; 7] = [
     ModelEntry {
         model: Model::FixedAxis,
+        name: "fixed-axis",
         applies_to: "a shaft in two bearings (kind fixed-axis)",
         why: "one degree of freedom, linear motor law: a closed form, or integrated with --method; bearing reactions from §6",
         integrated: false,
@@ -988,6 +983,7 @@ pub const MODELS: [ModelEntry; 7] = [
     },
     ModelEntry {
         model: Model::SteadyPrecession,
+        name: "steady-precession",
         applies_to: "a free axisymmetric body or a permanent rotation; a heavy top started in steady precession",
         why: "closed form (§7, §9): θ, φ̇, ψ̇ constant, no integration",
         integrated: false,
@@ -997,6 +993,7 @@ pub const MODELS: [ModelEntry; 7] = [
     },
     ModelEntry {
         model: Model::Elliptic,
+        name: "elliptic",
         applies_to: "a free body with three distinct moments",
         why: "closed form through Jacobi elliptic functions, no integration",
         integrated: false,
@@ -1006,6 +1003,7 @@ pub const MODELS: [ModelEntry; 7] = [
     },
     ModelEntry {
         model: Model::PrecessionAngle,
+        name: "precession-angle",
         applies_to: "a free body that turns (H ≠ 0)",
         why: "H is fixed in space: ω and one angle about H (4 components), projected onto the invariants",
         integrated: true,
@@ -1015,6 +1013,7 @@ pub const MODELS: [ModelEntry; 7] = [
     },
     ModelEntry {
         model: Model::RigidBody,
+        name: "rigid-body",
         applies_to: "a free body or a heavy top",
         why: "Euler's equations with a unit-quaternion attitude: no singular attitude; the heavy top's integrated model",
         integrated: true,
@@ -1024,6 +1023,7 @@ pub const MODELS: [ModelEntry; 7] = [
     },
     ModelEntry {
         model: Model::EulerAngles,
+        name: "euler-angles",
         applies_to: "a free body or a heavy top (away from θ = 0, π)",
         why: "Euler's equations with Eulerian angles, for comparison: singular at sin θ = 0",
         integrated: true,
@@ -1033,6 +1033,7 @@ pub const MODELS: [ModelEntry; 7] = [
     },
     ModelEntry {
         model: Model::Derived,
+        name: "derived",
         applies_to: "a scene of kind derived (a derivation's equations of motion)",
         why: "the scene asks for exactly what a file derived; integrated in its coordinates",
         integrated: true,
