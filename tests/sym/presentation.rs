@@ -351,6 +351,10 @@ value = "phi''*sin(theta)"
 name = "balance"
 label = "0"
 value = "[J*theta'' + k*theta, J*phi'', 0] in N"
+[[step]]
+name = "energy"
+label = "0"
+value = "2*T - J*theta'^2 - J*phi'^2*sin(theta)^2"
 "#
         )
     };
@@ -362,15 +366,27 @@ value = "[J*theta'' + k*theta, J*phi'', 0] in N"
         "   J θ\u{308} + k θ = 0\n",
         "   J φ\u{308} = 0\n",
         "   0 = 0\n",
+        // Headings show the label as mathematics; a step labelled 0
+        // states that its formula is zero.
+        "\n2. ∂T/∂θ\u{307} = partial(T, theta')\n",
+        "\n3. φ\u{308} sin θ = phi''*sin(theta)\n",
+        "\n4. [J*theta'' + k*theta, J*phi'', 0] in N = 0\n",
+        // A result that vanishes identically is said so, not `0 = 0`.
+        "\n5. 2*T - J*theta'^2 - J*phi'^2*sin(theta)^2 = 0\n   the formula reduces to 0: the relation holds identically\n",
     ] {
         assert!(unicode.contains(line), "{line:?} not in\n{unicode}");
     }
     assert!(!unicode.contains("0_x"), "{unicode}");
+    assert!(!unicode.contains("phi''*sin(theta) = "), "{unicode}");
     let latex = hdot_sym::render::render(&d, hdot_sym::render::Format::Latex);
     for part in [
         r"\frac{\partial T}{\partial \dot{\theta}} &= J \dot{\theta}",
         r"\ddot{\phi} \sin\theta &= ",
         r"J \ddot{\theta} + k \theta &= 0",
+        r"\textbf{Step 2: $\frac{\partial T}{\partial \dot{\theta}}$.}",
+        r"\textbf{Step 3: $\ddot{\phi} \sin\theta$.}",
+        r"\textbf{Step 4.}",
+        r"\emph{The formula reduces to 0: the relation holds identically.}",
     ] {
         assert!(latex.contains(part), "{part:?} not in\n{latex}");
     }

@@ -259,6 +259,9 @@ pub struct StepBlock {
     pub name: String,
     /// The label (`Sigma M`), without component.
     pub label: String,
+    /// The label as the step's heading shows it: a name (ΣM) or
+    /// mathematics (φ̈ sin θ, ∂T/∂θ̇, or `0` for an equation `… = 0`).
+    pub heading: Lhs,
     /// What the step does (prose).
     pub doc: String,
     /// The formula as written in the file.
@@ -269,6 +272,11 @@ pub struct StepBlock {
     pub equations: Vec<Equation>,
     /// Whether it equals its expectation.
     pub verdict: Verdict,
+}
+
+/// True for the expression `0`.
+pub fn is_zero(e: &Expr) -> bool {
+    e.is_empty() || matches!(e.node(e.root()), crate::expr::Node::Num(r) if r.is_zero())
 }
 
 /// The left side of component `component` of step `s`: the unknown of a
@@ -288,6 +296,13 @@ pub fn step_lhs(s: &Step, component: &str) -> Lhs {
 }
 
 impl StepBlock {
+    /// True for a step labelled `0` whose result is identically zero: the
+    /// relation it states holds for every value of the symbols, and the
+    /// backends say so instead of printing `0 = 0`.
+    pub fn vanishes(&self) -> bool {
+        self.heading.is_zero() && self.equations.iter().all(|e| is_zero(&e.rhs))
+    }
+
     /// The block of step `s`.
     pub fn of(s: &Step) -> StepBlock {
         let equations = s
@@ -325,6 +340,10 @@ impl StepBlock {
         StepBlock {
             name: s.name.clone(),
             label: s.label.clone(),
+            heading: match &s.label_math {
+                Some(m) => Lhs::Math(m.clone(), String::new()),
+                None => Lhs::Label(s.label.clone(), String::new()),
+            },
             doc: s.doc.clone(),
             formula: s.formula.clone(),
             frame: match &s.value {

@@ -421,6 +421,35 @@ fn equations_lines(eqs: &[Equation], width: f32) -> Vec<String> {
         .collect()
 }
 
+/// A step's title in LaTeX (also Markdown's math): `Step 3: $\\Sigma M$`,
+/// the label as mathematics; only `Step 3` for a step labelled `0` (its
+/// equations read `… = 0`). Number 0 gives the title of a slide without
+/// a doc: the label alone.
+fn step_title(n: usize, st: &StepBlock) -> String {
+    if st.heading.is_zero() {
+        if n == 0 {
+            "Equation".to_owned()
+        } else {
+            format!("Step {n}")
+        }
+    } else if n == 0 {
+        format!("${}$", st.heading.latex())
+    } else {
+        format!("Step {n}: ${}$", st.heading.latex())
+    }
+}
+
+/// The sentence that replaces `0 = 0` for a step whose result vanishes
+/// identically, as prose of the backend.
+fn vanishes_text(markdown: bool) -> String {
+    let text = capitalise(crate::render::VANISHES);
+    if markdown {
+        format!("*{}.*", prose::markdown(&text))
+    } else {
+        format!("\\emph{{{}.}}", prose::latex(&text))
+    }
+}
+
 /// The body of an `align*` (or `aligned`) block for one step.
 fn step_lines(s: &StepBlock, width: f32) -> String {
     equations_lines(&s.equations, width).join(" \\\\\n")
@@ -683,9 +712,8 @@ fn latex_section(o: &mut String, s: &Section, level: usize, target: Target) {
     for (n, st) in s.steps.iter().enumerate() {
         let _ = writeln!(
             o,
-            "\\par\\medskip\\noindent\\textbf{{Step {}: ${}$.}}\\quad {}",
-            n + 1,
-            latex_label(&st.label, ""),
+            "\\par\\medskip\\noindent\\textbf{{{}.}}\\quad {}",
+            step_title(n + 1, st),
             prose::latex(&sentence(&st.doc))
         );
         let frame = st
@@ -698,11 +726,15 @@ fn latex_section(o: &mut String, s: &Section, level: usize, target: Target) {
             "{{\\raggedright Written in the file as \\texttt{{{}}}{frame}.\\par}}",
             latex_code(&st.formula)
         );
-        let _ = writeln!(
-            o,
-            "\\begin{{align*}}\n{}\n\\end{{align*}}",
-            step_lines(st, LINE_BUDGET)
-        );
+        if st.vanishes() {
+            let _ = writeln!(o, "{}\n", vanishes_text(false));
+        } else {
+            let _ = writeln!(
+                o,
+                "\\begin{{align*}}\n{}\n\\end{{align*}}",
+                step_lines(st, LINE_BUDGET)
+            );
+        }
         match &st.verdict {
             Verdict::NoExpectation => {
                 let _ = writeln!(o, "\\emph{{No expectation is stated for this step.}}\n");
@@ -805,7 +837,7 @@ fn slides_chapter(o: &mut String, c: &Chapter) {
         let _ = writeln!(o, "\\end{{frame}}\n");
         for st in &s.steps {
             let title = if st.doc.trim().is_empty() {
-                format!("${}$", latex_label(&st.label, ""))
+                step_title(0, st)
             } else {
                 prose::latex(&sentence(&st.doc))
             };
@@ -815,11 +847,15 @@ fn slides_chapter(o: &mut String, c: &Chapter) {
                 frame_title(&s.title),
                 title
             );
-            let _ = writeln!(
-                o,
-                "\\begin{{align*}}\n{}\n\\end{{align*}}",
-                step_lines(st, SLIDE_BUDGET)
-            );
+            if st.vanishes() {
+                let _ = writeln!(o, "{}\\par", vanishes_text(false));
+            } else {
+                let _ = writeln!(
+                    o,
+                    "\\begin{{align*}}\n{}\n\\end{{align*}}",
+                    step_lines(st, SLIDE_BUDGET)
+                );
+            }
             match &st.verdict {
                 Verdict::NoExpectation => {}
                 Verdict::Holds => {
@@ -1027,9 +1063,8 @@ fn markdown_section(o: &mut String, number: &str, s: &Section, level: usize) {
     for (k, st) in s.steps.iter().enumerate() {
         let _ = writeln!(
             o,
-            "**Step {}: ${}$.** {}\n",
-            k + 1,
-            latex_label(&st.label, ""),
+            "**{}.** {}\n",
+            step_title(k + 1, st),
             prose::markdown(&sentence(&st.doc))
         );
         let frame = st
@@ -1042,7 +1077,11 @@ fn markdown_section(o: &mut String, number: &str, s: &Section, level: usize) {
             "Written in the file as {}{frame}.\n",
             md_code(&st.formula)
         );
-        md_math_block(o, &step_lines(st, LINE_BUDGET));
+        if st.vanishes() {
+            let _ = writeln!(o, "{}\n", vanishes_text(true));
+        } else {
+            md_math_block(o, &step_lines(st, LINE_BUDGET));
+        }
         match &st.verdict {
             Verdict::NoExpectation => {
                 let _ = writeln!(o, "*No expectation is stated for this step.*\n");

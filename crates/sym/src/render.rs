@@ -3,11 +3,16 @@
 //!
 //! Each format shows the same things: the title and source, what is
 //! assumed, the symbols and frames, then every shown step with its
-//! components in textbook form and whether its expectation holds.
+//! components in textbook form and whether its expectation holds. The
+//! Unicode, LaTeX and Markdown formats are backends over the derivation's
+//! [`Section`] of the document model ([`crate::document`]): Unicode here
+//! ([`unicode_section`]), LaTeX and Markdown in [`crate::notes`] (the same
+//! section the lecture notes print). SymPy and JSON export the steps.
 
 use std::fmt::Write;
 
-use crate::derivation::{Derivation, Step, Value};
+use crate::derivation::{Derivation, Value};
+use crate::document::{Equation, Section, Verdict};
 use crate::expr::Expr;
 use crate::print::{self, Latex, Sympy, Unicode, latex_symbol, unicode_symbol};
 use crate::prose;
@@ -32,7 +37,7 @@ pub enum Format {
 /// Renders `d` in `format`.
 pub fn render(d: &Derivation, format: Format) -> String {
     match format {
-        Format::Unicode => unicode(d),
+        Format::Unicode => unicode_section(&Section::of(d, None)),
         Format::Latex => crate::notes::latex_fragment(d),
         Format::Markdown => crate::notes::markdown_fragment(d),
         Format::Sympy => sympy(d),
@@ -86,18 +91,6 @@ pub fn latex_label(label: &str, component: &str) -> String {
     }
 }
 
-/// The left side of component `component` of step `s` in LaTeX: the
-/// unknown for a solved list (`\ddot{\theta}`), else the label with the
-/// component (see [`crate::document::step_lhs`]).
-pub fn step_lhs_latex(s: &Step, component: &str) -> String {
-    crate::document::step_lhs(s, component).latex()
-}
-
-/// [`step_lhs_latex`] in Unicode (`θ̈`, `ΣM_x`).
-pub fn step_lhs_unicode(s: &Step, component: &str) -> String {
-    crate::document::step_lhs(s, component).unicode()
-}
-
 /// A label with component in Unicode: `ΣM_x`.
 pub fn unicode_label(label: &str, component: &str) -> String {
     match (label_body(label, unicode_symbol, ""), component.is_empty()) {
@@ -107,97 +100,110 @@ pub fn unicode_label(label: &str, component: &str) -> String {
     }
 }
 
-fn unicode_names(d: &Derivation, want: fn(&Decl) -> bool) -> String {
-    let names: Vec<String> = d
-        .symbols
-        .names()
-        .iter()
-        .filter(|n| d.symbols.get(n).is_some_and(want))
-        .map(|n| unicode_symbol(n, 0))
-        .collect();
-    names.join(", ")
-}
-
-fn frame_omega_unicode(d: &Derivation, k: usize) -> String {
-    let f = &d.frames[k];
-    let c: Vec<String> = f
-        .omega
-        .0
-        .iter()
-        .map(|p| print::unicode(&Expr::from_poly(p)))
-        .collect();
-    format!("({})", c.join(", "))
-}
-
-fn unicode(d: &Derivation) -> String {
+/// One derivation's section as Unicode text for a terminal (`hdot
+/// derive`): the backend of [`Section`] that [`crate::notes`] renders as
+/// LaTeX and Markdown, showing the same things in the same order.
+pub fn unicode_section(s: &Section) -> String {
     let mut o = String::new();
-    let title = prose::unicode(&d.title);
+    let title = prose::unicode(&s.title);
     let _ = writeln!(o, "{title}");
     let _ = writeln!(o, "{}", "=".repeat(title.chars().count()));
-    let _ = writeln!(o, "Source: {}", prose::unicode(&d.source));
-    if !d.summary.is_empty() {
-        let _ = writeln!(o, "\n{}", prose::unicode(d.summary.trim()));
+    let _ = writeln!(o, "Source: {}", prose::unicode(&s.source));
+    if !s.summary.is_empty() {
+        let _ = writeln!(o, "\n{}", prose::unicode(&s.summary));
     }
-    if !d.assumptions.is_empty() {
+    if !s.assumptions.is_empty() {
         let _ = writeln!(o, "\nAssumptions:");
-        for a in &d.assumptions {
+        for a in &s.assumptions {
             let _ = writeln!(o, "  • {}", prose::unicode(a));
         }
     }
-    let consts = unicode_names(d, |x| matches!(x, Decl::Constant));
-    let time = unicode_names(d, |x| matches!(x, Decl::Time));
+    let names = |ns: &[String]| {
+        ns.iter()
+            .map(|n| unicode_symbol(n, 0))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
     let _ = writeln!(o, "\nSymbols:");
-    if !consts.is_empty() {
-        let _ = writeln!(o, "  constants: {consts}");
+    if !s.constants.is_empty() {
+        let _ = writeln!(o, "  constants: {}", names(&s.constants));
     }
-    if !time.is_empty() {
-        let _ = writeln!(o, "  functions of time: {time}");
+    if !s.time.is_empty() {
+        let _ = writeln!(o, "  functions of time: {}", names(&s.time));
     }
-    for a in &d.abbreviations {
-        let e = print::unicode(&Expr::from_poly(&a.definition));
+    for (name, def, doc) in &s.abbreviations {
         let _ = writeln!(
             o,
-            "  abbreviation: {} = {e}{}",
-            unicode_symbol(&a.name, 0),
-            doc_suffix(&a.doc)
+            "  abbreviation: {} = {}{}",
+            unicode_symbol(name, 0),
+            print::unicode(def),
+            doc_suffix(doc)
         );
     }
-    if d.frames.len() > 1 {
+    if !s.frames.is_empty() {
         let _ = writeln!(o, "\nFrames (Ω relative to N, in the frame's own axes):");
-        for (k, f) in d.frames.iter().enumerate().skip(1) {
+        for f in &s.frames {
+            let c: Vec<String> = f.omega.iter().map(|e| print::unicode(&e.rhs)).collect();
             let _ = writeln!(
                 o,
-                "  {}: Ω = {}{}",
+                "  {}: Ω = ({}){}",
                 f.name,
-                frame_omega_unicode(d, k),
+                c.join(", "),
                 doc_suffix(&f.doc)
             );
         }
     }
-    let mut n = 0;
-    for s in d.steps.iter().filter(|s| s.show) {
-        n += 1;
-        let _ = writeln!(
-            o,
-            "\n{n}. {} = {}{}",
-            unicode_label(&s.label, ""),
-            s.formula,
-            doc_suffix(&s.doc)
-        );
-        if let Value::Vector(_, f) = &s.value {
+    for (n, st) in s.steps.iter().enumerate() {
+        // The heading: what the step defines, = the formula as written; a
+        // step labelled 0 states that its formula is zero.
+        let heading = if st.heading.is_zero() {
+            format!("{} = 0", st.formula)
+        } else {
+            format!("{} = {}", st.heading.unicode(), st.formula)
+        };
+        let _ = writeln!(o, "\n{}. {heading}{}", n + 1, doc_suffix(&st.doc));
+        if let Some(f) = &st.frame {
             let _ = writeln!(o, "   (components in frame {f})");
         }
-        for (c, e) in s.components() {
-            let lhs = crate::document::step_lhs(s, c);
-            if lhs.is_zero() {
-                let _ = writeln!(o, "   {} = 0", print::unicode(e));
-            } else {
-                let _ = writeln!(o, "   {} = {}", lhs.unicode(), print::unicode(e));
+        if st.vanishes() {
+            let _ = writeln!(o, "   {VANISHES}");
+        } else {
+            for e in &st.equations {
+                let _ = writeln!(o, "   {}", equation_unicode(e));
             }
         }
-        write_checks_unicode(&mut o, s);
+        match &st.verdict {
+            Verdict::NoExpectation => {}
+            Verdict::Holds => {
+                let _ = writeln!(o, "   ✓ equals the expected (textbook) form");
+            }
+            Verdict::Fails(f) => {
+                for (expected, difference) in f {
+                    let _ = writeln!(
+                        o,
+                        "   ✗ {}: expected {}; derived − expected = {}",
+                        expected.lhs.unicode(),
+                        print::unicode(&expected.rhs),
+                        print::unicode(&difference.rhs)
+                    );
+                }
+            }
+        }
     }
     o
+}
+
+/// What a step labelled `0` whose result is identically zero shows
+/// instead of `0 = 0` (see [`crate::document::StepBlock::vanishes`]).
+pub const VANISHES: &str = "the formula reduces to 0: the relation holds identically";
+
+/// `lhs = rhs` in Unicode; `rhs = 0` for a left side `0`.
+fn equation_unicode(e: &Equation) -> String {
+    if e.lhs.is_zero() {
+        format!("{} = 0", print::unicode(&e.rhs))
+    } else {
+        format!("{} = {}", e.lhs.unicode(), print::unicode(&e.rhs))
+    }
 }
 
 fn doc_suffix(doc: &str) -> String {
@@ -205,25 +211,6 @@ fn doc_suffix(doc: &str) -> String {
         String::new()
     } else {
         format!("  — {}", prose::unicode(doc))
-    }
-}
-
-fn write_checks_unicode(o: &mut String, s: &Step) {
-    if s.checks.is_empty() {
-        return;
-    }
-    if s.checks.iter().all(|c| c.holds()) {
-        let _ = writeln!(o, "   ✓ equals the expected (textbook) form");
-        return;
-    }
-    for c in s.checks.iter().filter(|c| !c.holds()) {
-        let _ = writeln!(
-            o,
-            "   ✗ {}: expected {}; derived − expected = {}",
-            step_lhs_unicode(s, &c.component),
-            print::unicode(&c.expected),
-            print::unicode(&Expr::from_poly(&c.difference))
-        );
     }
 }
 
