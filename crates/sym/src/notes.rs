@@ -85,7 +85,7 @@ pub const SLIDES_FILE: &str = "hdot-slides.tex";
 pub const COVERAGE_FILE: &str = "hdot-printer-coverage.tex";
 
 /// Estimated width (in characters of math) beyond which an equation's
-/// right-hand side is broken before a `+` or `−` onto further lines.
+/// right-hand side is broken onto further lines (see [`equation_lines`]).
 const LINE_BUDGET: f32 = 58.0;
 
 /// The same for slides (a Beamer frame is narrower).
@@ -246,124 +246,24 @@ fn math_width(s: &str) -> f32 {
     w
 }
 
-/// Splits printed LaTeX math before every `+` or `-` between top-level
-/// terms (outside braces and `\left( … \right)`); the sign stays with the
-/// term that follows.
-fn split_terms(s: &str) -> Vec<String> {
-    let bytes = s.as_bytes();
-    let mut depth = 0i32;
-    let mut parts = Vec::new();
-    let mut start = 0;
-    let mut i = 0;
-    while i < bytes.len() {
-        let rest = &s[i..];
-        if rest.starts_with(r"\left") {
-            depth += 1;
-            i += 5;
-            continue;
-        }
-        if rest.starts_with(r"\right") {
-            depth -= 1;
-            i += 6;
-            continue;
-        }
-        match bytes[i] {
-            b'{' => depth += 1,
-            b'}' => depth -= 1,
-            b' ' if depth == 0 && (rest.starts_with(" + ") || rest.starts_with(" - ")) => {
-                parts.push(s[start..i].to_owned());
-                start = i + 1;
-            }
-            _ => {}
-        }
-        i += 1;
-    }
-    parts.push(s[start..].to_owned());
-    parts
-}
-
-/// The position of the first `\left(` outside braces and other
-/// parentheses in `s`, and of its matching `\right)`.
-fn outer_parens(s: &str) -> Option<(usize, usize)> {
-    let mut depth = 0i32;
-    let mut open = None;
-    let mut i = 0;
-    while i < s.len() {
-        let rest = &s[i..];
-        if rest.starts_with(r"\left") {
-            if depth == 0 && open.is_none() && rest.starts_with(r"\left(") {
-                open = Some(i);
-            }
-            depth += 1;
-            i += 5;
-            continue;
-        }
-        if rest.starts_with(r"\right") {
-            depth -= 1;
-            if depth == 0
-                && let Some(o) = open
-            {
-                return rest.starts_with(r"\right)").then_some((o, i));
-            }
-            i += 6;
-            continue;
-        }
-        match s.as_bytes()[i] {
-            b'{' => depth += 1,
-            b'}' => depth -= 1,
-            _ => {}
-        }
-        i += 1;
-    }
-    None
-}
-
-/// The pieces a long equation may be broken between: the top-level terms
-/// of `rhs`, and inside a term that is itself too long, the terms of its
-/// first parenthesised sum. Each piece says whether a break before it
-/// falls inside that parenthesis.
-fn pieces(rhs: &str, budget: f32) -> Vec<(String, bool)> {
-    let mut out = Vec::new();
-    for term in split_terms(rhs) {
-        if math_width(&term) > budget
-            && let Some((l, r)) = outer_parens(&term)
-        {
-            let inner = split_terms(&term[l + 6..r]);
-            if inner.len() > 1 {
-                let last = inner.len() - 1;
-                for (k, t) in inner.into_iter().enumerate() {
-                    let mut piece = String::new();
-                    if k == 0 {
-                        piece.push_str(&term[..l]);
-                        piece.push_str(r"\left(");
-                    }
-                    piece.push_str(&t);
-                    if k == last {
-                        piece.push_str(&term[r..]);
-                    }
-                    out.push((piece, k > 0));
-                }
-                continue;
-            }
-        }
-        out.push((term, false));
-    }
-    out
-}
-
 /// The lines of one equation `lhs = rhs` for an `align*`/`aligned` block
 /// no wider than `width` (estimated characters of math):
-/// the first `lhs &= …`, continuation lines `&\quad + …`. A break inside
-/// parentheses closes the line with `\right.` and opens the next with
-/// `\left.`, so that every line is balanced.
-fn equation_lines(lhs: &str, rhs: &str, width: f32) -> Vec<String> {
+/// the first `lhs &= …`, continuation lines `&\quad + …`. The right side
+/// is broken on its expression tree ([`print::break_pieces`]): between its
+/// top-level terms, and inside the bracket of a product term that is
+/// itself too long; each piece is printed by the printer and its width
+/// estimated on its own. A break inside the bracket closes the line with
+/// `\right.` and opens the next with `\left.`, so that every line is
+/// balanced.
+fn equation_lines(lhs: &str, rhs: &Expr, width: f32) -> Vec<String> {
     let budget = (width - math_width(lhs)).max(24.0);
-    if math_width(rhs) <= budget {
-        return vec![format!("{lhs} &= {rhs}")];
+    let printed = print::latex(rhs);
+    if math_width(&printed) <= budget {
+        return vec![format!("{lhs} &= {printed}")];
     }
     let mut lines: Vec<String> = Vec::new();
     let mut current = String::new();
-    for (piece, inside) in pieces(rhs, budget) {
+    for (piece, inside) in print::break_pieces(rhs, &print::Latex, &|t| math_width(t) > budget) {
         if !current.is_empty() && math_width(&current) + math_width(&piece) > budget {
             let mut line = std::mem::take(&mut current);
             if inside {
@@ -415,7 +315,7 @@ fn equations_lines(eqs: &[Equation], width: f32) -> Vec<String> {
             if e.lhs.is_zero() && math_width(&rhs) + 4.0 <= width {
                 vec![format!("{rhs} &= 0")]
             } else {
-                equation_lines(&e.lhs.latex(), &rhs, width)
+                equation_lines(&e.lhs.latex(), &e.rhs, width)
             }
         })
         .collect()
@@ -461,14 +361,10 @@ fn failure_lines(fails: &[(Equation, Equation)], width: f32) -> String {
         .flat_map(|(exp, diff)| {
             let mut l = equation_lines(
                 &format!("{}^{{\\text{{expected}}}}", exp.lhs.latex()),
-                &print::latex(&exp.rhs),
+                &exp.rhs,
                 width,
             );
-            l.extend(equation_lines(
-                r"\text{difference}",
-                &print::latex(&diff.rhs),
-                width,
-            ));
+            l.extend(equation_lines(r"\text{difference}", &diff.rhs, width));
             l
         })
         .collect();
@@ -913,12 +809,8 @@ pub fn coverage_document() -> String {
             o,
             "\\par\\medskip\\noindent {}\n\\begin{{align*}}\n{}\n\\end{{align*}}",
             prose::latex(&sentence(&capitalise(c.what))),
-            equation_lines(
-                &latex_label(c.label, c.component),
-                &print::latex(&c.expr),
-                LINE_BUDGET
-            )
-            .join(" \\\\\n")
+            equation_lines(&latex_label(c.label, c.component), &c.expr, LINE_BUDGET)
+                .join(" \\\\\n")
         );
     }
     o.push_str("\n\\end{document}\n");
@@ -1113,26 +1005,64 @@ mod tests {
     use super::*;
 
     #[test]
-    fn long_sums_break_before_top_level_signs() {
-        let parts = split_terms(r"a + \left(b - c\right) d - \frac{1}{2} e^{x - y}");
-        assert_eq!(
-            parts,
-            vec!["a", r"+ \left(b - c\right) d", r"- \frac{1}{2} e^{x - y}"]
+    fn long_sums_break_on_the_expression_tree() {
+        let names: Vec<String> = (1..=30).map(|k| format!("v_{k}")).collect();
+        let time: Vec<&str> = names.iter().map(String::as_str).collect();
+        let s = Symbols::parse_decl(&["m", "I_x"], &time);
+        // Top-level terms.
+        let sum = names
+            .iter()
+            .map(|n| format!("I_x*{n}"))
+            .collect::<Vec<_>>()
+            .join(" - ");
+        let lines = equation_lines("H_x", &s.expr(&sum).unwrap(), LINE_BUDGET);
+        assert!(lines.len() > 1, "{lines:?}");
+        assert!(
+            lines[0].starts_with("H_x &= I_x v_1 - I_x v_2"),
+            "{lines:?}"
         );
-        let lines = equation_lines("H_x", &vec!["I_x \\omega_x"; 20].join(" + "), LINE_BUDGET);
-        assert!(lines.len() > 1);
-        assert!(lines[0].starts_with("H_x &= "));
-        assert!(lines[1].starts_with(r"&\quad {} + "));
-        let long = format!(
-            r"\frac{{1}}{{2}} \left({}\right)",
-            vec!["m v_x^{2}"; 30].join(" + ")
+        assert!(lines[1].starts_with(r"&\quad {} - I_x v_"), "{lines:?}");
+        // Inside the bracket of a product term that is too long alone.
+        let bracket = format!(
+            "1/2*m*({})*v_1",
+            names
+                .iter()
+                .map(|n| format!("{n}^2"))
+                .collect::<Vec<_>>()
+                .join(" + ")
         );
-        let lines = equation_lines("T", &long, LINE_BUDGET);
-        assert!(lines.len() > 1);
-        assert!(lines[0].starts_with(r"T &= \frac{1}{2} \left(m v_x^{2} + "));
-        assert!(lines[0].ends_with(r"\right."));
-        assert!(lines[1].starts_with(r"&\quad \left. {} + m v_x^{2}"));
-        assert!(lines.last().unwrap().ends_with(r"m v_x^{2}\right)"));
+        let lines = equation_lines("T", &s.expr(&bracket).unwrap(), LINE_BUDGET);
+        assert!(lines.len() > 1, "{lines:?}");
+        assert!(
+            lines[0].starts_with(r"T &= \frac{1}{2} m \left(v_1^{2} + "),
+            "{lines:?}"
+        );
+        assert!(lines[0].ends_with(r"\right."), "{lines:?}");
+        assert!(lines[1].starts_with(r"&\quad \left. {} + v_"), "{lines:?}");
+        assert!(
+            lines.last().unwrap().ends_with(r"v_{30}^{2}\right) v_1"),
+            "{lines:?}"
+        );
+        // Every line is balanced, and the lines hold the printed text.
+        for l in &lines {
+            assert_eq!(
+                l.matches(r"\left").count(),
+                l.matches(r"\right").count(),
+                "{l}"
+            );
+        }
+        let joined: String = lines
+            .iter()
+            .map(|l| {
+                l.trim_start_matches("T &= ")
+                    .trim_start_matches(r"&\quad ")
+                    .trim_start_matches(r"\left. ")
+                    .trim_start_matches("{} ")
+                    .trim_end_matches(r" \right.")
+            })
+            .collect::<Vec<_>>()
+            .join(" ");
+        assert_eq!(joined, print::latex(&s.expr(&bracket).unwrap()));
     }
 
     #[test]

@@ -238,6 +238,163 @@ fn write_under_neg(e: &Expr, id: Id, style: &Cached, out: &mut String) {
     }
 }
 
+// ------------------------------------------------------- line breaking --
+
+/// The pieces a long expression may be broken between, each printed by
+/// the printer in `style`: the top-level terms of a sum, each with the
+/// sign that joins it to the one before (`a`, `+ b`, `- c`); and, inside a
+/// term for which `too_long` holds and that is a product with a bracketed
+/// sum among its factors, the terms of that (first) bracket — the factors
+/// before it and the opening parenthesis go with its first term, the
+/// closing parenthesis and the factors after it with its last. Each piece
+/// says whether a break before it falls inside that bracket. Joined by
+/// single spaces the pieces are exactly [`print`]'s text, so a line break
+/// only ever replaces a space.
+///
+/// # Example
+/// ```
+/// use hdot_sym::{print, Symbols};
+/// let s = Symbols::parse_decl(&["m", "a", "b"], &["x"]);
+/// let e = s.expr("m*x'' - (a + b)*x + 1/2*a*x'").unwrap();
+/// let pieces = print::break_pieces(&e, &print::Unicode, &|t| t.contains('('));
+/// let texts: Vec<&str> = pieces.iter().map(|p| p.0.as_str()).collect();
+/// assert_eq!(texts, ["m x\u{308}", "− (a", "+ b) x", "+ (1/2) a x\u{307}"]);
+/// assert_eq!(texts.join(" "), print::unicode(&e));
+/// assert_eq!(pieces[2].1, true);
+/// ```
+pub fn break_pieces(
+    e: &Expr,
+    style: &dyn Style,
+    too_long: &dyn Fn(&str) -> bool,
+) -> Vec<(String, bool)> {
+    if e.is_empty() {
+        return vec![(style.num(&Rational::ZERO), false)];
+    }
+    let cached = Cached {
+        inner: style,
+        atoms: Default::default(),
+        pows: Default::default(),
+        nums: Default::default(),
+    };
+    let text = |f: &dyn Fn(&mut String)| {
+        let mut o = String::new();
+        f(&mut o);
+        o
+    };
+    let root = e.root();
+    let mut out = Vec::new();
+    for (prefix, id, bracketed) in sum_terms(e, root, &cached) {
+        let whole = text(&|o| {
+            o.push_str(&prefix);
+            if bracketed {
+                paren(e, id, &cached, o)
+            } else {
+                write(e, id, &cached, o)
+            }
+        });
+        let split = if !bracketed && too_long(&whole) {
+            bracket_split(e, id, &prefix, &cached)
+        } else {
+            None
+        };
+        match split {
+            Some(pieces) => out.extend(pieces),
+            None => out.push((whole, false)),
+        }
+    }
+    out
+}
+
+/// The terms of the sum at `id` as [`write`] prints them: the sign text
+/// that precedes each (empty, `+ `, `- `, or the minus of a leading
+/// negation), the node written after it, and whether that node is put in
+/// parentheses. A node that is not a sum is one term.
+fn sum_terms(e: &Expr, id: Id, style: &Cached) -> Vec<(String, Id, bool)> {
+    let minus = style.inner.minus();
+    let one = |k: usize, t: Id| -> (String, Id, bool) {
+        match e.node(t) {
+            Node::Neg(inner) => {
+                let sign = if k > 0 {
+                    format!("{minus} ")
+                } else {
+                    minus.to_owned()
+                };
+                let under = matches!(e.node(*inner), Node::Add(_) | Node::Neg(_));
+                (sign, *inner, under)
+            }
+            Node::Add(_) => (if k > 0 { "+ " } else { "" }.to_owned(), t, true),
+            _ if k > 0 => ("+ ".to_owned(), t, false),
+            _ => (String::new(), t, false),
+        }
+    };
+    match e.node(id) {
+        Node::Add(terms) => terms.iter().enumerate().map(|(k, &t)| one(k, t)).collect(),
+        _ => vec![one(0, id)],
+    }
+}
+
+/// A product term broken inside its first bracketed sum (see
+/// [`break_pieces`]); `None` when the term has no such bracket.
+fn bracket_split(e: &Expr, id: Id, prefix: &str, style: &Cached) -> Option<Vec<(String, bool)>> {
+    let Node::Mul(factors) = e.node(id) else {
+        return None;
+    };
+    if factors
+        .iter()
+        .any(|f| matches!(e.node(*f), Node::Pow(_, k) if *k < 0))
+    {
+        return None; // a fraction: its numerator cannot be broken
+    }
+    let j = factors
+        .iter()
+        .position(|f| matches!(e.node(*f), Node::Add(_)))?;
+    let inner = sum_terms(e, factors[j], style);
+    let (l, r) = style.inner.parens();
+    let mut before = prefix.to_owned();
+    if j > 0 {
+        write_product(e, &factors[..j], style, &mut before);
+        before.push_str(
+            style
+                .inner
+                .mul_sep(e.node(factors[j - 1]), e.node(factors[j])),
+        );
+    }
+    before.push_str(l);
+    let mut after = r.to_owned();
+    if j + 1 < factors.len() {
+        after.push_str(
+            style
+                .inner
+                .mul_sep(e.node(factors[j]), e.node(factors[j + 1])),
+        );
+        write_product(e, &factors[j + 1..], style, &mut after);
+    }
+    let last = inner.len() - 1;
+    Some(
+        inner
+            .into_iter()
+            .enumerate()
+            .map(|(k, (sign, t, bracketed))| {
+                let mut piece = if k == 0 {
+                    before.clone()
+                } else {
+                    String::new()
+                };
+                piece.push_str(&sign);
+                if bracketed {
+                    paren(e, t, style, &mut piece);
+                } else {
+                    write(e, t, style, &mut piece);
+                }
+                if k == last {
+                    piece.push_str(&after);
+                }
+                (piece, k > 0)
+            })
+            .collect(),
+    )
+}
+
 // ---------------------------------------------------------------- names --
 
 /// The Greek names the printers know (`omega` → ω / `\omega`), in the
