@@ -10,6 +10,8 @@ mod derived;
 mod derived_model;
 // scene/derived.rs and run/derived.rs: scenes of kind "derived".
 mod derived_scene;
+// scene/derived.rs: a derived scene's `[[body]]` tables bind the derivation's symbols.
+mod derived_bodies;
 // elliptic.rs: identities, special values, series of K.
 mod elliptic;
 // exact.rs: closed forms against the ODE and against each other.

@@ -103,6 +103,7 @@ struct RawBodies {
 #[serde(deny_unknown_fields)]
 struct RawBody {
     name: Option<String>,
+    of: Option<Spanned<String>>,
     shape: Option<String>,
     principal_moments: Option<RV>,
     mass: Option<RF>,
@@ -135,6 +136,7 @@ struct RawRotation {
 #[serde(deny_unknown_fields)]
 struct RawCloud {
     file: String,
+    of: Option<Spanned<String>>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -274,7 +276,9 @@ impl Scene {
             .as_ref()
             .map(|r| cx.vec3("reference", r))
             .transpose()?;
-        let Bodies { g, body, .. } = bodies(file, text)?;
+        let all = bodies(file, text)?;
+        all.refuse_of(file)?;
+        let Bodies { g, body, .. } = all;
         let g = g.map(|g| [g.x, g.y, g.z]);
         let body =
             body.ok_or_else(|| cx.err(0, "body", "the scene has no body and no cloud".into()))?;
@@ -498,6 +502,43 @@ pub struct Bodies {
     pub g_line: usize,
     /// All bodies and clouds together; `None` when there are none.
     pub body: Option<Composite>,
+    /// The tables grouped by their `of` key (the derivation body they make
+    /// up in a derived scene; `None`: tables without `of`), in the order
+    /// of their first table.
+    pub groups: Vec<Group>,
+}
+
+/// The `[[body]]` and `[[cloud]]` tables with the same `of`, together.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Group {
+    /// The derivation body they make up (`of = "…"`), if named.
+    pub of: Option<String>,
+    /// The field of its first table's `of` (e.g. `body[2].of`), or of
+    /// its first table (`body[0]`) when `of` is not given.
+    pub field: String,
+    /// The line of that table.
+    pub line: usize,
+    /// The parts together.
+    pub body: Composite,
+}
+
+impl Bodies {
+    /// Refuses `of` in a scene whose tables all make one body (every
+    /// scene but a derived one).
+    pub fn refuse_of(&self, file: &Path) -> Result<(), SceneError> {
+        match self.groups.iter().find(|g| g.of.is_some()) {
+            Some(g) => Err(SceneError {
+                file: file.to_path_buf(),
+                line: g.line,
+                field: g.field.clone(),
+                message:
+                    "only the bodies of a derived scene name the derivation body they make up; \
+                          here all tables make one body"
+                        .into(),
+            }),
+            None => Ok(()),
+        }
+    }
 }
 
 /// Reads the shared part of a scene (`g`, `[[body]]`, `[[cloud]]`) from its
@@ -515,10 +556,16 @@ pub fn bodies(file: &Path, text: &str) -> Result<Bodies, SceneError> {
     let g = raw.g.as_ref().map(|g| cx.vec3("g", g)).transpose()?;
     let g_line = raw.g.as_ref().map_or(0, |g| cx.line(g));
     let mut parts = Vec::new();
+    // Per part: its `of`, the field naming it and the line.
+    let mut owners: Vec<(Option<String>, String, usize)> = Vec::new();
     for (i, sb) in raw.body.iter().enumerate() {
         let line = line_of(text, sb.span().start);
         let b = sb.get_ref();
         let f = |name: &str| format!("body[{i}].{name}");
+        owners.push(match &b.of {
+            Some(o) => (Some(o.get_ref().clone()), f("of"), cx.line(o)),
+            None => (None, format!("body[{i}]"), line),
+        });
         let (mass, mass_field) = match (&b.mass, &b.weight) {
             (Some(m), None) => (cx.scalar(&f("mass"), m)?, m),
             (None, Some(w)) => {
@@ -680,6 +727,14 @@ pub fn bodies(file: &Path, text: &str) -> Result<Bodies, SceneError> {
         let c = ParticleCloud::from_csv_path(&p)
             .map_err(|e| cx.err(line, &format!("cloud[{i}].file"), e.to_string()))?;
         parts.push(Part::Cloud(c));
+        owners.push(match &sc.get_ref().of {
+            Some(o) => (
+                Some(o.get_ref().clone()),
+                format!("cloud[{i}].of"),
+                cx.line(o),
+            ),
+            None => (None, format!("cloud[{i}]"), line),
+        });
     }
     // The parts together must stay finite too (two masses near the
     // largest f64 sum past it).
@@ -695,6 +750,24 @@ pub fn bodies(file: &Path, text: &str) -> Result<Bodies, SceneError> {
         }
         Err(_) => {}
     }
+    let mut groups: Vec<Group> = Vec::new();
+    for (of, field, line) in &owners {
+        if groups.iter().any(|g| &g.of == of) {
+            continue;
+        }
+        let mine: Vec<Part> = parts
+            .iter()
+            .zip(&owners)
+            .filter(|(_, o)| &o.0 == of)
+            .map(|(p, _)| p.clone())
+            .collect();
+        groups.push(Group {
+            of: of.clone(),
+            field: field.clone(),
+            line: *line,
+            body: Composite::try_new(mine).map_err(|e| cx.err(*line, field, e.to_string()))?,
+        });
+    }
     let body = if parts.is_empty() {
         None
     } else {
@@ -704,6 +777,7 @@ pub fn bodies(file: &Path, text: &str) -> Result<Bodies, SceneError> {
         g: g.map(v3),
         g_line,
         body,
+        groups,
     })
 }
 

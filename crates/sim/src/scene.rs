@@ -45,8 +45,11 @@ struct RawScene {
     t_end: f64,
     // `g`, `[[body]]` and `[[cloud]]`: the schema every scene shares, read
     // by `hdot_num::scene::bodies`.
+    #[allow(dead_code)]
     g: Option<IgnoredAny>,
+    #[allow(dead_code)]
     body: Option<IgnoredAny>,
+    #[allow(dead_code)]
     cloud: Option<IgnoredAny>,
     initial: Option<RawInitial>,
     top: Option<RawTop>,
@@ -248,7 +251,11 @@ impl Scene {
         };
         let kind = match raw.kind.as_str() {
             "free" | "heavy-top" => {
-                let Bodies { g, g_line, body } = bodies(file, text)?;
+                let all = bodies(file, text)?;
+                all.refuse_of(file)?;
+                let Bodies {
+                    g, g_line, body, ..
+                } = all;
                 let body = body.ok_or_else(|| bad("body", NO_BODY.into()))?;
                 let props = body.mass_properties();
                 let heavy = raw.kind == "heavy-top";
@@ -478,7 +485,9 @@ impl Scene {
                         "two distinct finite positions needed".into(),
                     ));
                 }
-                let Bodies { body, .. } = bodies(file, text)?;
+                let all = bodies(file, text)?;
+                all.refuse_of(file)?;
+                let Bodies { body, .. } = all;
                 let body = body.ok_or_else(|| bad("body", NO_BODY.into()))?;
                 let props = body.mass_properties();
                 // Inertia about the origin O on the axis, in the shaft's
@@ -520,9 +529,6 @@ impl Scene {
             }
             "derived" => {
                 let builtin = [
-                    ("g", raw.g.is_some()),
-                    ("body", raw.body.is_some()),
-                    ("cloud", raw.cloud.is_some()),
                     ("top", raw.top.is_some()),
                     ("shaft", raw.shaft.is_some()),
                     ("motor", raw.motor.is_some()),
@@ -546,8 +552,9 @@ impl Scene {
                 if let Some((field, _)) = builtin.iter().find(|(_, set)| *set) {
                     return Err(bad(
                         field,
-                        "a derived scene gives its state as `initial.coordinates` and `initial.rates` \
-                         and its parameters (masses, moments, g) under `[constants]`"
+                        "a derived scene gives its state as `initial.coordinates` and `initial.rates`, \
+                         its bodies as `[[body]]` tables (or their masses and moments under \
+                         `[constants]`) and g under `[constants]`"
                             .into(),
                     ));
                 }
@@ -558,6 +565,7 @@ impl Scene {
                 SceneKind::Derived(Box::new(derived::parse(
                     raw.derivation,
                     raw.constants.unwrap_or_default(),
+                    bodies(file, text)?,
                     raw.inputs.unwrap_or_default(),
                     start,
                     file,

@@ -280,7 +280,7 @@ fn bind_all(
                         return Err(declaration(
                             d,
                             format!(
-                                "{what} is declared {} = {v:e} but the drawn body has {target:e}: the declared symmetry does not make it so",
+                                "{what} is declared {} = {v:e} but the body has {target:e}: the declared symmetry does not make it so",
                                 p.to_source()
                             ),
                         ));
@@ -505,8 +505,66 @@ fn place(
 /// (about the point its inertia is about).
 fn body_equations(b: &Body, cloud: &ParticleCloud) -> Vec<(Poly, f64, f64, String)> {
     let mp = cloud.mass_properties();
-    let (mass, c) = (mp.mass, mp.center);
-    let i = inertia_about_origin(cloud);
+    let measured = MeasuredBody {
+        mass: mp.mass,
+        centre: mp.center,
+        inertia: inertia_about_origin(cloud),
+    };
+    declared_equations(b, &measured, !b.inertia_about_centre)
+}
+
+/// What a given body has for a derivation's `[[body]]`, in the body
+/// frame's axes: its mass, G from the reference point, and the inertia
+/// tensor about the point the declared inertia is about.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MeasuredBody {
+    /// Σ m.
+    pub mass: f64,
+    /// G from the reference point.
+    pub centre: Vector3<f64>,
+    /// Σ m (|ρ|² E − ρ ρᵀ) about the reference point, or about G when the
+    /// declaration's inertia is about the centre.
+    pub inertia: Matrix3<f64>,
+}
+
+/// Binds the symbols of a derivation's body declarations (mass,
+/// `mass_centre`, inertia) from given bodies, one per declared body
+/// (`None`: not given), with the symbols `given` already known; a
+/// declared entry the bodies do not meet is an error naming it. Returns
+/// every constant bound this way, by name. A simulation binds its bodies'
+/// symbols so (`hdot_sim::scene`, derived scenes).
+pub fn bind_bodies(
+    d: &Derivation,
+    measured: &[Option<MeasuredBody>],
+    given: &BTreeMap<String, f64>,
+) -> Result<BTreeMap<String, f64>, VerifyError> {
+    let mut values = Values::default();
+    for (name, v) in given {
+        values.set(Atom::constant(name), *v, *v);
+    }
+    let mut eqs = Vec::new();
+    for (b, m) in d.physics.bodies.iter().zip(measured) {
+        if let Some(m) = m {
+            eqs.extend(declared_equations(b, m, true));
+        }
+    }
+    bind_all(d, &mut values, eqs)?;
+    Ok(values
+        .map
+        .iter()
+        .filter(|(a, _)| !given.contains_key(a.name()))
+        .map(|(a, (v, _))| (a.name().to_string(), *v))
+        .collect())
+}
+
+/// The declarations of `b` as equations on a body's measured properties
+/// (those of `mass_centre` when `with_centre`).
+fn declared_equations(
+    b: &Body,
+    m: &MeasuredBody,
+    with_centre: bool,
+) -> Vec<(Poly, f64, f64, String)> {
+    let (mass, c, i) = (m.mass, m.centre, m.inertia);
     // The body's extent: the size positions are computed to.
     let extent = (i.trace() / mass).sqrt() + c.norm();
     let mut eqs: Vec<_> = b
@@ -514,7 +572,7 @@ fn body_equations(b: &Body, cloud: &ParticleCloud) -> Vec<(Poly, f64, f64, Strin
         .iter()
         .map(|p| (p.clone(), mass, mass, format!("the mass of {}", b.name)))
         .collect();
-    for k in (0..3).filter(|_| b.mass_centre.is_some() && !b.inertia_about_centre) {
+    for k in (0..3).filter(|_| b.mass_centre.is_some() && with_centre) {
         eqs.push((
             b.mass_centre.as_ref().expect("declared").0[k].clone(),
             c[k],

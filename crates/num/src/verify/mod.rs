@@ -58,7 +58,8 @@ use rand_chacha::ChaCha8Rng;
 
 pub use bodies::{random_body, random_cloud, random_state};
 pub use declared::{
-    Draw, Options, Report, StepCheck, Values, check, check_bodies, check_with, symmetric,
+    Draw, MeasuredBody, Options, Report, StepCheck, Values, bind_bodies, check, check_bodies,
+    check_with, symmetric,
 };
 
 use crate::cloud::ParticleCloud;

@@ -21,11 +21,28 @@
 //! [inputs]                           # time symbols given as functions of t
 //! M_a = "0.1*sin(2*t)"
 //! ```
+//!
+//! Instead of numbers for a body's mass, mass centre and moments, a
+//! derived scene may give the body itself as `[[body]]` tables (the schema
+//! of every scene, `docs/scenes.md`), written in the axes of the
+//! derivation body's frame with the origin at its reference point; `of =
+//! "top"` names the derivation body a table makes up (not needed when the
+//! derivation declares one). The symbols of the derivation's declarations
+//! (`mass = "m"`, `mass_centre = "[0, 0, l] in R"`, `inertia =
+//! "principal(Ip, Ip, I)"`) are bound from the tables' mass properties
+//! ([`hdot_num::verify::bind_bodies`]), after checking that the body has
+//! the declared symmetry.
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
+use hdot_num::scene::{Bodies, Group};
+use hdot_num::verify::{MeasuredBody, bind_bodies};
+use hdot_sym::derivation::Derivation;
+use hdot_sym::derivation::physics::{Body, Symmetry};
+use hdot_sym::symbols::Decl;
+use nalgebra::{Matrix3, Vector3};
 use serde::Deserialize;
 
 use crate::SimError;
@@ -109,7 +126,8 @@ impl DerivedScene {
 
 pub(super) fn parse(
     raw: Option<RawDerivation>,
-    constants: BTreeMap<String, f64>,
+    mut constants: BTreeMap<String, f64>,
+    bodies: Bodies,
     inputs: BTreeMap<String, String>,
     start: RawStart,
     file: &Path,
@@ -155,6 +173,38 @@ pub(super) fn parse(
             ));
         }
     }
+    let (path, text) = resolve(&raw.file).map_err(|e| bad("derivation.file", e))?;
+    let d = hdot_sym::derivation::load_str(&path.display().to_string(), &text)
+        .map_err(|e| bad("derivation.file", e.to_string()))?;
+    if let Some(line) = bodies.g.map(|_| bodies.g_line) {
+        return Err(bad(
+            "g",
+            format!(
+                "line {line}: a derived scene gives the derivation's g under `[constants]` (its \
+                 gravity is declared in the derivation file: {})",
+                path.display()
+            ),
+        ));
+    }
+    let declared: Vec<&str> = d
+        .symbols
+        .names()
+        .iter()
+        .filter(|n| d.symbols.get(n) == Some(&Decl::Constant))
+        .map(String::as_str)
+        .collect();
+    if let Some(k) = constants.keys().find(|k| !declared.contains(&k.as_str())) {
+        return Err(bad(
+            &format!("constants.{k}"),
+            format!(
+                "`{k}` is not a constant of {} (its constants: {})",
+                path.display(),
+                declared.join(", ")
+            ),
+        ));
+    }
+    let bound = bind_scene_bodies(&d, &path, &bodies.groups, &constants, file)?;
+    constants.extend(bound);
     let constants_for_inputs = constants.clone();
     let inputs = inputs
         .into_iter()
@@ -164,9 +214,6 @@ pub(super) fn parse(
                 .map_err(|e| bad(&format!("inputs.{k}"), e))
         })
         .collect::<Result<BTreeMap<_, _>, _>>()?;
-    let (path, text) = resolve(&raw.file).map_err(|e| bad("derivation.file", e))?;
-    let d = hdot_sym::derivation::load_str(&path.display().to_string(), &text)
-        .map_err(|e| bad("derivation.file", e.to_string()))?;
     let spec = DerivedSpec {
         equations,
         constants,
@@ -206,4 +253,217 @@ pub(super) fn parse(
         y0,
         frame: raw.frame,
     })
+}
+
+/// Relative tolerance of the symmetry a derivation body declares, checked
+/// on the scene's body (that of the verifier's declared entries).
+const SYMMETRY_TOL: f64 = 1e-9;
+
+/// Binds the symbols of the derivation's `[[body]]` declarations from the
+/// scene's `[[body]]` / `[[cloud]]` tables: each group of tables (`of`)
+/// is one derivation body, written in its frame's axes with the origin at
+/// its reference point. Returns the constants bound.
+fn bind_scene_bodies(
+    d: &Derivation,
+    path: &Path,
+    groups: &[Group],
+    constants: &BTreeMap<String, f64>,
+    file: &Path,
+) -> Result<BTreeMap<String, f64>, SimError> {
+    let declared = &d.physics.bodies;
+    let bad = |g: &Group, message: String| SimError::BadField {
+        file: file.to_path_buf(),
+        field: g.field.clone(),
+        message: format!("line {}: {message}", g.line),
+    };
+    let names = || {
+        declared
+            .iter()
+            .map(|b| format!("`{}`", b.name))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let mut measured: Vec<Option<MeasuredBody>> = vec![None; declared.len()];
+    let mut given_by: Vec<Option<&Group>> = vec![None; declared.len()];
+    for g in groups {
+        let k = match &g.of {
+            Some(name) => declared
+                .iter()
+                .position(|b| &b.name == name)
+                .ok_or_else(|| {
+                    bad(
+                        g,
+                        format!(
+                            "{} declares no body `{name}` (its bodies: {})",
+                            path.display(),
+                            if declared.is_empty() {
+                                "none".into()
+                            } else {
+                                names()
+                            }
+                        ),
+                    )
+                })?,
+            None if declared.len() == 1 => 0,
+            None if declared.is_empty() => {
+                return Err(bad(
+                    g,
+                    format!(
+                        "{} declares no `[[body]]` whose symbols the tables could bind: give \
+                         its parameters under `[constants]`",
+                        path.display()
+                    ),
+                ));
+            }
+            None => {
+                return Err(bad(
+                    g,
+                    format!(
+                        "{} declares several bodies ({}): name the one these tables make up \
+                         with `of = \"…\"`",
+                        path.display(),
+                        names()
+                    ),
+                ));
+            }
+        };
+        let b = &declared[k];
+        let props = g.body.mass_properties();
+        // About the reference point (the tables' origin), or about G.
+        let about_g = b.about_centre() || b.inertia_about_centre;
+        let (centre, inertia) = if b.about_centre() {
+            (Vector3::zeros(), *props.inertia_g.matrix())
+        } else if about_g {
+            (props.center, *props.inertia_g.matrix())
+        } else {
+            (
+                props.center,
+                *props.inertia_about(&Vector3::zeros()).matrix(),
+            )
+        };
+        let m = MeasuredBody {
+            mass: props.mass,
+            centre,
+            inertia,
+        };
+        check_symmetry(d, b, &m, about_g).map_err(|e| {
+            bad(
+                g,
+                format!(
+                    "the tables make up `{}` of {}, declared {e}",
+                    b.name,
+                    path.display()
+                ),
+            )
+        })?;
+        measured[k] = Some(m);
+        given_by[k] = Some(g);
+    }
+    // A symbol given under [constants] and bound by a body: given twice.
+    for (k, b) in declared.iter().enumerate() {
+        let Some(g) = given_by[k] else { continue };
+        let mut atoms = b.mass.as_ref().map(|p| p.atoms()).unwrap_or_default();
+        atoms.extend(
+            b.mass_centre
+                .iter()
+                .flat_map(|c| c.0.iter().flat_map(|p| p.atoms())),
+        );
+        atoms.extend(b.inertia.0.iter().flatten().flat_map(|p| p.atoms()));
+        if let Some(a) = atoms.iter().find(|a| constants.contains_key(a.name())) {
+            return Err(SimError::BadField {
+                file: file.to_path_buf(),
+                field: format!("constants.{}", a.name()),
+                message: format!(
+                    "`{}` is also bound by the body `{}` ({} at line {}): give it once, under \
+                     `[constants]` or by the body",
+                    a.name(),
+                    b.name,
+                    g.field,
+                    g.line
+                ),
+            });
+        }
+    }
+    bind_bodies(d, &measured, constants).map_err(|e| {
+        let g = given_by.iter().flatten().next().expect("a body is given");
+        bad(g, format!("{}: {e}", path.display()))
+    })
+}
+
+/// Whether the measured body has the symmetry `b` declares (about its
+/// reference point, in its frame's axes): `Err` says what is declared and
+/// what the body has.
+fn check_symmetry(d: &Derivation, b: &Body, m: &MeasuredBody, about_g: bool) -> Result<(), String> {
+    let frame = &d.frames[b.frame];
+    let axes = &frame.axes;
+    let i: &Matrix3<f64> = &m.inertia;
+    let scale = i.trace();
+    let extent = (scale / m.mass).sqrt() + m.centre.norm();
+    let small = |x: f64, s: f64| x.abs() <= SYMMETRY_TOL * s;
+    let product_zero = |r: usize, s: usize| small(i[(r, s)], scale);
+    let (what, ok) = match b.symmetry {
+        Symmetry::None => return Ok(()),
+        Symmetry::Principal => (
+            format!("with principal axes along {}'s axes", frame.name),
+            product_zero(0, 1) && product_zero(0, 2) && product_zero(1, 2),
+        ),
+        Symmetry::Axisymmetric(k) => {
+            let (p, q) = ((k + 1) % 3, (k + 2) % 3);
+            (
+                format!("axisymmetric about its {} axis", axes[k]),
+                product_zero(0, 1)
+                    && product_zero(0, 2)
+                    && product_zero(1, 2)
+                    && small(i[(p, p)] - i[(q, q)], scale)
+                    && small(m.centre[p], extent)
+                    && small(m.centre[q], extent),
+            )
+        }
+        Symmetry::Plane(k) => {
+            let (p, q) = ((k + 1) % 3, (k + 2) % 3);
+            (
+                format!(
+                    "symmetric about its plane {}{}",
+                    axes[p.min(q)],
+                    axes[p.max(q)]
+                ),
+                product_zero(k, p) && product_zero(k, q) && small(m.centre[k], extent),
+            )
+        }
+    };
+    if ok {
+        return Ok(());
+    }
+    let about = if about_g {
+        "G".to_string()
+    } else {
+        format!("the reference point {}", b.point)
+    };
+    let declared = (0..3)
+        .map(|r| {
+            (0..3)
+                .map(|s| b.inertia.0[r][s].to_source())
+                .collect::<Vec<_>>()
+                .join(", ")
+        })
+        .collect::<Vec<_>>()
+        .join("; ");
+    Err(format!(
+        "{what} (inertia [{declared}]), but the body is not: about {about}, in {}'s axes, \
+         inertia [{:.6e}, {:.6e}, {:.6e}; {:.6e}, {:.6e}, {:.6e}; {:.6e}, {:.6e}, {:.6e}], G at \
+         [{:.6e}, {:.6e}, {:.6e}]",
+        frame.name,
+        i[(0, 0)],
+        i[(0, 1)],
+        i[(0, 2)],
+        i[(1, 0)],
+        i[(1, 1)],
+        i[(1, 2)],
+        i[(2, 0)],
+        i[(2, 1)],
+        i[(2, 2)],
+        m.centre.x,
+        m.centre.y,
+        m.centre.z
+    ))
 }
