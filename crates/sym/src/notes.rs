@@ -304,7 +304,9 @@ fn symbol_list(names: &[String]) -> String {
         .iter()
         .map(|n| print::latex_symbol(n, 0))
         .collect::<Vec<_>>()
-        .join(",\\ ")
+        // A permitted break after each comma: a long list wraps instead of
+        // running into the margin.
+        .join(",\\ \\allowbreak ")
 }
 
 fn equations_lines(eqs: &[Equation], width: f32) -> Vec<String> {
@@ -422,7 +424,17 @@ fn sentence(s: &str) -> String {
     }
 }
 
+/// The text with a capital first letter, unless it begins with notation
+/// that a capital would change: a function name before its argument
+/// (`tan γ = …` stays `tan γ`).
 fn capitalise(s: &str) -> String {
+    let first = s
+        .split(|c: char| !c.is_ascii_alphabetic())
+        .next()
+        .unwrap_or("");
+    if prose::FUNCTIONS.contains(&first) && s[first.len()..].starts_with(' ') {
+        return s.to_owned();
+    }
     let mut cs = s.chars();
     match cs.next() {
         Some(c) if c.is_ascii_lowercase() => c.to_ascii_uppercase().to_string() + cs.as_str(),
@@ -461,6 +473,7 @@ const LATEX_PREAMBLE: &str = r"\documentclass[11pt,a4paper]{article}
 \usepackage[margin=2.2cm]{geometry}
 \usepackage[hidelinks]{hyperref}
 \allowdisplaybreaks
+\setlength{\emergencystretch}{2em}
 \tracinglostchars=2
 \setlength{\parindent}{0pt}
 \setlength{\parskip}{0.5\baselineskip}
@@ -675,6 +688,11 @@ const SLIDES_PREAMBLE: &str = r"\documentclass[11pt]{beamer}
 \tracinglostchars=2
 ";
 
+/// Options of every frame: top-aligned, and shrunk only as far as needed
+/// when its content is taller than the slide (a long summary, a mass
+/// matrix's nine entries); a frame that fits is set as it is.
+const FRAME_OPTIONS: &str = "t,shrink=0";
+
 /// The notes as LaTeX Beamer slides: a title frame, a frame of contents,
 /// then for each derivation a frame with its summary and what is assumed,
 /// and one frame per shown step with its result in textbook form.
@@ -716,7 +734,7 @@ fn slides_chapter(o: &mut String, c: &Chapter) {
         }
         let _ = writeln!(
             o,
-            "\\begin{{frame}}[t]{{{}}}\n{{\\footnotesize {}\\par}}\\medskip",
+            "\\begin{{frame}}[{FRAME_OPTIONS}]{{{}}}\n{{\\footnotesize {}\\par}}\\medskip",
             frame_title(&s.title),
             prose::latex(&s.source)
         );
@@ -739,7 +757,7 @@ fn slides_chapter(o: &mut String, c: &Chapter) {
             };
             let _ = writeln!(
                 o,
-                "\\begin{{frame}}[t]{{{}}}\n{{\\footnotesize {}\\par}}",
+                "\\begin{{frame}}[{FRAME_OPTIONS}]{{{}}}\n{{\\footnotesize {}\\par}}",
                 frame_title(&s.title),
                 title
             );
@@ -1063,6 +1081,14 @@ mod tests {
             .collect::<Vec<_>>()
             .join(" ");
         assert_eq!(joined, print::latex(&s.expr(&bracket).unwrap()));
+    }
+
+    #[test]
+    fn sentences_keep_a_leading_function_name() {
+        assert_eq!(sentence("tan γ = −ω_x/ω_z"), "tan γ = −ω_x/ω_z.");
+        assert!(prose::latex(&sentence("tan γ = 1")).starts_with(r"$\tan"));
+        assert_eq!(sentence("tangent of γ"), "Tangent of γ.");
+        assert_eq!(sentence("the rate"), "The rate.");
     }
 
     #[test]

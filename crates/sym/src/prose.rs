@@ -92,7 +92,8 @@ enum Kind {
 const OPS: &[&str] = &[
     "=", "+", "−", "-", "×", "·", "≠", "≥", "≤", "≈", "→", "⇒", "/", "<", ">", "≡", "∝",
 ];
-const FUNCTIONS: &[&str] = &["sin", "cos", "tan", "cot", "exp", "ln", "log"];
+/// Names of functions written before their argument in notation (tan γ).
+pub(crate) const FUNCTIONS: &[&str] = &["sin", "cos", "tan", "cot", "exp", "ln", "log"];
 
 fn kind(core: &str) -> Kind {
     if core.is_empty() {
