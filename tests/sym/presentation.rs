@@ -445,3 +445,43 @@ value = "solve(m*l^2*theta'' + m*g*l*sin(theta) - k*g*theta', [theta''])"
         .to_string();
     assert!(err.contains("order") && err.contains("theta"), "{err}");
 }
+
+/// A failed expectation in every backend of the document model: the
+/// terminal names the component, the expected form and derived − expected;
+/// the LaTeX and Markdown sections show both as equations. A file written
+/// for this test, with a wrong sign in its expectation.
+#[test]
+fn a_failed_expectation_shows_in_every_backend() {
+    let text = r#"
+title = "A spring, written for this test"
+source = "test"
+[symbols]
+constants = ["m", "k"]
+time = ["x"]
+[[step]]
+name = "F"
+label = "Sigma F"
+value = "[-k*x, 0, 0] in N"
+expect = ["k*x", "0", "0"]
+"#;
+    let d = hdot_sym::derivation::load_str("spring.toml", text).unwrap();
+    assert!(!d.all_hold());
+    let unicode = hdot_sym::render::render(&d, hdot_sym::render::Format::Unicode);
+    assert!(
+        unicode.contains("   ✗ ΣF_x: expected k x; derived − expected = −2 k x\n"),
+        "{unicode}"
+    );
+    assert!(!unicode.contains("ΣF_y: expected"), "{unicode}");
+    assert!(!unicode.contains("✓"), "{unicode}");
+    let latex = hdot_sym::render::render(&d, hdot_sym::render::Format::Latex);
+    assert!(
+        latex.contains(r"\Sigma F_{x}^{\text{expected}} &= k x"),
+        "{latex}"
+    );
+    assert!(latex.contains(r"\text{difference} &= -2 k x"), "{latex}");
+    let md = hdot_sym::render::render(&d, hdot_sym::render::Format::Markdown);
+    assert!(
+        md.contains("✗ **Does not equal the expected form**"),
+        "{md}"
+    );
+}
