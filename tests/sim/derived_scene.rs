@@ -357,3 +357,120 @@ fn a_requested_error_is_met_by_a_tolerance_fitted_on_the_scene() {
         );
     }
 }
+
+/// Frames given by their angular velocity, written for the test: `E`
+/// turns at a constant rate Ω about (cos λ, 0, sin λ) (the Earth at
+/// latitude λ), `P` hangs from it turned by θ about z (a pendulum whose
+/// equation does not involve E), `S` turns at a rate `w` that is an input
+/// and `Q` hangs from S.
+const SPINNING: &str = r#"
+title = "frames given by their angular velocity"
+source = "written for the test"
+[symbols]
+constants = ["k", "Omega", "lambda"]
+time = ["theta", "w"]
+[[frame]]
+name = "E"
+angular_velocity = "[Omega*cos(lambda), 0, Omega*sin(lambda)]"
+[[frame]]
+name = "P"
+parent = "E"
+rotation = "z(theta)"
+[[frame]]
+name = "S"
+angular_velocity = "[0, 0, w]"
+[[frame]]
+name = "Q"
+parent = "S"
+rotation = "x(theta)"
+[[step]]
+name = "eq"
+value = "theta'' + k*sin(theta)"
+[[step]]
+name = "acc"
+value = "solve(list(eq), [theta''])"
+"#;
+
+const SPINNING_SCENE: &str = r#"
+name = "pendulum on the turning Earth"
+kind = "derived"
+t_end = 1.3
+[derivation]
+file = "turntable.toml"
+accelerations = "acc"
+frame = "P"
+[constants]
+k = 4.0
+Omega = 0.7
+lambda = 0.8
+[inputs]
+w = "0.3*t"
+[initial]
+coordinates = { theta = 0.4 }
+rates = { theta = 0.0 }
+"#;
+
+/// A frame given by a constant angular velocity turns: its attitude at T
+/// is exp(T [ω]×) (it coincides with N at t = 0), and a frame hanging
+/// from it carries that rotation — not the identity. Checked against the
+/// rotation built here from the axis and angle and the run's own θ(T).
+#[test]
+fn a_frame_given_by_a_constant_angular_velocity_is_reported_turned() {
+    let scene = turntable(SPINNING_SCENE, SPINNING).expect("scene");
+    let r = run_scene(
+        &scene,
+        Request {
+            method: Some(Method::Dop853),
+            step: Some(Step::Tolerance(1e-12)),
+            ..Request::default()
+        },
+    );
+    let (omega, lambda, t) = (0.7_f64, 0.8_f64, 1.3_f64);
+    let axis = nalgebra::Vector3::new(lambda.cos(), 0.0, lambda.sin());
+    let r_e = nalgebra::Rotation3::new(axis * omega * t).into_inner();
+    let theta = r.final_state[0];
+    let r_p = r_e
+        * nalgebra::Rotation3::from_axis_angle(&nalgebra::Vector3::z_axis(), theta).into_inner();
+    let frame = r.frame.expect("frame P");
+    let mut worst: f64 = 0.0;
+    for i in 0..3 {
+        for j in 0..3 {
+            worst = worst.max((frame.attitude[i][j] - r_p[(i, j)]).abs());
+        }
+    }
+    assert!(worst < 1e-14, "attitude of P differs by {worst:e}");
+    // The identity-free part: E has really turned by Ω T = 0.91 rad.
+    assert!(
+        (r_p - nalgebra::Rotation3::from_axis_angle(&nalgebra::Vector3::z_axis(), theta)
+            .into_inner())
+        .abs()
+        .max()
+            > 0.1
+    );
+    // ω of P: E's rate in P's axes plus θ̇ about z.
+    let w_p = nalgebra::Rotation3::from_axis_angle(&nalgebra::Vector3::z_axis(), theta)
+        .inverse()
+        .into_inner()
+        * axis
+        * omega
+        + nalgebra::Vector3::z() * r.final_state[1];
+    for (a, b) in frame.angular_velocity.iter().zip(w_p.iter()) {
+        assert!((a - b).abs() < 1e-12, "ω of P: {a} against {b}");
+    }
+}
+
+/// A frame given by an angular velocity that is not constant has no
+/// attitude that the state gives; neither has a frame hanging from it:
+/// naming either is refused, naming the field and the frame.
+#[test]
+fn a_frame_given_by_a_varying_angular_velocity_is_refused() {
+    for (frame, says) in [("S", "frame `S`"), ("Q", "hangs from frame `S`")] {
+        let text = SPINNING_SCENE.replace("frame = \"P\"", &format!("frame = \"{frame}\""));
+        let err = turntable(&text, SPINNING).expect_err("must be refused");
+        let msg = err.to_string();
+        assert!(
+            msg.contains("derivation.frame") && msg.contains(says) && msg.contains("not constant"),
+            "{msg}"
+        );
+    }
+}

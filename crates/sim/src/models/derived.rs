@@ -128,19 +128,31 @@ pub struct DerivedModel {
     inputs: Vec<(String, TimeFunction)>,
     divisors: Vec<Divisor>,
     conserved: Vec<Conserved>,
-    /// The derivation's frames, in order (`None` where the frame's motion
-    /// is not a function of the coordinates).
-    frames: Vec<Option<FrameChain>>,
+    /// The derivation's frames, in order: each frame's name and its
+    /// motion, or why its attitude cannot be evaluated.
+    frames: Vec<(String, Result<FrameChain, String>)>,
     /// The slots of the tapes' evaluation (see [`DerivedModel::eval`]).
     scratch: RefCell<Vec<f64>>,
 }
 
 #[derive(Debug, Clone)]
 struct FrameChain {
-    name: String,
-    parent: Option<usize>,
-    rotation: Compiled,
+    attitude: FrameAttitude,
     omega: Compiled,
+}
+
+/// How a frame's attitude relative to N is evaluated.
+#[derive(Debug, Clone)]
+enum FrameAttitude {
+    /// A rotation (a function of the coordinates and inputs) from its
+    /// parent, or from N when there is none.
+    Rotation {
+        parent: Option<usize>,
+        rotation: Compiled,
+    },
+    /// A frame given by a constant angular velocity ω (its own components),
+    /// coinciding with N at t = 0: `exp(t [ω]×)`.
+    Spin(Vector3<f64>),
 }
 
 fn err(message: impl Into<String>) -> SimError {
@@ -311,27 +323,47 @@ impl DerivedModel {
                 compiled: cx.compile(&polys)?,
             });
         }
-        // Frames whose motion is a function of the coordinates (not given
-        // by free angular-velocity symbols) get an attitude.
+        // A frame's attitude is evaluated when it is a function of the
+        // coordinates and inputs (a chain of rotations), or when the frame
+        // is given by a constant angular velocity (turned by exp(t [ω]×)
+        // from N, with which it coincides at t = 0); otherwise the reason.
         let frames = d
             .frames
             .iter()
             .map(|f| {
-                let (parent, rotation) = match &f.parent {
-                    Some((p, r)) => (d.frames.iter().position(|g| &g.name == p), r.clone()),
-                    None => (None, Mat3::identity()),
-                };
-                let rot: Vec<Poly> = rotation.0.iter().flatten().cloned().collect();
                 let omega: Vec<Poly> = f.omega.0.iter().map(|p| d.unfold(p)).collect();
-                match (cx.compile(&rot), cx.compile(&omega)) {
-                    (Ok(rotation), Ok(omega)) => Some(FrameChain {
-                        name: f.name.clone(),
-                        parent,
-                        rotation,
-                        omega,
-                    }),
-                    _ => None,
-                }
+                let chain = (|| {
+                    let omega = cx.compile(&omega).map_err(|e| e.to_string())?;
+                    let attitude = match &f.parent {
+                        Some((p, r)) => FrameAttitude::Rotation {
+                            parent: d.frames.iter().position(|g| &g.name == p),
+                            rotation: cx
+                                .compile(&r.0.iter().flatten().cloned().collect::<Vec<_>>())
+                                .map_err(|e| e.to_string())?,
+                        },
+                        None if f.omega.0.iter().all(|p| p.is_zero()) => FrameAttitude::Rotation {
+                            parent: None,
+                            rotation: cx
+                                .compile(&Mat3::identity().0.iter().flatten().cloned().collect::<Vec<_>>())
+                                .map_err(|e| e.to_string())?,
+                        },
+                        None if omega.sources.iter().all(|s| matches!(s, Source::Value(_))) => {
+                            let mut w = [0.0; 3];
+                            let mut buf = vec![0.0; omega.tape.slots()];
+                            omega.tape.eval_slots(&mut buf, &mut w, false);
+                            FrameAttitude::Spin(Vector3::from(w))
+                        }
+                        None => {
+                            return Err(format!(
+                                "it is given by its angular velocity, which is not constant ({}), not by a rotation: \
+                                 its attitude is not a function of the coordinates",
+                                f.omega.0.iter().map(|p| p.to_string()).collect::<Vec<_>>().join(", ")
+                            ));
+                        }
+                    };
+                    Ok(FrameChain { attitude, omega })
+                })();
+                (f.name.clone(), chain)
             })
             .collect();
         Ok(DerivedModel {
@@ -583,31 +615,66 @@ impl DerivedModel {
     }
 
     /// The rotation matrix of frame `name` relative to N (columns: its
-    /// axes in N's), evaluated from the derivation's chain of rotations.
-    pub fn attitude(&self, name: &str, t: f64, y: &[f64]) -> Option<Matrix3<f64>> {
-        let mut i = self
-            .frames
-            .iter()
-            .position(|f| f.as_ref().is_some_and(|f| f.name == name))?;
+    /// axes in N's), evaluated from the derivation's chain of rotations; a
+    /// frame given by a constant angular velocity coincides with N at
+    /// t = 0. An error saying why when the frame, or a frame it hangs
+    /// from, has no attitude that is a function of the state and t.
+    pub fn attitude(&self, name: &str, t: f64, y: &[f64]) -> Result<Matrix3<f64>, String> {
+        let mut i = self.frame_index(name)?;
         let mut r = Matrix3::identity();
         loop {
-            let f = self.frames[i].as_ref()?;
-            let mut m = [0.0; 9];
-            self.eval(&f.rotation, t, y, &mut m);
-            r = Matrix3::from_row_slice(&m) * r;
-            match f.parent {
-                Some(p) => i = p,
-                None => return Some(r),
+            let (fname, chain) = &self.frames[i];
+            let f = chain.as_ref().map_err(|why| {
+                if fname == name {
+                    format!("the attitude of frame `{name}` cannot be evaluated: {why}")
+                } else {
+                    format!(
+                        "the attitude of frame `{name}` cannot be evaluated: it hangs from frame `{fname}`, and {why}"
+                    )
+                }
+            })?;
+            match &f.attitude {
+                FrameAttitude::Rotation { parent, rotation } => {
+                    let mut m = [0.0; 9];
+                    self.eval(rotation, t, y, &mut m);
+                    r = Matrix3::from_row_slice(&m) * r;
+                    match parent {
+                        Some(p) => i = *p,
+                        None => return Ok(r),
+                    }
+                }
+                FrameAttitude::Spin(w) => {
+                    return Ok(nalgebra::Rotation3::new(w * t).into_inner() * r);
+                }
             }
         }
     }
 
+    fn frame_index(&self, name: &str) -> Result<usize, String> {
+        self.frames
+            .iter()
+            .position(|(n, _)| n == name)
+            .ok_or_else(|| {
+                format!(
+                    "no frame `{name}` (frames: {})",
+                    self.frames
+                        .iter()
+                        .map(|(n, _)| n.as_str())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                )
+            })
+    }
+
     /// The angular velocity of frame `name` relative to N, in its own axes.
-    pub fn angular_velocity(&self, name: &str, t: f64, y: &[f64]) -> Option<Vector3<f64>> {
-        let f = self.frames.iter().flatten().find(|f| f.name == name)?;
+    pub fn angular_velocity(&self, name: &str, t: f64, y: &[f64]) -> Result<Vector3<f64>, String> {
+        let (_, f) = &self.frames[self.frame_index(name)?];
+        let f = f.as_ref().map_err(|why| {
+            format!("the angular velocity of frame `{name}` cannot be evaluated: {why}")
+        })?;
         let mut w = [0.0; 3];
         self.eval(&f.omega, t, y, &mut w);
-        Some(Vector3::from(w))
+        Ok(Vector3::from(w))
     }
 }
 

@@ -137,7 +137,7 @@ pub fn error_measure(ds: &DerivedScene) -> String {
 pub fn distance(ds: &DerivedScene, t: f64, y: &[f64], r: &[f64]) -> f64 {
     let m = &ds.model;
     if let Some(f) = &ds.frame
-        && let (Some(a), Some(b), Some(wa), Some(wb)) = (
+        && let (Ok(a), Ok(b), Ok(wa), Ok(wb)) = (
             m.attitude(f, t, y),
             m.attitude(f, t, r),
             m.angular_velocity(f, t, y),
@@ -236,8 +236,8 @@ fn run_n<const N: usize>(
 /// The reported frame's attitude and angular velocity at `(t, y)`.
 pub fn frame_state(ds: &DerivedScene, t: f64, y: &[f64]) -> Option<FrameState> {
     let f = ds.frame.as_ref()?;
-    let r = ds.model.attitude(f, t, y)?;
-    let w = ds.model.angular_velocity(f, t, y)?;
+    let r = ds.model.attitude(f, t, y).ok()?;
+    let w = ds.model.angular_velocity(f, t, y).ok()?;
     Some(FrameState {
         frame: f.clone(),
         attitude: [

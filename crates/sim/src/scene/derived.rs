@@ -230,14 +230,13 @@ pub(super) fn parse(
     }
     let y0 = model.initial_state(&values)?;
     if let Some(f) = &raw.frame
-        && model.attitude(f, 0.0, &y0).is_none()
+        && let Err(why) = model
+            .attitude(f, 0.0, &y0)
+            .and(model.angular_velocity(f, 0.0, &y0))
     {
         return Err(bad(
             "derivation.frame",
-            format!(
-                "`{f}` is not a frame of {} whose attitude is a function of the coordinates",
-                path.display()
-            ),
+            format!("{} (frames of {})", why, path.display()),
         ));
     }
     if let Some(why) = model.singularity(0.0, &y0) {
