@@ -37,6 +37,68 @@ use crate::expr::Expr;
 use crate::print;
 use crate::symbols::Decl;
 
+// --------------------------------------------------------------- labels --
+
+/// A label word with trailing primes: `epsilon_2''` → (`epsilon_2`, 2).
+fn label_word(w: &str) -> (&str, u32) {
+    let base = w.trim_end_matches('\'');
+    (base, (w.len() - base.len()) as u32)
+}
+
+/// The body of a label (its words written by `symbol`, joined by `sep`)
+/// and whether it already carries a subscript, so that a component must be
+/// attached around parentheses.
+fn label_body(label: &str, symbol: fn(&str, u32) -> String, sep: &str) -> (String, bool) {
+    let words: Vec<String> = label
+        .split_whitespace()
+        .map(|w| {
+            let (b, k) = label_word(w);
+            symbol(b, k)
+        })
+        .collect();
+    let subscripted = label
+        .split_whitespace()
+        .last()
+        .is_some_and(|w| w.contains('_'));
+    (words.join(sep), subscripted)
+}
+
+/// A label such as `Sigma M` with component `x`, in LaTeX: `\Sigma M_{x}`.
+pub fn latex_label(label: &str, component: &str) -> String {
+    // Characters with a meaning in LaTeX that no symbol's LaTeX contains
+    // are escaped (`%` would comment out the rest of the equation).
+    let escape = |t: String| {
+        t.chars().fold(String::new(), |mut o, c| {
+            if matches!(c, '%' | '&' | '#' | '$') {
+                o.push('\\');
+            }
+            o.push(c);
+            o
+        })
+    };
+    let (body, sub) = label_body(label, print::latex_symbol, " ");
+    let component = escape(component.to_owned());
+    match ((escape(body), sub), component.is_empty()) {
+        ((body, _), true) => body,
+        ((body, false), false) => format!("{body}_{{{component}}}"),
+        ((body, true), false) => format!(r"\left({body}\right)_{{{component}}}"),
+    }
+}
+
+/// A label with component in Unicode: `ΣM_x`.
+pub fn unicode_label(label: &str, component: &str) -> String {
+    match (
+        label_body(label, print::unicode_symbol, ""),
+        component.is_empty(),
+    ) {
+        ((body, _), true) => body,
+        ((body, false), false) => format!("{body}_{component}"),
+        ((body, true), false) => format!("({body})_{component}"),
+    }
+}
+
+// ------------------------------------------------------------- document --
+
 /// A whole document: lecture notes or slides.
 #[derive(Clone, Debug)]
 pub struct Document {
@@ -172,7 +234,7 @@ impl LabelMath {
             LabelMath::Expr(e) => print::latex(e),
             LabelMath::Partial(f, q) => format!(
                 r"\frac{{\partial {}}}{{\partial {}}}",
-                crate::render::latex_label(f, ""),
+                latex_label(f, ""),
                 print::Style::atom(&print::Latex, *q)
             ),
             LabelMath::Zero => "0".to_owned(),
@@ -184,7 +246,7 @@ impl LabelMath {
             LabelMath::Expr(e) => print::unicode(e),
             LabelMath::Partial(f, q) => format!(
                 "∂{}/∂{}",
-                crate::render::unicode_label(f, ""),
+                unicode_label(f, ""),
                 print::Style::atom(&print::Unicode, *q)
             ),
             LabelMath::Zero => "0".to_owned(),
@@ -205,7 +267,7 @@ impl Lhs {
     /// LaTeX.
     pub fn latex(&self) -> String {
         match self {
-            Lhs::Label(l, c) => crate::render::latex_label(l, c),
+            Lhs::Label(l, c) => latex_label(l, c),
             Lhs::Expr(e) => print::latex(e),
             Lhs::Math(LabelMath::Zero, _) => "0".to_owned(),
             Lhs::Math(m, c) if c.is_empty() => m.latex(),
@@ -217,7 +279,7 @@ impl Lhs {
     /// Unicode.
     pub fn unicode(&self) -> String {
         match self {
-            Lhs::Label(l, c) => crate::render::unicode_label(l, c),
+            Lhs::Label(l, c) => unicode_label(l, c),
             Lhs::Expr(e) => print::unicode(e),
             Lhs::Math(LabelMath::Zero, _) => "0".to_owned(),
             Lhs::Math(m, c) if c.is_empty() => m.unicode(),

@@ -62,11 +62,11 @@
 
 use std::fmt::Write;
 
+use crate::document::latex_label;
 use crate::document::{Chapter, Document, Equation, Section, StepBlock, Verdict};
 use crate::expr::Expr;
 use crate::print;
 use crate::prose;
-use crate::render::latex_label;
 use crate::symbols::Symbols;
 
 /// The command that regenerates the committed notes in `docs/notes/`.

@@ -248,7 +248,7 @@ fn write_under_neg(e: &Expr, id: Id, style: &Cached, out: &mut String) {
 /// before it and the opening parenthesis go with its first term, the
 /// closing parenthesis and the factors after it with its last. Each piece
 /// says whether a break before it falls inside that bracket. Joined by
-/// single spaces the pieces are exactly [`print`]'s text, so a line break
+/// single spaces the pieces are exactly [`print()`]'s text, so a line break
 /// only ever replaces a space.
 ///
 /// # Example

@@ -14,7 +14,7 @@ use std::fmt::Write;
 use crate::derivation::{Derivation, Value};
 use crate::document::{Equation, Section, Verdict};
 use crate::expr::Expr;
-use crate::print::{self, Latex, Sympy, Unicode, latex_symbol, unicode_symbol};
+use crate::print::{self, Latex, Sympy, Unicode, unicode_symbol};
 use crate::prose;
 use crate::symbols::Decl;
 
@@ -45,60 +45,8 @@ pub fn render(d: &Derivation, format: Format) -> String {
     }
 }
 
-/// A label word with trailing primes: `epsilon_2''` → (`epsilon_2`, 2).
-fn label_word(w: &str) -> (&str, u32) {
-    let base = w.trim_end_matches('\'');
-    (base, (w.len() - base.len()) as u32)
-}
-
-/// The body of a label (its words written by `symbol`, joined by `sep`)
-/// and whether it already carries a subscript, so that a component must be
-/// attached around parentheses.
-fn label_body(label: &str, symbol: fn(&str, u32) -> String, sep: &str) -> (String, bool) {
-    let words: Vec<String> = label
-        .split_whitespace()
-        .map(|w| {
-            let (b, k) = label_word(w);
-            symbol(b, k)
-        })
-        .collect();
-    let subscripted = label
-        .split_whitespace()
-        .last()
-        .is_some_and(|w| w.contains('_'));
-    (words.join(sep), subscripted)
-}
-
-/// A label such as `Sigma M` with component `x`, in LaTeX: `\Sigma M_{x}`.
-pub fn latex_label(label: &str, component: &str) -> String {
-    // Characters with a meaning in LaTeX that no symbol's LaTeX contains
-    // are escaped (`%` would comment out the rest of the equation).
-    let escape = |t: String| {
-        t.chars().fold(String::new(), |mut o, c| {
-            if matches!(c, '%' | '&' | '#' | '$') {
-                o.push('\\');
-            }
-            o.push(c);
-            o
-        })
-    };
-    let (body, sub) = label_body(label, latex_symbol, " ");
-    let component = escape(component.to_owned());
-    match ((escape(body), sub), component.is_empty()) {
-        ((body, _), true) => body,
-        ((body, false), false) => format!("{body}_{{{component}}}"),
-        ((body, true), false) => format!(r"\left({body}\right)_{{{component}}}"),
-    }
-}
-
-/// A label with component in Unicode: `ΣM_x`.
-pub fn unicode_label(label: &str, component: &str) -> String {
-    match (label_body(label, unicode_symbol, ""), component.is_empty()) {
-        ((body, _), true) => body,
-        ((body, false), false) => format!("{body}_{component}"),
-        ((body, true), false) => format!("({body})_{component}"),
-    }
-}
+/// Step labels are part of the document model ([`crate::document`]).
+pub use crate::document::{latex_label, unicode_label};
 
 /// One derivation's section as Unicode text for a terminal (`hdot
 /// derive`): the backend of [`Section`] that [`crate::notes`] renders as
