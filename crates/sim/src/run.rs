@@ -12,19 +12,27 @@
 //! | free, asymmetric | `elliptic` | closed form through Jacobi elliptic functions |
 //! | free, integrated (`--method`, not a splitting) | `precession-angle` | H is fixed in space: ω and one angle about H, ω projected onto E and \|H\| |
 //! | heavy top in steady precession | `steady-precession` | §7's relation holds: θ, φ̇, ψ̇ constant |
-//! | heavy top otherwise | `rigid-body` with the method and setting cheapest for the requested error | no closed form here; measured on this scene by pilots ([`pilot_choice`]) |
-//! | derived (a derivation's equations of motion) | `derived`, integrated with DOP853 | the scene asks for exactly what a file derived; no built-in closed form is known to cover it |
+//! | heavy top otherwise | `rigid-body` with the method and setting cheapest for the requested error | no closed form covers it; measured on this scene by pilots ([`pilot_choice`]) |
+//! | derived (a derivation's equations of motion) | `derived`, integrated with DOP853 at a tolerance fitted on the scene | no built-in closed form is known to cover it: nothing less will do |
 //!
-//! `--model` and `--method` override: a method alone means "integrate the
-//! rigid-body (or one-degree-of-freedom) equations with it".
+//! `--model` and `--method` override: a method alone means "integrate with
+//! it the first model of the registry that takes the method and applies".
 //!
 //! # The registry
 //!
 //! Each model is one [`ModelEntry`] of [`MODELS`]: what it applies to, why
-//! it is chosen, whether it integrates, when it is refused and how it runs.
-//! [`plan`] refuses a requested model through its entry and chooses among
-//! the rest by the rule above; [`run`] runs the planned model through its
-//! entry, and every integrated model records its rows through the one
+//! it is chosen, whether it integrates, when it is refused, whether (as a
+//! closed form) it covers a scene it applies to, how it integrates by
+//! default, which methods a request for a method alone gives it, and how
+//! it runs. [`plan`] makes the table above from the entries alone, with no
+//! match on scene kind × model: a requested model through its entry's
+//! refusal; otherwise the first closed form that applies and covers the
+//! scene wins (its reason is the entry's), and when none does, the first
+//! entry chosen to integrate that applies is integrated — the reason gives
+//! the closed forms' refusals (or why the one that applies is not trusted),
+//! says that nothing less will do, the entry's `why`, and how its method
+//! and step were chosen. [`run`] runs the planned model through its entry,
+//! and every integrated model records its rows through the one
 //! `integrate_recorded`. The `derived` model is the entry whose run is
 //! [`derived`]'s.
 
@@ -188,192 +196,241 @@ fn not_applicable(model: Model, scene: &Scene, reason: &str) -> SimError {
 }
 
 /// Why only `derived` runs a derived scene (plan and run refuse alike).
-const ONLY_DERIVED: &str =
-    "a derived scene is described by its derivation's equations; only `derived` runs them";
+const ONLY_DERIVED: &str = "a derived scene is its derivation's equations of motion, which no built-in closed form is known to cover; only `derived` runs them";
 /// Why `derived` runs only a derived scene.
 const NOT_DERIVED: &str =
     "only a scene of kind \"derived\" names a derivation's equations of motion";
 
-/// Chooses the model (and method) for a scene: see the module docs.
+/// Chooses the model (and method) for a scene: see the module docs. The
+/// choice and its reason come from the registry [`MODELS`]: a requested
+/// model is checked by its entry's refusal; without one, the first closed
+/// form whose entry covers the scene wins; otherwise the first entry that
+/// integrates the scene by default is integrated, and the reason says that
+/// nothing less will do and why the closed forms did not apply.
 pub fn plan(scene: &Scene, req: &Request) -> Result<Plan, SimError> {
     let t_end = req.t_end.unwrap_or(scene.t_end);
     check_end_time(scene, t_end)?;
     if let Some(step) = req.step {
         step.validate()?;
     }
-    let default_step = |m: Method| {
-        req.step.unwrap_or(if m.is_adaptive() {
-            Step::Tolerance(DEFAULT_TOL)
-        } else {
-            Step::Fixed(DEFAULT_DT)
-        })
-    };
-    let integrated =
-        |model: Model, method: Option<Method>, reason: String| -> Result<Plan, SimError> {
-            let method = method.unwrap_or(Method::Dop853);
-            Ok(Plan {
-                model,
-                method: Some(method),
-                step: Some(default_step(method)),
-                t_end,
-                reason,
-                check: req.check,
-                fit_error: None,
-            })
-        };
-    let closed = |model: Model, reason: &str| Plan {
-        model,
-        method: None,
-        step: None,
+    let make = |e: &ModelEntry, how: Option<Integration>, reason: String| Plan {
+        model: e.model,
+        method: how.as_ref().map(|h| h.method),
+        step: how.as_ref().map(|h| h.step),
         t_end,
-        reason: reason.to_string(),
+        reason,
         check: req.check,
-        fit_error: None,
+        fit_error: how.and_then(|h| h.fit_error),
     };
-    // Whether a requested model applies is its registry entry's to say;
-    // what follows only chooses (and explains) among those that do.
+    let with_method = |method: Method| Integration {
+        method,
+        step: requested_step(req, method),
+        fit_error: None,
+        detail: String::new(),
+    };
+    let applies = |e: &ModelEntry| -> Result<bool, SimError> { Ok((e.refusal)(scene)?.is_none()) };
     if let Some(m) = req.model {
+        // Whether a requested model applies is its registry entry's to say.
         check_applies(m, scene)?;
+        let e = m.entry();
+        let Some(default) = e
+            .integration
+            .filter(|_| e.integrated || req.method.is_some())
+        else {
+            return Ok(make(e, None, format!("{} as requested: {}", e.name, e.why)));
+        };
+        return Ok(match req.method {
+            Some(method) => make(
+                e,
+                Some(with_method(method)),
+                format!(
+                    "{} integrated with {method} as requested: {}",
+                    e.name, e.why
+                ),
+            ),
+            None => {
+                let how = default(scene, req, t_end, false)?;
+                let reason = format!("{} as requested: {}; {}", e.name, e.why, how.detail);
+                make(e, Some(how), reason)
+            }
+        });
     }
-    match &scene.kind {
-        SceneKind::Derived(_) => match req.model {
-            None | Some(Model::Derived) => integrated(
-                Model::Derived,
-                req.method,
-                match req.method {
-                    Some(m) => format!(
-                        "the scene names a derivation's equations of motion; integrated in its coordinates with {m} as requested"
-                    ),
-                    None => "the scene names a derivation's equations of motion and no built-in closed form is known to \
-                             cover them, so they are integrated in the derivation's coordinates (dop853)"
-                        .to_string(),
-                },
-            )
-            .map(|mut p| {
-                // Without --method, the tolerance is fitted on the scene so
-                // that the error at T reaches --tol (run/derived.rs).
-                if req.method.is_none() && !matches!(req.step, Some(Step::Fixed(_))) {
-                    let target = match req.step {
-                        Some(Step::Tolerance(t)) => t,
-                        _ => DEFAULT_TOL,
-                    };
-                    p.fit_error = Some(target);
-                    p.step = Some(Step::Tolerance(target));
-                }
-                p
-            }),
-            Some(other) => Err(not_applicable(other, scene, ONLY_DERIVED)),
-        },
-        SceneKind::FixedAxis { .. } => match req.model {
-            None | Some(Model::FixedAxis) => Ok(match req.method {
-                None => closed(
-                    Model::FixedAxis,
-                    "the bearings fix the axis: one degree of freedom, I_z α = T_0 (1 − ω/ω_0) − c ω, \
-                     linear in ω, so its closed form needs no integration; bearing reactions from §6",
-                ),
-                Some(m) => integrated(
-                    Model::FixedAxis,
-                    Some(m),
-                    format!("one-degree-of-freedom equation (§6) integrated with {m} as requested"),
-                )?,
-            }),
-            Some(other) => Err(not_applicable(other, scene, "only `fixed-axis` describes a shaft")),
-        },
-        SceneKind::Free { moments, q0, w0 } => {
-            let exact = TorqueFree::new(moments.get(), *q0, *w0)?;
-            let closed_model = match exact {
-                TorqueFree::Elliptic(_) => Model::Elliptic,
-                _ => Model::SteadyPrecession,
-            };
-            match (req.model, req.method) {
-                (Some(m), _) if !m.entry().integrated => Ok(closed(m, "closed form, as requested")),
-                (Some(m), method) => integrated(
-                    m,
-                    method,
-                    format!("{m} integration as requested (reference: the closed form)"),
-                ),
-                (None, Some(method))
-                    if !matches!(method, Method::Split2 | Method::Split4) && w0.norm() > 0.0 =>
-                {
-                    integrated(
-                        Model::PrecessionAngle,
-                        Some(method),
-                        format!(
-                            "integration with {method} as requested; torque-free, so H is fixed in space and the \
-                             attitude is fixed by body H and one angle φ about H: integrate [ω, φ] (4 components, \
-                             ω projected back onto the conserved energy and |H| after every step) instead of the \
-                             quaternion form (--model rigid-body); reference: the closed form"
-                        ),
-                    )
-                }
-                (None, Some(method)) => integrated(
-                    Model::RigidBody,
-                    Some(method),
+    if let Some(method) = req.method {
+        for e in MODELS.iter() {
+            if e.integration.is_some() && (e.takes)(method) && applies(e)? {
+                return Ok(make(
+                    e,
+                    Some(with_method(method)),
                     format!(
-                        "integration with {method} as requested (its exact sub-flows are those of the \
-                         quaternion form; reference: the closed form)"
+                        "integration with {method} as requested, in the `{}` model: {}",
+                        e.name, e.why
                     ),
-                ),
-                (None, None) if !closed_form_meets_bound(scene, t_end)? => integrated(
-                    Model::PrecessionAngle,
-                    Some(Method::Dop853),
-                    format!(
-                        "torque-free, but the closed form's defect estimate on this scene exceeds its bound \
-                         ({CLOSED_FORM_BOUND:e} per unit of |ω| T) or is not finite, so it is not trusted: \
-                         integrate [ω, φ] with dop853 instead"
-                    ),
-                )
-                .map(|mut p| {
-                    p.step = Some(Step::Tolerance(1e-13));
-                    p
-                }),
-                (None, None) => Ok(closed(
-                    closed_model,
-                    match exact {
-                        TorqueFree::Permanent { .. } => {
-                            "torque-free spin about a principal axis: permanent rotation, ω constant, no integration"
-                        }
-                        TorqueFree::Axisymmetric(_) => {
-                            "torque-free axisymmetric body: closed-form steady precession about H (§9), no integration"
-                        }
-                        TorqueFree::Elliptic(_) => {
-                            "torque-free asymmetric body: exact solution by Jacobi elliptic functions, no integration"
-                        }
-                    },
-                )),
+                ));
             }
         }
-        SceneKind::HeavyTop { steady, .. } => match (req.model, req.method) {
-            (Some(m), _) if !m.entry().integrated => Ok(closed(m, "closed form, as requested")),
-            (Some(m), method) => integrated(m, method, format!("{m} integration as requested")),
-            (None, Some(method)) => integrated(
-                Model::RigidBody,
-                Some(method),
-                format!("integration with {method} as requested"),
-            ),
-            (None, None) if steady.is_some() => Ok(closed(
-                Model::SteadyPrecession,
-                "heavy top started in steady precession (W l = (I ω_z − I' φ̇ cos θ) φ̇ holds, θ̇ = 0): \
-                 θ, φ̇, ψ̇ stay constant (§7), no integration",
-            )),
-            (None, None) => {
-                let tol = match req.step {
-                    Some(Step::Tolerance(t)) => t,
-                    Some(Step::Fixed(_)) | None => DEFAULT_TOL,
-                };
-                let (method, step, reason) = pilot_choice(scene, t_end, tol)?;
-                Ok(Plan {
-                    model: Model::RigidBody,
-                    method: Some(method),
-                    step: Some(step),
-                    t_end,
-                    reason,
-                    check: req.check,
-                    fit_error: None,
-                })
-            }
-        },
+        return Err(not_applicable(
+            Model::RigidBody,
+            scene,
+            "no model of this scene integrates with the requested method",
+        ));
     }
+    // A closed form the scene is covered by wins.
+    let mut refusals: Vec<String> = Vec::new();
+    let mut untrusted: Option<String> = None;
+    for e in MODELS.iter() {
+        let Some(covers) = e.covers else { continue };
+        match (e.refusal)(scene)? {
+            Some(why) => refusals.push(why.to_string()),
+            None => match covers(scene, t_end)? {
+                Cover::Covered(reason) => return Ok(make(e, None, reason.to_string())),
+                Cover::Untrusted(why) => untrusted = Some(why),
+            },
+        }
+    }
+    // Nothing less will do: the first entry that integrates the scene.
+    let why_not = untrusted.unwrap_or_else(|| {
+        refusals.dedup();
+        let mut unique: Vec<String> = Vec::new();
+        for r in refusals {
+            if !unique.contains(&r) {
+                unique.push(r);
+            }
+        }
+        format!("no closed form covers this scene ({})", unique.join("; "))
+    });
+    for e in MODELS.iter() {
+        let Some(default) = e.integration else {
+            continue;
+        };
+        if !e.default_choice || !applies(e)? {
+            continue;
+        }
+        let how = default(scene, req, t_end, true)?;
+        let reason = format!(
+            "{why_not}; nothing less will do, so the `{}` model is integrated: {}; {}",
+            e.name, e.why, how.detail
+        );
+        return Ok(make(e, Some(how), reason));
+    }
+    Err(not_applicable(
+        Model::RigidBody,
+        scene,
+        "no closed form covers this scene and no model integrates it",
+    ))
+}
+
+/// What a closed form's entry says of a scene it applies to.
+pub enum Cover {
+    /// The closed form covers the scene: the reason it is chosen.
+    Covered(&'static str),
+    /// It applies but cannot be trusted on this scene (why).
+    Untrusted(String),
+}
+
+/// How an integrated model runs by default: method, step, the error to fit
+/// the tolerance to (derived scenes) and what was measured to choose them.
+pub struct Integration {
+    /// The method.
+    pub method: Method,
+    /// Its step or tolerance.
+    pub step: Step,
+    /// The error the run must reach, when the tolerance is fitted on the
+    /// scene before the run.
+    pub fit_error: Option<f64>,
+    /// How the method and step were chosen.
+    pub detail: String,
+}
+
+/// A closed form's test of a scene (and end time) it applies to.
+type CoverFn = fn(&Scene, f64) -> Result<Cover, SimError>;
+
+/// An entry's default integration: the scene, the request, the end time,
+/// and whether the model was chosen (not requested).
+type IntegrationFn = fn(&Scene, &Request, f64, bool) -> Result<Integration, SimError>;
+
+/// The requested step or tolerance, else the defaults.
+fn requested_step(req: &Request, method: Method) -> Step {
+    req.step.unwrap_or(if method.is_adaptive() {
+        Step::Tolerance(DEFAULT_TOL)
+    } else {
+        Step::Fixed(DEFAULT_DT)
+    })
+}
+
+/// DOP853 at the requested step or tolerance.
+fn integrate_dop853(_: &Scene, req: &Request, _: f64, _: bool) -> Result<Integration, SimError> {
+    let step = requested_step(req, Method::Dop853);
+    Ok(Integration {
+        method: Method::Dop853,
+        step,
+        fit_error: None,
+        detail: format!("dop853 at {}", step_label(step)),
+    })
+}
+
+/// The precession-angle state chosen over a closed form that is not
+/// trusted: DOP853 at tol 1e-13.
+fn integrate_precession_angle(
+    scene: &Scene,
+    req: &Request,
+    t_end: f64,
+    chosen: bool,
+) -> Result<Integration, SimError> {
+    if !chosen {
+        return integrate_dop853(scene, req, t_end, chosen);
+    }
+    let step = Step::Tolerance(1e-13);
+    Ok(Integration {
+        method: Method::Dop853,
+        step,
+        fit_error: None,
+        detail: format!("dop853 at {}", step_label(step)),
+    })
+}
+
+/// A heavy top: method and step measured on the scene ([`pilot_choice`]);
+/// a free body: DOP853.
+fn integrate_rigid_body(
+    scene: &Scene,
+    req: &Request,
+    t_end: f64,
+    chosen: bool,
+) -> Result<Integration, SimError> {
+    if !matches!(scene.kind, SceneKind::HeavyTop { .. }) {
+        return integrate_dop853(scene, req, t_end, chosen);
+    }
+    let tol = match req.step {
+        Some(Step::Tolerance(t)) => t,
+        Some(Step::Fixed(_)) | None => DEFAULT_TOL,
+    };
+    let (method, step, detail) = pilot_choice(scene, t_end, tol)?;
+    Ok(Integration {
+        method,
+        step,
+        fit_error: None,
+        detail,
+    })
+}
+
+/// A derived scene: DOP853, its tolerance fitted on the scene to the
+/// requested error unless a fixed step is asked for (run/derived.rs).
+fn integrate_derived(
+    scene: &Scene,
+    req: &Request,
+    t_end: f64,
+    chosen: bool,
+) -> Result<Integration, SimError> {
+    let target = match req.step {
+        Some(Step::Fixed(_)) => return integrate_dop853(scene, req, t_end, chosen),
+        Some(Step::Tolerance(t)) => t,
+        None => DEFAULT_TOL,
+    };
+    Ok(Integration {
+        method: Method::Dop853,
+        step: Step::Tolerance(target),
+        fit_error: Some(target),
+        detail: "dop853, its tolerance fitted on this scene".to_string(),
+    })
 }
 
 /// Safety factor of the pilot-based choice: the predicted error must be
@@ -398,9 +455,7 @@ pub fn pilot_choice(
         (
             Method::Dop853,
             Step::Tolerance(requested.clamp(1e-13, 1e-3)),
-            format!(
-                "heavy top: no closed form here, so integrate; {why}, so dop853 at tol = the requested error {requested:e}"
-            ),
+            format!("{why}, so dop853 at tol = the requested error {requested:e}"),
         )
     };
     if t_end <= 0.0 {
@@ -489,7 +544,7 @@ pub fn pilot_choice(
             method,
             step,
             format!(
-                "heavy top: no closed form here, so integrate; measured on this scene by pilots over [0, T] at two \
+                "measured on this scene by pilots over [0, T] at two \
                  loose settings per method against dop853 at tol={REFERENCE_TOL:e}: the cheapest setting predicted \
                  to reach {requested:e}/{PILOT_SAFETY} is {method} at {} — {why}",
                 step_label(step)
@@ -952,6 +1007,18 @@ pub struct ModelEntry {
     pub integrated: bool,
     /// Why it does not apply to a scene; `None` when it does.
     refusal: fn(&Scene) -> Result<Option<&'static str>, SimError>,
+    /// A closed form's test of a scene it applies to: whether it covers
+    /// it (and the reason it is chosen) or cannot be trusted there.
+    covers: Option<CoverFn>,
+    /// How the model integrates when no method is given; `None` for the
+    /// closed forms that never integrate.
+    integration: Option<IntegrationFn>,
+    /// The methods with which a request for a method alone takes this
+    /// model.
+    takes: fn(Method) -> bool,
+    /// Whether the model is chosen to integrate a scene no closed form
+    /// covers (the comparison model `euler-angles` is not).
+    default_choice: bool,
     /// Runs a planned scene, filling the report.
     run: RunFn,
     /// One run of the work-precision sweep (`hdot work-precision`) on the
@@ -978,6 +1045,10 @@ pub const MODELS: [ModelEntry; 7] = [
         why: "one degree of freedom, linear motor law: a closed form, or integrated with --method; bearing reactions from §6",
         integrated: false,
         refusal: refuse_fixed_axis,
+        covers: Some(cover_fixed_axis),
+        integration: Some(integrate_dop853),
+        takes: any_method,
+        default_choice: true,
         run: run_fixed_axis,
         sweep: Some(sweep_fixed_axis),
     },
@@ -988,6 +1059,10 @@ pub const MODELS: [ModelEntry; 7] = [
         why: "closed form (§7, §9): θ, φ̇, ψ̇ constant, no integration",
         integrated: false,
         refusal: refuse_steady_precession,
+        covers: Some(cover_steady_precession),
+        integration: None,
+        takes: no_method,
+        default_choice: false,
         run: run_closed_form,
         sweep: None,
     },
@@ -998,6 +1073,10 @@ pub const MODELS: [ModelEntry; 7] = [
         why: "closed form through Jacobi elliptic functions, no integration",
         integrated: false,
         refusal: refuse_elliptic,
+        covers: Some(cover_elliptic),
+        integration: None,
+        takes: no_method,
+        default_choice: false,
         run: run_closed_form,
         sweep: None,
     },
@@ -1005,9 +1084,13 @@ pub const MODELS: [ModelEntry; 7] = [
         model: Model::PrecessionAngle,
         name: "precession-angle",
         applies_to: "a free body that turns (H ≠ 0)",
-        why: "H is fixed in space: ω and one angle about H (4 components), projected onto the invariants",
+        why: "torque-free, H is fixed in space: the attitude is fixed by body H and one angle φ about H, so [ω, φ] is integrated (4 components, ω projected back onto the conserved energy and |H| after every step) instead of the quaternion form",
         integrated: true,
         refusal: refuse_precession_angle,
+        covers: None,
+        integration: Some(integrate_precession_angle),
+        takes: not_a_splitting,
+        default_choice: true,
         run: run_precession_angle,
         sweep: None,
     },
@@ -1015,9 +1098,13 @@ pub const MODELS: [ModelEntry; 7] = [
         model: Model::RigidBody,
         name: "rigid-body",
         applies_to: "a free body or a heavy top",
-        why: "Euler's equations with a unit-quaternion attitude: no singular attitude; the heavy top's integrated model",
+        why: "Euler's equations with a unit-quaternion attitude (no singular attitude)",
         integrated: true,
         refusal: refuse_body_model,
+        covers: None,
+        integration: Some(integrate_rigid_body),
+        takes: any_method,
+        default_choice: true,
         run: run_rigid_body,
         sweep: Some(sweep_rigid_body),
     },
@@ -1028,6 +1115,10 @@ pub const MODELS: [ModelEntry; 7] = [
         why: "Euler's equations with Eulerian angles, for comparison: singular at sin θ = 0",
         integrated: true,
         refusal: refuse_euler_angles,
+        covers: None,
+        integration: Some(integrate_dop853),
+        takes: no_method,
+        default_choice: false,
         run: run_euler_angles,
         sweep: None,
     },
@@ -1035,13 +1126,75 @@ pub const MODELS: [ModelEntry; 7] = [
         model: Model::Derived,
         name: "derived",
         applies_to: "a scene of kind derived (a derivation's equations of motion)",
-        why: "the scene asks for exactly what a file derived; integrated in its coordinates",
+        why: "exactly the equations the file derived, integrated in its coordinates",
         integrated: true,
         refusal: refuse_derived,
+        covers: None,
+        integration: Some(integrate_derived),
+        takes: any_method,
+        default_choice: true,
         run: derived::run,
         sweep: Some(derived::sweep_one),
     },
 ];
+
+fn any_method(_: Method) -> bool {
+    true
+}
+
+fn no_method(_: Method) -> bool {
+    false
+}
+
+/// The splittings need the quaternion body's exact sub-flows.
+fn not_a_splitting(m: Method) -> bool {
+    !matches!(m, Method::Split2 | Method::Split4)
+}
+
+fn cover_fixed_axis(_: &Scene, _: f64) -> Result<Cover, SimError> {
+    Ok(Cover::Covered(
+        "the bearings fix the axis: one degree of freedom, I_z α = T_0 (1 − ω/ω_0) − c ω, \
+         linear in ω, so its closed form needs no integration; bearing reactions from §6",
+    ))
+}
+
+/// Why a torque-free closed form is not trusted on a scene.
+fn untrusted_closed_form() -> Cover {
+    Cover::Untrusted(format!(
+        "torque-free, but the closed form's defect estimate on this scene exceeds its bound \
+         ({CLOSED_FORM_BOUND:e} per unit of |ω| T) or is not finite, so it is not trusted"
+    ))
+}
+
+fn cover_steady_precession(scene: &Scene, t_end: f64) -> Result<Cover, SimError> {
+    Ok(match &scene.kind {
+        SceneKind::Free { .. } if !closed_form_meets_bound(scene, t_end)? => {
+            untrusted_closed_form()
+        }
+        SceneKind::Free { moments, q0, w0 } => match TorqueFree::new(moments.get(), *q0, *w0)? {
+            TorqueFree::Permanent { .. } => Cover::Covered(
+                "torque-free spin about a principal axis: permanent rotation, ω constant, no integration",
+            ),
+            _ => Cover::Covered(
+                "torque-free axisymmetric body: closed-form steady precession about H (§9), no integration",
+            ),
+        },
+        _ => Cover::Covered(
+            "heavy top started in steady precession (W l = (I ω_z − I' φ̇ cos θ) φ̇ holds, θ̇ = 0): \
+             θ, φ̇, ψ̇ stay constant (§7), no integration",
+        ),
+    })
+}
+
+fn cover_elliptic(scene: &Scene, t_end: f64) -> Result<Cover, SimError> {
+    Ok(if closed_form_meets_bound(scene, t_end)? {
+        Cover::Covered(
+            "torque-free asymmetric body: exact solution by Jacobi elliptic functions, no integration",
+        )
+    } else {
+        untrusted_closed_form()
+    })
+}
 
 impl Model {
     /// The model's entry in [`MODELS`].
