@@ -17,6 +17,7 @@ use hdot_tests::repo_root;
 const PENDULUM: &str = r#"
 title = "compound pendulum"
 source = "written for the test"
+gravity = "[0, 0, -g] in N"
 [symbols]
 constants = ["m", "g", "l", "I", "Ip"]
 time = ["theta"]
@@ -187,8 +188,13 @@ refuses! {
         => "derivation.file";
     unknown_constant: SCENE.replace("g = 9.81", "g = 9.81\ngg = 1.0"), PENDULUM
         => "constants.gg", "not a constant";
-    gravity_vector: SCENE.replace("kind = \"derived\"", "kind = \"derived\"\ng = [0.0, 0.0, -9.81]"), PENDULUM
-        => "g", "under `[constants]`";
+    gravity_not_along_the_declared_one: SCENE.replace("kind = \"derived\"", "kind = \"derived\"\ng = [0.0, -9.81, 0.0]").replace("g = 9.81\n", ""), PENDULUM
+        => "field `g`", "must point along it", "[0, 0, -g] in N";
+    gravity_given_twice: SCENE.replace("kind = \"derived\"", "kind = \"derived\"\ng = [0.0, 0.0, -9.81]"), PENDULUM
+        => "constants.g", "also bound by the scene's g";
+    gravity_not_declared: SCENE.replace("kind = \"derived\"", "kind = \"derived\"\ng = [0.0, 0.0, -9.81]").replace("g = 9.81\n", ""),
+        &PENDULUM.replace("gravity = \"[0, 0, -g] in N\"\n", "")
+        => "field `g`", "declares no gravity";
 }
 
 /// A derivation that declares no body cannot take `[[body]]` tables.
@@ -226,4 +232,18 @@ fn several_bodies_need_of() {
         err.contains("body[0].of") && err.contains("only the bodies of a derived scene"),
         "{err}"
     );
+}
+
+/// The scene's gravity vector binds the derivation's g through its
+/// `gravity` declaration, as the built-in scenes give gravity.
+#[test]
+fn the_gravity_vector_binds_g() {
+    let text = SCENE
+        .replace(
+            "kind = \"derived\"",
+            "kind = \"derived\"\ng = [0.0, 0.0, -9.75]",
+        )
+        .replace("[constants]\ng = 9.81\n", "");
+    let scene = pendulum(&text, PENDULUM).expect("scene");
+    assert_eq!(constants(&scene)["g"], 9.75);
 }

@@ -530,12 +530,15 @@ pub struct MeasuredBody {
 /// Binds the symbols of a derivation's body declarations (mass,
 /// `mass_centre`, inertia) from given bodies, one per declared body
 /// (`None`: not given), with the symbols `given` already known; a
-/// declared entry the bodies do not meet is an error naming it. Returns
-/// every constant bound this way, by name. A simulation binds its bodies'
-/// symbols so (`hdot_sim::scene`, derived scenes).
+/// declared entry the bodies do not meet is an error naming it; the
+/// file's `gravity` (declared in N) binds its symbols from `gravity`, a
+/// vector in N's axes, when given. Returns every constant bound this way,
+/// by name. A simulation binds its bodies' symbols so (`hdot_sim::scene`,
+/// derived scenes).
 pub fn bind_bodies(
     d: &Derivation,
     measured: &[Option<MeasuredBody>],
+    gravity: Option<Vector3<f64>>,
     given: &BTreeMap<String, f64>,
 ) -> Result<BTreeMap<String, f64>, VerifyError> {
     let mut values = Values::default();
@@ -543,6 +546,23 @@ pub fn bind_bodies(
         values.set(Atom::constant(name), *v, *v);
     }
     let mut eqs = Vec::new();
+    if let Some(g) = gravity {
+        let declared = d.physics.gravity.as_ref().filter(|(_, f)| f == "N");
+        let Some((v, _)) = declared else {
+            return Err(declaration(
+                d,
+                "a gravity vector is given but the file declares no gravity in N".into(),
+            ));
+        };
+        for k in 0..3 {
+            eqs.push((
+                v.0[k].clone(),
+                g[k],
+                g.norm(),
+                format!("component {} of gravity", k + 1),
+            ));
+        }
+    }
     for (b, m) in d.physics.bodies.iter().zip(measured) {
         if let Some(m) = m {
             eqs.extend(declared_equations(b, m, true));

@@ -31,7 +31,8 @@
 //! (`mass = "m"`, `mass_centre = "[0, 0, l] in R"`, `inertia =
 //! "principal(Ip, Ip, I)"`) are bound from the tables' mass properties
 //! ([`hdot_num::verify::bind_bodies`]), after checking that the body has
-//! the declared symmetry.
+//! the declared symmetry. The scene's gravity vector `g` binds the symbols
+//! of the derivation's `gravity` the same way.
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -176,16 +177,6 @@ pub(super) fn parse(
     let (path, text) = resolve(&raw.file).map_err(|e| bad("derivation.file", e))?;
     let d = hdot_sym::derivation::load_str(&path.display().to_string(), &text)
         .map_err(|e| bad("derivation.file", e.to_string()))?;
-    if let Some(line) = bodies.g.map(|_| bodies.g_line) {
-        return Err(bad(
-            "g",
-            format!(
-                "line {line}: a derived scene gives the derivation's g under `[constants]` (its \
-                 gravity is declared in the derivation file: {})",
-                path.display()
-            ),
-        ));
-    }
     let declared: Vec<&str> = d
         .symbols
         .names()
@@ -203,7 +194,8 @@ pub(super) fn parse(
             ),
         ));
     }
-    let bound = bind_scene_bodies(&d, &path, &bodies.groups, &constants, file)?;
+    check_gravity(&d, &path, &bodies, &constants, file)?;
+    let bound = bind_scene_bodies(&d, &path, &bodies, &constants, file)?;
     constants.extend(bound);
     let constants_for_inputs = constants.clone();
     let inputs = inputs
@@ -265,10 +257,11 @@ const SYMMETRY_TOL: f64 = 1e-9;
 fn bind_scene_bodies(
     d: &Derivation,
     path: &Path,
-    groups: &[Group],
+    bodies: &Bodies,
     constants: &BTreeMap<String, f64>,
     file: &Path,
 ) -> Result<BTreeMap<String, f64>, SimError> {
+    let groups = &bodies.groups;
     let declared = &d.physics.bodies;
     let bad = |g: &Group, message: String| SimError::BadField {
         file: file.to_path_buf(),
@@ -383,10 +376,92 @@ fn bind_scene_bodies(
             });
         }
     }
-    bind_bodies(d, &measured, constants).map_err(|e| {
-        let g = given_by.iter().flatten().next().expect("a body is given");
-        bad(g, format!("{}: {e}", path.display()))
+    bind_bodies(d, &measured, bodies.g, constants).map_err(|e| {
+        let message = format!("{}: {e}", path.display());
+        match given_by.iter().flatten().next() {
+            Some(g) => bad(g, message),
+            None => SimError::BadField {
+                file: file.to_path_buf(),
+                field: "g".into(),
+                message: format!("line {}: {message}", bodies.g_line),
+            },
+        }
     })
+}
+
+/// The scene's gravity vector `g` against the derivation's declaration
+/// (`gravity = "[0, 0, -g] in N"`): declared in N, the components the file
+/// fixes (the zeros) met, and its symbols not given under `[constants]`
+/// too. The symbols are bound with the bodies'.
+fn check_gravity(
+    d: &Derivation,
+    path: &Path,
+    bodies: &Bodies,
+    constants: &BTreeMap<String, f64>,
+    file: &Path,
+) -> Result<(), SimError> {
+    let Some(g) = bodies.g else { return Ok(()) };
+    let bad = |field: &str, message: String| SimError::BadField {
+        file: file.to_path_buf(),
+        field: field.to_string(),
+        message,
+    };
+    let line = bodies.g_line;
+    let Some((v, frame)) = &d.physics.gravity else {
+        return Err(bad(
+            "g",
+            format!(
+                "line {line}: {} declares no gravity (`gravity = \"[0, 0, -g] in N\"`), so no \
+                 symbol of it stands for g",
+                path.display()
+            ),
+        ));
+    };
+    let declared = format!(
+        "[{}] in {frame}",
+        v.0.iter()
+            .map(|p| p.to_source())
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    if frame != "N" {
+        return Err(bad(
+            "g",
+            format!(
+                "line {line}: {} declares gravity {declared}; a scene's g is in N's axes",
+                path.display()
+            ),
+        ));
+    }
+    for (k, p) in v.0.iter().enumerate() {
+        if p.atoms().is_empty() {
+            let x = p.eval(&mut |_| 0.0);
+            if (x - g[k]).abs() > 1e-12 * g.norm() {
+                return Err(bad(
+                    "g",
+                    format!(
+                        "line {line}: {} declares gravity {declared}: the scene's g = [{}, {}, {}] \
+                         must point along it (space Z up: g = [0.0, 0.0, -9.81])",
+                        path.display(),
+                        g.x,
+                        g.y,
+                        g.z
+                    ),
+                ));
+            }
+        }
+        if let Some(a) = p.atoms().iter().find(|a| constants.contains_key(a.name())) {
+            return Err(bad(
+                &format!("constants.{}", a.name()),
+                format!(
+                    "`{}` is also bound by the scene's g (line {line}, gravity {declared}): give it \
+                     once",
+                    a.name()
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Whether the measured body has the symmetry `b` declares (about its
