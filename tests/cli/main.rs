@@ -269,7 +269,7 @@ fn every_declared_bundled_file_verifies_the_same_under_another_name() {
         assert_eq!(run(copy.to_str().unwrap()), (code0, so0), "{stem}");
         compared += 1;
     }
-    assert!(compared >= 19, "{compared} files declare their model");
+    assert!(compared >= 21, "{compared} files declare their model");
 }
 
 /// Issue 11: non-finite and overflowing input refused (exit 2), a requested

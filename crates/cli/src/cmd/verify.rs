@@ -5,15 +5,14 @@
 //! the draws and the largest relative error per derivation, the steps
 //! compared (with `--steps`: each with what it was compared with) and the
 //! steps not compared; exit 1 when one fails, or under `--require` when a
-//! file compares nothing. Files without declarations still use the older
-//! checks bound by file name, until every bundled file declares its model.
+//! file compares nothing. Nothing depends on the file's name.
 
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Args;
-use hdot_num::verify::{Options, TOLERANCE_ULPS, check_with, coverage, is_supported, verify};
+use hdot_num::verify::{Options, TOLERANCE_ULPS, check_with};
 
 use crate::catalog;
 
@@ -82,79 +81,32 @@ pub fn run(args: VerifyArgs) -> anyhow::Result<ExitCode> {
                 b.inc(1);
             }
         };
-        if d.steps.iter().any(|s| s.meaning.is_some()) || !is_supported(&d.name) {
-            let options = Options {
-                draws: args.bodies as usize,
-                seed: args.seed,
-            };
-            match check_with(&d, &options, &mut tick) {
-                Err(e) => {
-                    crate::outln!("{name:<36} {:>7} {:>12}  error: {e}", "-", "-");
-                    code = ExitCode::FAILURE;
-                }
-                Ok(r) if r.steps.is_empty() => {
-                    if args.require {
-                        code = ExitCode::FAILURE;
-                    }
-                    crate::outln!("{name:<36} {:>7} {:>12}  nothing compared", "-", "-");
-                    if let Some(h) = r.hint(&d) {
-                        crate::outln!("    {h}");
-                    }
-                }
-                Ok(r) => {
-                    let verdict = if r.passed() {
-                        "pass".to_string()
-                    } else {
-                        code = ExitCode::FAILURE;
-                        match r.worst() {
-                            Some(w) => format!(
-                                "FAIL at {}: derived {:e}, measured {:e}",
-                                w.quantity, w.derived, w.direct
-                            ),
-                            None => "FAIL".into(),
-                        }
-                    };
-                    crate::outln!(
-                        "{name:<36} {:>7} {:>12.3e}  {verdict}",
-                        r.draws,
-                        r.max_error()
-                    );
-                    for s in &r.steps {
-                        if args.steps || !s.passed {
-                            crate::outln!(
-                                "    {}: {} ({}), max rel err {:.3e}{}",
-                                s.step,
-                                s.means,
-                                s.against,
-                                s.max_error,
-                                if s.passed { "" } else { "  FAIL" }
-                            );
-                        }
-                    }
-                    if !r.not_compared.is_empty() {
-                        crate::outln!(
-                            "    not compared (no meaning): {}",
-                            r.not_compared.join(", ")
-                        );
-                    }
-                }
-            }
-            continue;
-        }
-        match verify(&d, args.bodies as usize, args.seed, &mut tick) {
-            None => unreachable!("supported"),
-            Some(Err(e)) => {
+        let options = Options {
+            draws: args.bodies as usize,
+            seed: args.seed,
+        };
+        match check_with(&d, &options, &mut tick) {
+            Err(e) => {
                 crate::outln!("{name:<36} {:>7} {:>12}  error: {e}", "-", "-");
                 code = ExitCode::FAILURE;
             }
-            Some(Ok(o)) => {
-                let verdict = if o.passed {
+            Ok(r) if r.steps.is_empty() => {
+                if args.require {
+                    code = ExitCode::FAILURE;
+                }
+                crate::outln!("{name:<36} {:>7} {:>12}  nothing compared", "-", "-");
+                if let Some(h) = r.hint(&d) {
+                    crate::outln!("    {h}");
+                }
+            }
+            Ok(r) => {
+                let verdict = if r.passed() {
                     "pass".to_string()
                 } else {
                     code = ExitCode::FAILURE;
-                    match &o.worst {
+                    match r.worst() {
                         Some(w) => format!(
-                            "FAIL at {}: derived {:e}, direct {:e}",
+                            "FAIL at {}: derived {:e}, measured {:e}",
                             w.quantity, w.derived, w.direct
                         ),
                         None => "FAIL".into(),
@@ -162,22 +114,32 @@ pub fn run(args: VerifyArgs) -> anyhow::Result<ExitCode> {
                 };
                 crate::outln!(
                     "{name:<36} {:>7} {:>12.3e}  {verdict}",
-                    o.bodies,
-                    o.max_error
+                    r.draws,
+                    r.max_error()
                 );
-            }
-        }
-        if let Some(c) = coverage(&name) {
-            if args.steps {
-                for (steps, against) in c.compared {
-                    crate::outln!("    {steps}: against {against}");
+                for s in &r.steps {
+                    if args.steps || !s.passed {
+                        let conditions = if s.conditions.is_empty() {
+                            String::new()
+                        } else {
+                            format!(" [{}]", s.conditions)
+                        };
+                        crate::outln!(
+                            "    {}: {}{conditions} ({}), max rel err {:.3e}{}",
+                            s.step,
+                            s.means,
+                            s.against,
+                            s.max_error,
+                            if s.passed { "" } else { "  FAIL" }
+                        );
+                    }
                 }
-            }
-            for (steps, against) in c.kinematic {
-                crate::outln!("    {steps}: kinematics, against {against} (no particle sum)");
-            }
-            for (steps, why) in c.not_compared {
-                crate::outln!("    {steps}: not compared, {why}");
+                if !r.not_compared.is_empty() {
+                    crate::outln!(
+                        "    not compared (no meaning): {}",
+                        r.not_compared.join(", ")
+                    );
+                }
             }
         }
     }

@@ -6,7 +6,6 @@ use std::f64::consts::PI;
 use nalgebra::{Rotation3, UnitQuaternion, Vector3};
 use rand::Rng;
 
-use super::State;
 use crate::body::{Body, Composite, Part, Pose, Primitive};
 use crate::cloud::ParticleCloud;
 use crate::discretize::{Discretization, DiscretizedBody, DiscretizedComposite};
@@ -109,23 +108,6 @@ fn random_stack(rng: &mut impl Rng) -> Result<Composite, BodyError> {
     Composite::try_new(parts)
 }
 
-/// A random state (see [`State`] for which check uses which field).
-pub fn random_state(rng: &mut impl Rng) -> State {
-    State {
-        omega: random_vector(rng, 5.0),
-        alpha: random_vector(rng, 5.0),
-        v: random_vector(rng, 5.0),
-        a: random_vector(rng, 5.0),
-        axes: random_rotation(rng),
-        offset: random_vector(rng, 3.0),
-        angles: random_vector(rng, PI),
-        spin: random_vector(rng, 5.0),
-        fold: rng.gen_range(3..=6),
-        axis: rng.gen_range(0..3),
-        stretch: rng.gen_range(0.1..4.0),
-    }
-}
-
 fn random_vector(rng: &mut impl Rng, s: f64) -> Vector3<f64> {
     Vector3::new(
         rng.gen_range(-s..s),
@@ -156,17 +138,6 @@ where
         let (p, m) = cloud.particle(i);
         f(p, m)
     }))
-}
-
-/// The particles of `cloud` in the axes `axes` (columns, world) with
-/// origin `origin` (world): `Rᵀ (p − origin)`.
-pub(crate) fn in_axes(
-    cloud: &ParticleCloud,
-    origin: &Vector3<f64>,
-    axes: &Rotation3<f64>,
-) -> Result<ParticleCloud, BodyError> {
-    let inv = axes.inverse();
-    map_particles(cloud, |p, m| [(inv * (p - origin), m)])
 }
 
 /// `fold` (≥ 3) copies of `cloud` turned by 2πk/fold about the z axis

@@ -111,6 +111,8 @@ pub struct Particle {
 /// The model at one instant.
 pub struct World<'d> {
     pub(crate) d: &'d Derivation,
+    /// The bodies, free attitudes and free points it was built with.
+    pub(crate) draw: &'d Draw,
     /// Attitude jets of the frames (parallel to the derivation's frames).
     pub frames: Vec<MatJet>,
     /// Point jets by name (declared points and body centres).
@@ -155,7 +157,7 @@ impl<'d> World<'d> {
     /// ∂r/∂q for each of `coordinates`.
     pub fn build(
         d: &'d Derivation,
-        draw: &Draw,
+        draw: &'d Draw,
         values: &Values,
         coordinates: &[Atom],
     ) -> Result<World<'d>, VerifyError> {
@@ -175,7 +177,7 @@ impl<'d> World<'d> {
 
     fn build_for(
         d: &'d Derivation,
-        draw: &Draw,
+        draw: &'d Draw,
         values: &Values,
         coordinate: Option<Atom>,
     ) -> Result<World<'d>, VerifyError> {
@@ -235,6 +237,7 @@ impl<'d> World<'d> {
         }
         let mut w = World {
             d,
+            draw,
             frames,
             points: HashMap::new(),
             bodies: Vec::new(),
@@ -279,6 +282,12 @@ impl<'d> World<'d> {
             w.bodies.push(ps);
         }
         Ok(w)
+    }
+
+    /// The same model at the instant `values` describe (the same draw and
+    /// coordinates).
+    pub(crate) fn at(&self, values: &Values) -> Result<World<'d>, VerifyError> {
+        World::build(self.d, self.draw, values, &self.coordinates)
     }
 
     /// The jet of point `name`, computed once.

@@ -182,6 +182,11 @@ impl<'a> Context<'a> {
         Ok(())
     }
 
+    /// Whether `name` is a step evaluated so far.
+    pub(crate) fn is_step(&self, name: &str) -> bool {
+        self.values.contains_key(name)
+    }
+
     pub fn bind(&mut self, name: &str, v: Value) {
         self.values.insert(name.to_owned(), v);
     }

@@ -42,6 +42,9 @@ pub struct Physics {
     /// (`[motion] vanishes`: a rolling contact's velocity), each with its
     /// text; the verifier measures them.
     pub vanishes: Vec<(Meaning, String)>,
+    /// The symbols declared small (`[symbols] small`), in order: the
+    /// disturbance `linear`, `rate` and `coefficient` are taken in.
+    pub small: Vec<Atom>,
 }
 
 /// How a frame moves relative to its parent.
@@ -456,6 +459,21 @@ pub enum Meaning {
     /// `applied(e)`: a scalar the file states (an applied torque or
     /// generalized force such as `M_a`), evaluated, not measured.
     Applied(Poly),
+    /// `e * X`, `X / e`: a meaning times a scalar expression of the
+    /// file's symbols (not a number: numbers go in [`Meaning::Sum`]).
+    Scaled(Poly, Box<Meaning>),
+    /// `linear(X)`: X to first order in the small symbols (its value at
+    /// zero disturbance plus its first-order part).
+    Linear(Box<Meaning>),
+    /// `rate(e', X)`, `rate(e'', X)`: the derivative of the small symbol
+    /// `e` (the atom carries the order) on the motion along which the
+    /// first-order part of X vanishes, at the drawn disturbance.
+    Rate(Atom, Box<Meaning>),
+    /// `coefficient(X, e)`: the coefficient of the small symbol `e` (with
+    /// its order) in the scalar X: ∂X/∂e at e = 0.
+    Coefficient(Box<Meaning>, Atom),
+    /// `sign(X)`: the sign (−1, 0, +1) of the scalar X.
+    Sign(Box<Meaning>),
 }
 
 impl Meaning {
@@ -464,9 +482,17 @@ impl Meaning {
         match self {
             Meaning::Quantity(q, _) => q.sig().shape,
             Meaning::Sum(terms) => terms[0].1.shape(),
-            Meaning::Along(..) | Meaning::Applied(_) => Shape::Scalar,
+            Meaning::Along(..)
+            | Meaning::Applied(_)
+            | Meaning::Rate(..)
+            | Meaning::Coefficient(..)
+            | Meaning::Sign(_) => Shape::Scalar,
             Meaning::List(items) => Shape::List(items.len()),
-            Meaning::Solves(x) | Meaning::MassMatrix(x, _) | Meaning::Forcing(x, _) => x.shape(),
+            Meaning::Solves(x)
+            | Meaning::MassMatrix(x, _)
+            | Meaning::Forcing(x, _)
+            | Meaning::Scaled(_, x)
+            | Meaning::Linear(x) => x.shape(),
         }
     }
 
@@ -478,7 +504,12 @@ impl Meaning {
             Meaning::Along(m, ..)
             | Meaning::Solves(m)
             | Meaning::MassMatrix(m, _)
-            | Meaning::Forcing(m, _) => m.quantities(),
+            | Meaning::Forcing(m, _)
+            | Meaning::Scaled(_, m)
+            | Meaning::Linear(m)
+            | Meaning::Rate(_, m)
+            | Meaning::Coefficient(m, _)
+            | Meaning::Sign(m) => m.quantities(),
             Meaning::List(items) => items.iter().flat_map(Meaning::quantities).collect(),
             Meaning::Applied(_) => Vec::new(),
         }
@@ -521,6 +552,13 @@ pub struct StepMeaning {
     /// Symmetries bodies have for this step (body index, symmetry), on top
     /// of their declared one.
     pub symmetry: Vec<(usize, Symmetry)>,
+    /// Inequalities the drawn bodies satisfy for this step (`given =
+    /// ["A > B"]`): each as `lhs − rhs`, positive, with its text. They
+    /// select a class of bodies (A the largest moment) for a verdict.
+    pub bounds: Vec<(Poly, String)>,
+    /// The step's conditions as written (`given = [...]`, `symmetry =
+    /// {...}`), for reports; empty without conditions.
+    pub conditions: String,
 }
 
 /// The frame's rotation (axis, angle) when its matrix is a rotation about
@@ -543,7 +581,10 @@ fn parse_spanned(cx: &Context<'_>, s: &Spanned<String>) -> R<(Ast, usize)> {
 
 /// Reads the declarations of `raw` (after its symbols and frames).
 pub(crate) fn declarations(cx: &Context<'_>, raw: &RawFile) -> R<Physics> {
-    let mut ph = Physics::default();
+    let mut ph = Physics {
+        small: cx.small.clone(),
+        ..Physics::default()
+    };
     for f in &cx.frames {
         ph.frames.push(match &f.parent {
             Some((p, m)) => {
@@ -994,11 +1035,33 @@ pub(crate) fn step_meaning(
     check_shape(cx, means, &meaning, value)?;
     let mut given = Vec::new();
     let mut at_rest = Vec::new();
+    let mut bounds = Vec::new();
     for r in &s.given {
+        if r.get_ref().contains(['<', '>']) {
+            bounds.push(bound(cx, r)?);
+            continue;
+        }
         match point_at_rest(cx, ph, r)? {
             Some(p) => at_rest.push(p),
             None => given.push(rule(cx, r)?),
         }
+    }
+    let mut conditions = Vec::new();
+    if !s.given.is_empty() {
+        let items: Vec<String> = s
+            .given
+            .iter()
+            .map(|g| format!("{:?}", g.get_ref()))
+            .collect();
+        conditions.push(format!("given = [{}]", items.join(", ")));
+    }
+    if let Some(t) = &s.symmetry {
+        let items: Vec<String> = t
+            .get_ref()
+            .iter()
+            .map(|(k, v)| format!("{k} = {:?}", v.get_ref()))
+            .collect();
+        conditions.push(format!("symmetry = {{{}}}", items.join(", ")));
     }
     let mut symmetry = Vec::new();
     for (name, sym) in s.symmetry.iter().flat_map(|t| t.get_ref()) {
@@ -1019,8 +1082,117 @@ pub(crate) fn step_meaning(
         given,
         at_rest,
         symmetry,
+        bounds,
+        conditions: conditions.join(", "),
     }))
 }
+
+/// Parses an inequality `a > b` or `a < b` of the file's symbols into
+/// `a − b` (or `b − a`), positive.
+fn bound(cx: &Context<'_>, s: &Spanned<String>) -> R<(Poly, String)> {
+    let text = s.get_ref();
+    let base = cx.content_start(s);
+    let bad = |msg: &str| cx.diag_string(s, 0, text.len(), msg);
+    let Some(i) = text.find(['<', '>']) else {
+        return Err(bad("expected an inequality `a > b`"));
+    };
+    if text[i + 1..].contains(['<', '>', '=']) || text[..i].contains('=') {
+        return Err(bad(
+            "a class of bodies is given by strict inequalities, one per item: `A > B`, `B > C`",
+        ));
+    }
+    let side = |from: usize, to: usize| -> R<Poly> {
+        let ast = cx.parse_at(&text[from..to], base + from)?;
+        no_step_names(cx, &ast, base + from)?;
+        Ok(cx.unfold(&cx.scalar(&ast, base + from)?))
+    };
+    let (lhs, rhs) = (side(0, i)?, side(i + 1, text.len())?);
+    if lhs
+        .atoms()
+        .into_iter()
+        .chain(rhs.atoms())
+        .any(Atom::is_time_dependent)
+    {
+        return Err(bad(
+            "an inequality selects a class of bodies: it is written in constants (the moments A, B, C), not functions of time",
+        ));
+    }
+    let p = if text.as_bytes()[i] == b'>' {
+        &lhs - &rhs
+    } else {
+        &rhs - &lhs
+    };
+    Ok((p, text.clone()))
+}
+
+/// Refuses a step's name inside a meaning's arguments or a condition:
+/// they are written in the file's symbols (a step would bring its derived
+/// value into what it is compared with).
+fn no_step_names(cx: &Context<'_>, ast: &Ast, base: usize) -> R<()> {
+    let mut err = None;
+    walk(ast, &mut |a| {
+        if let AstKind::Name { name, .. } = &a.kind
+            && err.is_none()
+            && cx.is_step(name)
+        {
+            err = Some(cx.at(
+                base,
+                a.span,
+                format!(
+                    "`{name}` is a step: a meaning's arguments and a step's conditions are written in the file's symbols (write what the step stands for, e.g. the impulse's components), so that the derived result is not compared with itself"
+                ),
+            ));
+        }
+    });
+    err.map_or(Ok(()), Err)
+}
+
+/// Calls `f` on `a` and every node below it.
+fn walk(a: &Ast, f: &mut dyn FnMut(&Ast)) {
+    f(a);
+    match &a.kind {
+        AstKind::Num(_) | AstKind::Name { .. } => {}
+        AstKind::Call { args, .. } => args.iter().for_each(|x| walk(x, f)),
+        AstKind::Assign { value, .. } => walk(value, f),
+        AstKind::Vector { items, .. } | AstKind::Add(items) | AstKind::Mul(items) => {
+            items.iter().for_each(|x| walk(x, f))
+        }
+        AstKind::Recip(x) | AstKind::Neg(x) | AstKind::Pow(x, _) | AstKind::Member(x, ..) => {
+            walk(x, f)
+        }
+        AstKind::Cross(x, y) => {
+            walk(x, f);
+            walk(y, f)
+        }
+    }
+}
+
+/// Whether `a` is (or contains) a meaning: a call of a quantity or of a
+/// meaning's combinator.
+fn is_meaning(a: &Ast) -> bool {
+    match &a.kind {
+        AstKind::Call { func, .. } => {
+            COMBINATORS.contains(&func.as_str()) || QUANTITIES.iter().any(|s| s.name == func)
+        }
+        AstKind::Add(items) | AstKind::Mul(items) => items.iter().any(is_meaning),
+        AstKind::Neg(x) | AstKind::Recip(x) => is_meaning(x),
+        _ => false,
+    }
+}
+
+/// The functions that combine meanings.
+const COMBINATORS: &[&str] = &[
+    "list",
+    "along",
+    "applied",
+    "solves",
+    "mass_matrix",
+    "forcing",
+    "linear",
+    "rate",
+    "coefficient",
+    "sign",
+];
 
 /// The number of scalar equations of a meaning set to zero.
 fn equations(m: &Meaning) -> usize {
@@ -1148,7 +1320,8 @@ impl MeaningParser<'_, '_> {
         }
     }
 
-    /// A term `c * X`, `-X`, `X / c`.
+    /// A term `c * X`, `-X`, `X / c`, `e * X`, `X / e` (c a number, e a
+    /// scalar expression of the file's symbols).
     fn term(&self, ast: &Ast) -> R<(Rational, Meaning)> {
         match &ast.kind {
             AstKind::Neg(x) => {
@@ -1158,26 +1331,60 @@ impl MeaningParser<'_, '_> {
             AstKind::Mul(items) => {
                 let mut c = Rational::ONE;
                 let mut m = None;
+                let mut factors = Vec::new();
                 for it in items {
                     match &it.kind {
                         AstKind::Num(r) => c = &c * r,
-                        AstKind::Recip(d) => match &d.kind {
-                            AstKind::Num(r) if !r.is_zero() => {
-                                c = &c * &r.recip().expect("non-zero")
-                            }
-                            _ => return self.err(it, "a meaning is divided by numbers only"),
-                        },
+                        AstKind::Recip(d) if is_meaning(d) => {
+                            return self.err(it, "a meaning cannot divide");
+                        }
+                        _ if !is_meaning(it) => factors.push(it.clone()),
                         _ if m.is_none() => m = Some(self.parse(it)?),
-                        _ => return self.err(it, "a meaning is a sum of quantities times numbers"),
+                        _ => return self.err(it, "a meaning is a sum of quantities times factors"),
                     }
                 }
-                match m {
-                    Some(m) => Ok((c, m)),
-                    None => self.err(ast, "a number is not a quantity"),
+                let Some(m) = m else {
+                    return self.err(ast, "a number is not a quantity");
+                };
+                if factors.is_empty() {
+                    return Ok((c, m));
                 }
+                let e = Ast {
+                    kind: AstKind::Mul(factors),
+                    span: ast.span,
+                };
+                no_step_names(self.cx, &e, self.base)?;
+                let p = self.cx.unfold(&self.cx.scalar(&e, self.base)?);
+                Ok(match p.as_constant() {
+                    Some(k) => (&c * &k, m),
+                    None => (c, Meaning::Scaled(p, Box::new(m))),
+                })
             }
             _ => Ok((Rational::ONE, self.parse(ast)?)),
         }
+    }
+
+    /// The small symbol (with its order) named by `a`.
+    fn small(&self, a: &Ast) -> R<Atom> {
+        if self.ph.small.is_empty() {
+            return self.err(
+                a,
+                "no symbol is declared small: add [symbols] small = [...]",
+            );
+        }
+        let s = self.cx.symbol_arg(a, self.base)?;
+        if !self.ph.small.contains(&s.base()) {
+            let names: Vec<&str> = self.ph.small.iter().map(|x| x.name()).collect();
+            return self.err(
+                a,
+                format!(
+                    "`{}` is not declared small (small: {})",
+                    s.name(),
+                    names.join(", ")
+                ),
+            );
+        }
+        Ok(s)
     }
 
     fn call(&self, ast: &Ast, func: &str, args: &[Ast]) -> R<Meaning> {
@@ -1200,6 +1407,7 @@ impl MeaningParser<'_, '_> {
                 if m.shape() != Shape::Vector {
                     return self.err(&args[0], "along(X, e): X is a vector meaning");
                 }
+                no_step_names(self.cx, &args[1], self.base)?;
                 let (v, f) = self.cx.vector(&args[1], self.base)?;
                 return Ok(Meaning::Along(Box::new(m), v, f));
             }
@@ -1207,6 +1415,7 @@ impl MeaningParser<'_, '_> {
                 let [e] = args else {
                     return self.err(ast, "applied(e) takes one scalar expression");
                 };
+                no_step_names(self.cx, e, self.base)?;
                 let p = self.cx.scalar(e, self.base)?;
                 return Ok(Meaning::Applied(self.cx.unfold(&p)));
             }
@@ -1219,6 +1428,74 @@ impl MeaningParser<'_, '_> {
                     return self.err(&args[0], "solves(X): X is a vector, a scalar or a list");
                 }
                 return Ok(Meaning::Solves(Box::new(m)));
+            }
+            "linear" => {
+                let [x] = args else {
+                    return self.err(ast, "linear(X) takes one meaning");
+                };
+                if self.ph.small.is_empty() {
+                    return self.err(
+                        ast,
+                        "linear(X) is X to first order in the small symbols: declare them, [symbols] small = [...]",
+                    );
+                }
+                return Ok(Meaning::Linear(Box::new(self.parse(x)?)));
+            }
+            "rate" => {
+                let [e, x] = args else {
+                    return self.err(
+                        ast,
+                        "rate(e', X) takes a small symbol's derivative and the meaning whose first-order part vanishes",
+                    );
+                };
+                let s = self.small(e)?;
+                if s.order() == 0 {
+                    return self.err(
+                        e,
+                        "rate(e', X): a derivative of a small symbol (e', e'', …)",
+                    );
+                }
+                let m = self.parse(x)?;
+                let n = self.ph.small.len();
+                let k = match m.shape() {
+                    Shape::Vector => 3,
+                    Shape::Scalar => 1,
+                    Shape::List(k) => k,
+                    Shape::Matrix => 0,
+                };
+                if k != n {
+                    return self.err(
+                        x,
+                        format!(
+                            "rate(e', X): X = 0 gives the rates of the {n} small symbols, so X has {n} components; this is {}",
+                            m.shape().describe()
+                        ),
+                    );
+                }
+                return Ok(Meaning::Rate(s, Box::new(m)));
+            }
+            "coefficient" => {
+                let [x, e] = args else {
+                    return self.err(
+                        ast,
+                        "coefficient(X, e) takes a scalar meaning and a small symbol",
+                    );
+                };
+                let m = self.parse(x)?;
+                if m.shape() != Shape::Scalar {
+                    return self.err(x, "coefficient(X, e): X is a scalar meaning");
+                }
+                return Ok(Meaning::Coefficient(Box::new(m), self.small(e)?));
+            }
+            "sign" => {
+                let [x] = args else {
+                    return self.err(ast, "sign(X) takes one scalar meaning");
+                };
+                let m = self.parse(x)?;
+                if m.shape() != Shape::Scalar {
+                    return self.err(x, "sign(X): X is a scalar meaning");
+                }
+                return Ok(Meaning::Sign(Box::new(m)));
             }
             "mass_matrix" | "forcing" => {
                 let unknowns =
@@ -1256,8 +1533,9 @@ impl MeaningParser<'_, '_> {
             return self.err(
                 ast,
                 format!(
-                    "unknown quantity `{func}`; quantities: {}, and list, along, applied, solves, mass_matrix, forcing",
-                    quantity_names()
+                    "unknown quantity `{func}`; quantities: {}, and {}",
+                    quantity_names(),
+                    COMBINATORS.join(", ")
                 ),
             );
         };
@@ -1303,6 +1581,7 @@ impl MeaningParser<'_, '_> {
 
     fn arg(&self, kind: ArgKind, a: &Ast) -> R<Arg> {
         if kind == ArgKind::Vector {
+            no_step_names(self.cx, a, self.base)?;
             let (v, f) = self.cx.vector(a, self.base)?;
             let v = Vec3(v.0.map(|c| self.cx.unfold(&c)));
             return Ok(Arg::Vector(v, f));
@@ -1485,6 +1764,7 @@ fn rule(cx: &Context<'_>, s: &Spanned<String>) -> R<Rule> {
             ));
         }
         None => {
+            no_step_names(cx, value, shifted)?;
             let p = cx.scalar(value, shifted)?;
             if p.atoms()
                 .iter()
