@@ -429,7 +429,7 @@ fn integrate_derived(
         method: Method::Dop853,
         step: Step::Tolerance(target),
         fit_error: Some(target),
-        detail: "dop853, its tolerance fitted on this scene".to_string(),
+        detail: "dop853, its tolerance fitted to the requested error by two pilot runs".to_string(),
     })
 }
 

@@ -412,7 +412,7 @@ impl Resolver<'_> {
         let constant = |q: Atom| -> Result<f64, SimError> {
             self.spec.constants.get(q.name()).copied().ok_or_else(|| {
                 err(format!(
-                    "{}: the constant `{}` has no value: give it under the scene's constants",
+                    "{}: the constant `{}` has no value: give it under the scene's `[constants]`, or bind it by a `[[body]]` table or the gravity vector `g`",
                     self.d.path,
                     q.name()
                 ))

@@ -107,10 +107,13 @@ fn fit_tolerance<const N: usize>(
     } else {
         1.0
     };
+    // Never looser than the loosest pilot: beyond it the fit is an
+    // extrapolation (an error ∝ tol^0.5 fitted where both pilots already
+    // meet the request predicts tolerances that miss it).
     let tol = if ea <= 0.0 {
         ta
     } else {
-        (ta * (target / 3.0 / ea).powf(1.0 / p)).clamp(lo, hi)
+        (ta * (target / 3.0 / ea).powf(1.0 / p)).clamp(lo, ta)
     };
     Ok((
         tol,
