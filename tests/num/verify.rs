@@ -82,6 +82,8 @@ const DECLARED_PERTURBATIONS: &[(&str, &str, &str, u32)] = &[
     ("principal-axis-stability", "sign_largest", "*", 0),
     ("principal-axis-stability", "sign_intermediate", "*", 0),
     ("principal-axis-stability", "sign_smallest", "*", 0),
+    ("torque-free-axisymmetric", "elongated", "*", 0),
+    ("torque-free-axisymmetric", "flattened", "*", 0),
 ];
 
 /// The declared checks fail when one group of terms of a step gets the

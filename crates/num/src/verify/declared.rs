@@ -419,6 +419,33 @@ fn draw(
             _ => {}
         }
     }
+    // What the file declares positive (cos θ of an angle below a right
+    // angle) is drawn so: the angle (or the constant) drawn again.
+    for &p in &ph.positive {
+        let q = match p.kind() {
+            AtomKind::Sin(q) | AtomKind::Cos(q) => q,
+            _ => p,
+        };
+        if declared.contains(&q) {
+            continue;
+        }
+        let mut tries = 0;
+        while values.get(p).is_some_and(|(v, _)| v <= 0.0) {
+            tries += 1;
+            if tries > 64 {
+                return Err(declaration(
+                    d,
+                    format!("no drawn value of {q} makes {p} positive, as [symbols] positive says"),
+                ));
+            }
+            let v = if q.is_time_dependent() {
+                rng.gen_range(-2.0..2.0)
+            } else {
+                rng.gen_range(0.5..2.0)
+            };
+            values.set(q, v, v);
+        }
+    }
     bind_all(d, &mut values, eqs)?;
     let mut bodies = Vec::new();
     let mut centres = Vec::new();

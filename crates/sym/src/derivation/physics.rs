@@ -45,6 +45,9 @@ pub struct Physics {
     /// The symbols declared small (`[symbols] small`), in order: the
     /// disturbance `linear`, `rate` and `coefficient` are taken in.
     pub small: Vec<Atom>,
+    /// What `[symbols] positive` declares positive (constants, sin or cos
+    /// of an angle): the values the verifier draws respect it.
+    pub positive: Vec<Atom>,
 }
 
 /// How a frame moves relative to its parent.
@@ -583,6 +586,7 @@ fn parse_spanned(cx: &Context<'_>, s: &Spanned<String>) -> R<(Ast, usize)> {
 pub(crate) fn declarations(cx: &Context<'_>, raw: &RawFile) -> R<Physics> {
     let mut ph = Physics {
         small: cx.small.clone(),
+        positive: cx.positive.clone(),
         ..Physics::default()
     };
     for f in &cx.frames {
