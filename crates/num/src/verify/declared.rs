@@ -1412,7 +1412,9 @@ pub fn check_with(
 /// per `[[body]]`, in the body's own axes about its reference point (G is
 /// moved to the point when the body is declared about its centre or with
 /// `mass_centre` zero). Only the motions and the other symbols are drawn,
-/// `options.draws` times. The bodies must have the declared symmetry: a
+/// `options.draws` times — except for a step whose `given` selects a
+/// class of bodies (`A > B`): for it the bodies are stretched along their
+/// axes, and drawn anew if that does not reach the class. The bodies must have the declared symmetry: a
 /// declared form they do not have is reported as an error naming the
 /// entry, as for drawn bodies. With the `proptest` feature,
 /// [`super::strategy::declared_bodies`] generates them.
