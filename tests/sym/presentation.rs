@@ -485,3 +485,42 @@ expect = ["k*x", "0", "0"]
         "{md}"
     );
 }
+
+/// sin² θ for 1 − cos² θ also where cos θ divides the group and for
+/// higher powers (fewest terms: I cos⁴ γ − 2 I cos² γ + I is I sin⁴ γ);
+/// with the sign pulled out the bracket leads with a positive term, and
+/// the sign stays in when the highest derivative would lead negative.
+/// Names and forms not in any bundled file, written for this test.
+#[test]
+fn new_problems_print_sin_squared_over_a_divisor_and_lead_positive() {
+    let out = printed(
+        r#"
+title = "A tilted disk, written for this test"
+source = "test"
+[symbols]
+constants = ["K", "L", "a", "b", "beta"]
+time = ["u", "chi"]
+[[step]]
+name = "w"
+value = "-K*sin(beta)^2*u'/cos(beta)"
+[[step]]
+name = "n"
+value = "-(K*sin(beta)^2 + L*cos(beta)^2)*u'^2*sin(beta)/cos(beta)"
+[[step]]
+name = "E"
+value = "(K*sin(beta)^2 + L*cos(beta)^2)*sin(beta)^2*u'^2/cos(beta)^2"
+[[step]]
+name = "acc"
+value = "a*chi''*cos(chi) - b*u'^2 - a*u'^2*sin(chi) - a*chi'^2*sin(chi)"
+"#,
+    );
+    assert_eq!(
+        out,
+        [
+            "−K u\u{307} sin² β/cos β",
+            "−(K sin² β + L cos² β) u\u{307}² sin β/cos β",
+            "(K sin² β + L cos² β) u\u{307}² sin² β/cos² β",
+            "a χ\u{308} cos χ − a χ\u{307}² sin χ − a u\u{307}² sin χ − b u\u{307}²",
+        ]
+    );
+}

@@ -189,7 +189,7 @@ fn group_node(
         if terms[0].2.is_negative() {
             content = -content;
         }
-    } else if pull_sign(&terms) {
+    } else if pull_sign(&terms) && lead_positive_inside(&mut terms) {
         content = -content;
     } else if terms[0].2.is_negative()
         && let Some(k) = terms.iter().position(|t| !t.2.is_negative())
@@ -341,6 +341,28 @@ fn pull_sign(terms: &[crate::expr::PrintTerm<'_>]) -> bool {
     !(all_positive && all_negative)
 }
 
+/// With the sign pulled out, the bracket leads with a positive term: a
+/// term of the leading one's derivative order that is negative (positive
+/// once the sign is out) is moved to the front. When there is none —
+/// the highest derivative would lead negative, −(−r θ̈ cos θ + b φ̇² + …) —
+/// the sign is not pulled (false): r θ̈ cos θ − b φ̇² − ….
+fn lead_positive_inside(terms: &mut Vec<crate::expr::PrintTerm<'_>>) -> bool {
+    if terms[0].2.is_negative() {
+        return true;
+    }
+    let top = |t: &crate::expr::PrintTerm<'_>| t.1.factors().iter().map(|f| f.0.order()).max();
+    let first = top(&terms[0]);
+    let Some(k) = terms
+        .iter()
+        .position(|t| top(t) == first && t.2.is_negative())
+    else {
+        return false;
+    };
+    let t = terms.remove(k);
+    terms.insert(0, t);
+    true
+}
+
 /// True when the monomial divides by something (a negative power).
 fn has_divisor(m: &Monomial) -> bool {
     m.factors().iter().any(|f| f.1 < 0)
@@ -407,11 +429,116 @@ fn ratio_term(e: &mut Expr, factors: &[(Atom, i32)], c: &Rational) -> Id {
 }
 
 /// Chooses between `sin² θ` and `1 − cos² θ` so that the group has the
-/// fewest terms: a pair `X − X cos² θ` (the canonical form holds sin² θ as
-/// 1 − cos² θ) becomes the single term `X sin² θ`. So φ̇² − φ̇² cos² θ
-/// prints φ̇² sin² θ and I′ − I′ cos² θ + J prints J + I′ sin² θ. Exact:
-/// the term expands back to the pair.
+/// fewest terms. The canonical form holds sin² θ as 1 − cos² θ, so for each
+/// angle the terms that differ only in their power of cos θ (the same
+/// other factors X, whatever power of cos θ divides them) form a
+/// polynomial P(cos θ); when P = (1 − cos² θ)ᵏ Q with Q of fewer terms than
+/// P, the terms are written X sin²ᵏ θ Q(cos θ). So φ̇² − φ̇² cos² θ prints
+/// φ̇² sin² θ, I′ − I′ cos² θ + J prints J + I′ sin² θ, a cone's
+/// (cos² γ − 1) φ̇/cos γ prints −sin² γ φ̇/cos γ and
+/// I cos⁴ γ − 2 I cos² γ + I prints I sin⁴ γ. What remains, a pair
+/// X cosⁿ θ − X cosⁿ⁺² θ, becomes X cosⁿ θ sin² θ. Exact: every term
+/// expands back to the terms it replaces.
 fn merge_trig_squares(ts: &mut Vec<(Monomial, Rational)>) {
+    let mut angles: Vec<Atom> = ts
+        .iter()
+        .flat_map(|(m, _)| m.factors().iter())
+        .filter_map(|&(a, _)| match a.kind() {
+            AtomKind::Cos(q) => Some(q),
+            _ => None,
+        })
+        .collect();
+    angles.sort_by_key(|a| a.sort_key());
+    angles.dedup();
+    for q in angles {
+        if let (Some(cos), Some(sin)) = (Atom::cos(q), Atom::sin(q)) {
+            factor_sin_squares(ts, cos, sin);
+            merge_pairs(ts, cos, sin);
+        }
+    }
+    // Two rewritten terms may meet on one monomial: add them.
+    let mut sum: BTreeMap<Monomial, Rational> = BTreeMap::new();
+    let mut order = Vec::new();
+    for (m, c) in ts.drain(..) {
+        match sum.get_mut(&m) {
+            Some(s) => *s = &*s + &c,
+            None => {
+                order.push(m.clone());
+                sum.insert(m, c);
+            }
+        }
+    }
+    ts.extend(
+        order
+            .into_iter()
+            .filter_map(|m| sum.remove(&m).filter(|c| !c.is_zero()).map(|c| (m, c))),
+    );
+}
+
+/// The terms whose factors other than `cos` agree, as a polynomial in
+/// `cos` (exponent → coefficient), each divided by (1 − cos²) as often as
+/// that leaves the fewest terms (fewer than before).
+fn factor_sin_squares(ts: &mut Vec<(Monomial, Rational)>, cos: Atom, sin: Atom) {
+    let mut by_rest: BTreeMap<Monomial, BTreeMap<i32, Rational>> = BTreeMap::new();
+    for (m, c) in ts.iter() {
+        let e = m.exponent(cos);
+        by_rest
+            .entry(m.without(cos, e))
+            .or_default()
+            .insert(e, c.clone());
+    }
+    let mut out = Vec::with_capacity(ts.len());
+    let mut changed = false;
+    for (rest, p) in by_rest {
+        let mut best = (0, p.clone());
+        let mut q = p.clone();
+        let mut k = 0;
+        while let Some(next) = divide_one_minus_square(&q) {
+            k += 1;
+            if next.len() < best.1.len() {
+                best = (k, next.clone());
+            }
+            q = next;
+        }
+        let (k, q) = best;
+        changed |= k > 0;
+        let rest = rest.mul(&Monomial::atom(sin, 2 * k));
+        out.extend(
+            q.into_iter()
+                .map(|(e, c)| (rest.mul(&Monomial::atom(cos, e)), c)),
+        );
+    }
+    if changed {
+        *ts = out;
+    }
+}
+
+/// `p / (1 − x²)` when it divides exactly (Laurent exponents allowed).
+fn divide_one_minus_square(p: &BTreeMap<i32, Rational>) -> Option<BTreeMap<i32, Rational>> {
+    let low = *p.keys().next()?;
+    let mut r = p.clone();
+    let mut q = BTreeMap::new();
+    // Long division from the top: a xⁿ = (1 − x²)(−a xⁿ⁻²) + a xⁿ⁻².
+    while let Some((&n, a)) = r.iter().next_back() {
+        if n < low + 2 {
+            return None;
+        }
+        let a = a.clone();
+        r.remove(&n);
+        q.insert(n - 2, -&a);
+        let s = &r.get(&(n - 2)).cloned().unwrap_or(Rational::ZERO) + &a;
+        if s.is_zero() {
+            r.remove(&(n - 2));
+        } else {
+            r.insert(n - 2, s);
+        }
+    }
+    Some(q)
+}
+
+/// A pair `X cosⁿ θ − X cosⁿ⁺² θ` becomes the single term
+/// `X cosⁿ θ sin² θ` (n of any sign).
+fn merge_pairs(ts: &mut Vec<(Monomial, Rational)>, cos: Atom, sin: Atom) {
     // Each term's partner is looked up in an ordered index of the monomials
     // (n log n: a result of many terms must not make display quadratic).
     let mut index: BTreeMap<Monomial, usize> = ts
@@ -421,23 +548,16 @@ fn merge_trig_squares(ts: &mut Vec<(Monomial, Rational)>) {
         .collect();
     let mut removed = vec![false; ts.len()];
     for k in 0..ts.len() {
-        if removed[k] {
+        if removed[k] || ts[k].0.exponent(cos) == 0 {
             continue;
         }
         let (m, c) = ts[k].clone();
-        let cos2 = m.factors().iter().find_map(|&(a, x)| match a.kind() {
-            AtomKind::Cos(q) if x >= 2 => Some((a, q)),
-            _ => None,
-        });
-        let Some((cos, q)) = cos2 else {
-            continue;
-        };
         let rest = m.div(&Monomial::atom(cos, 2));
         let partner = index
             .get(&rest)
             .copied()
-            .filter(|&j| !removed[j] && (&ts[j].1 + &c).is_zero());
-        if let (Some(j), Some(sin)) = (partner, Atom::sin(q)) {
+            .filter(|&j| j != k && !removed[j] && (&ts[j].1 + &c).is_zero());
+        if let Some(j) = partner {
             let merged = rest.mul(&Monomial::atom(sin, 2));
             index.remove(&rest);
             index.insert(merged.clone(), j);
