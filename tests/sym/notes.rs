@@ -452,4 +452,6 @@ latex_text_cases! {
     prose_punctuation: "a — b – c … “q” §3" => r"a --- b -- c \ldots{} ``q'' \S{}3";
     prose_latin1_kept: "Poincaré" => "Poincaré";
     prose_unknown_character: "snow ☃" => "snow [U+2603]";
+    prose_arguments_stay_one_formula: "the form M(q) q̈ = f(q, q̇, t) that" => r"the form $M(q) \ddot{q} = f(q, \dot{q}, t)$ that";
+    prose_comma_outside_brackets_ends_a_formula: "ω_x, ω_y and g(q̇, t)." => r"$\omega_{x}$, $\omega_{y}$ and $g(\dot{q}, t)$.";
 }

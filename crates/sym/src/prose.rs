@@ -7,7 +7,9 @@
 //! clearly notation (it holds a Greek letter, a dot or bar accent, a
 //! subscript such as `M_x`, a prime, a superscript, or an operator between
 //! such words) becomes one piece of math, so `ΣM_O = r̄ × m ā + Ḣ_G` is
-//! typeset as one formula, not as letters with literal underscores. Each
+//! typeset as one formula, not as letters with literal underscores; a
+//! comma between the arguments of a bracket the formula opened does not
+//! end it (`M(q) q̈ = f(q, q̇, t)` is one formula). Each
 //! output format renders the pieces: [`latex`] (and the PDF), [`markdown`]
 //! (`$…$` math) and [`unicode`] (the text as written, without `$`).
 //!
@@ -215,12 +217,24 @@ fn words(s: &str, out: &mut Vec<Piece>) {
     while k < toks.len() {
         let start = k;
         let mut end = k; // exclusive
+        // Brackets opened inside the run and not yet closed: a comma
+        // between its arguments does not end it, `f(q, q̇, t)`.
+        let depth = |ts: &[Tok]| -> i32 {
+            ts.iter()
+                .map(|t| {
+                    let o = t.core.matches(['(', '[']).count() as i32;
+                    let c = t.core.matches([')', ']']).count() as i32;
+                    o - c
+                })
+                .sum()
+        };
         if toks[k].kind != Kind::Word {
             end = k + 1;
             while end < toks.len()
                 && toks[end].kind != Kind::Word
                 && toks[end].lead.is_empty()
-                && toks[end - 1].trail.is_empty()
+                && (toks[end - 1].trail.is_empty()
+                    || (toks[end - 1].trail == "," && depth(&toks[k..end]) > 0))
             {
                 end += 1;
             }
@@ -259,12 +273,21 @@ fn words(s: &str, out: &mut Vec<Piece>) {
         for (j, t) in run.iter().enumerate() {
             m.push_str(&math_latex(t.core));
             if j + 1 < run.len() {
+                m.push_str(t.trail); // a comma between arguments
                 m.push(' ');
             }
         }
-        push(out, Piece::Math(m));
+        // The bracket the run left open closes inside the formula.
         let last = &toks[b - 1];
-        push(out, Piece::Text(format!("{}{}", last.trail, last.space)));
+        let mut trail = last.trail;
+        let mut open = depth(run);
+        while open > 0 && trail.starts_with([')', ']']) {
+            m.push_str(&trail[..1]);
+            trail = &trail[1..];
+            open -= 1;
+        }
+        push(out, Piece::Math(m));
+        push(out, Piece::Text(format!("{trail}{}", last.space)));
         for t in &toks[b..end] {
             push(
                 out,
