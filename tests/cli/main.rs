@@ -321,3 +321,41 @@ fn simulate_refuses_what_f64_cannot_carry_and_reports_estimates() {
     assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
     assert!(text(&out.stderr).contains("not met"));
 }
+
+/// A derived scene run without --tol and --method fits its tolerance to
+/// the default target 1e-8: when that is not met (an inverted pendulum
+/// started at its top, written for the test, whose state at T depends on
+/// the smallest error), the exit status is 1 as with --tol 1e-8.
+#[test]
+fn simulate_derived_default_target_not_met_exits_1() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("top.toml"),
+        "title = \"inverted pendulum\"\nsource = \"written for the test\"\n[symbols]\nconstants = [\"k\"]\n\
+         time = [\"x\"]\n[[step]]\nname = \"acc\"\nvalue = \"solve(list(x'' - k*sin(x)), [x''])\"\n",
+    )
+    .unwrap();
+    let scene = dir.path().join("scene.toml");
+    std::fs::write(
+        &scene,
+        "name = \"top\"\nkind = \"derived\"\nt_end = 12.0\n[derivation]\nfile = \"top.toml\"\n\
+         accelerations = \"acc\"\n[constants]\nk = 100.0\n[initial]\n\
+         coordinates = { x = 3.141592653589793 }\nrates = { x = 0.0 }\n",
+    )
+    .unwrap();
+    let scene = scene.to_str().unwrap();
+    let default = hdot(&["simulate", scene]);
+    let explicit = hdot(&["simulate", scene, "--tol", "1e-8"]);
+    assert_eq!(
+        default.status.code(),
+        explicit.status.code(),
+        "{}",
+        text(&default.stderr)
+    );
+    assert_eq!(default.status.code(), Some(1), "{}", text(&default.stdout));
+    assert!(
+        text(&default.stderr).contains("default (--tol) error 1e-8 is not met"),
+        "{}",
+        text(&default.stderr)
+    );
+}

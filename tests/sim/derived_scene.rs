@@ -481,3 +481,146 @@ fn a_frame_given_by_a_varying_angular_velocity_is_refused() {
         );
     }
 }
+
+/// Two coupled coordinates in mass-matrix form, written for the test:
+/// `2 ẍ + ÿ + k x = 0`, `ẍ + 3 ÿ + y = 0` — swapping the coordinates
+/// would integrate other equations.
+const COUPLED: &str = r#"
+title = "two coupled oscillators"
+source = "written for the test"
+[symbols]
+constants = ["k"]
+time = ["x", "y"]
+[[step]]
+name = "eqs"
+value = "list(2*x'' + y'' + k*x, x'' + 3*y'' + y)"
+[[step]]
+name = "M"
+value = "mass_matrix(eqs, [x'', y''])"
+[[step]]
+name = "f"
+value = "forcing(eqs, [x'', y''])"
+"#;
+
+const COUPLED_SCENE: &str = r#"
+name = "coupled"
+kind = "derived"
+t_end = 2.0
+[derivation]
+file = "turntable.toml"
+mass_matrix = "M"
+forcing = "f"
+[constants]
+k = 5.0
+[initial]
+coordinates = { x = 0.3, y = -0.1 }
+rates = { x = 0.0, y = 0.2 }
+"#;
+
+/// The mass-matrix step lists its unknowns: without `coordinates` the
+/// order is taken from it; the same order given runs the same equations;
+/// another order is refused naming the field and the step's order.
+#[test]
+fn mass_matrix_coordinates_follow_the_step() {
+    let req = Request {
+        method: Some(Method::Dop853),
+        step: Some(Step::Tolerance(1e-10)),
+        ..Request::default()
+    };
+    let taken = run_scene(&turntable(COUPLED_SCENE, COUPLED).expect("scene"), req);
+    assert_eq!(taken.state_names, ["x", "y", "x'", "y'"]);
+    let given_text = COUPLED_SCENE.replace(
+        "forcing = \"f\"",
+        "forcing = \"f\"\ncoordinates = [\"x\", \"y\"]",
+    );
+    let given = run_scene(&turntable(&given_text, COUPLED).expect("scene"), req);
+    assert_eq!(taken.final_state, given.final_state);
+    // Against the motion solved here: M q̈ = −K q with M = [[2, 1], [1, 3]],
+    // K = diag(k, 1), by RK4 at a small step.
+    let (k, dt) = (5.0, 1e-4);
+    let acc = |q: [f64; 2]| {
+        let f = [-k * q[0], -q[1]];
+        let det = 2.0 * 3.0 - 1.0;
+        [(3.0 * f[0] - f[1]) / det, (2.0 * f[1] - f[0]) / det]
+    };
+    let deriv = |s: [f64; 4]| {
+        let a = acc([s[0], s[1]]);
+        [s[2], s[3], a[0], a[1]]
+    };
+    let mut s = [0.3, -0.1, 0.0, 0.2];
+    for _ in 0..20000 {
+        let k1 = deriv(s);
+        let k2 = deriv(std::array::from_fn(|i| s[i] + 0.5 * dt * k1[i]));
+        let k3 = deriv(std::array::from_fn(|i| s[i] + 0.5 * dt * k2[i]));
+        let k4 = deriv(std::array::from_fn(|i| s[i] + dt * k3[i]));
+        s = std::array::from_fn(|i| s[i] + dt / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]));
+    }
+    for (a, b) in taken.final_state.iter().zip(s) {
+        assert!((a - b).abs() < 1e-8, "derived {a} against {b}");
+    }
+    let swapped = COUPLED_SCENE.replace(
+        "forcing = \"f\"",
+        "forcing = \"f\"\ncoordinates = [\"y\", \"x\"]",
+    );
+    let msg = turntable(&swapped, COUPLED)
+        .expect_err("swapped")
+        .to_string();
+    assert!(
+        msg.contains("derivation.coordinates") && msg.contains("x'', y''"),
+        "{msg}"
+    );
+}
+
+/// An inverted pendulum written for the test, started at its top (sin of
+/// the rounded π is 1.2e-16): it leaves the top after an exponential
+/// growth and passes near it again, so its state at T depends on the
+/// smallest error. The pilots' reason must say what they measured: an
+/// exponent only when the error shrank, and then the one the two pilot
+/// errors give.
+#[test]
+fn the_pilot_fit_reports_what_the_pilots_measured() {
+    const TOP: &str = r#"
+title = "inverted pendulum"
+source = "written for the test"
+[symbols]
+constants = ["k"]
+time = ["x"]
+[[step]]
+name = "acc"
+value = "solve(list(x'' - k*sin(x)), [x''])"
+"#;
+    let scene_text = r#"
+name = "top"
+kind = "derived"
+t_end = 12.0
+[derivation]
+file = "turntable.toml"
+accelerations = "acc"
+[constants]
+k = 100.0
+[initial]
+coordinates = { x = 3.141592653589793 }
+rates = { x = 0.0 }
+"#;
+    let scene = turntable(scene_text, TOP).expect("scene");
+    let r = run_scene(&scene, Request::default());
+    let why = &r.plan.reason;
+    let nums: Vec<f64> = why
+        .split("reached ")
+        .nth(1)
+        .expect("pilot errors")
+        .split_whitespace()
+        .filter_map(|w| w.parse::<f64>().ok())
+        .collect();
+    let (ea, eb) = (nums[0], nums[1]);
+    if ea > eb && eb > 0.0 {
+        let p = (ea / eb).ln() / 100f64.ln();
+        assert!(why.contains(&format!("tol^{p:.2}")), "{why}");
+    } else {
+        assert!(
+            why.contains("did not shrink") && !why.contains("tol^"),
+            "{why}"
+        );
+    }
+    assert_eq!(r.plan.fit_error, Some(1e-8), "the default target");
+}

@@ -378,6 +378,32 @@ impl DerivedModel {
     }
 }
 
+/// The coordinates a step `mass_matrix(eqs, [q1'', q2'', …])` (or
+/// `forcing(…)`) was written for, in the order of its columns: `None`
+/// when the step's formula is not such a call with its unknowns in
+/// brackets.
+pub fn step_coordinates(d: &Derivation, step: &str) -> Option<Vec<String>> {
+    use hdot_sym::parse::{AstKind, parse};
+    let s = d.steps.iter().find(|s| s.name == step)?;
+    let ast = parse(&s.formula).ok()?;
+    let AstKind::Call { func, args } = &ast.kind else {
+        return None;
+    };
+    if !matches!(func.as_str(), "mass_matrix" | "forcing") || args.len() != 2 {
+        return None;
+    }
+    let AstKind::Vector { items, frame: None } = &args[1].kind else {
+        return None;
+    };
+    items
+        .iter()
+        .map(|a| match &a.kind {
+            AstKind::Name { name, primes: 2 } => Some(name.clone()),
+            _ => None,
+        })
+        .collect()
+}
+
 /// The largest number of coordinates a derived model takes.
 pub const MAX_DOF: usize = 6;
 

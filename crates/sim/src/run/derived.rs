@@ -76,9 +76,16 @@ fn reference_n<const N: usize>(ds: &DerivedScene, t_end: f64) -> Result<[f64; N]
 }
 
 /// The DOP853 tolerance at which the error at `t_end` (against
-/// `reference`) should be `target`, measured on this scene: two pilot runs
-/// at `target` and `target/100` fit `error ≈ C tol^p`, and the tolerance
-/// predicted for `target/3` is taken (a factor 3 of safety on the fit).
+/// `reference`) should be `target`, measured on this scene by two pilot
+/// runs at `target` and `target/100`:
+/// - the first pilot already within `target/3`: its tolerance;
+/// - the error shrinking with the tolerance: fit `error ≈ C tol^p` and take
+///   the tolerance predicted for `target/3` (a factor 3 of safety);
+/// - otherwise (the error does not shrink: the motion is so sensitive that
+///   the reference itself is in doubt) no fit: the smaller pilot
+///   tolerance, and the reason says so.
+///
+/// Whether the run then meets `target` is for its caller to check.
 /// Returns the tolerance and what was measured.
 fn fit_tolerance<const N: usize>(
     ds: &DerivedScene,
@@ -102,25 +109,40 @@ fn fit_tolerance<const N: usize>(
     let tb = (ta * 1e-2).max(lo);
     let (ea, na) = error_at(ta)?;
     let (eb, nb) = error_at(tb)?;
-    let p = if ea > eb && eb > 0.0 && ta > tb {
-        ((ea / eb).ln() / (ta / tb).ln()).clamp(0.3, 1.5)
-    } else {
-        1.0
-    };
+    let pilots = format!(
+        "tolerance fitted on this scene: dop853 reached {ea:.2e} at tol={ta:.0e} and {eb:.2e} at tol={tb:.0e} ({} evaluations)",
+        na + nb
+    );
+    let safe = target / 3.0;
+    if ea <= safe {
+        return Ok((
+            ta,
+            format!("{pilots}; the first already within {target:e}/3, so tol={ta:.1e}"),
+        ));
+    }
+    if !(ea > eb && eb > 0.0 && ta > tb) {
+        return Ok((
+            tb,
+            format!(
+                "{pilots}: the error did not shrink with the tolerance, so no fit (the motion is sensitive to \
+                 small changes and the reference at tol={REFERENCE_TOL:e} may be as far off); tol={tb:.1e}"
+            ),
+        ));
+    }
+    let p = (ea / eb).ln() / (ta / tb).ln();
     // Never looser than the loosest pilot: beyond it the fit is an
     // extrapolation (an error ∝ tol^0.5 fitted where both pilots already
     // meet the request predicts tolerances that miss it).
-    let tol = if ea <= 0.0 {
-        ta
-    } else {
-        (ta * (target / 3.0 / ea).powf(1.0 / p)).clamp(lo, ta)
-    };
+    let tol = (ta * (safe / ea).powf(1.0 / p)).clamp(lo, ta);
     Ok((
         tol,
         format!(
-            "tolerance fitted on this scene: dop853 reached {ea:.2e} at tol={ta:.0e} and {eb:.2e} at tol={tb:.0e} \
-             ({} evaluations), error ∝ tol^{p:.2}, so tol={tol:.1e} for an error ≤ {target:e}",
-            na + nb
+            "{pilots}, error ∝ tol^{p:.2}, so tol={tol:.1e} for an error ≤ {target:e}/3{}",
+            if tol == lo {
+                " (the smallest tolerance tried)"
+            } else {
+                ""
+            }
         ),
     ))
 }

@@ -145,23 +145,24 @@ pub(super) fn parse(
             "missing table [derivation] (file = \"…\", and accelerations = \"…\" or mass_matrix/forcing/coordinates)".into(),
         )
     })?;
-    let equations = match (
+    let mut equations = match (
         raw.accelerations,
         raw.mass_matrix,
         raw.forcing,
         raw.coordinates,
     ) {
         (Some(step), None, None, None) => EquationsSpec::Explicit { step },
-        (None, Some(mass_matrix), Some(forcing), Some(coordinates)) => EquationsSpec::MassMatrix {
+        (None, Some(mass_matrix), Some(forcing), coordinates) => EquationsSpec::MassMatrix {
             mass_matrix,
             forcing,
-            coordinates,
+            coordinates: coordinates.unwrap_or_default(),
         },
         _ => {
             return Err(bad(
                 "derivation",
-                "give either `accelerations` (a step solved for the accelerations) or all of \
-                 `mass_matrix`, `forcing` and `coordinates`"
+                "give either `accelerations` (a step solved for the accelerations) or \
+                 `mass_matrix` and `forcing` (and, if the mass-matrix step does not list its \
+                 unknowns, `coordinates`)"
                     .into(),
             ));
         }
@@ -177,6 +178,15 @@ pub(super) fn parse(
     let (path, text) = resolve(&raw.file).map_err(|e| bad("derivation.file", e))?;
     let d = hdot_sym::derivation::load_str(&path.display().to_string(), &text)
         .map_err(|e| bad("derivation.file", e.to_string()))?;
+    if let EquationsSpec::MassMatrix {
+        mass_matrix,
+        coordinates,
+        ..
+    } = &mut equations
+    {
+        coordinates_of_step(&d, mass_matrix, coordinates)
+            .map_err(|e| bad("derivation.coordinates", e))?;
+    }
     let declared: Vec<&str> = d
         .symbols
         .names()
@@ -244,6 +254,41 @@ pub(super) fn parse(
         y0,
         frame: raw.frame,
     })
+}
+
+/// The mass-matrix form's coordinates: those the step lists
+/// (`mass_matrix(eqs, [q1'', …])`) when the scene gives none; those given,
+/// which must then be the step's in its order (M's columns are in that
+/// order: another order would integrate other equations).
+fn coordinates_of_step(d: &Derivation, step: &str, given: &mut Vec<String>) -> Result<(), String> {
+    let listed = crate::models::derived::step_coordinates(d, step);
+    match (given.is_empty(), listed) {
+        (true, Some(q)) => *given = q,
+        (true, None) => {
+            return Err(format!(
+                "missing: step `{step}` of {} is not written mass_matrix(eqs, [q1'', …]), so give the \
+                 coordinates in the order of its columns",
+                d.path
+            ));
+        }
+        (false, Some(q)) if q != *given => {
+            return Err(format!(
+                "[{}] is not the order of step `{step}`'s unknowns ({}): M's columns are in that \
+                 order, so write coordinates = [{}] (or leave `coordinates` out)",
+                given.join(", "),
+                q.iter()
+                    .map(|c| format!("{c}''"))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                q.iter()
+                    .map(|c| format!("\"{c}\""))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            ));
+        }
+        _ => {}
+    }
+    Ok(())
 }
 
 /// Relative tolerance of the symmetry a derivation body declares, checked
