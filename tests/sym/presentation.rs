@@ -524,3 +524,44 @@ value = "a*chi''*cos(chi) - b*u'^2 - a*u'^2*sin(chi) - a*chi'^2*sin(chi)"
         ]
     );
 }
+
+/// `fold` eliminates, of the abbreviation's atoms times constants, the one
+/// that leaves the fewest terms (k := K (s + χ̇) folds as k s, not
+/// k²/K − k χ̇), and never a fold that leaves more terms than it found: a
+/// linearised result keeps no cos of its small angle. Presentation stays
+/// exact. A file written for this test.
+#[test]
+fn new_problems_fold_by_the_atom_that_leaves_fewest_terms() {
+    let text = r#"
+title = "Folds, written for this test"
+source = "test"
+[symbols]
+constants = ["B", "K", "c"]
+time = ["s", "chi", "r", "y"]
+small = ["eta"]
+[[abbreviation]]
+name = "k"
+value = "K*(s + chi')"
+[[abbreviation]]
+name = "z"
+value = "y' + c*cos(eta)"
+[[step]]
+name = "eq"
+value = "B*r' + K*(s + chi')*s"
+fold = ["k"]
+[[step]]
+name = "sol"
+value = "solve(eq, r')"
+fold = ["k"]
+[[step]]
+name = "lin"
+value = "linearize(c*(y' + c*cos(eta))*sin(eta))"
+fold = ["z"]
+"#;
+    let d = hdot_sym::derivation::load_str("folds.toml", text).unwrap();
+    assert!(assert_exact(&d) >= 3);
+    assert_eq!(
+        printed(text),
+        ["B r\u{307} + k s", "−k s/B", "c (y\u{307} + c) η"]
+    );
+}

@@ -60,31 +60,45 @@ pub struct Presentation {
     pub constant_order: Vec<String>,
 }
 
-/// Folds the abbreviation `name := def` into `p`. Returns `p` unchanged when
-/// no atom of `def` can be eliminated (none occurs linearly with a constant
-/// coefficient and nowhere else in `def`).
+/// Folds the abbreviation `name := def` into `p`: of the atoms of `def`
+/// that can be eliminated (h := J (v + β̇) may give β̇ := h/J − v or
+/// v := h/J − β̇), the one that leaves the fewest terms. Returns `p`
+/// unchanged when no atom can be eliminated or every fold would leave more
+/// terms than `p` has: folding w := ψ̇ + a cos θ into a linearised
+/// b (ψ̇ + a) θ would bring back cos θ (b (w − a cos θ + a) θ), which reads
+/// as a term of higher order. Exact: the result equals `p` once `name` is
+/// replaced by `def`.
 pub fn fold(p: &Poly, name: Atom, def: &Poly) -> Poly {
-    let Some((v, c)) = eliminable(def) else {
-        return p.clone();
-    };
-    // v = (name - (def - c v)) / c
-    let rest = def - &Poly::term(Monomial::atom(v, 1), c.clone());
-    let inv = c.recip().expect("non-zero coefficient");
-    let v_expr = (&Poly::atom(name) - &rest).scale(&inv);
-    p.subst(&mut |a| match a.kind() {
-        AtomKind::Var {
-            time: true, order, ..
-        } if a.base() == v.base() && order >= v.order() => Some(v_expr.dt_n(order - v.order())),
-        _ => None,
-    })
+    let mut best: Option<Poly> = None;
+    for (v, coef, c) in eliminable(def) {
+        // v = (name − (def − c coef v)) / (c coef)
+        let rest = def - &Poly::term(coef.mul(&Monomial::atom(v, 1)), c.clone());
+        let inv = Poly::term(
+            Monomial::one().div(&coef),
+            c.recip().expect("non-zero coefficient"),
+        );
+        let v_expr = &(&Poly::atom(name) - &rest) * &inv;
+        let q = p.subst(&mut |a| match a.kind() {
+            AtomKind::Var {
+                time: true, order, ..
+            } if a.base() == v.base() && order >= v.order() => Some(v_expr.dt_n(order - v.order())),
+            _ => None,
+        });
+        if q.len() <= p.len() && best.as_ref().is_none_or(|b| q.len() < b.len()) {
+            best = Some(q);
+        }
+    }
+    best.unwrap_or_else(|| p.clone())
 }
 
-/// An atom of `def` that occurs in exactly one term, to the first power,
-/// with a constant coefficient, and whose base symbol occurs nowhere else.
-fn eliminable(def: &Poly) -> Option<(Atom, Rational)> {
-    let mut best: Option<(Atom, Rational)> = None;
+/// The atoms of `def` that occur in exactly one term, to the first power,
+/// times constants only, and whose base symbol occurs nowhere else; the
+/// highest derivative first.
+fn eliminable(def: &Poly) -> Vec<(Atom, Monomial, Rational)> {
+    let mut found = Vec::new();
     for (m, c) in def.terms() {
-        let [(v, 1)] = m.factors() else { continue };
+        let (timed, coef) = m.split(|a| a.is_time_dependent());
+        let [(v, 1)] = timed.factors() else { continue };
         if !matches!(v.kind(), AtomKind::Var { time: true, .. }) {
             continue;
         }
@@ -95,11 +109,12 @@ fn eliminable(def: &Poly) -> Option<(Atom, Rational)> {
                 AtomKind::Var { .. } => a.base() == v.base(),
                 AtomKind::Sin(q) | AtomKind::Cos(q) => q == v.base(),
             });
-        if !clash && best.as_ref().is_none_or(|b| v.order() > b.0.order()) {
-            best = Some((*v, c.clone()));
+        if !clash {
+            found.push((*v, coef, c.clone()));
         }
     }
-    best
+    found.sort_by_key(|f| Reverse(f.0.order()));
+    found
 }
 
 /// Presents `p` in textbook form (see the module doc).
