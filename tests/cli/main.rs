@@ -272,6 +272,43 @@ fn every_declared_bundled_file_verifies_the_same_under_another_name() {
     assert!(compared >= 21, "{compared} files declare their model");
 }
 
+/// A folder argument to `check` and `verify` stands for every derivation
+/// file in it (a lecturer's own folder); `derive` names one file and says so.
+#[test]
+fn check_and_verify_take_a_folder_of_derivations() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut copied = Vec::new();
+    for name in ["turntable", "askew-disk"] {
+        let from = repo_root().join(format!("derivations/{name}.toml"));
+        let to = dir.path().join(format!("mine-{name}.toml"));
+        std::fs::copy(from, &to).unwrap();
+        copied.push(format!("mine-{name}"));
+    }
+    let folder = dir.path().to_str().unwrap();
+    let check = hdot(&["check", folder]);
+    let so = text(&check.stdout);
+    assert_eq!(check.status.code(), Some(0), "{so}{}", text(&check.stderr));
+    let verify = hdot(&["verify", folder, "--bodies", "3"]);
+    let sv = text(&verify.stdout);
+    assert_eq!(
+        verify.status.code(),
+        Some(0),
+        "{sv}{}",
+        text(&verify.stderr)
+    );
+    for n in &copied {
+        assert!(so.contains(n.as_str()), "check lists {n}: {so}");
+        assert!(sv.contains(n.as_str()), "verify lists {n}: {sv}");
+    }
+    let derive = hdot(&["derive", folder]);
+    assert_eq!(derive.status.code(), Some(2));
+    assert!(
+        text(&derive.stderr).contains("is a folder"),
+        "{}",
+        text(&derive.stderr)
+    );
+}
+
 /// Issue 11: non-finite and overflowing input refused (exit 2), a requested
 /// error that is not met is a failure (exit 1), closed forms report an
 /// estimate.

@@ -117,6 +117,25 @@ pub fn all(dir: &Dir) -> anyhow::Result<Vec<Entry>> {
     Ok(v.into_iter().map(Entry::File).collect())
 }
 
+/// The derivations a command's arguments name: every derivation of `dir`
+/// when there are none; otherwise each argument resolved (see
+/// [`resolve`]), a folder standing for every derivation file in it.
+pub fn select(dir: &Dir, args: &[String]) -> anyhow::Result<Vec<Entry>> {
+    if args.is_empty() {
+        return all(dir);
+    }
+    let mut v = Vec::new();
+    for a in args {
+        let p = Path::new(a);
+        if p.is_dir() {
+            v.extend(all(&Dir::Folder(p.to_owned()))?);
+        } else {
+            v.push(resolve(dir, a)?);
+        }
+    }
+    Ok(v)
+}
+
 /// The short name of a derivation file (its stem).
 pub fn name_of(p: &Path) -> String {
     p.file_stem()
@@ -154,6 +173,11 @@ pub fn load(dir: &Dir, arg: &str) -> anyhow::Result<Result<Derivation, Diagnosti
 /// anything containing a path separator or ending in `.toml`).
 pub fn resolve(dir: &Dir, arg: &str) -> anyhow::Result<Entry> {
     let p = Path::new(arg);
+    if p.is_dir() {
+        bail!(
+            "`{arg}` is a folder: name one derivation file in it (`hdot check` and `hdot verify` take folders)"
+        );
+    }
     if p.is_file() || arg.contains('/') || arg.ends_with(".toml") {
         if !p.is_file() {
             bail!("no such derivation file: {arg}");

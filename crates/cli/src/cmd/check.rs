@@ -14,7 +14,8 @@ use crate::catalog;
 /// one does not, 2 when a file cannot be loaded.
 #[derive(Debug, Args)]
 pub struct CheckArgs {
-    /// Derivation names or paths (default: every bundled derivation).
+    /// Derivation names, paths, or folders of derivation files (default:
+    /// every bundled derivation).
     #[arg(value_name = "NAME|PATH")]
     targets: Vec<String>,
     /// Folder of derivation files (default: ./derivations).
@@ -24,14 +25,7 @@ pub struct CheckArgs {
 
 pub fn run(args: CheckArgs) -> anyhow::Result<ExitCode> {
     let dir = catalog::derivations_dir(args.dir.as_deref());
-    let paths = if args.targets.is_empty() {
-        catalog::all(&dir)?
-    } else {
-        args.targets
-            .iter()
-            .map(|t| catalog::resolve(&dir, t))
-            .collect::<anyhow::Result<_>>()?
-    };
+    let paths = catalog::select(&dir, &args.targets)?;
     crate::outln!(
         "{:<30} {:>7} {:>10}  result",
         "derivation",

@@ -19,8 +19,8 @@ use crate::catalog;
 /// Arguments of `hdot verify`.
 #[derive(Debug, Args)]
 pub struct VerifyArgs {
-    /// Derivations to verify (names in the derivations folder, or paths);
-    /// all bundled ones when omitted.
+    /// Derivations to verify (names in the derivations folder, paths, or
+    /// folders of derivation files); all bundled ones when omitted.
     pub names: Vec<String>,
     /// Random bodies per derivation (at least 1: zero would pass without
     /// checking anything).
@@ -43,14 +43,7 @@ pub struct VerifyArgs {
 /// Runs the checks. Exit 1 when a derivation fails; 2 on bad input.
 pub fn run(args: VerifyArgs) -> anyhow::Result<ExitCode> {
     let dir = catalog::derivations_dir(args.dir.as_deref());
-    let paths = if args.names.is_empty() {
-        catalog::all(&dir)?
-    } else {
-        args.names
-            .iter()
-            .map(|n| catalog::resolve(&dir, n))
-            .collect::<anyhow::Result<Vec<_>>>()?
-    };
+    let paths = catalog::select(&dir, &args.names)?;
     let checked = paths.len();
     let bar = std::io::stderr().is_terminal().then(|| {
         let bar = indicatif::ProgressBar::new(checked as u64 * args.bodies);

@@ -496,6 +496,16 @@ impl<'a> Context<'a> {
                         ),
                     );
                 }
+                if name == "pi" {
+                    return err(
+                        ast.span,
+                        "`pi` is not a number in an expression: it is exact only as an angle \
+                         substituted into sin and cos, `subst(x, theta = pi/2)` with a multiple \
+                         of pi/2; for another angle declare a constant (e.g. `beta`) and \
+                         substitute `theta = beta`"
+                            .to_owned(),
+                    );
+                }
                 err(
                     ast.span,
                     format!(

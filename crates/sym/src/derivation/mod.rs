@@ -390,21 +390,26 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
         )?;
         let (value, presentation, axes, checks, meaning) = out.expect("evaluated");
         let label_math = match &s.label {
-            Some(l) => crate::document::LabelMath::parse(l, &cx.symbols).map_err(|m| {
-                let n = s.name.get_ref();
-                cx.diag_string(
-                    &s.name,
-                    0,
-                    n.len(),
-                    format!("step `{n}`, field `label`: {m}"),
-                )
-            })?,
+            Some(l) => {
+                crate::document::LabelMath::parse(l.get_ref(), &cx.symbols).map_err(|m| {
+                    let n = s.name.get_ref();
+                    cx.diag_string(
+                        l,
+                        0,
+                        l.get_ref().len(),
+                        format!("step `{n}`, field `label`: {m}"),
+                    )
+                })?
+            }
             None => None,
         };
         cx.bind(s.name.get_ref(), value.clone());
         steps.push(Step {
             name: s.name.get_ref().clone(),
-            label: s.label.clone().unwrap_or_else(|| s.name.get_ref().clone()),
+            label: s
+                .label
+                .as_ref()
+                .map_or_else(|| s.name.get_ref().clone(), |l| l.get_ref().clone()),
             doc: s.doc.clone(),
             formula: s.value.get_ref().clone(),
             show: s.show,

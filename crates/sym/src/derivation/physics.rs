@@ -1248,7 +1248,7 @@ fn check_shape(cx: &Context<'_>, at: &Spanned<String>, m: &Meaning, value: &Valu
             value.describe()
         ),
         Meaning::Solves(x) => format!(
-            "`solves(X)` means a step that solves X = 0 for as many accelerations as X has components ({}); the step is {}",
+            "`solves(X)` means a step `solve(X, [q1'', …])` giving one named acceleration per component of X ({}); the step is {}: solve for a list, e.g. `solve(eq, [phi''])` for a single equation",
             x.shape().describe(),
             value.describe()
         ),

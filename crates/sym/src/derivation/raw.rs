@@ -143,7 +143,7 @@ pub(crate) struct RawFrame {
 pub(crate) struct RawStep {
     pub name: Spanned<String>,
     pub value: Spanned<String>,
-    pub label: Option<String>,
+    pub label: Option<Spanned<String>>,
     #[serde(default)]
     pub doc: String,
     #[serde(default = "yes")]
