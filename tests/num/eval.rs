@@ -133,6 +133,24 @@ fn known_constants_are_folded_into_coefficients() {
     }
 }
 
+/// Monomials with more factors than a term multiplies in a register
+/// (long products of distinct atoms, powers and reciprocals) store a
+/// prefix and still evaluate to the reference.
+#[test]
+fn long_monomials_agree_with_the_reference() {
+    let polys = [
+        poly("a*b*c*x*y*z*x'"),
+        poly("b^3*x*y^2*z*x'/a^2 - 3/5*x*y*z*a*b + c"),
+        poly("(a + x)^3*(b - y)^2*z/c"),
+    ];
+    let mut i = 0;
+    let mut point = |_: Atom| {
+        i += 1;
+        0.3 + 0.17 * f64::from(i)
+    };
+    agree(&polys, &mut point).unwrap();
+}
+
 #[test]
 fn constants_and_zero_compile() {
     let tape = Tape::compile(&[poly("0"), poly("5/2")]);
@@ -154,5 +172,51 @@ proptest! {
         let mut seen = std::collections::HashMap::new();
         let mut point = |a: Atom| *seen.entry(a).or_insert_with(|| { i += 1; let v: f64 = xs[i % xs.len()]; if v.abs() < 0.1 { 0.5 } else { v } });
         prop_assert!(agree(&[p], &mut point).is_ok());
+    }
+
+    /// Tape = Poly::eval for systems of several outputs sharing atoms,
+    /// prefixes and powers, with long products, some atoms folded as known
+    /// constants: the tolerance scaled by Σ |terms| at the same point.
+    #[test]
+    fn systems_with_folded_constants_equal_the_reference(
+        seed in any::<u64>(),
+        xs in prop::collection::vec(-3.0..3.0f64, 9),
+        known in prop::collection::vec(any::<bool>(), 3),
+        outputs in 1usize..5,
+    ) {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let polys: Vec<Poly> = (0..outputs)
+            .map(|_| {
+                let long = (0..rng.gen_range(4..8))
+                    .map(|_| ["a", "b", "c", "x", "y", "z", "x'"][rng.gen_range(0..7)])
+                    .collect::<Vec<_>>()
+                    .join("*");
+                poly(&format!("{} + {long}", expression(&mut rng)))
+            })
+            .collect();
+        let value = |a: Atom| {
+            let k = CONSTANTS.iter().chain(&TIME).position(|&n| n == a.name()).unwrap_or(8)
+                + 3 * a.order() as usize;
+            let v = xs[k % xs.len()];
+            if v.abs() < 0.1 { 0.5 } else { v }
+        };
+        let fixed = |a: Atom| CONSTANTS.iter().position(|&n| n == a.name()).is_some_and(|k| known[k]);
+        let tape = Tape::compile_with(&polys, &mut |a| fixed(a).then(|| value(a)));
+        prop_assert!(tape.atoms().iter().all(|&a| !fixed(a)));
+        let inputs: Vec<f64> = tape.atoms().iter().map(|&a| value(a)).collect();
+        let mut out = vec![0.0; polys.len()];
+        tape.eval(&inputs, &mut out);
+        let full = Tape::compile(&polys);
+        let all: Vec<f64> = full.atoms().iter().map(|&a| value(a)).collect();
+        let mut scale = vec![0.0; polys.len()];
+        full.eval_abs(&all, &mut scale);
+        for (k, p) in polys.iter().enumerate() {
+            let reference = p.eval(&mut |a| value(a));
+            let tol = 64.0 * f64::EPSILON * scale[k];
+            prop_assert!(
+                (out[k] - reference).abs() <= tol,
+                "output {}: {} vs {} (tol {})", k, out[k], reference, tol
+            );
+        }
     }
 }

@@ -94,15 +94,18 @@ fn emit_mul(ops: &mut Vec<Op>, next: &mut u32, a: u32, b: u32) -> u32 {
     *next - 1
 }
 
-/// A term of an output: coefficient times a slot (a prefix product shared
-/// with other terms; `None` for none) times the factors
-/// `rest[start..end]` (slots of powers), multiplied in a register.
+/// The number of factors of a term multiplied in a register: every term
+/// has exactly this many (padded with the slot holding 1, an exact
+/// product), so evaluating a term is a fixed, branch-free product.
+const WIDTH: usize = 4;
+
+/// A term of an output: `coef · slot[f₀] · slot[f₁] · …`, the factors
+/// being a prefix product shared with other terms (if any) and then the
+/// powers of the term's own atoms, padded with [`Tape`]'s slot of 1.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Term {
-    slot: Option<u32>,
-    start: u32,
-    end: u32,
     coef: f64,
+    factors: [u32; WIDTH],
 }
 
 /// A monomial's factors left after folding the known atoms, and its
@@ -112,13 +115,13 @@ type FoldedTerm = (Vec<(Atom, i32)>, f64);
 /// A compiled set of polynomials.
 ///
 /// Invariant: slots `0..atoms.len()` are the inputs in [`Tape::atoms`]
-/// order; every instruction writes a slot above every slot it reads; the
-/// terms of output `k` are `terms[ends[k-1]..ends[k]]`.
+/// order, slot `atoms.len()` holds 1 during an evaluation; every
+/// instruction writes a slot above every slot it reads; the terms of
+/// output `k` are `terms[ends[k-1]..ends[k]]`.
 #[derive(Clone, Debug)]
 pub struct Tape {
     atoms: Vec<Atom>,
     ops: Vec<Op>,
-    rest: Vec<u32>,
     terms: Vec<Term>,
     ends: Vec<usize>,
     slots: usize,
@@ -175,7 +178,8 @@ impl Tape {
                 }
             }
         }
-        let mut next = atoms.len() as u32;
+        let one = atoms.len() as u32;
+        let mut next = one + 1;
         let mut ops = Vec::new();
         let mut powers: HashMap<(Atom, i32), u32> = HashMap::new();
         let mut prefixes: HashMap<Vec<(Atom, i32)>, u32> = HashMap::new();
@@ -190,15 +194,20 @@ impl Tape {
                 }
             }
         }
-        let mut rest = Vec::new();
         let mut terms = Vec::new();
         let mut ends = Vec::with_capacity(polys.len());
         for p in &folded {
             for (factors, c) in p {
-                let shared = (0..factors.len())
+                let mut shared = (0..factors.len())
                     .rev()
                     .find(|&j| j > 0 && uses[&factors[..=j]] > 1)
                     .map_or(0, |j| j + 1);
+                // A term longer than the register width stores a prefix
+                // (a slot and at most WIDTH − 1 factors are left).
+                if factors.len() > WIDTH && factors.len() - shared + usize::from(shared > 0) > WIDTH
+                {
+                    shared = factors.len() - (WIDTH - 1);
+                }
                 let mut acc: Option<u32> = None;
                 for (j, &(a, e)) in factors[..shared].iter().enumerate() {
                     let key = &factors[..=j];
@@ -222,22 +231,16 @@ impl Tape {
                     prefixes.insert(key.to_vec(), s);
                     acc = Some(s);
                 }
-                let start = rest.len() as u32;
-                for &(a, e) in &factors[shared..] {
-                    rest.push(power_slot(
-                        a,
-                        e,
-                        &atom_slot,
-                        &mut powers,
-                        &mut ops,
-                        &mut next,
-                    ));
+                let mut slots = [one; WIDTH];
+                let own = factors[shared..]
+                    .iter()
+                    .map(|&(a, e)| power_slot(a, e, &atom_slot, &mut powers, &mut ops, &mut next));
+                for (k, s) in acc.into_iter().chain(own).enumerate() {
+                    slots[k] = s;
                 }
                 terms.push(Term {
-                    slot: acc,
-                    start,
-                    end: rest.len() as u32,
                     coef: *c,
+                    factors: slots,
                 });
             }
             ends.push(terms.len());
@@ -245,7 +248,6 @@ impl Tape {
         Tape {
             atoms,
             ops,
-            rest,
             terms,
             ends,
             slots: next as usize,
@@ -317,6 +319,7 @@ impl Tape {
     pub fn eval_slots(&self, slots: &mut [f64], out: &mut [f64], abs: bool) {
         assert_eq!(out.len(), self.ends.len(), "one output per polynomial");
         let scratch = &mut slots[..self.slots];
+        scratch[self.atoms.len()] = 1.0;
         for op in &self.ops {
             match *op {
                 Op::Recip { dst, src } => scratch[dst as usize] = 1.0 / scratch[src as usize],
@@ -325,24 +328,29 @@ impl Tape {
                 }
             }
         }
+        if abs {
+            self.sum_terms::<true>(scratch, out);
+        } else {
+            self.sum_terms::<false>(scratch, out);
+        }
+    }
+
+    /// Each output's terms, summed with an exact error term (Knuth's
+    /// TwoSum: no branch; the same error Neumaier's comparison finds).
+    fn sum_terms<const ABS: bool>(&self, s: &[f64], out: &mut [f64]) {
         let mut start = 0;
         for (k, &end) in self.ends.iter().enumerate() {
             let (mut sum, mut comp) = (0.0f64, 0.0f64);
             for t in &self.terms[start..end] {
-                let mut v = t.slot.map_or(t.coef, |s| t.coef * scratch[s as usize]);
-                for &f in &self.rest[t.start as usize..t.end as usize] {
-                    v *= scratch[f as usize];
-                }
-                if abs {
+                let [a, b, c, d] = t.factors;
+                let mut v = t.coef * s[a as usize] * s[b as usize] * s[c as usize] * s[d as usize];
+                if ABS {
                     v = v.abs();
                 }
-                let s = sum + v;
-                comp += if sum.abs() >= v.abs() {
-                    (sum - s) + v
-                } else {
-                    (v - s) + sum
-                };
-                sum = s;
+                let x = sum + v;
+                let bv = x - sum;
+                comp += (sum - (x - bv)) + (v - bv);
+                sum = x;
             }
             out[k] = sum + comp;
             start = end;

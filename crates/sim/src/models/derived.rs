@@ -29,7 +29,7 @@ use hdot_sym::atom::{Atom, AtomKind};
 use hdot_sym::derivation::{Derivation, Value};
 use hdot_sym::poly::Poly;
 use hdot_sym::vector::Mat3;
-use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
+use nalgebra::{DMatrix, Matrix3, Vector3};
 
 use crate::{SimError, System};
 
@@ -97,6 +97,50 @@ enum Source {
 struct Compiled {
     tape: Tape,
     sources: Vec<Source>,
+    gather: Gather,
+}
+
+/// How the inputs of a tape are filled from `(t, y)`, planned once from
+/// the sources: slots copied from the state, one `sin_cos` per angle
+/// whose sine and cosine are both read (one libm call instead of two),
+/// and the rest (applied inputs, unfolded values) one by one: no match on
+/// each atom's source per evaluation.
+#[derive(Debug, Clone, Default)]
+struct Gather {
+    /// `slot ← y[index]`.
+    copies: Vec<(usize, usize)>,
+    /// `slot ← sin y[i]`, `slot ← cos y[i]`: `(i, sin slot, cos slot)`.
+    trig: Vec<(usize, Option<usize>, Option<usize>)>,
+    /// `slot ← source`, evaluated per source.
+    other: Vec<(usize, Source)>,
+}
+
+impl Gather {
+    fn plan(sources: &[Source], n: usize) -> Gather {
+        let mut g = Gather::default();
+        for (slot, &s) in sources.iter().enumerate() {
+            match s {
+                Source::Coordinate(i) => g.copies.push((slot, i)),
+                Source::Rate(i) => g.copies.push((slot, n + i)),
+                Source::SinOf(i) | Source::CosOf(i) => {
+                    let k = match g.trig.iter().position(|t| t.0 == i) {
+                        Some(k) => k,
+                        None => {
+                            g.trig.push((i, None, None));
+                            g.trig.len() - 1
+                        }
+                    };
+                    if matches!(s, Source::SinOf(_)) {
+                        g.trig[k].1 = Some(slot);
+                    } else {
+                        g.trig[k].2 = Some(slot);
+                    }
+                }
+                _ => g.other.push((slot, s)),
+            }
+        }
+        g
+    }
 }
 
 /// A quantity to report as a drift: a step's components.
@@ -110,7 +154,8 @@ pub struct Conserved {
 #[derive(Debug, Clone)]
 enum Form {
     Explicit(Compiled),
-    MassMatrix { m: Compiled, f: Compiled },
+    /// M (row-major) and f, the outputs of one tape.
+    MassMatrix(Compiled),
 }
 
 /// A trigonometric atom the equations divide by.
@@ -178,7 +223,9 @@ impl DerivedModel {
                 ))
             })
         };
-        let (coordinates, outputs): (Vec<Atom>, Vec<Vec<Poly>>) = match &spec.equations {
+        // The outputs of one tape: q̈, or M (row-major) then f (one tape, so
+        // that the two share their inputs, sines and products).
+        let (coordinates, outputs): (Vec<Atom>, Vec<Poly>) = match &spec.equations {
             EquationsSpec::Explicit { step: name } => {
                 let s = step(name)?;
                 let Value::List { items, labels } = &s.value else {
@@ -199,10 +246,7 @@ impl DerivedModel {
                         d.path
                     )));
                 }
-                (
-                    labels.iter().map(|a| a.base()).collect(),
-                    vec![items.clone()],
-                )
+                (labels.iter().map(|a| a.base()).collect(), items.clone())
             }
             EquationsSpec::MassMatrix {
                 mass_matrix,
@@ -245,7 +289,7 @@ impl DerivedModel {
                         ))),
                     })
                     .collect::<Result<Vec<_>, _>>()?;
-                (coords, vec![m, f])
+                (coords, m.into_iter().chain(f).collect())
             }
         };
         let n = coordinates.len();
@@ -268,40 +312,31 @@ impl DerivedModel {
         };
         let unfold = |v: &[Poly]| v.iter().map(|p| d.unfold(p)).collect::<Vec<_>>();
         let mut divisors = Vec::new();
-        let mut compiled = Vec::new();
-        for out in &outputs {
-            let polys = unfold(out);
-            for p in &polys {
-                for (m, _) in p.terms() {
-                    for &(a, e) in m.factors() {
-                        if e >= 0 {
-                            continue;
-                        }
-                        let (q, sin) = match a.kind() {
-                            AtomKind::Sin(q) => (q, true),
-                            AtomKind::Cos(q) => (q, false),
-                            _ => continue,
-                        };
-                        if let Some(i) = coordinates.iter().position(|&c| c == q) {
-                            let dv = Divisor { coordinate: i, sin };
-                            if !divisors.contains(&dv) {
-                                divisors.push(dv);
-                            }
+        let polys = unfold(&outputs);
+        for p in &polys {
+            for (m, _) in p.terms() {
+                for &(a, e) in m.factors() {
+                    if e >= 0 {
+                        continue;
+                    }
+                    let (q, sin) = match a.kind() {
+                        AtomKind::Sin(q) => (q, true),
+                        AtomKind::Cos(q) => (q, false),
+                        _ => continue,
+                    };
+                    if let Some(i) = coordinates.iter().position(|&c| c == q) {
+                        let dv = Divisor { coordinate: i, sin };
+                        if !divisors.contains(&dv) {
+                            divisors.push(dv);
                         }
                     }
                 }
             }
-            compiled.push(cx.compile(&polys)?);
         }
-        let form = match compiled.len() {
-            1 => Form::Explicit(compiled.remove(0)),
-            _ => {
-                let f = compiled.remove(1);
-                Form::MassMatrix {
-                    m: compiled.remove(0),
-                    f,
-                }
-            }
+        let compiled = cx.compile(&polys)?;
+        let form = match &spec.equations {
+            EquationsSpec::Explicit { .. } => Form::Explicit(compiled),
+            EquationsSpec::MassMatrix { .. } => Form::MassMatrix(compiled),
         };
         let mut conserved = Vec::new();
         let mut names: Vec<&String> = d
@@ -428,8 +463,13 @@ impl Resolver<'_> {
             .atoms()
             .iter()
             .map(|&a| self.source(a))
-            .collect::<Result<_, _>>()?;
-        Ok(Compiled { tape, sources })
+            .collect::<Result<Vec<_>, _>>()?;
+        let gather = Gather::plan(&sources, self.coordinates.len());
+        Ok(Compiled {
+            tape,
+            sources,
+            gather,
+        })
     }
 
     fn source(&self, a: Atom) -> Result<Source, SimError> {
@@ -554,9 +594,21 @@ impl DerivedModel {
 
     /// Writes the value of each input of `c` at `(t, y)` into `into`.
     fn inputs_into(&self, c: &Compiled, t: f64, y: &[f64], into: &mut [f64]) {
+        let g = &c.gather;
+        for &(slot, i) in &g.copies {
+            into[slot] = y[i];
+        }
+        for &(i, sin, cos) in &g.trig {
+            match (sin, cos) {
+                (Some(s), Some(c)) => (into[s], into[c]) = y[i].sin_cos(),
+                (Some(s), None) => into[s] = y[i].sin(),
+                (None, Some(c)) => into[c] = y[i].cos(),
+                (None, None) => {}
+            }
+        }
         let n = self.dof();
-        for (v, s) in into.iter_mut().zip(&c.sources) {
-            *v = match *s {
+        for &(slot, s) in &g.other {
+            into[slot] = match s {
                 Source::Coordinate(i) => y[i],
                 Source::Rate(i) => y[n + i],
                 Source::SinOf(i) => y[i].sin(),
@@ -590,14 +642,12 @@ impl DerivedModel {
                 self.eval(c, t, y, qdd);
                 Some(())
             }
-            Form::MassMatrix { m, f } => {
-                let mut mm = vec![0.0; n * n];
-                self.eval(m, t, y, &mut mm);
-                self.eval(f, t, y, qdd);
-                let lu = DMatrix::from_row_slice(n, n, &mm).lu();
-                let x = lu.solve(&DVector::from_column_slice(qdd))?;
-                qdd.copy_from_slice(x.as_slice());
-                Some(())
+            Form::MassMatrix(mf) => {
+                // M and f on the stack (n ≤ MAX_DOF): no allocation.
+                let mut buf = [0.0; MAX_DOF * MAX_DOF + MAX_DOF];
+                let out = &mut buf[..n * n + n];
+                self.eval(mf, t, y, out);
+                solve_small(n, out, qdd)
             }
         }
     }
@@ -625,11 +675,11 @@ impl DerivedModel {
                 ));
             }
         }
-        if let Form::MassMatrix { m, .. } = &self.form {
+        if let Form::MassMatrix(mf) = &self.form {
             let n = self.dof();
-            let mut mm = vec![0.0; n * n];
-            self.eval(m, t, y, &mut mm);
-            let sv = DMatrix::from_row_slice(n, n, &mm).singular_values();
+            let mut mm = vec![0.0; n * n + n];
+            self.eval(mf, t, y, &mut mm);
+            let sv = DMatrix::from_row_slice(n, n, &mm[..n * n]).singular_values();
             let (lo, hi) = (sv.min(), sv.max());
             if lo.is_nan() || lo <= 1e-13 * hi {
                 return Some(format!(
@@ -704,6 +754,65 @@ impl DerivedModel {
     }
 }
 
+/// Solves `M q̈ = f` with `mf` = M (row-major, `n × n`) followed by f,
+/// leaving q̈ in `x`; `None` when a pivot is exactly zero (M singular).
+/// Gaussian elimination with partial pivoting on fixed-size arrays on the
+/// stack, one instance per n ≤ [`MAX_DOF`] (unrolled, no allocation: a
+/// general LU allocates its matrix per evaluation).
+fn solve_small(n: usize, mf: &[f64], x: &mut [f64]) -> Option<()> {
+    match n {
+        1 => solve_fixed::<1>(mf, x),
+        2 => solve_fixed::<2>(mf, x),
+        3 => solve_fixed::<3>(mf, x),
+        4 => solve_fixed::<4>(mf, x),
+        5 => solve_fixed::<5>(mf, x),
+        6 => solve_fixed::<6>(mf, x),
+        _ => None,
+    }
+}
+
+fn solve_fixed<const N: usize>(mf: &[f64], x: &mut [f64]) -> Option<()> {
+    let mut a = [[0.0; N]; N];
+    for (i, row) in a.iter_mut().enumerate() {
+        row.copy_from_slice(&mf[i * N..(i + 1) * N]);
+    }
+    let mut b = [0.0; N];
+    b.copy_from_slice(&mf[N * N..N * N + N]);
+    let mut inv = [0.0; N];
+    for k in 0..N {
+        // Partial pivoting by compare-and-swap with each row below (row k
+        // ends with the largest |a[·][k]|): fixed indices only, so the
+        // unrolled matrix can stay in registers.
+        for i in k + 1..N {
+            if a[i][k].abs() > a[k][k].abs() {
+                let (top, rest) = a.split_at_mut(i);
+                std::mem::swap(&mut top[k], &mut rest[0]);
+                b.swap(i, k);
+            }
+        }
+        if a[k][k] == 0.0 {
+            return None;
+        }
+        inv[k] = 1.0 / a[k][k];
+        for i in k + 1..N {
+            let l = a[i][k] * inv[k];
+            for j in k + 1..N {
+                a[i][j] -= l * a[k][j];
+            }
+            b[i] -= l * b[k];
+        }
+    }
+    for k in (0..N).rev() {
+        let mut s = b[k];
+        for j in k + 1..N {
+            s -= a[k][j] * b[j];
+        }
+        b[k] = s * inv[k];
+    }
+    x.copy_from_slice(&b);
+    Some(())
+}
+
 /// The model as an ODE on `y = (q, q̇)` with `N = 2 × dof` components.
 pub struct DerivedSystem<'a, const N: usize>(pub &'a DerivedModel);
 
@@ -723,5 +832,53 @@ impl<const N: usize> System<N> for DerivedSystem<'_, N> {
             Some(why) => Err(SimError::CoordinateSingularity { t, why }),
             None => Ok(()),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The stack solve against nalgebra's LU for every size it takes, on
+    /// seeded random matrices (and M x = f checked by its residual).
+    #[test]
+    fn the_small_solve_agrees_with_a_general_lu() {
+        let mut seed = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        for n in 1..=MAX_DOF {
+            for _ in 0..200 {
+                let mf: Vec<f64> = (0..n * n + n).map(|_| next()).collect();
+                let mut x = vec![0.0; n];
+                solve_small(n, &mf, &mut x).expect("a random matrix is regular");
+                let m = DMatrix::from_row_slice(n, n, &mf[..n * n]);
+                let f = nalgebra::DVector::from_column_slice(&mf[n * n..]);
+                let want = m.clone().lu().solve(&f).unwrap();
+                // Both errors are bounded by the condition number times
+                // the round-off of the solution's size.
+                let sv = m.singular_values();
+                let cond = sv.max() / sv.min();
+                let scale = cond * (1.0 + want.amax()) * f64::EPSILON * 64.0;
+                for i in 0..n {
+                    assert!(
+                        (x[i] - want[i]).abs() <= scale,
+                        "n = {n}, x[{i}]: {} vs {} (scale {scale:.3e})",
+                        x[i],
+                        want[i]
+                    );
+                }
+            }
+        }
+        // A zero pivot, wherever it appears, is a singular matrix.
+        assert!(solve_small(2, &[1.0, 2.0, 2.0, 4.0, 1.0, 1.0], &mut [0.0; 2]).is_none());
+        assert!(solve_small(1, &[0.0, 1.0], &mut [0.0; 1]).is_none());
+        // Pivoting: a zero in the leading position is no singularity.
+        let mut x = [0.0; 2];
+        solve_small(2, &[0.0, 1.0, 1.0, 0.0, 3.0, 5.0], &mut x).unwrap();
+        assert_eq!(x, [5.0, 3.0]);
     }
 }
