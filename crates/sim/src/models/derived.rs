@@ -771,6 +771,8 @@ fn solve_small(n: usize, mf: &[f64], x: &mut [f64]) -> Option<()> {
     }
 }
 
+// Index loops read as the elimination is written (rows i and k of one array).
+#[allow(clippy::needless_range_loop)]
 fn solve_fixed<const N: usize>(mf: &[f64], x: &mut [f64]) -> Option<()> {
     let mut a = [[0.0; N]; N];
     for (i, row) in a.iter_mut().enumerate() {
