@@ -268,6 +268,19 @@ pub fn plan(scene: &Scene, req: &Request) -> Result<Plan, SimError> {
                 ));
             }
         }
+        // Name the model that would integrate the scene, and why the
+        // method is not one of its.
+        for e in MODELS.iter() {
+            if e.integration.is_some() && e.default_choice && applies(e)? {
+                return Err(SimError::MethodNotApplicable {
+                    method: method.name().into(),
+                    model: e.name.into(),
+                    reason: "it has no splitting into exactly solved sub-flows, which the \
+                             splitting methods need"
+                        .into(),
+                });
+            }
+        }
         return Err(not_applicable(
             Model::RigidBody,
             scene,
@@ -1131,7 +1144,7 @@ pub const MODELS: [ModelEntry; 7] = [
         refusal: refuse_derived,
         covers: None,
         integration: Some(integrate_derived),
-        takes: any_method,
+        takes: not_a_splitting,
         default_choice: true,
         run: derived::run,
         sweep: Some(derived::sweep_one),
@@ -1833,7 +1846,9 @@ pub fn work_precision(
 ) -> Result<Vec<Row>, SimError> {
     let entry = sweep_entry(scene)?;
     let mut rows = vec![];
-    for method in Method::ALL {
+    // The methods that apply to the model (no splittings without exactly
+    // solved sub-flows).
+    for method in Method::ALL.into_iter().filter(|m| (entry.takes)(*m)) {
         let mut previous_error = f64::INFINITY;
         for step in sweep_steps(method, t_end) {
             let row = sweep_one(entry, scene, method, step, t_end, min_time)?;
@@ -1910,6 +1925,11 @@ fn sweep_one(
     };
     let sweep = entry.sweep.expect("chosen by sweep_entry");
     sweep(scene, &mut row, t_end, min_time)?;
+    // A run whose error is not finite diverged, as `hdot simulate` says of
+    // it: a failed row, left out of the chart.
+    if row.status == "ok" && !row.error.is_finite() {
+        row.status = format!("diverged: the error at T = {t_end} is not finite");
+    }
     Ok(row)
 }
 
