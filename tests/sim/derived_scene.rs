@@ -258,6 +258,8 @@ refuses! {
         => "the constant `a` has no value";
     initial_rate_missing: TURNTABLE_SCENE.replace("rates = { theta = 0.0 }", ""), TURNTABLE
         => "`theta'` is missing";
+    initial_name_misspelt: TURNTABLE_SCENE.replace("{ theta = 0.3 }", "{ thta = 0.3 }"), TURNTABLE
+        => "scene.toml: field `initial`: initial value for `thta`, which is not a coordinate";
     initial_value_for_a_constant: TURNTABLE_SCENE.replace("{ theta = 0.3 }", "{ theta = 0.3, m = 1.0 }"), TURNTABLE
         => "`m`, which is not a coordinate";
     input_not_given: TURNTABLE_SCENE.replace("Omega = \"2.5\"", ""), TURNTABLE

@@ -558,6 +558,15 @@ impl DerivedModel {
     pub fn initial_state(&self, values: &BTreeMap<String, f64>) -> Result<Vec<f64>, SimError> {
         let n = self.dof();
         let mut y = vec![0.0; 2 * n];
+        // A misspelt name is reported as such, before the name it misses.
+        for key in values.keys() {
+            let base = key.trim_end_matches('\'');
+            if !self.coordinates.iter().any(|c| c.name() == base) || key.len() - base.len() > 1 {
+                return Err(err(format!(
+                    "initial value for `{key}`, which is not a coordinate or its rate"
+                )));
+            }
+        }
         for (i, q) in self.coordinates.iter().enumerate() {
             for (k, key) in [q.name().to_string(), format!("{}'", q.name())]
                 .into_iter()
@@ -579,14 +588,6 @@ impl DerivedModel {
                     )));
                 }
                 y[k * n + i] = v;
-            }
-        }
-        for key in values.keys() {
-            let base = key.trim_end_matches('\'');
-            if !self.coordinates.iter().any(|c| c.name() == base) || key.len() - base.len() > 1 {
-                return Err(err(format!(
-                    "initial value for `{key}`, which is not a coordinate or its rate"
-                )));
             }
         }
         Ok(y)

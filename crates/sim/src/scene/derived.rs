@@ -230,7 +230,10 @@ pub(super) fn parse(
     for (k, v) in start.rates {
         values.insert(format!("{k}'"), v);
     }
-    let y0 = model.initial_state(&values)?;
+    let y0 = model.initial_state(&values).map_err(|e| match e {
+        SimError::Derived { message } => bad("initial", message),
+        e => e,
+    })?;
     if let Some(f) = &raw.frame
         && let Err(why) = model
             .attitude(f, 0.0, &y0)
