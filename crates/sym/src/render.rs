@@ -343,14 +343,22 @@ fn sympy(d: &Derivation) -> String {
                     x.push(crate::expr::Node::Atom(a));
                     print::print(&x, &style)
                 }
+                // An equation "= 0": the number 0, not a symbol named 0.
+                None if s.label.trim() == "0" => "Integer(0)".to_owned(),
                 None if c.is_empty() => format!("Symbol('{base}')"),
                 None => format!("Symbol('{base}_{}')", c.replace('\'', "dot")),
             };
             labels.push(format!("'{}.{}'", s.name, c.replace('\'', "\\'")));
-            eqs.push(format!("    Eq({lhs}, {}),", print::print(e, &style)));
+            // Eq(0, 0) would evaluate to True and lose its sides.
+            let keep = if lhs == "Integer(0)" {
+                ", evaluate=False"
+            } else {
+                ""
+            };
+            eqs.push(format!("    Eq({lhs}, {}{keep}),", print::print(e, &style)));
             match s.checks.get(k) {
                 Some(ch) => exps.push(format!(
-                    "    Eq({lhs}, {}),",
+                    "    Eq({lhs}, {}{keep}),",
                     print::print(&ch.expected, &style)
                 )),
                 None => exps.push("    None,".into()),
