@@ -70,6 +70,15 @@ pub enum SimError {
         /// Why not.
         reason: String,
     },
+    /// A step control the method does not have (a tolerance for a
+    /// fixed-step method).
+    #[error("method `{method}` {reason}")]
+    StepControl {
+        /// The method asked for.
+        method: String,
+        /// What it needs instead.
+        reason: String,
+    },
     /// A method that cannot integrate this model (e.g. a splitting of a non-splittable model).
     #[error("method `{method}` cannot integrate model `{model}`: {reason}")]
     MethodNotApplicable {

@@ -207,10 +207,9 @@ where
         (Method::Dopri5 | Method::Dop853, Step::Tolerance(tol)) => {
             adaptive(sys, method, tol, t0, y0, t_end, limits, observe)
         }
-        (_, Step::Tolerance(_)) => Err(SimError::MethodNotApplicable {
+        (_, Step::Tolerance(_)) => Err(SimError::StepControl {
             method: method.name().into(),
-            model: "adaptive step control".into(),
-            reason: "a fixed-step method needs a step size (--dt), not a tolerance".into(),
+            reason: "has a fixed step: give a step size (--dt), not a tolerance (--tol)".into(),
         }),
         (_, Step::Fixed(h)) => fixed(sys, method, h, t0, y0, t_end, limits, observe),
     }
