@@ -160,24 +160,3 @@ fn end_times_beyond_f64_resolution_are_refused() {
     assert!(matches!(err, SimError::EndTimeTooLong { .. }), "{err:?}");
     assert!(run::check_end_time(&s, 1e15).is_ok());
 }
-
-#[test]
-fn a_tolerance_for_a_fixed_step_method_is_refused_naming_the_method() {
-    use hdot_sim::{Method, Step};
-    let s = scene(
-        "principal_moments = [1.0, 2.0, 3.0]\nmass = 1.0",
-        "angular_velocity = [0.1, 1.0, 0.1]",
-        1.0,
-    );
-    let req = Request {
-        method: Some(Method::Rk4),
-        step: Some(Step::Tolerance(1e-6)),
-        ..Request::default()
-    };
-    let err = run::plan(&s, &req)
-        .and_then(|p| run::run(&s, &p, &mut Output::default()).map(|_| ()))
-        .expect_err("rk4 has no tolerance");
-    assert!(matches!(err, SimError::StepControl { .. }), "{err:?}");
-    let msg = err.to_string();
-    assert!(msg.contains("`rk4`") && msg.contains("--dt"), "{msg}");
-}

@@ -50,7 +50,7 @@ rejects! {
         => SimError::ModelNotApplicable { .. }, "no bearing";
     tolerance_for_a_fixed_step_method: run::plan(&free_with("[1.0, 0.0, 0.0, 0.0]").unwrap(), &Request { method: Some(Method::Rk4), step: Some(Step::Tolerance(1e-6)), ..Request::default() })
         .and_then(|p| run::run(&free_with("[1.0, 0.0, 0.0, 0.0]").unwrap(), &p, &mut Output::default()))
-        => SimError::MethodNotApplicable { .. }, "--dt";
+        => SimError::StepControl { .. }, "give a step size (--dt)";
     stored_output_over_budget: {
         let scene = free_with("[1.0, 0.0, 0.0, 0.0]").unwrap();
         let plan = run::plan(&scene, &Request { method: Some(Method::Rk4), step: Some(Step::Fixed(1e-4)), ..Request::default() }).unwrap();
