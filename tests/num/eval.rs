@@ -15,6 +15,32 @@ fn poly(text: &str) -> Poly {
         .unwrap_or_else(|e| panic!("{text}: {e:?}"))
 }
 
+/// Whether `tape` (compiled from `polys`, perhaps with constants folded)
+/// evaluates every output to `Poly::eval` at the values `value` gives,
+/// within 64 ulps of the reference's own Σ |terms|; else which output
+/// differs and by how much.
+fn agrees_with_reference(
+    tape: &Tape,
+    polys: &[Poly],
+    value: &mut dyn FnMut(Atom) -> f64,
+) -> Result<(), String> {
+    let inputs: Vec<f64> = tape.atoms().iter().map(|&a| value(a)).collect();
+    let mut out = vec![0.0; polys.len()];
+    tape.eval(&inputs, &mut out);
+    let full = Tape::compile(polys);
+    let all: Vec<f64> = full.atoms().iter().map(|&a| value(a)).collect();
+    let mut scale = vec![0.0; polys.len()];
+    full.eval_abs(&all, &mut scale);
+    for (k, p) in polys.iter().enumerate() {
+        let reference = p.eval(&mut |a| value(a));
+        let tol = 64.0 * f64::EPSILON * scale[k];
+        if (out[k] - reference).abs() > tol {
+            return Err(format!("output {k}: {} vs {reference} (tol {tol})", out[k]));
+        }
+    }
+    Ok(())
+}
+
 /// A random expression: sums of products of powers, derivatives and
 /// divisions by constants, with rational coefficients.
 fn expression(rng: &mut impl Rng) -> String {
@@ -113,22 +139,8 @@ fn known_constants_are_folded_into_coefficients() {
         let mut value = |a: Atom| {
             known(a).unwrap_or_else(|| *values.entry(a).or_insert_with(|| rng.gen_range(-2.0..2.0)))
         };
-        let inputs: Vec<f64> = tape.atoms().iter().map(|&a| value(a)).collect();
-        let mut out = vec![0.0; polys.len()];
-        tape.eval(&inputs, &mut out);
-        // The tolerance: the reference's own Σ |terms| with these values.
-        let full = Tape::compile(&polys);
-        let all: Vec<f64> = full.atoms().iter().map(|&a| value(a)).collect();
-        let mut scale = vec![0.0; polys.len()];
-        full.eval_abs(&all, &mut scale);
-        for (k, p) in polys.iter().enumerate() {
-            let reference = p.eval(&mut |a| value(a));
-            let tol = 64.0 * f64::EPSILON * scale[k];
-            assert!(
-                (out[k] - reference).abs() <= tol,
-                "output {k}: {} vs {reference} (tol {tol})",
-                out[k]
-            );
+        if let Err(m) = agrees_with_reference(&tape, &polys, &mut value) {
+            panic!("{m}");
         }
     }
 }
@@ -203,20 +215,7 @@ proptest! {
         let fixed = |a: Atom| CONSTANTS.iter().position(|&n| n == a.name()).is_some_and(|k| known[k]);
         let tape = Tape::compile_with(&polys, &mut |a| fixed(a).then(|| value(a)));
         prop_assert!(tape.atoms().iter().all(|&a| !fixed(a)));
-        let inputs: Vec<f64> = tape.atoms().iter().map(|&a| value(a)).collect();
-        let mut out = vec![0.0; polys.len()];
-        tape.eval(&inputs, &mut out);
-        let full = Tape::compile(&polys);
-        let all: Vec<f64> = full.atoms().iter().map(|&a| value(a)).collect();
-        let mut scale = vec![0.0; polys.len()];
-        full.eval_abs(&all, &mut scale);
-        for (k, p) in polys.iter().enumerate() {
-            let reference = p.eval(&mut |a| value(a));
-            let tol = 64.0 * f64::EPSILON * scale[k];
-            prop_assert!(
-                (out[k] - reference).abs() <= tol,
-                "output {}: {} vs {} (tol {})", k, out[k], reference, tol
-            );
-        }
+        let r = agrees_with_reference(&tape, &polys, &mut |a| value(a));
+        prop_assert!(r.is_ok(), "{}", r.unwrap_err());
     }
 }
