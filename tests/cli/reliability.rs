@@ -258,13 +258,26 @@ fn an_installed_binary_needs_no_source_tree() {
     std::fs::copy(hdot_bin(), &bin).unwrap();
     let work = dir.path().join("work");
     std::fs::create_dir(&work).unwrap();
+    // A binary copied while another test thread forks may still be open for
+    // writing in that child until it execs, and running it then fails with
+    // ETXTBSY ("Text file busy"; rust-lang/rust#114554): retry briefly.
     let run = |args: &[&str]| {
-        Command::new(&bin)
-            .args(args)
-            .current_dir(&work)
-            .env_remove("HDOT_DERIVATIONS")
-            .output()
-            .unwrap()
+        let mut tries = 0;
+        loop {
+            match Command::new(&bin)
+                .args(args)
+                .current_dir(&work)
+                .env_remove("HDOT_DERIVATIONS")
+                .output()
+            {
+                Ok(out) => break out,
+                Err(e) if e.raw_os_error() == Some(26) && tries < 50 => {
+                    tries += 1;
+                    std::thread::sleep(std::time::Duration::from_millis(20));
+                }
+                Err(e) => panic!("cannot run the copied binary: {e}"),
+            }
+        }
     };
     let out = run(&["list"]);
     assert!(out.status.success(), "{}", text(&out.stderr));
