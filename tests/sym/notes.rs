@@ -455,3 +455,45 @@ latex_text_cases! {
     prose_arguments_stay_one_formula: "the form M(q) q̈ = f(q, q̇, t) that" => r"the form $M(q) \ddot{q} = f(q, \dot{q}, t)$ that";
     prose_comma_outside_brackets_ends_a_formula: "ω_x, ω_y and g(q̇, t)." => r"$\omega_{x}$, $\omega_{y}$ and $g(\dot{q}, t)$.";
 }
+
+/// A step labelled 0 whose equations differ in length, written for this
+/// test: every equation reads `… = 0`, the long one broken over lines
+/// too, never `0 = …` (a new user's rod pendulum had both in one block).
+#[test]
+fn equations_labelled_zero_read_equals_zero_when_broken() {
+    let text = r#"
+title = "A rod in a two-axis joint"
+source = "Written for the notes test"
+[symbols]
+constants = ["I", "Ip", "m", "g", "l"]
+time = ["phi", "theta"]
+[[step]]
+name = "eom"
+label = "0"
+doc = "Lagrange's equations"
+value = """list(I*phi''*cos(theta)^2 + Ip*phi''*sin(theta)^2 - 2*I*phi'*theta'*sin(theta)*cos(theta)
+  + 2*Ip*phi'*theta'*sin(theta)*cos(theta), Ip*theta'' + m*g*l*sin(theta))"""
+"#;
+    let ds = vec![load_str("own/rod-joint.toml", text).unwrap_or_else(|e| panic!("{e}"))];
+    let doc = Course::plain(&ds).document(&ds);
+    for (what, tex) in [
+        ("slides", notes::slides_document(&doc)),
+        ("notes", notes::latex_document(&doc)),
+    ] {
+        let start = tex.find(r"\begin{align*}").unwrap();
+        let end = tex[start..].find(r"\end{align*}").unwrap() + start;
+        let block = &tex[start..end];
+        assert!(!block.contains("0 &="), "{what}: {block}");
+        // Two equations, each ending `= 0`.
+        assert_eq!(block.matches("= 0").count(), 2, "{what}: {block}");
+        for eq in block.split(r" \\").filter(|l| l.contains("= 0")) {
+            assert!(eq.trim_end().ends_with("= 0"), "{what}: {eq}");
+        }
+    }
+    // On a slide the long one is broken: its continuation ends `= 0`.
+    let slides = notes::slides_document(&doc);
+    assert!(
+        slides.contains(r"\cos\theta = 0 \\") && slides.contains(r"&\quad {} + 2 I' "),
+        "{slides}"
+    );
+}

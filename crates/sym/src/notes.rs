@@ -309,16 +309,40 @@ fn symbol_list(names: &[String]) -> String {
         .join(",\\ \\allowbreak ")
 }
 
+/// The lines of equations in one `align*` block. An equation labelled 0
+/// always reads `… = 0`: when every such equation of the block fits on a
+/// line they are aligned at `=` (`result &= 0`); when one must be broken,
+/// each is set from the left edge of the block (`& result = 0`, the
+/// continuation lines indented under it), so that a long equation never
+/// turns into `0 = …` beside a short one that reads `… = 0`.
 fn equations_lines(eqs: &[Equation], width: f32) -> Vec<String> {
+    let zero_fits = |e: &Equation| math_width(&print::latex(&e.rhs)) + 4.0 <= width;
+    let aligned_at_equals = eqs.iter().filter(|e| e.lhs.is_zero()).all(zero_fits);
     eqs.iter()
         .flat_map(|e| {
-            let rhs = print::latex(&e.rhs);
-            // `result = 0` when it fits on a line, else `0 = …` broken.
-            if e.lhs.is_zero() && math_width(&rhs) + 4.0 <= width {
-                vec![format!("{rhs} &= 0")]
-            } else {
+            if !e.lhs.is_zero() {
                 equation_lines(&e.lhs.latex(), &e.rhs, width)
+            } else if aligned_at_equals {
+                vec![format!("{} &= 0", print::latex(&e.rhs))]
+            } else {
+                zero_lines(&e.rhs, width)
             }
+        })
+        .collect()
+}
+
+/// `rhs = 0` broken like [`equation_lines`], set from the left edge of the
+/// block: `& a + b`, `&\quad {} + c = 0`.
+fn zero_lines(rhs: &Expr, width: f32) -> Vec<String> {
+    let mut lines = equation_lines("", rhs, width - 4.0);
+    if let Some(last) = lines.last_mut() {
+        last.push_str(" = 0");
+    }
+    lines
+        .into_iter()
+        .map(|l| match l.strip_prefix(" &= ") {
+            Some(first) => format!("& {first}"),
+            None => l,
         })
         .collect()
 }
