@@ -24,6 +24,8 @@ mod eval;
 mod verify;
 // Verification from declarations.
 mod verify_declared;
+// Generalized quantities under [motion]'s rules (constrained partial velocities).
+mod constrained;
 // Mutated derivations rejected by verification (issue 9).
 mod mutation;
 // A user's own crate: check(&derivation, &Options) and verify::strategy.

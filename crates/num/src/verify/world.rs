@@ -8,7 +8,7 @@ use std::collections::HashMap;
 
 use hdot_sym::atom::Atom;
 use hdot_sym::derivation::Derivation;
-use hdot_sym::derivation::physics::{Bodies, FrameMotion, PointKind};
+use hdot_sym::derivation::physics::{Bodies, FrameMotion, PointKind, Rule, RuleValue};
 use hdot_sym::poly::Poly;
 use hdot_sym::vector::Vec3;
 use nalgebra::{Matrix3, Vector3};
@@ -151,25 +151,129 @@ fn vec_jet(v: &Vec3, values: &Values) -> Result<VecJet, VerifyError> {
     }))
 }
 
+/// The virtual displacement of coordinate `q` as coefficients of the
+/// coordinates' partials: q itself with 1, and every coordinate x that a
+/// rule of `[motion]` ties to q with `∂x/∂q` by the chain rule through the
+/// rules — for the rule `x⁽ⁿ⁾ = f` (of the lowest order n given for x),
+/// `Σ_y ∂f/∂y⁽ⁿ⁾ · ∂y/∂q` over the coordinates y already displaced
+/// (`psi' = -phi'/cos(gamma)` moves ψ by −1/cos γ per unit of φ). These
+/// are the constrained partial velocities: Σ m a · δr is the generalized
+/// force of q in the motions the rules allow. A rule for q itself is not
+/// used (q is the independent coordinate named), and a coordinate no rule
+/// ties to q stays fixed.
+pub(crate) fn displacement(
+    d: &Derivation,
+    values: &Values,
+    q: Atom,
+) -> Result<Vec<(Atom, f64)>, VerifyError> {
+    let q = q.base();
+    let mut rules: Vec<&Rule> = Vec::new();
+    for r in &d.physics.motion {
+        let t = r.target.base();
+        if t == q {
+            continue;
+        }
+        match rules.iter_mut().find(|x| x.target.base() == t) {
+            Some(x) if x.target.order() <= r.target.order() => {}
+            Some(x) => *x = r,
+            None => rules.push(r),
+        }
+    }
+    let mut c: Vec<(Atom, f64)> = vec![(q, 1.0)];
+    // A chain of rules is followed in as many passes as it has links.
+    for _ in 0..=rules.len() {
+        let mut changed = false;
+        for r in &rules {
+            let (t, n) = (r.target.base(), r.target.order());
+            let v = match &r.value {
+                RuleValue::QuarterTurns(_) => 0.0,
+                RuleValue::Expr(f) => {
+                    let mut v = 0.0;
+                    for &(y, cy) in c.iter().filter(|(y, _)| *y != t) {
+                        let dy = f.partial(Atom::time(y.name(), n));
+                        if !dy.is_zero() {
+                            v += cy
+                                * values
+                                    .eval(&dy)
+                                    .map_err(|e| e.in_step(d, &format!("given {}", r.text)))?
+                                    .0;
+                        }
+                    }
+                    v
+                }
+            };
+            match c.iter_mut().find(|(x, _)| *x == t) {
+                Some(e) if e.1 == v => {}
+                Some(e) => {
+                    e.1 = v;
+                    changed = true;
+                }
+                None if v == 0.0 => {}
+                None => {
+                    c.push((t, v));
+                    changed = true;
+                }
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    Ok(c)
+}
+
 impl<'d> World<'d> {
     /// Builds the model at the instant `values` describe, with the free
     /// attitudes, free points and bodies of `draw`; each particle carries
-    /// ∂r/∂q for each of `coordinates`.
+    /// its virtual displacement `δr` for each of `coordinates`: ∂r/∂q,
+    /// plus ∂r/∂x times ∂x/∂q for each coordinate x that `[motion]`'s rules
+    /// tie to q ([`displacement`]).
     pub fn build(
         d: &'d Derivation,
         draw: &'d Draw,
         values: &Values,
         coordinates: &[Atom],
     ) -> Result<World<'d>, VerifyError> {
-        let mut w = World::build_for(d, draw, values, coordinates.first().copied())?;
-        for (k, q) in coordinates.iter().enumerate().skip(1) {
-            let other = World::build_for(d, draw, values, Some(*q))?;
-            for (b, ob) in w.bodies.iter_mut().zip(other.bodies) {
-                for (p, op) in b.iter_mut().zip(ob) {
-                    p.dr.push(op.dr[0]);
-                }
+        let displacements = coordinates
+            .iter()
+            .map(|q| displacement(d, values, *q))
+            .collect::<Result<Vec<_>, _>>()?;
+        // The coordinates whose partials are needed, each built once.
+        let mut atoms: Vec<Atom> = Vec::new();
+        for (x, _) in displacements.iter().flatten() {
+            if !atoms.contains(x) {
+                atoms.push(*x);
             }
-            debug_assert!(w.bodies.iter().flatten().all(|p| p.dr.len() == k + 1));
+        }
+        let mut w = World::build_for(d, draw, values, atoms.first().copied())?;
+        // ∂r/∂x of each particle (body by body) for each of `atoms`.
+        let mut partials: Vec<Vec<Vec<Vector3<f64>>>> = Vec::with_capacity(atoms.len());
+        let of = |w: &World<'_>| -> Vec<Vec<Vector3<f64>>> {
+            w.bodies
+                .iter()
+                .map(|b| b.iter().map(|p| p.dr[0]).collect())
+                .collect()
+        };
+        if !atoms.is_empty() {
+            partials.push(of(&w));
+        }
+        for x in atoms.iter().skip(1) {
+            partials.push(of(&World::build_for(d, draw, values, Some(*x))?));
+        }
+        for (bi, b) in w.bodies.iter_mut().enumerate() {
+            for (pi, p) in b.iter_mut().enumerate() {
+                p.dr = displacements
+                    .iter()
+                    .map(|disp| {
+                        disp.iter()
+                            .map(|(x, c)| {
+                                let k = atoms.iter().position(|a| a == x).expect("collected");
+                                *c * partials[k][bi][pi]
+                            })
+                            .sum()
+                    })
+                    .collect();
+            }
         }
         w.coordinates = coordinates.to_vec();
         Ok(w)
