@@ -240,6 +240,147 @@ fn work_precision_sweeps_a_derived_scene() {
     // Explicit Euler at its coarsest step: whatever it reaches, a
     // non-finite error is never reported as a result.
     assert!(rows.iter().any(|r| r.method == Method::Euler));
+    // The Jacobi integral is conserved but not an energy: the energy
+    // column is not available, says why, and its cells are empty (never
+    // `NaN`); the Jacobi integral goes in the other column.
+    let columns = run::drift_columns(&scene).expect("columns");
+    let why = columns.energy.expect_err("no energy");
+    assert!(
+        why.contains("no conserved step is an energy") && why.contains("`jacobi`"),
+        "{why}"
+    );
+    assert!(columns.momentum.expect("jacobi").contains("`jacobi`"));
+    for r in &rows {
+        let csv = r.csv();
+        assert!(!csv.contains("NaN"), "{csv}");
+        assert_eq!(csv.split(',').nth(7), Some(""), "{csv}");
+    }
+}
+
+/// A problem written for this test: a plate hanging from a hinge on a
+/// freely turning shaft (ψ the shaft, χ the swing), in mass-matrix form.
+/// The step `W` is an energy only by its meaning (its name, label and doc
+/// do not say so); `h`, the momentum of the shaft, is conserved too.
+const SWING: &str = r#"
+title = "a plate swinging from a hinge on a free turntable"
+source = "written for the test"
+gravity = "[0, 0, -g] in N"
+[symbols]
+constants = ["m", "g", "c", "A", "C"]
+time = ["psi", "chi"]
+[[frame]]
+name = "D"
+parent = "N"
+rotation = "z(psi)"
+[[frame]]
+name = "B"
+parent = "D"
+rotation = "x(chi)"
+[[point]]
+name = "O"
+fixed = true
+[[body]]
+name = "plate"
+frame = "B"
+point = "O"
+mass = "m"
+mass_centre = "[0, 0, -c] in B"
+inertia = "principal(A, A, C)"
+symmetry = "axisymmetric z"
+[[step]]
+name = "w"
+value = "angvel(B)"
+[[step]]
+name = "K"
+value = "dot(w, principal(A, A, C)*w)/2"
+[[step]]
+name = "U"
+value = "-m*g*c*cos(chi)"
+[[step]]
+name = "W"
+label = "W"
+value = "K + U"
+means = "kinetic_energy(plate) + potential_energy(plate, O)"
+conserved = true
+[[step]]
+name = "h"
+value = "partial(K, psi')"
+conserved = true
+[[step]]
+name = "eqs"
+value = "lagrange(K, U, [psi, chi])"
+[[step]]
+name = "M"
+value = "mass_matrix(eqs, [psi'', chi''])"
+[[step]]
+name = "f"
+value = "forcing(eqs, [psi'', chi''])"
+"#;
+
+const SWING_SCENE: &str = r#"
+name = "swinging plate on a free turntable"
+kind = "derived"
+t_end = 2.0
+[derivation]
+file = "swing.toml"
+mass_matrix = "M"
+forcing = "f"
+frame = "B"
+[constants]
+m = 0.8
+g = 9.81
+c = 0.3
+A = 0.05
+C = 0.02
+[initial]
+coordinates = { psi = 0.0, chi = 0.7 }
+rates = { psi = 1.5, chi = 0.0 }
+"#;
+
+#[test]
+fn work_precision_reports_the_energy_the_derivation_marks_conserved() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    std::fs::write(dir.path().join("swing.toml"), SWING).expect("write");
+    let scene = Scene::parse(SWING_SCENE, &dir.path().join("scene.toml")).expect("scene");
+    let columns = run::drift_columns(&scene).expect("columns");
+    let energy = columns.energy.expect("W is an energy by its meaning");
+    assert!(
+        energy.contains("`W`") && energy.contains("kinetic_energy"),
+        "{energy}"
+    );
+    let momentum = columns.momentum.expect("h");
+    assert!(
+        momentum.contains("`h`") && !momentum.contains("`W`"),
+        "{momentum}"
+    );
+    let rows = run::work_precision(&scene, 1.0, 0.0, |_| {}).expect("sweep");
+    let ok: Vec<&run::Row> = rows.iter().filter(|r| r.status == "ok").collect();
+    assert!(ok.len() > 10, "{} rows ok", ok.len());
+    for r in &ok {
+        assert!(
+            r.energy_drift.is_finite() && r.momentum_drift.is_finite(),
+            "{}",
+            r.csv()
+        );
+    }
+    // The energy column is W's drift: the most accurate DOP853 run keeps
+    // it to round-off, the coarsest Euler run does not.
+    let best = ok
+        .iter()
+        .filter(|r| r.method == Method::Dop853)
+        .map(|r| r.energy_drift)
+        .fold(f64::INFINITY, f64::min);
+    assert!(best < 1e-10, "dop853 energy drift {best:e}");
+    let euler = ok
+        .iter()
+        .find(|r| r.method == Method::Euler)
+        .expect("euler");
+    assert!(
+        euler.energy_drift > 1e-3,
+        "euler energy drift {:e}",
+        euler.energy_drift
+    );
+    assert!(rows.iter().all(|r| !r.csv().contains("NaN")));
 }
 
 macro_rules! refuses {

@@ -1038,7 +1038,16 @@ pub struct ModelEntry {
     /// integrated system of the scenes this model applies to; `None` for
     /// models the sweep does not measure (closed forms, and the
     /// comparison models of the same scenes).
-    sweep: Option<SweepFn>,
+    sweep: Option<Sweep>,
+}
+
+/// How the work-precision sweep measures a model.
+#[derive(Clone, Copy)]
+struct Sweep {
+    /// One run.
+    run: SweepFn,
+    /// What its drift columns measure on a scene.
+    columns: fn(&Scene) -> DriftColumns,
 }
 
 /// How a model runs: the scene, its plan, the recorder of streamed or
@@ -1063,7 +1072,10 @@ pub const MODELS: [ModelEntry; 7] = [
         takes: any_method,
         default_choice: true,
         run: run_fixed_axis,
-        sweep: Some(sweep_fixed_axis),
+        sweep: Some(Sweep {
+            run: sweep_fixed_axis,
+            columns: columns_fixed_axis,
+        }),
     },
     ModelEntry {
         model: Model::SteadyPrecession,
@@ -1119,7 +1131,10 @@ pub const MODELS: [ModelEntry; 7] = [
         takes: any_method,
         default_choice: true,
         run: run_rigid_body,
-        sweep: Some(sweep_rigid_body),
+        sweep: Some(Sweep {
+            run: sweep_rigid_body,
+            columns: columns_rigid_body,
+        }),
     },
     ModelEntry {
         model: Model::EulerAngles,
@@ -1147,7 +1162,10 @@ pub const MODELS: [ModelEntry; 7] = [
         takes: not_a_splitting,
         default_choice: true,
         run: derived::run,
-        sweep: Some(derived::sweep_one),
+        sweep: Some(Sweep {
+            run: derived::sweep_one,
+            columns: derived::drift_columns,
+        }),
     },
 ];
 
@@ -1784,9 +1802,12 @@ pub struct Row {
     pub evaluations: u64,
     /// Accepted steps.
     pub steps: u64,
-    /// Relative energy drift at T.
+    /// Relative energy drift at T; NaN when the run failed or the scene
+    /// has no energy to measure (see [`drift_columns`]).
     pub energy_drift: f64,
-    /// Relative drift of |H| (free) or H_Z (heavy top) at T; NaN for a shaft.
+    /// Relative drift of |H| (free) or H_Z (heavy top) at T, or the
+    /// largest of a derived scene's other conserved steps; NaN for a shaft
+    /// (see [`drift_columns`]).
     pub momentum_drift: f64,
     /// `ok` or the error message.
     pub status: String,
@@ -1803,15 +1824,24 @@ impl Row {
             Step::Fixed(h) => ("dt", h),
             Step::Tolerance(t) => ("tol", t),
         };
+        // A value that is not available (a failed run's error and time, a
+        // drift the scene has no quantity for) is an empty cell, never `NaN`.
+        let cell = |v: f64| {
+            if v.is_nan() {
+                String::new()
+            } else {
+                format!("{v:e}")
+            }
+        };
         format!(
-            "{},{kind},{value:e},{:e},{:e},{},{},{:e},{:e},{}",
+            "{},{kind},{value:e},{},{},{},{},{},{},{}",
             self.method,
-            self.error,
-            self.wall_s,
+            cell(self.error),
+            cell(self.wall_s),
             self.evaluations,
             self.steps,
-            self.energy_drift,
-            self.momentum_drift,
+            cell(self.energy_drift),
+            cell(self.momentum_drift),
             self.status.replace(',', ";")
         )
     }
@@ -1891,6 +1921,48 @@ pub fn sweep_model(scene: &Scene) -> Result<Model, SimError> {
     sweep_entry(scene).map(|e| e.model)
 }
 
+/// What the two drift columns of the sweep measure on a scene: for each,
+/// the quantity, or why the column is not available (its cells are then
+/// empty).
+#[derive(Debug, Clone, PartialEq)]
+pub struct DriftColumns {
+    /// The `energy_drift` column.
+    pub energy: Result<String, String>,
+    /// The `momentum_drift` column.
+    pub momentum: Result<String, String>,
+}
+
+/// What `hdot work-precision` reports in its drift columns on `scene`.
+pub fn drift_columns(scene: &Scene) -> Result<DriftColumns, SimError> {
+    let entry = sweep_entry(scene)?;
+    Ok((entry.sweep.expect("chosen by sweep_entry").columns)(scene))
+}
+
+fn columns_fixed_axis(_: &Scene) -> DriftColumns {
+    DriftColumns {
+        energy: Ok("the shaft's kinetic energy at T against the closed form's".into()),
+        momentum: Err(
+            "a shaft has one degree of freedom and no momentum the motion conserves".into(),
+        ),
+    }
+}
+
+fn columns_rigid_body(scene: &Scene) -> DriftColumns {
+    let gravity = free_body(scene).is_some_and(|(b, _)| b.gravity.is_some());
+    DriftColumns {
+        energy: Ok(if gravity {
+            "the energy T + V".into()
+        } else {
+            "the kinetic energy T".into()
+        }),
+        momentum: Ok(if gravity {
+            "H_Z, the angular momentum about the vertical".into()
+        } else {
+            "|H|".into()
+        }),
+    }
+}
+
 fn sweep_entry(scene: &Scene) -> Result<&'static ModelEntry, SimError> {
     for entry in &MODELS {
         if entry.sweep.is_some() && (entry.refusal)(scene)?.is_none() {
@@ -1924,7 +1996,7 @@ fn sweep_one(
         status: "ok".into(),
     };
     let sweep = entry.sweep.expect("chosen by sweep_entry");
-    sweep(scene, &mut row, t_end, min_time)?;
+    (sweep.run)(scene, &mut row, t_end, min_time)?;
     // A run whose error is not finite diverged, as `hdot simulate` says of
     // it: a failed row, left out of the chart.
     if row.status == "ok" && !row.error.is_finite() {

@@ -91,5 +91,16 @@ pub fn run(args: WorkPrecisionArgs) -> anyhow::Result<ExitCode> {
         stem.display(),
         stem.display()
     );
+    // What the drift columns hold, or why a column is empty.
+    let columns = run::drift_columns(&scene)?;
+    for (name, column) in [
+        ("energy_drift", &columns.energy),
+        ("momentum_drift", &columns.momentum),
+    ] {
+        match column {
+            Ok(what) => crate::outln!("{name}: {what}"),
+            Err(why) => crate::outln!("{name}: not available: {why}"),
+        }
+    }
     Ok(ExitCode::SUCCESS)
 }

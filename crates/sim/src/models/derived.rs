@@ -148,7 +148,35 @@ impl Gather {
 pub struct Conserved {
     /// The step's name.
     pub name: String,
+    /// Why the step is an energy (its meaning is a sum of kinetic and
+    /// potential energies, or its name, label or doc says `energy`);
+    /// `None` for the other conserved steps (momenta).
+    pub energy: Option<String>,
     compiled: Compiled,
+}
+
+/// Why a step is an energy, if it is: its `means` is a kinetic or
+/// potential energy or a sum of them, or its name, label or doc has the
+/// word `energy`.
+pub fn energy_reason(s: &hdot_sym::derivation::Step) -> Option<String> {
+    use hdot_sym::derivation::physics::{Meaning, Quantity};
+    fn is_energy(m: &Meaning) -> bool {
+        match m {
+            Meaning::Quantity(Quantity::KineticEnergy | Quantity::PotentialEnergy, _) => true,
+            Meaning::Sum(terms) => !terms.is_empty() && terms.iter().all(|(_, t)| is_energy(t)),
+            Meaning::Scaled(_, t) => is_energy(t),
+            _ => false,
+        }
+    }
+    if let Some(m) = &s.meaning
+        && is_energy(&m.meaning)
+    {
+        return Some(format!("means = \"{}\"", m.text));
+    }
+    [("name", &s.name), ("label", &s.label), ("doc", &s.doc)]
+        .into_iter()
+        .find(|(_, v)| v.to_lowercase().contains("energy"))
+        .map(|(field, v)| format!("{field} = \"{v}\""))
 }
 
 #[derive(Debug, Clone)]
@@ -355,6 +383,7 @@ impl DerivedModel {
             let polys = unfold(&s.values().into_iter().cloned().collect::<Vec<_>>());
             conserved.push(Conserved {
                 name: name.clone(),
+                energy: energy_reason(s),
                 compiled: cx.compile(&polys)?,
             });
         }

@@ -10,10 +10,10 @@
 use nalgebra::Matrix3;
 
 use super::{
-    Drift, FrameState, Model, Plan, REFERENCE_TOL, Recorder, Report, Row, integrate_recorded,
-    method_step, time_and_state, timed, wrong_kind,
+    Drift, DriftColumns, FrameState, Model, Plan, REFERENCE_TOL, Recorder, Report, Row,
+    integrate_recorded, method_step, time_and_state, timed, wrong_kind,
 };
-use crate::models::derived::{DerivedModel, DerivedSystem, MAX_DOF};
+use crate::models::derived::{Conserved, DerivedModel, DerivedSystem, MAX_DOF};
 use crate::scene::{DerivedScene, Scene, SceneKind};
 use crate::{Limits, Method, SimError, Stats, Step, integrate};
 
@@ -302,20 +302,64 @@ fn sweep_n<const N: usize>(
             row.wall_s = wall;
             row.evaluations = stats.evaluations;
             row.steps = stats.steps;
-            // The work-precision table has two drift columns: a conserved
-            // step named like an energy goes in the first, the largest
-            // drift of the others (momenta) in the second.
-            let (energy, others): (Vec<Drift>, Vec<Drift>) = drifts(ds, &y0, t_end, &y)
-                .into_iter()
-                .partition(|d| d.name.to_lowercase().contains("energy"));
-            row.energy_drift = energy.first().map_or(f64::NAN, |d| d.relative);
+            // The work-precision table has two drift columns: the first
+            // conserved step that is an energy goes in the first, the
+            // largest drift of the others (momenta) in the second (see
+            // [`drift_columns`]).
+            let energy = ds.model.conserved().iter().map(|q| q.energy.is_some());
+            let (energy, others): (Vec<_>, Vec<_>) = energy
+                .zip(drifts(ds, &y0, t_end, &y))
+                .partition(|(e, _)| *e);
+            row.energy_drift = energy.first().map_or(f64::NAN, |(_, d)| d.relative);
             row.momentum_drift = others
                 .iter()
-                .map(|d| d.relative)
+                .map(|(_, d)| d.relative)
                 .reduce(f64::max)
                 .unwrap_or(f64::NAN);
         }
         Err(e) => row.status = e.to_string(),
     }
     Ok(())
+}
+
+/// What the work-precision drift columns measure on a derived scene: the
+/// first conserved step that is an energy, and the largest drift of the
+/// other conserved steps; or why there is none.
+pub(super) fn drift_columns(scene: &Scene) -> DriftColumns {
+    let SceneKind::Derived(ds) = &scene.kind else {
+        let none = Err("not a derived scene".to_string());
+        return DriftColumns {
+            energy: none.clone(),
+            momentum: none,
+        };
+    };
+    let conserved = ds.model.conserved();
+    let (energy, others): (Vec<_>, Vec<_>) = conserved.iter().partition(|q| q.energy.is_some());
+    let names = |qs: &[&Conserved]| {
+        qs.iter()
+            .map(|q| format!("`{}`", q.name))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let energy = match energy.first() {
+        Some(q) => Ok(format!(
+            "step `{}` ({})",
+            q.name,
+            q.energy.as_deref().unwrap_or_default()
+        )),
+        None if conserved.is_empty() => Err(
+            "the derivation marks no step `conserved = true` (and the scene lists none under `conserved`)"
+                .to_string(),
+        ),
+        None => Err(format!(
+            "no conserved step is an energy (its `means` a kinetic or potential energy, or `energy` in its name, label or doc); conserved: {}",
+            names(&others)
+        )),
+    };
+    let momentum = if others.is_empty() {
+        Err("no conserved step other than an energy".to_string())
+    } else {
+        Ok(format!("the largest drift of step(s) {}", names(&others)))
+    };
+    DriftColumns { energy, momentum }
 }
