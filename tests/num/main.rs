@@ -26,6 +26,8 @@ mod verify;
 mod verify_declared;
 // Generalized quantities under [motion]'s rules (constrained partial velocities).
 mod constrained;
+// Line bodies and point masses: moments of inertia declared zero.
+mod line_bodies;
 // Mutated derivations rejected by verification (issue 9).
 mod mutation;
 // A user's own crate: check(&derivation, &Options) and verify::strategy.

@@ -370,7 +370,7 @@ fn draw(
         let cloud = match given {
             // Given bodies have their symmetry already.
             Some(g) => base_body(b, &g[k], Symmetry::None, fold)?,
-            None => base_body(b, &random_body(rng)?, b.symmetry, fold)?,
+            None => base_body(b, &drawn_body(b, rng)?, b.symmetry, fold)?,
         };
         eqs.extend(body_equations(b, &cloud));
         bases.push(cloud);
@@ -503,6 +503,39 @@ fn inertia_about_origin(c: &ParticleCloud) -> Matrix3<f64> {
             m * (Matrix3::identity() * q.norm_squared() - q * q.transpose())
         })
         .sum()
+}
+
+/// The body axes along which every particle of `b` lies: a moment of
+/// inertia declared zero on the diagonal (`principal(Ip, Ip, 0)`, a
+/// slender rod along z) is `Σ m (x² + y²) = 0`, which only particles on
+/// that axis (through the point the inertia is about) have. Two zero
+/// moments put every particle at the point.
+pub(crate) fn line_axes(b: &Body) -> [bool; 3] {
+    std::array::from_fn(|k| b.inertia.0[k][k].is_zero())
+}
+
+/// `cloud` with the particles moved onto the axes `zero` flags (every
+/// coordinate off them set to 0): a line body along the one flagged axis,
+/// a point mass for two or three. Unchanged when none is flagged.
+pub(crate) fn on_axes(
+    cloud: &ParticleCloud,
+    zero: [bool; 3],
+) -> Result<ParticleCloud, VerifyError> {
+    if !zero.iter().any(|z| *z) {
+        return Ok(cloud.clone());
+    }
+    // Coordinate j survives when every flagged axis is j.
+    let keep: [f64; 3] =
+        std::array::from_fn(|j| f64::from(u8::from((0..3).all(|k| !zero[k] || k == j))));
+    Ok(map_particles(cloud, |p, m| {
+        [(p.component_mul(&Vector3::from(keep)), m)]
+    })?)
+}
+
+/// A random body for the declaration `b`, before its symmetry: on the
+/// axis its zero moments of inertia require ([`line_axes`]).
+fn drawn_body(b: &Body, rng: &mut ChaCha8Rng) -> Result<ParticleCloud, VerifyError> {
+    on_axes(&random_body(rng)?, line_axes(b))
 }
 
 /// The body `b` drawn as `cloud`, given the symmetry `symmetry` (about
@@ -1120,7 +1153,7 @@ fn for_step(
         if attempt % 25 == 24 {
             for &i in &rebuilt {
                 let b = &ph.bodies[i];
-                draw.bases[i] = base_body(b, &random_body(rng)?, b.symmetry, draw.folds[i])?;
+                draw.bases[i] = base_body(b, &drawn_body(b, rng)?, b.symmetry, draw.folds[i])?;
             }
         }
         let (mut draw, mut values) = (draw.clone(), values.clone());

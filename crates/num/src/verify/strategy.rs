@@ -56,7 +56,7 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
 use super::bodies::random_body;
-use super::declared::symmetric;
+use super::declared::{line_axes, on_axes, symmetric};
 use crate::cloud::ParticleCloud;
 
 /// A body with `symmetry` about the origin (its reference point).
@@ -73,11 +73,18 @@ pub fn body(symmetry: Symmetry) -> impl Strategy<Value = ParticleCloud> {
     })
 }
 
-/// One body per `[[body]]` of `d`, each with its declared symmetry.
+/// One body per `[[body]]` of `d`, each with its declared symmetry (and
+/// on the axis a moment of inertia declared zero requires: a slender
+/// rod's `principal(Ip, Ip, 0)` is a line of particles along z).
 pub fn declared_bodies(d: &Derivation) -> impl Strategy<Value = Vec<ParticleCloud>> {
     d.physics
         .bodies
         .iter()
-        .map(|b| body(b.symmetry))
+        .map(|b| {
+            let zero = line_axes(b);
+            body(b.symmetry).prop_map(move |c| {
+                on_axes(&c, zero).expect("a valid body moved onto its axis is valid")
+            })
+        })
         .collect::<Vec<_>>()
 }
