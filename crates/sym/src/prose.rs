@@ -27,6 +27,12 @@
 //! assert_eq!(prose::latex("$T = ½ m v^2$ holds"), r"$T = \tfrac{1}{2} m v^{2}$ holds");
 //! assert_eq!(prose::markdown("the rate ω_z, 50%"), r"the rate $\omega_{z}$, 50%");
 //! assert_eq!(prose::unicode("$ω_z$ is constant"), "ω_z is constant");
+//! // Brackets inside a formula keep it whole; a lone symbol letter is math.
+//! assert_eq!(
+//!     prose::latex("steady when cos θ = m g L/(2 (I′ − J) Ω²)."),
+//!     r"steady when $\cos \theta = m g L/(2 (I' - J) \Omega^{2})$."
+//! );
+//! assert_eq!(prose::latex("A disk of mass m about O"), r"A disk of mass $m$ about $O$");
 //! ```
 
 use crate::symbols;
@@ -179,14 +185,6 @@ fn subscript_len(chars: &[char], i: usize) -> Option<usize> {
 
 /// Splits `s` into words and turns each run of notation into math.
 fn words(s: &str, out: &mut Vec<Piece>) {
-    // Tokens: (leading punctuation, core, trailing punctuation, whitespace after).
-    struct Tok<'a> {
-        lead: &'a str,
-        core: &'a str,
-        trail: &'a str,
-        space: &'a str,
-        kind: Kind,
-    }
     let mut toks: Vec<Tok> = Vec::new();
     let mut rest = s;
     // Leading whitespace.
@@ -210,92 +208,185 @@ fn words(s: &str, out: &mut Vec<Piece>) {
         });
         rest = &after[ws..];
     }
-    // Runs: maximal sequences of Math/Op/Atom tokens without punctuation
-    // inside, holding at least one Math token (or an Op between Atoms),
-    // trimmed of operators at either end.
+    // Runs: maximal sequences of Math/Op/Atom tokens, holding at least one
+    // Math token (or an Op between Atoms, or a lone symbol letter), trimmed
+    // of operators at either end. Brackets may open and close inside a run,
+    // `m g L/(2 (I′ − J) Ω²)`; a run whose brackets do not balance is cut
+    // at the first punctuation instead, as plain words would be.
     let mut k = 0;
     while k < toks.len() {
-        let start = k;
-        let mut end = k; // exclusive
-        // Brackets opened inside the run and not yet closed: a comma
-        // between its arguments does not end it, `f(q, q̇, t)`.
-        let depth = |ts: &[Tok]| -> i32 {
-            ts.iter()
-                .map(|t| {
-                    let o = t.core.matches(['(', '[']).count() as i32;
-                    let c = t.core.matches([')', ']']).count() as i32;
-                    o - c
-                })
-                .sum()
-        };
-        if toks[k].kind != Kind::Word {
-            end = k + 1;
-            while end < toks.len()
-                && toks[end].kind != Kind::Word
-                && toks[end].lead.is_empty()
-                && (toks[end - 1].trail.is_empty()
-                    || (toks[end - 1].trail == "," && depth(&toks[k..end]) > 0))
-            {
-                end += 1;
+        let spans = [run_end(&toks, k, true), run_end(&toks, k, false)];
+        let made = spans.iter().find_map(|&end| formula(&toks, k, end, out));
+        match made {
+            Some(end) => k = end,
+            None => {
+                // Not a formula: the first token as text.
+                let t = &toks[k];
+                push(
+                    out,
+                    Piece::Text(format!("{}{}{}{}", t.lead, t.core, t.trail, t.space)),
+                );
+                k += 1;
             }
         }
-        // Trim operators from both ends.
-        let mut a = start;
-        let mut b = end;
-        while a < b && toks[a].kind == Kind::Op {
-            a += 1;
-        }
-        while b > a && toks[b - 1].kind == Kind::Op {
-            b -= 1;
-        }
-        let run = &toks[a..b];
-        let has_math = run.iter().any(|t| t.kind == Kind::Math)
-            || (run.len() >= 3 && run.iter().any(|t| t.kind == Kind::Op));
-        if end == start || !has_math {
-            // Not a formula: the first token as text.
-            let t = &toks[start];
-            push(
-                out,
-                Piece::Text(format!("{}{}{}{}", t.lead, t.core, t.trail, t.space)),
-            );
-            k = start + 1;
-            continue;
-        }
-        for t in &toks[start..a] {
-            push(
-                out,
-                Piece::Text(format!("{}{}{}{}", t.lead, t.core, t.trail, t.space)),
-            );
-        }
-        let first = &toks[a];
-        push(out, Piece::Text(first.lead.to_owned()));
-        let mut m = String::new();
-        for (j, t) in run.iter().enumerate() {
-            m.push_str(&math_latex(t.core));
-            if j + 1 < run.len() {
-                m.push_str(t.trail); // a comma between arguments
-                m.push(' ');
-            }
-        }
-        // The bracket the run left open closes inside the formula.
-        let last = &toks[b - 1];
-        let mut trail = last.trail;
-        let mut open = depth(run);
-        while open > 0 && trail.starts_with([')', ']']) {
-            m.push_str(&trail[..1]);
-            trail = &trail[1..];
-            open -= 1;
-        }
-        push(out, Piece::Math(m));
-        push(out, Piece::Text(format!("{trail}{}", last.space)));
-        for t in &toks[b..end] {
-            push(
-                out,
-                Piece::Text(format!("{}{}{}{}", t.lead, t.core, t.trail, t.space)),
-            );
-        }
-        k = end;
     }
+}
+
+/// A token of prose: leading punctuation, core, trailing punctuation and
+/// the whitespace after it.
+struct Tok<'a> {
+    lead: &'a str,
+    core: &'a str,
+    trail: &'a str,
+    space: &'a str,
+    kind: Kind,
+}
+
+/// Opening minus closing brackets in `s`.
+fn depth(s: &str) -> i32 {
+    s.matches(['(', '[']).count() as i32 - s.matches([')', ']']).count() as i32
+}
+
+/// Whether `s` is made of brackets from `set` only (and is not empty).
+fn only(s: &str, set: &str) -> bool {
+    !s.is_empty() && s.chars().all(|c| set.contains(c))
+}
+
+/// The end (exclusive) of the run of notation starting at `k`. With
+/// `brackets`, a bracket before a word or after it does not end the run
+/// when the run itself opened or opens it; without, only a comma between
+/// the arguments of a bracket does not.
+fn run_end(toks: &[Tok], k: usize, brackets: bool) -> usize {
+    if toks[k].kind == Kind::Word {
+        return k;
+    }
+    let mut open = depth(toks[k].core) + if brackets { depth(toks[k].lead) } else { 0 };
+    let mut end = k + 1;
+    while end < toks.len() && toks[end].kind != Kind::Word {
+        let (prev, t) = (&toks[end - 1], &toks[end]);
+        let lead_ok = t.lead.is_empty() || (brackets && only(t.lead, "(["));
+        let closes = -depth(prev.trail);
+        let trail_ok = prev.trail.is_empty()
+            || (prev.trail == "," && open > 0)
+            || (brackets && only(prev.trail, ")]") && open - closes >= 0);
+        if !(lead_ok && trail_ok) {
+            break;
+        }
+        if brackets {
+            open += depth(prev.trail) + depth(t.lead);
+        }
+        open += depth(t.core);
+        end += 1;
+    }
+    end
+}
+
+/// Pushes the tokens `k..end` as a formula (with the text around it) and
+/// returns `end`, or pushes nothing and returns `None` when they hold no
+/// notation or their brackets do not balance.
+fn formula(toks: &[Tok], k: usize, end: usize, out: &mut Vec<Piece>) -> Option<usize> {
+    // Trim operators from both ends.
+    let (mut a, mut b) = (k, end);
+    while a < b && toks[a].kind == Kind::Op {
+        a += 1;
+    }
+    while b > a && toks[b - 1].kind == Kind::Op {
+        b -= 1;
+    }
+    let run = &toks[a..b];
+    // A lone letter is a symbol (the mass m, the point O, L/2), except the
+    // article: `a`, and `A` opening a sentence before a word (`A disk`).
+    let lone = |i: usize| {
+        let t = &toks[i];
+        let c: Vec<char> = t.core.chars().collect();
+        let article = t.core == "A"
+            && (i == 0 || toks[i - 1].trail.ends_with(['.', ':', ';', '!', '?']))
+            && toks
+                .get(i + 1)
+                .is_some_and(|n| n.kind == Kind::Word && n.core.starts_with(char::is_lowercase));
+        // An initial of a name (`A. Lecturer`, `J. R. Smith`).
+        let initial_like =
+            |t: &Tok| t.trail == "." && t.core.len() == 1 && t.core.starts_with(char::is_uppercase);
+        let initial = initial_like(t)
+            && (i == 0 || initial_like(&toks[i - 1]))
+            && toks.get(i + 1).is_some_and(|n| {
+                initial_like(n) || n.kind == Kind::Word && n.core.starts_with(char::is_uppercase)
+            });
+        t.kind == Kind::Atom
+            && !article
+            && !initial
+            && c.first().is_some_and(char::is_ascii_alphabetic)
+            && (c.len() == 1
+                || c.len() > 2 && c[1] == '/' && c[2..].iter().all(char::is_ascii_digit))
+    };
+    let has_math = (a..b).any(|i| toks[i].kind == Kind::Math || lone(i))
+        || (run.len() >= 3 && run.iter().any(|t| t.kind == Kind::Op));
+    if end == k || run.is_empty() || !has_math {
+        return None;
+    }
+    // The first token's bracket belongs to the formula when the formula
+    // closes it; any other leading punctuation is text.
+    let first = &toks[a];
+    let lead_in = if only(first.lead, "([") {
+        first.lead
+    } else {
+        ""
+    };
+    let mut m = String::from(lead_in);
+    for (j, t) in run.iter().enumerate() {
+        if j > 0 {
+            m.push_str(t.lead);
+        }
+        m.push_str(&math_latex(t.core));
+        if j + 1 < run.len() {
+            m.push_str(t.trail); // a comma between arguments, a closing bracket
+            m.push(' ');
+        }
+    }
+    // The brackets the run left open close inside the formula.
+    let last = &toks[b - 1];
+    let mut trail = last.trail;
+    let mut open = depth(&m);
+    while open > 0 && trail.starts_with([')', ']']) {
+        m.push_str(&trail[..1]);
+        trail = &trail[1..];
+        open -= 1;
+    }
+    let (lead_text, m) = if open > 0 && m.starts_with(lead_in) && open as usize <= lead_in.len() {
+        // A bracket before the formula that it does not close is text.
+        let n = open as usize;
+        (&first.lead[..n], m[n..].to_owned())
+    } else {
+        (&first.lead[..first.lead.len() - lead_in.len()], m)
+    };
+    let balanced = m.chars().try_fold(0i32, |d, c| {
+        let d = d + depth(c.encode_utf8(&mut [0; 4]));
+        (d >= 0).then_some(d)
+    }) == Some(0);
+    if !balanced
+        && (a..b)
+            .any(|i| i > a && !toks[i].lead.is_empty() || i + 1 < b && only(toks[i].trail, ")]"))
+    {
+        // Brackets across words that do not balance: let the caller cut
+        // the run at the first punctuation instead.
+        return None;
+    }
+    for t in &toks[k..a] {
+        push(
+            out,
+            Piece::Text(format!("{}{}{}{}", t.lead, t.core, t.trail, t.space)),
+        );
+    }
+    push(out, Piece::Text(lead_text.to_owned()));
+    push(out, Piece::Math(m));
+    push(out, Piece::Text(format!("{trail}{}", last.space)));
+    for t in &toks[b..end] {
+        push(
+            out,
+            Piece::Text(format!("{}{}{}{}", t.lead, t.core, t.trail, t.space)),
+        );
+    }
+    Some(end)
 }
 
 /// Splits a word into leading punctuation, core and trailing punctuation;
