@@ -789,3 +789,90 @@ rates = { x = 0.0 }
     }
     assert_eq!(r.plan.fit_error, Some(1e-8), "the default target");
 }
+
+/// A problem written for this test: a wheel rolling down a slope of
+/// constant angle β, placed by its horizontal distance x, so that its
+/// equations divide by cos β (and by the wheel's radius r).
+const SLOPE: &str = r#"
+title = "a wheel rolling down a slope, placed by its horizontal distance"
+source = "written for the test"
+[symbols]
+constants = ["m", "g", "J", "r", "beta"]
+time = ["x"]
+[[step]]
+name = "T"
+value = "(m + J/r^2)*x'^2/(2*cos(beta)^2)"
+[[step]]
+name = "V"
+value = "-m*g*x*sin(beta)/cos(beta)"
+[[step]]
+name = "eq"
+value = "lagrange(T, V, x)"
+[[step]]
+name = "M"
+value = "mass_matrix(list(eq), [x''])"
+[[step]]
+name = "f"
+value = "forcing(list(eq), [x''])"
+"#;
+
+const SLOPE_SCENE: &str = r#"
+name = "wheel on a slope"
+kind = "derived"
+t_end = 1.0
+[derivation]
+file = "slope.toml"
+mass_matrix = "M"
+forcing = "f"
+[constants]
+m = 2.0
+g = 9.81
+J = 0.01
+r = 0.1
+beta = 1.5707963267948966
+[initial]
+coordinates = { x = 0.0 }
+rates = { x = 0.0 }
+"#;
+
+fn slope(scene: &str) -> Result<Scene, SimError> {
+    let dir = tempfile::tempdir().expect("temp dir");
+    std::fs::write(dir.path().join("slope.toml"), SLOPE).expect("write");
+    Scene::parse(scene, &dir.path().join("scene.toml"))
+}
+
+/// A constant angle (or a constant) the equations divide by is checked
+/// before the run: at β = π/2, cos β is 6e-17 and the scene is refused,
+/// naming the constant and its field; at r = 0 likewise; at β = 0.3 the
+/// wheel runs and its acceleration is g sin β cos β / (1 + J/(m r²)).
+#[test]
+fn a_constant_angle_the_equations_divide_by_is_checked() {
+    let err = slope(SLOPE_SCENE).expect_err("cos(pi/2) divides the equations");
+    let msg = err.to_string();
+    assert!(
+        msg.contains("constants.beta") && msg.contains("cos(beta)") && msg.contains("`beta`"),
+        "{msg}"
+    );
+    let err = slope(
+        &SLOPE_SCENE
+            .replace("beta = 1.5707963267948966", "beta = 0.3")
+            .replace("r = 0.1", "r = 0.0"),
+    )
+    .expect_err("1/r with r = 0");
+    let msg = err.to_string();
+    assert!(msg.contains("constants.r") && msg.contains("`r`"), "{msg}");
+    let scene = slope(&SLOPE_SCENE.replace("beta = 1.5707963267948966", "beta = 0.3"))
+        .expect("beta = 0.3 is regular");
+    let r = run_scene(
+        &scene,
+        Request {
+            method: Some(Method::Dop853),
+            step: Some(Step::Tolerance(1e-12)),
+            ..Request::default()
+        },
+    );
+    let (m, g, j, rad, beta) = (2.0f64, 9.81f64, 0.01f64, 0.1f64, 0.3f64);
+    let a = g * beta.sin() * beta.cos() / (1.0 + j / (m * rad * rad));
+    let v = r.final_state[1];
+    assert!((v - a).abs() < 1e-9 * a, "x' at T = 1: {v} against {a}");
+}

@@ -200,6 +200,9 @@ pub struct DerivedModel {
     form: Form,
     inputs: Vec<(String, TimeFunction)>,
     divisors: Vec<Divisor>,
+    /// Constants that make the equations singular whatever the state
+    /// (see [`DerivedModel::constant_singularity`]).
+    singular: Vec<(String, String)>,
     conserved: Vec<Conserved>,
     /// The derivation's frames, in order: each frame's name and its
     /// motion, or why its attitude cannot be evaluated.
@@ -340,6 +343,7 @@ impl DerivedModel {
         };
         let unfold = |v: &[Poly]| v.iter().map(|p| d.unfold(p)).collect::<Vec<_>>();
         let mut divisors = Vec::new();
+        let mut singular = Vec::new();
         let polys = unfold(&outputs);
         for p in &polys {
             for (m, _) in p.terms() {
@@ -347,11 +351,43 @@ impl DerivedModel {
                     if e >= 0 {
                         continue;
                     }
+                    // A constant the equations divide by: zero (or an
+                    // angle whose sine or cosine is below the divisor
+                    // bound) makes them singular whatever the state.
+                    if let AtomKind::Var { time: false, .. } = a.kind()
+                        && spec.constants.get(a.name()) == Some(&0.0)
+                        && !singular.iter().any(|(n, _)| n == a.name())
+                    {
+                        singular.push((
+                            a.name().to_string(),
+                            format!("the equations divide by the constant `{a}`, and it is 0"),
+                        ));
+                    }
                     let (q, sin) = match a.kind() {
                         AtomKind::Sin(q) => (q, true),
                         AtomKind::Cos(q) => (q, false),
                         _ => continue,
                     };
+                    if !q.is_time_dependent()
+                        && let Some(&v) = spec.constants.get(q.name())
+                        && !singular.iter().any(|(n, _)| n == q.name())
+                    {
+                        let (f, value) = if sin {
+                            ("sin", v.sin())
+                        } else {
+                            ("cos", v.cos())
+                        };
+                        if value.abs() < DIVISOR_BOUND {
+                            singular.push((
+                                q.name().to_string(),
+                                format!(
+                                    "the equations divide by {f}({q}), and with the constant `{q}` = {v} it is {value:.3e}: \
+                                     they are singular for every state (choose another value of `{q}`, or derive the \
+                                     equations for this case)"
+                                ),
+                            ));
+                        }
+                    }
                     if let Some(i) = coordinates.iter().position(|&c| c == q) {
                         let dv = Divisor { coordinate: i, sin };
                         if !divisors.contains(&dv) {
@@ -435,6 +471,7 @@ impl DerivedModel {
             form,
             inputs,
             divisors,
+            singular,
             conserved,
             frames,
             scratch: RefCell::new(Vec::new()),
@@ -467,6 +504,10 @@ pub fn step_coordinates(d: &Derivation, step: &str) -> Option<Vec<String>> {
         })
         .collect()
 }
+
+/// The size below which a sine or cosine the equations divide by is a
+/// singularity.
+const DIVISOR_BOUND: f64 = 1e-9;
 
 /// The largest number of coordinates a derived model takes.
 pub const MAX_DOF: usize = 6;
@@ -682,6 +723,16 @@ impl DerivedModel {
         }
     }
 
+    /// A constant whose value makes the equations singular for every
+    /// state, and why: one they divide by that is 0, or an angle whose
+    /// sine or cosine they divide by is below the divisor bound (`1e-9`,
+    /// as for the coordinates in [`DerivedModel::singularity`]).
+    pub fn constant_singularity(&self) -> Option<(&str, &str)> {
+        self.singular
+            .first()
+            .map(|(name, why)| (name.as_str(), why.as_str()))
+    }
+
     /// The values of a conserved quantity at `(t, y)`.
     pub fn conserved_value(&self, q: &Conserved, t: f64, y: &[f64]) -> Vec<f64> {
         let mut out = vec![0.0; q.compiled.tape.outputs()];
@@ -696,7 +747,7 @@ impl DerivedModel {
         for dv in &self.divisors {
             let q = y[dv.coordinate];
             let v = if dv.sin { q.sin() } else { q.cos() };
-            if v.abs() < 1e-9 {
+            if v.abs() < DIVISOR_BOUND {
                 let name = self.coordinates[dv.coordinate].name();
                 return Some(format!(
                     "{}({name}) = {v:.3e}, and the equations divide by it (a coordinate singularity: at {name} = {q:.6}, \

@@ -206,6 +206,7 @@ pub(super) fn parse(
     }
     check_gravity(&d, &path, &bodies, &constants, file)?;
     let bound = bind_scene_bodies(&d, &path, &bodies, &constants, file)?;
+    let from_bodies: Vec<String> = bound.keys().cloned().collect();
     constants.extend(bound);
     let constants_for_inputs = constants.clone();
     let inputs = inputs
@@ -223,6 +224,16 @@ pub(super) fn parse(
         conserved: raw.conserved,
     };
     let model = DerivedModel::new(&d, &spec)?;
+    if let Some((name, why)) = model.constant_singularity() {
+        // The field that gave the constant its value: `[constants]`, or
+        // the `[[body]]` tables or gravity vector that bound it.
+        let field = if from_bodies.iter().any(|k| k == name) {
+            "body".to_string()
+        } else {
+            format!("constants.{name}")
+        };
+        return Err(bad(&field, format!("{}: {why}", path.display())));
+    }
     let mut values = BTreeMap::new();
     for (k, v) in start.coordinates {
         values.insert(k, v);
