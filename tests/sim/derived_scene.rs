@@ -876,3 +876,82 @@ fn a_constant_angle_the_equations_divide_by_is_checked() {
     let v = r.final_state[1];
     assert!((v - a).abs() < 1e-9 * a, "x' at T = 1: {v} against {a}");
 }
+
+/// A problem written for this test: a disk spinning freely about an axle
+/// tilted by the constant angle γ; at γ = π/2, cos γ is 6e-17, and the
+/// attitude's entries cos γ cos φ, cos γ sin φ round to zero with a minus
+/// sign for φ(T) = 3. They print as 0, never `-0.000000000`.
+const TILTED: &str = r#"
+title = "a disk spinning on a tilted axle"
+source = "written for the test"
+[symbols]
+constants = ["C", "gamma"]
+time = ["phi"]
+[[frame]]
+name = "A"
+parent = "N"
+rotation = "y(gamma)"
+[[frame]]
+name = "D"
+parent = "A"
+rotation = "z(phi)"
+[[step]]
+name = "T"
+value = "C*phi'^2/2"
+[[step]]
+name = "eq"
+value = "lagrange(T, 0, phi)"
+[[step]]
+name = "acc"
+value = "solve(list(eq), [phi''])"
+"#;
+
+#[test]
+fn a_value_that_rounds_to_zero_prints_without_a_sign() {
+    assert_eq!(run::fixed(-1e-17, 9), "0.000000000");
+    assert_eq!(run::fixed(-0.0, 3), "0.000");
+    assert_eq!(run::fixed(-0.5, 1), "-0.5");
+    assert_eq!(run::fixed(-0.0004, 3), "0.000");
+    assert_eq!(run::fixed(-0.0005001, 3), "-0.001");
+    let dir = tempfile::tempdir().expect("temp dir");
+    std::fs::write(dir.path().join("tilted.toml"), TILTED).expect("write");
+    let scene = Scene::parse(
+        r#"
+name = "tilted disk"
+kind = "derived"
+t_end = 1.5
+[derivation]
+file = "tilted.toml"
+accelerations = "acc"
+frame = "D"
+[constants]
+C = 0.2
+gamma = 1.5707963267948966
+[initial]
+coordinates = { phi = 0.0 }
+rates = { phi = 2.0 }
+"#,
+        &dir.path().join("scene.toml"),
+    )
+    .expect("scene");
+    let report = run_scene(&scene, Request::default());
+    let frame = report.frame.as_ref().expect("frame D");
+    // The entries the tilt makes tiny are negative, not zero ...
+    assert!(
+        frame
+            .attitude
+            .iter()
+            .flatten()
+            .any(|v| *v < 0.0 && v.abs() < 1e-15),
+        "{:?}",
+        frame.attitude
+    );
+    // ... and print as 0.
+    let text = report.to_string();
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("frame D"))
+        .expect("frame line");
+    assert!(!text.contains("-0.000000000"), "{line}");
+    assert!(line.contains("0.000000000"), "{line}");
+}

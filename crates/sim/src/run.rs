@@ -838,7 +838,8 @@ impl Recorder<'_, '_> {
             p(row[0]);
         }
         if let Some(w) = self.out.stream.as_mut() {
-            let line: Vec<String> = row.iter().map(|v| format!("{v:e}")).collect();
+            // `+ 0.0` turns −0 into 0: a streamed row never reads `-0e0`.
+            let line: Vec<String> = row.iter().map(|v| format!("{:e}", v + 0.0)).collect();
             writeln!(w, "{}", line.join(",")).map_err(SimError::Output)?;
         }
         if self.out.store {
@@ -1736,50 +1737,60 @@ impl fmt::Display for Report {
         if let Some(pc) = &self.precession {
             writeln!(
                 f,
-                "precession:  simulated φ̇ = {:.9}, §7 predicts {:.9} (relative difference {:.2e}, |Δθ| = {:.2e})",
-                pc.simulated, pc.predicted, pc.relative_difference, pc.nutation_change
+                "precession:  simulated φ̇ = {}, §7 predicts {} (relative difference {:.2e}, |Δθ| = {:.2e})",
+                fixed(pc.simulated, 9),
+                fixed(pc.predicted, 9),
+                pc.relative_difference,
+                pc.nutation_change
             )?;
         }
         if let Some(r) = &self.reactions {
+            let r: Vec<String> = r.iter().map(|v| fixed(*v, 6)).collect();
             writeln!(
                 f,
-                "reactions:   A = ({:.6}, {:.6}), B = ({:.6}, {:.6}) N; ΣM_O = ({:.6}, {:.6}, {:.6}) N·m",
+                "reactions:   A = ({}, {}), B = ({}, {}) N; ΣM_O = ({}, {}, {}) N·m",
                 r[0], r[1], r[2], r[3], r[4], r[5], r[6]
             )?;
         }
         if let Some(fs) = &self.frame {
+            let row = |v: &[f64]| {
+                v.iter()
+                    .map(|x| fixed(*x, 9))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            };
             let r = &fs.attitude;
             writeln!(
                 f,
-                "frame {}:     attitude [[{:.9}, {:.9}, {:.9}], [{:.9}, {:.9}, {:.9}], [{:.9}, {:.9}, {:.9}]], ω = ({:.9}, {:.9}, {:.9}) rad/s",
+                "frame {}:     attitude [[{}], [{}], [{}]], ω = ({}) rad/s",
                 fs.frame,
-                r[0][0],
-                r[0][1],
-                r[0][2],
-                r[1][0],
-                r[1][1],
-                r[1][2],
-                r[2][0],
-                r[2][1],
-                r[2][2],
-                fs.angular_velocity[0],
-                fs.angular_velocity[1],
-                fs.angular_velocity[2]
+                row(&r[0]),
+                row(&r[1]),
+                row(&r[2]),
+                row(&fs.angular_velocity)
             )?;
         }
         let state: Vec<String> = if self.state_names.len() == self.final_state.len() {
             self.state_names
                 .iter()
                 .zip(&self.final_state)
-                .map(|(n, v)| format!("{n} = {v:.12}"))
+                .map(|(n, v)| format!("{n} = {}", fixed(*v, 12)))
                 .collect()
         } else {
-            self.final_state
-                .iter()
-                .map(|v| format!("{v:.12}"))
-                .collect()
+            self.final_state.iter().map(|v| fixed(*v, 12)).collect()
         };
         writeln!(f, "state at T:  [{}]", state.join(", "))
+    }
+}
+
+/// `v` with `decimals` decimals, and no sign when it rounds to zero
+/// (`-1e-17` and `-0.0` print as `0.000000000`, never `-0.000000000`):
+/// the one formatter of the report's fixed-point numbers.
+pub fn fixed(v: f64, decimals: usize) -> String {
+    let s = format!("{v:.decimals$}");
+    match s.strip_prefix('-') {
+        Some(rest) if rest.bytes().all(|b| b == b'0' || b == b'.') => rest.to_string(),
+        _ => s,
     }
 }
 
