@@ -565,3 +565,55 @@ fold = ["z"]
         ["B r\u{307} + k s", "−k s/B", "c (y\u{307} + c) η"]
     );
 }
+
+/// What `collect` leaves over is not one bracket among the groups: its
+/// terms are grouped by their rates, with differences of constants in
+/// cyclic order of their subscripts (C_3 ẇ_3 + k̇ − (K_1 − K_2) w_1 w_2,
+/// not C_3 ẇ_3 + (k̇ − K_1 w_1 w_2 + K_2 w_1 w_2), and
+/// −(K_2 − C_3) w_2 w_3); and inside a bracket, terms that share their
+/// rates are one term with a bracket of constants
+/// (((K_2 − C_3) w_3 − k) w_2/K_1). A gyrostat with other names, and a
+/// pendulum's forcing, written for this test.
+#[test]
+fn new_problems_group_what_collect_leaves_and_inside_brackets() {
+    let out = printed(
+        r#"
+title = "A satellite with a wheel, written for this test"
+source = "test"
+[symbols]
+constants = ["K_1", "K_2", "C_3", "B", "P", "Q", "c", "e"]
+time = ["w_1", "w_2", "w_3", "s", "u", "chi"]
+[[abbreviation]]
+name = "k"
+value = "B*(w_3 + s')"
+[[frame]]
+name = "S"
+axes = ["1", "2", "3"]
+angular_velocity = "[w_1, w_2, w_3]"
+[[step]]
+name = "M"
+label = "Sigma M"
+value = "dt(principal(K_1, K_2, C_3) * angvel(S) + [0, 0, k] in S)"
+fold = ["k"]
+collect = ["w_1'", "w_2'", "w_3'", "k"]
+[[step]]
+name = "rates"
+value = "solve(list(M.1, M.2), [w_1', w_2'])"
+fold = ["k"]
+[[step]]
+name = "f"
+value = "(P*u'^2*cos(chi) - Q*u'^2*cos(chi) - e*c)*sin(chi)"
+"#,
+    );
+    assert_eq!(
+        out,
+        [
+            "K_1 w\u{307}_1 + k w_2 − (K_2 − C_3) w_2 w_3",
+            "K_2 w\u{307}_2 − k w_1 − (C_3 − K_1) w_3 w_1",
+            "C_3 w\u{307}_3 + k\u{307} − (K_1 − K_2) w_1 w_2",
+            "((K_2 − C_3) w_3 − k) w_2/K_1",
+            "((C_3 − K_1) w_3 + k) w_1/K_2",
+            "((P − Q) u\u{307}² cos χ − c e) sin χ",
+        ]
+    );
+}

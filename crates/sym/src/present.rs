@@ -15,6 +15,10 @@
 //!    cos follow the bracket even of a constant angle). A bracket whose
 //!    terms have different constant divisors (a solved form) is not put
 //!    over one divisor: each term keeps its own ratio, `(m g l/I′) sin θ`.
+//!    Inside a bracket, terms with the same rates (and sin, cos) are one
+//!    term with a bracket of constants, ((I_2 − A_3) ω_3 − h) ω_2/I_1; what
+//!    the collect list leaves over is grouped the same way and written as
+//!    terms of the sum, not as one more bracket.
 //! 3. **Factor by known factors** (a step's `factor` list, such as A − B
 //!    and A − C): a bracket equal to their product, or to one of them,
 //!    times a monomial and a number is printed as that product; the
@@ -151,14 +155,78 @@ pub fn present(p: &Poly, pres: &Presentation) -> Expr {
     for (_, ts) in &mut groups {
         merge_trig_squares(ts);
     }
+    groups.retain(|(_, ts)| !ts.is_empty());
     let mut e = Expr::new();
-    let ids: Vec<Id> = groups
-        .iter()
-        .filter(|(_, ts)| !ts.is_empty())
-        .map(|(k, ts)| group_node(&mut e, k, ts, pres))
-        .collect();
+    let several = groups.len() > 1;
+    let mut ids: Vec<Id> = Vec::new();
+    for (k, ts) in &groups {
+        if several && k.is_one() {
+            // What `collect` left over is not one bracket among the groups:
+            // its terms are grouped by their rates (and sin, cos), each with
+            // its own constants, A_3 ω̇_3 + ḣ − (I_1 − I_2) ω_1 ω_2.
+            for (t, rest) in by_time_part(ts) {
+                ids.push(group_node(&mut e, &t, &rest, pres));
+            }
+        } else {
+            ids.push(group_node(&mut e, k, ts, pres));
+        }
+    }
+    if ids.len() > 1 {
+        ids = splice_sums(&mut e, ids);
+    }
     e.add(ids);
     e
+}
+
+/// The terms grouped by their time-dependent part (rates, sin and cos of
+/// time-dependent angles), each group as (that part, the terms divided by
+/// it), in the order of terms inside a bracket: highest derivative first,
+/// then the terms of constants only, then by name.
+fn by_time_part(ts: &[(Monomial, Rational)]) -> Vec<(Monomial, Vec<(Monomial, Rational)>)> {
+    let mut map: BTreeMap<Monomial, Vec<(Monomial, Rational)>> = BTreeMap::new();
+    for (m, c) in ts {
+        let (t, rest) = m.split(|a| a.is_time_dependent());
+        map.entry(t).or_default().push((rest, c.clone()));
+    }
+    let keys: Vec<(Monomial, Rational)> = map.keys().map(|k| (k.clone(), Rational::ONE)).collect();
+    let mut sorted = print_sorted(&keys, true);
+    sorted.sort_by_key(|t| {
+        let top = t.1.factors().iter().map(|f| f.0.order()).max();
+        (Reverse(top.unwrap_or(0)), !t.1.is_one())
+    });
+    let order: Vec<Monomial> = sorted.into_iter().map(|t| t.1.clone()).collect();
+    order
+        .into_iter()
+        .map(|k| {
+            let v = map.remove(&k).expect("a key of the map");
+            (k, v)
+        })
+        .collect()
+}
+
+/// The terms of a sum with every bare bracket among them opened: a sum
+/// inside a sum, or its negation, is written as its terms.
+fn splice_sums(e: &mut Expr, ids: Vec<Id>) -> Vec<Id> {
+    let mut out = Vec::with_capacity(ids.len());
+    for id in ids {
+        match e.node(id).clone() {
+            Node::Add(ts) => out.extend(ts),
+            Node::Neg(inner) => match e.node(inner).clone() {
+                Node::Add(ts) => {
+                    for t in ts {
+                        let n = match e.node(t) {
+                            Node::Neg(x) => *x,
+                            _ => e.push(Node::Neg(t)),
+                        };
+                        out.push(n);
+                    }
+                }
+                _ => out.push(id),
+            },
+            _ => out.push(id),
+        }
+    }
+    out
 }
 
 /// Term order inside a sum: highest derivative first, then by names.
@@ -200,9 +268,17 @@ fn group_node(
     let mut content = terms.iter().fold(Rational::ZERO, |g, t| g.gcd(t.2));
     if cyclic_pair_of_constants(&terms) {
         // Rule 3 decides the sign of a difference of one cyclic family:
-        // −(A − C) ω_2 ω_3, as Euler's equations are written.
+        // −(A − C) ω_2 ω_3, as Euler's equations are written. Constants
+        // with subscripts are put positive first, so that
+        // `cyclic_difference` orders them by their subscripts whatever the
+        // sign (I_2 ω_3 − A_3 ω_3 is (I_2 − A_3) ω_3); the letters A, B, C
+        // keep their name order with the sign pulled out.
         if terms[0].2.is_negative() {
-            content = -content;
+            if subscripted(terms[0].1) {
+                terms.swap(0, 1);
+            } else {
+                content = -content;
+            }
         }
     } else if pull_sign(&terms) && lead_positive_inside(&mut terms) {
         content = -content;
@@ -255,23 +331,66 @@ fn group_node(
         negative ^= c.is_negative();
         fs.iter().map(|f| e.poly_node(f)).collect()
     } else {
-        let ids: Vec<Id> = terms
+        // Terms that share their time-dependent part (the same rates, sin
+        // and cos) and differ in constants are one term of that part with
+        // a bracket of constants: ((I_2 − A_3) ω_3 − h) ω_2/I_1.
+        let parts: Vec<(Monomial, Rational)> = terms
             .iter()
-            .map(|(sorted, m, c)| {
-                let (mut f, c) = if plain {
-                    (sorted.to_vec(), (*c).clone())
+            .map(|(_, m, c)| {
+                if plain {
+                    ((*m).clone(), (*c).clone())
                 } else {
-                    (m.div(&common).sorted_for_print(), *c * &inv)
-                };
-                conventional(&mut f, order);
-                if distribute {
-                    ratio_term(e, &f, &c)
-                } else {
-                    e.term_node(&f, &c)
+                    (m.div(&common), *c * &inv)
                 }
             })
             .collect();
-        vec![e.add(ids)]
+        let timed = |m: &Monomial| m.split(|a| a.is_time_dependent()).0;
+        let mut shared: BTreeMap<Monomial, Vec<(Monomial, Rational)>> = BTreeMap::new();
+        for (m, c) in &parts {
+            let t = timed(m);
+            if !t.is_one() {
+                shared
+                    .entry(t.clone())
+                    .or_default()
+                    .push((m.div(&t), c.clone()));
+            }
+        }
+        shared.retain(|_, v| v.len() > 1);
+        // (node, negative, highest derivative order)
+        let mut nodes: Vec<(Id, bool, u32)> = Vec::with_capacity(terms.len());
+        for ((sorted, _, _), (m, c)) in terms.iter().zip(&parts) {
+            let top = m.factors().iter().map(|f| f.0.order()).max().unwrap_or(0);
+            let t = timed(m);
+            if let Some(sub) = shared.get_mut(&t) {
+                // The first term of the shared part stands for all of them.
+                if !sub.is_empty() {
+                    let sub = std::mem::take(sub);
+                    let id = group_node(e, &t, &sub, pres);
+                    nodes.push((id, matches!(e.node(id), Node::Neg(_)), top));
+                }
+                continue;
+            }
+            let mut f = if plain {
+                sorted.to_vec()
+            } else {
+                m.sorted_for_print()
+            };
+            conventional(&mut f, order);
+            let id = if distribute {
+                ratio_term(e, &f, c)
+            } else {
+                e.term_node(&f, c)
+            };
+            nodes.push((id, c.is_negative(), top));
+        }
+        // The bracket leads with a positive term of its leading order.
+        if nodes[0].1
+            && let Some(k) = nodes.iter().position(|n| !n.1 && n.2 == nodes[0].2)
+        {
+            let n = nodes.remove(k);
+            nodes.insert(0, n);
+        }
+        vec![e.add(nodes.into_iter().map(|n| n.0).collect())]
     };
     if terms.len() == 1 {
         number = terms[0].2.abs();
@@ -318,10 +437,17 @@ fn cyclic_pair_of_constants(terms: &[crate::expr::PrintTerm<'_>]) -> bool {
     let [t0, t1] = terms else { return false };
     let common = t0.1.gcd(t1.1);
     let single = |m: &Monomial| match m.div(&common).factors() {
-        [(a, 1)] if !a.is_time_dependent() => cyclic_place(*a).map(|p| p.0),
+        [(a, 1)] if !a.is_time_dependent() => Some(*a),
         _ => None,
     };
-    matches!((single(t0.1), single(t1.1)), (Some(a), Some(b)) if a == b)
+    matches!((single(t0.1), single(t1.1)), (Some(a), Some(b)) if constants_of_one_family(a, b))
+}
+
+/// Whether a term's constants carry a cyclic subscript (I_2, A_3).
+fn subscripted(m: &Monomial) -> bool {
+    m.factors()
+        .iter()
+        .any(|f| !f.0.is_time_dependent() && cyclic_place(f.0).is_some_and(|p| p.2 != 2))
 }
 
 /// Whether a group's minus sign goes in front of its bracket: for a single
@@ -606,26 +732,48 @@ fn constant_class(a: Atom, order: &[String]) -> (usize, u8, &'static str) {
 }
 
 /// The position of a subscript or letter in a cyclic order (x → y → z,
-/// 1 → 2 → 3, A → B → C), and the name without it.
-fn cyclic_place(a: Atom) -> Option<(&'static str, usize)> {
+/// 1 → 2 → 3, A → B → C), the name without it, and which of the three
+/// orders it is in.
+fn cyclic_place(a: Atom) -> Option<(&'static str, usize, u8)> {
     let name = a.name();
     if let Some((base, sub)) = name.rsplit_once('_') {
-        let k = ["x", "y", "z"]
-            .iter()
-            .position(|c| *c == sub)
-            .or_else(|| ["1", "2", "3"].iter().position(|c| *c == sub))?;
-        return Some((base, k));
+        if let Some(k) = ["x", "y", "z"].iter().position(|c| *c == sub) {
+            return Some((base, k, 0));
+        }
+        let k = ["1", "2", "3"].iter().position(|c| *c == sub)?;
+        return Some((base, k, 1));
     }
     ["A", "B", "C"]
         .iter()
         .position(|c| *c == name)
-        .map(|k| ("", k))
+        .map(|k| ("", k, 2))
 }
 
-/// Whether `b` follows `a` in their cyclic order (same family).
+/// Whether `b` follows `a` in their cyclic order (same family: the same
+/// name with subscripts x, y, z or 1, 2, 3, or the letters A, B, C).
 fn cyclic_next(a: Atom, b: Atom) -> bool {
     match (cyclic_place(a), cyclic_place(b)) {
-        (Some((fa, ka)), Some((fb, kb))) => fa == fb && (ka + 1) % 3 == kb,
+        (Some((fa, ka, oa)), Some((fb, kb, ob))) => fa == fb && oa == ob && (ka + 1) % 3 == kb,
+        _ => false,
+    }
+}
+
+/// Whether two constants are of one cyclic family as moments of inertia
+/// about the three axes are: the same name with subscripts in one order,
+/// or different names with subscripts in one order (a gyrostat's I_1, I_2
+/// and A_3), or the letters A, B, C.
+fn constants_of_one_family(a: Atom, b: Atom) -> bool {
+    match (cyclic_place(a), cyclic_place(b)) {
+        (Some((fa, _, oa)), Some((fb, _, ob))) => oa == ob && (fa == fb || oa != 2),
+        _ => false,
+    }
+}
+
+/// Whether constant `b` follows constant `a` in the cyclic order of their
+/// subscripts ([`constants_of_one_family`]).
+fn constant_next(a: Atom, b: Atom) -> bool {
+    match (cyclic_place(a), cyclic_place(b)) {
+        (Some((_, ka, _)), Some((_, kb, _))) => constants_of_one_family(a, b) && (ka + 1) % 3 == kb,
         _ => false,
     }
 }
@@ -648,7 +796,7 @@ fn cyclic_difference(
         return None;
     }
     // a − b: reads cyclically when b follows a.
-    (cyclic_next(b, a) && !cyclic_next(a, b)).then_some((a, b))
+    (constant_next(b, a) && !constant_next(a, b)).then_some((a, b))
 }
 
 /// The factors of a term inside a bracket in conventional order: constants
@@ -670,11 +818,11 @@ fn conventional(fs: &mut [(Atom, i32)], order: &[String]) {
 /// (the order Euler's equations write them in).
 fn cyclic_pair(fs: &mut [(Atom, i32)]) {
     for i in 0..fs.len() {
-        let Some((family, _)) = cyclic_place(fs[i].0) else {
+        let Some((family, _, _)) = cyclic_place(fs[i].0) else {
             continue;
         };
         let same: Vec<usize> = (0..fs.len())
-            .filter(|&k| cyclic_place(fs[k].0).is_some_and(|(f, _)| f == family))
+            .filter(|&k| cyclic_place(fs[k].0).is_some_and(|(f, _, _)| f == family))
             .collect();
         if let [p, q] = same[..]
             && p == i
