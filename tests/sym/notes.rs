@@ -478,7 +478,7 @@ time = ["phi", "theta"]
 name = "eom"
 label = "0"
 doc = "Lagrange's equations"
-value = """list(I*phi''*cos(theta)^2 + Ip*phi''*sin(theta)^2 - 2*I*phi'*theta'*sin(theta)*cos(theta)
+value = """list(I*phi''*cos(theta)^2 + Ip*phi''*sin(theta)^2 - 2*I*phi'*theta'*sin(theta)
   + 2*Ip*phi'*theta'*sin(theta)*cos(theta), Ip*theta'' + m*g*l*sin(theta))"""
 "#;
     let ds = vec![load_str("own/rod-joint.toml", text).unwrap_or_else(|e| panic!("{e}"))];
