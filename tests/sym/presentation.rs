@@ -275,6 +275,66 @@ value = "F*x'/J - F*x'/m"
     );
 }
 
+/// The shown components of a derivation written for a test, in LaTeX.
+fn printed_latex(text: &str) -> Vec<String> {
+    let d = hdot_sym::derivation::load_str("new.toml", text).unwrap_or_else(|e| panic!("{e}"));
+    d.steps
+        .iter()
+        .filter(|s| s.show)
+        .flat_map(|s| {
+            s.components()
+                .iter()
+                .map(|(_, e)| hdot_sym::print::latex(e))
+        })
+        .collect()
+}
+
+/// A fraction is written as a textbook writes it: a rational coefficient
+/// goes numerator to numerator and denominator to denominator
+/// (5 P²/(2 M), never (5/2) P²/M or a fraction inside a fraction), and a
+/// numerator that is one sum is not bracketed under a LaTeX fraction bar.
+/// A struck bar and a slider, written for this test.
+#[test]
+fn new_problems_print_fractions_without_nested_fractions() {
+    let text = r#"
+title = "A struck bar, written for this test"
+source = "test"
+[symbols]
+constants = ["M", "P", "h", "k", "c"]
+time = ["x", "y"]
+[[step]]
+name = "T"
+value = "5*P^2/(2*M)"
+[[step]]
+name = "R"
+value = "M*h*(h^2 - c^2)*x'^2/(12*k^3)"
+[[step]]
+name = "a"
+value = "(M*x' - 2*k*y'*cos(y) + c*sin(x))/(h*sin(y))"
+[[step]]
+name = "half"
+value = "x'/(2*M)"
+"#;
+    assert_eq!(
+        printed(text),
+        [
+            "5 P²/(2 M)",
+            "M h (h² − c²) x\u{307}²/(12 k³)",
+            "(M x\u{307} − 2 k y\u{307} cos y + c sin x)/(h sin y)",
+            "x\u{307}/(2 M)",
+        ]
+    );
+    assert_eq!(
+        printed_latex(text),
+        [
+            r"\frac{5 P^{2}}{2 M}",
+            r"\frac{M h \left(h^{2} - c^{2}\right) \dot{x}^{2}}{12 k^{3}}",
+            r"\frac{M \dot{x} - 2 k \dot{y} \cos y + c \sin x}{h \sin y}",
+            r"\frac{\dot{x}}{2 M}",
+        ]
+    );
+}
+
 /// Bracket order and signs: terms of constants only lead their order of
 /// derivative (J + I cos² θ + I′ sin² θ); a minus sign is pulled out of a
 /// bracket only when more of its terms are negative than positive, and

@@ -5,7 +5,10 @@
 //! Parentheses follow one rule set in every style, the one that makes the
 //! source syntax round-trip: a sum inside a sum or product, a product or a
 //! negation inside a product, and anything but an atom or integer under a
-//! power are parenthesised.
+//! power are parenthesised. The textbook styles (Unicode, LaTeX) write a
+//! fraction as a textbook does ([`Style::textbook_fraction`]): a rational
+//! coefficient split over it, and no brackets around a LaTeX numerator
+//! that is one sum.
 //!
 //! # Example
 //! ```
@@ -53,6 +56,16 @@ pub trait Style {
     /// built-up fraction).
     fn paren_fraction_factor(&self) -> bool {
         true
+    }
+    /// Whether a fraction is written as a textbook writes it rather than
+    /// as source text: a rational coefficient of a fraction goes numerator
+    /// to numerator and denominator to denominator, `7 F²/(2 m)` rather
+    /// than `(7/2) F²/m` (LaTeX `\frac{7 F^{2}}{2 m}`, never a fraction
+    /// inside a fraction); and, when the fraction is built up (LaTeX), a
+    /// numerator that is one bare sum is not bracketed: the fraction bar
+    /// groups it.
+    fn textbook_fraction(&self) -> bool {
+        false
     }
 }
 
@@ -200,17 +213,47 @@ fn write_product(e: &Expr, factors: &[Id], style: &Cached, out: &mut String) {
     }
 }
 
-/// `nums / dens`, each denominator a negative power of an atom.
+/// `nums / dens`, each denominator a negative power of an atom. In a
+/// textbook style ([`Style::textbook_fraction`]) a leading rational
+/// number is split over the fraction (`7 F²/(2 m)`), and a built-up
+/// fraction's numerator that is a single sum loses its brackets.
 fn write_fraction(e: &Expr, nums: &[Id], dens: &[Id], style: &Cached, out: &mut String) {
+    let textbook = style.inner.textbook_fraction();
     let mut num = String::new();
-    if nums.is_empty() {
-        style.write_num(&Rational::ONE, &mut num);
-    } else {
-        write_product(e, nums, style, &mut num);
+    let mut nums = nums;
+    let mut den_number = None;
+    if textbook
+        && let Some(&first) = nums.first()
+        && let Node::Num(r) = e.node(first)
+        && !r.is_integer()
+    {
+        // Integers are written as their digits in every textbook style.
+        let (n, d) = r.parts();
+        nums = &nums[1..];
+        if n != "1" || nums.is_empty() {
+            num.push_str(&n);
+            if let Some(&next) = nums.first() {
+                num.push_str(style.inner.mul_sep(e.node(first), e.node(next)));
+            }
+        }
+        den_number = Some(d);
     }
-    let dens: Vec<String> = dens
-        .iter()
-        .map(|&d| {
+    match nums {
+        [] if num.is_empty() => style.write_num(&Rational::ONE, &mut num),
+        [] => {}
+        [only]
+            if textbook
+                && num.is_empty()
+                && !style.inner.paren_fraction_factor()
+                && matches!(e.node(*only), Node::Add(_)) =>
+        {
+            write(e, *only, style, &mut num)
+        }
+        _ => write_product(e, nums, style, &mut num),
+    }
+    let dens: Vec<String> = den_number
+        .into_iter()
+        .chain(dens.iter().map(|&d| {
             let Node::Pow(base, k) = e.node(d) else {
                 unreachable!("denominators are negative powers")
             };
@@ -224,7 +267,7 @@ fn write_fraction(e: &Expr, nums: &[Id], dens: &[Id], style: &Cached, out: &mut 
             } else {
                 style.inner.pow(&b, e.node(*base), k.unsigned_abs())
             }
-        })
+        }))
         .collect();
     out.push_str(&style.inner.fraction(&num, &dens));
 }
@@ -584,6 +627,9 @@ impl Style for Unicode {
     fn minus(&self) -> &'static str {
         "−"
     }
+    fn textbook_fraction(&self) -> bool {
+        true
+    }
     fn fraction(&self, num: &str, dens: &[String]) -> String {
         if dens.len() == 1 {
             format!("{num}/{}", dens[0])
@@ -635,6 +681,9 @@ impl Style for Latex {
     }
     fn paren_fraction_factor(&self) -> bool {
         false
+    }
+    fn textbook_fraction(&self) -> bool {
+        true
     }
     fn fraction(&self, num: &str, dens: &[String]) -> String {
         format!(r"\frac{{{num}}}{{{}}}", dens.join(" "))
