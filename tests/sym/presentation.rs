@@ -227,6 +227,43 @@ collect = ["w_1'", "w_2'", "w_3'", "w_1", "w_2", "w_3"]
     );
 }
 
+/// Rule 3 for a family of letters with one subscript: a platform's
+/// moments A_q, B_q, C_q give Euler's differences in cyclic order, and
+/// letters of different subscripts are not one family. A file written
+/// for this test.
+#[test]
+fn new_problems_print_euler_differences_of_subscripted_letters() {
+    let out = printed(
+        r#"
+title = "A platform's Euler equations, written for this test"
+source = "test"
+[symbols]
+constants = ["A_q", "B_q", "C_q", "B_r"]
+time = ["u_x", "u_y", "u_z"]
+[[frame]]
+name = "Q"
+angular_velocity = "[u_x, u_y, u_z]"
+[[step]]
+name = "M"
+label = "Sigma M"
+value = "dt(principal(A_q, B_q, C_q)*angvel(Q))"
+collect = ["u_x'", "u_y'", "u_z'", "u_x", "u_y", "u_z"]
+[[step]]
+name = "other"
+value = "(A_q - B_r)*u_x*u_y"
+"#,
+    );
+    assert_eq!(
+        out,
+        [
+            "A_q u\u{307}_x − (B_q − C_q) u_y u_z",
+            "B_q u\u{307}_y − (C_q − A_q) u_z u_x",
+            "C_q u\u{307}_z − (A_q − B_q) u_x u_y",
+            "(A_q − B_r) u_x u_y",
+        ]
+    );
+}
+
 /// A solved form is distributed over its sum when its terms have
 /// different constant divisors (the divisor cancelled in some), each term
 /// with its own constant ratio; a divisor every term shares, or one that

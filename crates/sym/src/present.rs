@@ -732,16 +732,22 @@ fn constant_class(a: Atom, order: &[String]) -> (usize, u8, &'static str) {
 }
 
 /// The position of a subscript or letter in a cyclic order (x → y → z,
-/// 1 → 2 → 3, A → B → C), the name without it, and which of the three
-/// orders it is in.
+/// 1 → 2 → 3, A → B → C, also with a common subscript: A_p → B_p → C_p),
+/// the family (the name without the subscript, or the letters' common
+/// subscript), and which of the three orders it is in.
 fn cyclic_place(a: Atom) -> Option<(&'static str, usize, u8)> {
     let name = a.name();
     if let Some((base, sub)) = name.rsplit_once('_') {
         if let Some(k) = ["x", "y", "z"].iter().position(|c| *c == sub) {
             return Some((base, k, 0));
         }
-        let k = ["1", "2", "3"].iter().position(|c| *c == sub)?;
-        return Some((base, k, 1));
+        if let Some(k) = ["1", "2", "3"].iter().position(|c| *c == sub) {
+            return Some((base, k, 1));
+        }
+        // The letters A, B, C with one other subscript (a platform's A_p,
+        // B_p, C_p): the family is the subscript.
+        let k = ["A", "B", "C"].iter().position(|c| *c == base)?;
+        return Some((sub, k, 2));
     }
     ["A", "B", "C"]
         .iter()
