@@ -246,17 +246,18 @@ impl<'d> World<'d> {
             }
         }
         let mut w = World::build_for(d, draw, values, atoms.first().copied())?;
+        w.coordinates = coordinates.to_vec();
+        if atoms.is_empty() {
+            return Ok(w);
+        }
         // ∂r/∂x of each particle (body by body) for each of `atoms`.
-        let mut partials: Vec<Vec<Vec<Vector3<f64>>>> = Vec::with_capacity(atoms.len());
         let of = |w: &World<'_>| -> Vec<Vec<Vector3<f64>>> {
             w.bodies
                 .iter()
                 .map(|b| b.iter().map(|p| p.dr[0]).collect())
                 .collect()
         };
-        if !atoms.is_empty() {
-            partials.push(of(&w));
-        }
+        let mut partials: Vec<Vec<Vec<Vector3<f64>>>> = vec![of(&w)];
         for x in atoms.iter().skip(1) {
             partials.push(of(&World::build_for(d, draw, values, Some(*x))?));
         }
@@ -275,7 +276,6 @@ impl<'d> World<'d> {
                     .collect();
             }
         }
-        w.coordinates = coordinates.to_vec();
         Ok(w)
     }
 
@@ -380,7 +380,12 @@ impl<'d> World<'d> {
                     m,
                     r,
                     mag,
-                    dr: vec![dref + partials[b.frame] * q],
+                    // Only a world built for a coordinate carries ∂r/∂q
+                    // (one allocation per particle spared in the others).
+                    dr: match coordinate {
+                        Some(_) => vec![dref + partials[b.frame] * q],
+                        None => Vec::new(),
+                    },
                 });
             }
             w.bodies.push(ps);
