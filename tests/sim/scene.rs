@@ -51,6 +51,18 @@ rejects! {
     tolerance_for_a_fixed_step_method: run::plan(&free_with("[1.0, 0.0, 0.0, 0.0]").unwrap(), &Request { method: Some(Method::Rk4), step: Some(Step::Tolerance(1e-6)), ..Request::default() })
         .and_then(|p| run::run(&free_with("[1.0, 0.0, 0.0, 0.0]").unwrap(), &p, &mut Output::default()))
         => SimError::StepControl { .. }, "give a step size (--dt)";
+    // The FREE body written for the test, integrated by a model with no
+    // exactly solvable parts: the splitting is refused naming the model.
+    splitting_names_the_model: {
+        let scene = free_with("[0.9, 0.3, 0.1, 0.3]").unwrap();
+        let plan = run::plan(&scene, &Request { model: Some(Model::PrecessionAngle), method: Some(Method::Split2), step: Some(Step::Fixed(1e-2)), ..Request::default() }).unwrap();
+        run::run(&scene, &plan, &mut Output::default())
+    } => SimError::MethodNotApplicable { .. }, "cannot integrate model `precession-angle`";
+    splitting_names_the_eulerian_angle_model: {
+        let scene = free_with("[0.9, 0.3, 0.1, 0.3]").unwrap();
+        let plan = run::plan(&scene, &Request { model: Some(Model::EulerAngles), method: Some(Method::Split4), step: Some(Step::Fixed(1e-2)), ..Request::default() }).unwrap();
+        run::run(&scene, &plan, &mut Output::default())
+    } => SimError::MethodNotApplicable { .. }, "cannot integrate model `euler-angles`";
     stored_output_over_budget: {
         let scene = free_with("[1.0, 0.0, 0.0, 0.0]").unwrap();
         let plan = run::plan(&scene, &Request { method: Some(Method::Rk4), step: Some(Step::Fixed(1e-4)), ..Request::default() }).unwrap();

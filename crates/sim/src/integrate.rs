@@ -172,6 +172,7 @@ pub fn fixed_step_count(span: f64, h: f64) -> u64 {
 /// use hdot_sim::{integrate, Method, Step, System, Limits};
 /// struct Decay;
 /// impl System<1> for Decay {
+///     fn name(&self) -> &str { "decay" }
 ///     fn rhs(&self, _t: f64, y: &[f64; 1]) -> [f64; 1] { [-y[0]] }
 /// }
 /// let (y, stats) = integrate(&Decay, Method::Dop853, Step::Tolerance(1e-12),
@@ -256,7 +257,7 @@ where
     {
         return Err(SimError::MethodNotApplicable {
             method: method.name().into(),
-            model: "this model".into(),
+            model: sys.name().into(),
             reason: "it has no splitting into exactly solvable parts".into(),
         });
     }

@@ -900,6 +900,10 @@ fn solve_fixed<const N: usize>(mf: &[f64], x: &mut [f64]) -> Option<()> {
 pub struct DerivedSystem<'a, const N: usize>(pub &'a DerivedModel);
 
 impl<const N: usize> System<N> for DerivedSystem<'_, N> {
+    fn name(&self) -> &str {
+        crate::run::Model::Derived.name()
+    }
+
     fn rhs(&self, t: f64, y: &[f64; N]) -> [f64; N] {
         let n = N / 2;
         let mut dy = [0.0; N];

@@ -52,6 +52,10 @@ pub fn to_quaternion_state(y: &[f64; 6]) -> [f64; 7] {
 }
 
 impl System<6> for EulerAngleBody {
+    fn name(&self) -> &str {
+        crate::run::Model::EulerAngles.name()
+    }
+
     fn rhs(&self, _t: f64, y: &[f64; 6]) -> [f64; 6] {
         let (st, ct) = y[1].sin_cos();
         let (sp, cp) = y[2].sin_cos();

@@ -226,6 +226,10 @@ impl FreeBody {
 }
 
 impl System<7> for FreeBody {
+    fn name(&self) -> &str {
+        crate::run::Model::RigidBody.name()
+    }
+
     #[inline]
     fn rhs(&self, _t: f64, y: &[f64; 7]) -> [f64; 7] {
         let i = self.moments;
@@ -275,6 +279,10 @@ pub struct EulerEquations {
 }
 
 impl System<3> for EulerEquations {
+    fn name(&self) -> &str {
+        "Euler's equations (ω only)"
+    }
+
     #[inline]
     fn rhs(&self, _t: f64, w: &[f64; 3]) -> [f64; 3] {
         let i = self.moments;

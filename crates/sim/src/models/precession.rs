@@ -143,6 +143,10 @@ fn max_sq_on_orbit(i: [f64; 3], c: usize, l2: f64, two_e: f64, current: f64) -> 
 }
 
 impl System<4> for PrecessionAngle {
+    fn name(&self) -> &str {
+        crate::run::Model::PrecessionAngle.name()
+    }
+
     /// Moves ω back onto the initial `|H|` and energy (see
     /// [`project_invariants`]) when [`PrecessionAngle::projection`] is set.
     fn project(&self, y: &mut [f64; 4]) -> bool {

@@ -117,6 +117,10 @@ impl Shaft {
 }
 
 impl System<2> for Shaft {
+    fn name(&self) -> &str {
+        crate::run::Model::FixedAxis.name()
+    }
+
     #[inline]
     fn rhs(&self, _t: f64, y: &[f64; 2]) -> [f64; 2] {
         [y[1], self.alpha(y[1])]
