@@ -504,3 +504,109 @@ value = """list(I*phi''*cos(theta)^2 + Ip*phi''*sin(theta)^2 - 2*I*phi'*theta'*s
         "{slides}"
     );
 }
+
+/// A four-degree-of-freedom problem written for this test: its mass
+/// matrix has long entries and its forcing four long components. On the
+/// slides the matrix is set as a matrix, its long entries named and
+/// defined below it (the symmetric pair under one name), and equations
+/// taller than a frame continue on further frames, never overflowing one.
+#[test]
+fn slides_split_what_a_frame_cannot_hold() {
+    let text = r#"
+title = "A platform with a rotor in Eulerian angles"
+source = "Written for the slides test"
+[symbols]
+constants = ["A", "B", "C", "J", "k"]
+time = ["phi", "theta", "psi", "beta"]
+[[step]]
+name = "eqs"
+label = "0"
+doc = "Four equations linear in the accelerations"
+value = """list(
+  (A*cos(theta)^2 + B*sin(theta)^2*cos(psi)^2 + C*sin(psi)^2*sin(theta)^2 + J*cos(theta)^2)*phi''
+    + (B - C)*sin(psi)*sin(theta)*cos(psi)*theta'' + (A + J)*cos(theta)*psi'' + J*cos(theta)*beta''
+    + k*phi'*theta'*sin(theta)*cos(theta) + k*psi'*theta'*sin(theta)*cos(psi)^2 + k*phi'^2*sin(psi)*cos(theta),
+  (B - C)*sin(psi)*sin(theta)*cos(psi)*phi'' + (B*sin(psi)^2 + C*cos(psi)^2)*theta''
+    + k*phi'*psi'*sin(theta)*cos(psi)^2 - k*theta'^2*sin(psi)*cos(psi)*cos(theta) + k*phi'^2*sin(theta)*cos(theta),
+  (A + J)*cos(theta)*phi'' + (A + J)*psi'' + J*beta''
+    + k*phi'*theta'*sin(theta) - k*psi'*theta'*sin(psi)*cos(psi) + k*beta'*phi'*cos(theta)^2,
+  J*cos(theta)*phi'' + J*psi'' + J*beta'' + k*phi'*theta'*sin(theta)*cos(psi) - k*beta'^2*cos(theta)
+    + k*psi'^2*sin(psi)*sin(theta))"""
+[[step]]
+name = "M"
+doc = "The mass matrix"
+value = "mass_matrix(eqs, [phi'', theta'', psi'', beta''])"
+[[step]]
+name = "f"
+doc = "The rest of the equations"
+value = "eqs - M*list(phi'', theta'', psi'', beta'')"
+"#;
+    let ds = vec![load_str("own/platform.toml", text).unwrap_or_else(|e| panic!("{e}"))];
+    let doc = Course::plain(&ds).document(&ds);
+    let slides = notes::slides_document(&doc);
+    let frames: Vec<&str> = slides
+        .split(r"\begin{frame}")
+        .skip(1)
+        .map(|f| f.split(r"\end{frame}").next().unwrap())
+        .collect();
+    // The mass matrix: one frame, a 4 × 4 matrix whose long entries are
+    // named (the symmetric pair M_12 = M_21 under the name above the
+    // diagonal), then defined.
+    let m: Vec<&&str> = frames
+        .iter()
+        .filter(|f| f.contains("The mass matrix"))
+        .collect();
+    assert_eq!(m.len(), 1, "{slides}");
+    let matrix = m[0]
+        .lines()
+        .find(|l| l.starts_with(r"M &= \begin{bmatrix}"))
+        .unwrap_or_else(|| panic!("{}", m[0]));
+    let body = matrix
+        .trim_start_matches(r"M &= \begin{bmatrix}")
+        .split(r"\end{bmatrix}")
+        .next()
+        .unwrap();
+    let rows: Vec<Vec<&str>> = body
+        .split(r"\\")
+        .map(|r| r.split('&').map(str::trim).collect())
+        .collect();
+    assert_eq!(rows.len(), 4, "{matrix}");
+    assert!(rows.iter().all(|r| r.len() == 4), "{matrix}");
+    assert_eq!(rows[0][0], "M_{11}", "{matrix}");
+    assert_eq!(rows[0][1], "M_{12}", "{matrix}");
+    assert_eq!(rows[1][0], "M_{12}", "{matrix}");
+    assert_eq!(rows[1][2], "0", "{matrix}");
+    assert_eq!(rows[3][3], "J", "{matrix}");
+    assert!(m[0].contains(r"M_{11} &= "), "{}", m[0]);
+    assert!(m[0].contains(r"M_{12} &= "), "{}", m[0]);
+    assert!(!m[0].contains(r"M_{21} &= "), "{}", m[0]);
+    // The long equations continue on a further frame, marked so; no frame
+    // holds more lines than fit on it; the forcing, four lines, fits one.
+    let parts: Vec<&&str> = frames
+        .iter()
+        .filter(|f| f.contains("Four equations linear"))
+        .collect();
+    assert!(parts.len() >= 2, "not split: {slides}");
+    assert!(!parts[0].contains("(continued)"), "{}", parts[0]);
+    for p in &parts[1..] {
+        assert!(p.contains("(continued)"), "{p}");
+    }
+    for f in &frames {
+        let lines = f.lines().filter(|l| l.ends_with(r" \\")).count() + 1;
+        assert!(lines <= 9, "{lines} lines on one frame: {f}");
+    }
+    let f: Vec<&&str> = frames
+        .iter()
+        .filter(|f| f.contains("The rest of the equations"))
+        .collect();
+    assert_eq!(f.len(), 1, "{slides}");
+    let eqs: String = frames
+        .iter()
+        .filter(|f| f.contains("Four equations linear"))
+        .copied()
+        .collect();
+    assert_eq!(eqs.matches("= 0").count(), 4, "{eqs}");
+    // The notes set the same matrix.
+    let tex = notes::latex_document(&doc);
+    assert!(tex.contains(r"M &= \begin{bmatrix}"), "{tex}");
+}

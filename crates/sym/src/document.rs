@@ -330,8 +330,13 @@ pub struct StepBlock {
     pub formula: String,
     /// The frame a vector's components are in.
     pub frame: Option<String>,
-    /// The result, one equation per component.
+    /// The result, one equation per component (a matrix's entries row by
+    /// row).
     pub equations: Vec<Equation>,
+    /// Rows and columns of a matrix result (an inertia tensor, a mass
+    /// matrix), whose equations are its entries row by row; `None` for a
+    /// scalar, vector or list.
+    pub shape: Option<(usize, usize)>,
     /// Whether it equals its expectation.
     pub verdict: Verdict,
 }
@@ -367,7 +372,7 @@ impl StepBlock {
 
     /// The block of step `s`.
     pub fn of(s: &Step) -> StepBlock {
-        let equations = s
+        let equations: Vec<Equation> = s
             .components()
             .iter()
             .map(|(c, e)| Equation {
@@ -412,6 +417,12 @@ impl StepBlock {
                 Value::Vector(_, f) => Some(f.clone()),
                 _ => None,
             },
+            shape: match &s.value {
+                Value::Matrix(_) => Some((3, 3)),
+                Value::Array(rows) => Some((rows.len(), rows.first().map_or(0, Vec::len))),
+                _ => None,
+            }
+            .filter(|(n, m)| n * m == equations.len() && n * m > 0),
             equations,
             verdict,
         }

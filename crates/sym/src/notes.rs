@@ -309,17 +309,18 @@ fn symbol_list(names: &[String]) -> String {
         .join(",\\ \\allowbreak ")
 }
 
-/// The lines of equations in one `align*` block. An equation labelled 0
+/// The lines of equations in one `align*` block, one group per equation.
+/// An equation labelled 0
 /// always reads `… = 0`: when every such equation of the block fits on a
 /// line they are aligned at `=` (`result &= 0`); when one must be broken,
 /// each is set from the left edge of the block (`& result = 0`, the
 /// continuation lines indented under it), so that a long equation never
 /// turns into `0 = …` beside a short one that reads `… = 0`.
-fn equations_lines(eqs: &[Equation], width: f32) -> Vec<String> {
+fn equations_groups(eqs: &[Equation], width: f32) -> Vec<Vec<String>> {
     let zero_fits = |e: &Equation| math_width(&print::latex(&e.rhs)) + 4.0 <= width;
     let aligned_at_equals = eqs.iter().filter(|e| e.lhs.is_zero()).all(zero_fits);
     eqs.iter()
-        .flat_map(|e| {
+        .map(|e| {
             if !e.lhs.is_zero() {
                 equation_lines(&e.lhs.latex(), &e.rhs, width)
             } else if aligned_at_equals {
@@ -329,6 +330,79 @@ fn equations_lines(eqs: &[Equation], width: f32) -> Vec<String> {
             }
         })
         .collect()
+}
+
+fn equations_lines(eqs: &[Equation], width: f32) -> Vec<String> {
+    equations_groups(eqs, width).concat()
+}
+
+/// A matrix result (an inertia tensor, a mass matrix) as a matrix,
+/// `M = [ … ]`, when it can be set within `width`: an entry too long for
+/// its column is written by its name (M_{11}) and defined by an equation
+/// after the matrix, the longest first, until the matrix fits; in a
+/// symmetric matrix both entries of a pair carry the name of the one above
+/// the diagonal, which alone is defined. The groups are the matrix, then
+/// each definition. `None` for a result that is not a matrix, or one whose
+/// columns do not fit even with every entry named.
+fn matrix_groups(s: &StepBlock, width: f32) -> Option<Vec<Vec<String>>> {
+    let (n, m) = s.shape?;
+    if n * m < 2
+        || !matches!(s.heading, crate::document::Lhs::Label(..))
+        || n * m != s.equations.len()
+    {
+        return None;
+    }
+    let lhs = s.heading.latex();
+    let entries: Vec<String> = s.equations.iter().map(|e| print::latex(&e.rhs)).collect();
+    let names: Vec<String> = s.equations.iter().map(|e| e.lhs.latex()).collect();
+    let at = |i: usize, j: usize| i * m + j;
+    let symmetric =
+        n == m && (0..n).all(|i| (0..i).all(|j| entries[at(i, j)] == entries[at(j, i)]));
+    // The entry that stands at position k: the one above the diagonal of a
+    // symmetric pair.
+    let owner = |k: usize| {
+        let (i, j) = (k / m, k % m);
+        if symmetric && i > j { at(j, i) } else { k }
+    };
+    let budget = width - math_width(&lhs) - 3.0;
+    let mut named = vec![false; n * m];
+    loop {
+        let cells: Vec<&str> = (0..n * m)
+            .map(|k| {
+                let o = owner(k);
+                if named[o] { &names[o] } else { &entries[o] }
+            })
+            .map(String::as_str)
+            .collect();
+        let widths: Vec<f32> = cells.iter().map(|c| math_width(c)).collect();
+        let total: f32 = (0..m)
+            .map(|j| (0..n).map(|i| widths[at(i, j)]).fold(0.0, f32::max))
+            .sum::<f32>()
+            + 2.0 * m as f32;
+        if total <= budget {
+            let rows: Vec<String> = (0..n)
+                .map(|i| cells[i * m..(i + 1) * m].join(" & "))
+                .collect();
+            let mut groups = vec![vec![format!(
+                "{lhs} &= \\begin{{bmatrix}} {} \\end{{bmatrix}}",
+                rows.join(r" \\ ")
+            )]];
+            for k in (0..n * m).filter(|&k| named[k]) {
+                groups.push(equation_lines(&names[k], &s.equations[k].rhs, width));
+            }
+            return Some(groups);
+        }
+        let widest = (0..n * m)
+            .filter(|&k| owner(k) == k && !named[k] && widths[k] > math_width(&names[k]))
+            .max_by(|&a, &b| widths[a].total_cmp(&widths[b]))?;
+        named[widest] = true;
+    }
+}
+
+/// The equations of one step as groups of lines of an `align*` block:
+/// a matrix as a matrix ([`matrix_groups`]), else one group per equation.
+fn step_groups(s: &StepBlock, width: f32) -> Vec<Vec<String>> {
+    matrix_groups(s, width).unwrap_or_else(|| equations_groups(&s.equations, width))
 }
 
 /// `rhs = 0` broken like [`equation_lines`], set from the left edge of the
@@ -378,7 +452,7 @@ fn vanishes_text(markdown: bool) -> String {
 
 /// The body of an `align*` (or `aligned`) block for one step.
 fn step_lines(s: &StepBlock, width: f32) -> String {
-    equations_lines(&s.equations, width).join(" \\\\\n")
+    step_groups(s, width).concat().join(" \\\\\n")
 }
 
 fn failure_lines(fails: &[(Equation, Equation)], width: f32) -> String {
@@ -713,13 +787,17 @@ const SLIDES_PREAMBLE: &str = r"\documentclass[11pt]{beamer}
 ";
 
 /// Options of every frame: top-aligned, and shrunk only as far as needed
-/// when its content is taller than the slide (a long summary, a mass
-/// matrix's nine entries); a frame that fits is set as it is.
+/// when its content is taller than the slide, with a warning that
+/// `scripts/build_notes` turns into a failure: a safety net, since a
+/// frame that would not fit is split ([`slides_step`], [`slides_intro`]);
+/// a frame that fits is set as it is.
 const FRAME_OPTIONS: &str = "t,shrink=0";
 
 /// The notes as LaTeX Beamer slides: a title frame, a frame of contents,
 /// then for each derivation a frame with its summary and what is assumed,
-/// and one frame per shown step with its result in textbook form.
+/// and one frame per shown step with its result in textbook form; a
+/// frame that would be taller than the slide (estimated from the printed
+/// lines) continues on further frames.
 pub fn slides_document(doc: &Document) -> String {
     let mut o = String::new();
     generated_comment(&mut o);
@@ -756,44 +834,185 @@ fn slides_chapter(o: &mut String, c: &Chapter) {
         if c.title.is_empty() {
             let _ = writeln!(o, "\\section{{{}}}", latex_heading_plain(&s.title));
         }
+        slides_intro(o, s);
+        for st in &s.steps {
+            slides_step(o, &s.title, st);
+        }
+    }
+}
+
+// The height of a frame, estimated from the expression trees' printed
+// lines (an 11pt Beamer frame, 128 mm × 96 mm), in units of one line of
+// plain math in an `align*` block (about 18pt).
+
+/// The text height of a frame below a one-line title.
+const FRAME_HEIGHT: f32 = 11.6;
+/// What a step's frame holds besides its equations: the line saying what
+/// the step does, the verdict, the space around the `align*` block, and
+/// a margin for the estimate.
+const FRAME_FIXED: f32 = 2.9;
+/// Characters of a frame title per line (it wraps beyond).
+const TITLE_CHARS: usize = 48;
+/// Characters of small prose per line.
+const NOTE_CHARS: usize = 85;
+/// The height of a line of small prose.
+const NOTE_HEIGHT: f32 = 0.55;
+
+/// Characters of a summary or assumption (`\\small`) per line.
+const SMALL_CHARS: usize = 72;
+/// The height of a line of a summary or assumption.
+const SMALL_HEIGHT: f32 = 0.62;
+
+/// The frame that opens a derivation: its source, summary and
+/// assumptions; assumptions that do not fit below the summary continue on
+/// a further frame.
+fn slides_intro(o: &mut String, s: &Section) {
+    let title = frame_title(&s.title);
+    let room =
+        FRAME_HEIGHT - (text_lines(prose::ascii(&s.title).chars().count(), TITLE_CHARS) - 1.0);
+    let small = |t: &str, chars: usize| text_lines(t.chars().count(), chars) * SMALL_HEIGHT;
+    let mut used = text_lines(s.source.chars().count(), NOTE_CHARS) * NOTE_HEIGHT + 0.4;
+    let _ = writeln!(
+        o,
+        "\\begin{{frame}}[{FRAME_OPTIONS}]{{{title}}}\n{{\\footnotesize {}\\par}}\\medskip",
+        prose::latex(&s.source)
+    );
+    if !s.summary.is_empty() {
+        let _ = writeln!(o, "{{\\small {}\\par}}", prose::latex(&s.summary));
+        used += small(&s.summary, SMALL_CHARS);
+    }
+    let heights: Vec<f32> = s
+        .assumptions
+        .iter()
+        .map(|a| small(a, SMALL_CHARS - 6) + 0.15)
+        .collect();
+    let next_frame = |o: &mut String, what: &str| {
         let _ = writeln!(
             o,
-            "\\begin{{frame}}[{FRAME_OPTIONS}]{{{}}}\n{{\\footnotesize {}\\par}}\\medskip",
-            frame_title(&s.title),
-            prose::latex(&s.source)
+            "\\end{{frame}}\n\n\\begin{{frame}}[{FRAME_OPTIONS}]{{{title}}}\n\
+             {{\\footnotesize {what}\\par}}"
         );
-        if !s.summary.is_empty() {
-            let _ = writeln!(o, "{{\\small {}\\par}}", prose::latex(&s.summary));
+    };
+    if !s.assumptions.is_empty() {
+        // The list stays below the summary when it fits there whole.
+        if used + 0.5 + heights.iter().sum::<f32>() > room && !s.summary.is_empty() {
+            next_frame(o, "What is assumed");
+            used = NOTE_HEIGHT;
         }
-        if !s.assumptions.is_empty() {
-            let _ = writeln!(o, "\\begin{{itemize}}\\small");
-            for a in &s.assumptions {
-                let _ = writeln!(o, "  \\item {}", prose::latex(a));
+        let _ = writeln!(o, "\\begin{{itemize}}\\small");
+        used += 0.5;
+        let mut on_frame = 0;
+        for (a, h) in s.assumptions.iter().zip(&heights) {
+            if used + h > room && on_frame > 0 {
+                let _ = writeln!(o, "\\end{{itemize}}");
+                next_frame(o, "What is assumed (continued)");
+                let _ = writeln!(o, "\\begin{{itemize}}\\small");
+                used = NOTE_HEIGHT + 0.5;
+                on_frame = 0;
             }
-            let _ = writeln!(o, "\\end{{itemize}}");
+            let _ = writeln!(o, "  \\item {}", prose::latex(a));
+            used += h;
+            on_frame += 1;
         }
-        let _ = writeln!(o, "\\end{{frame}}\n");
-        for st in &s.steps {
-            let title = if st.doc.trim().is_empty() {
-                step_title(0, st)
-            } else {
-                prose::latex(&sentence(&st.doc))
-            };
+        let _ = writeln!(o, "\\end{{itemize}}");
+    }
+    let _ = writeln!(o, "\\end{{frame}}\n");
+}
+
+/// The estimated height of one line of an `align*` block: a line with a
+/// fraction is taller (display style), a matrix counts its rows.
+fn line_height(l: &str) -> f32 {
+    let frac = |t: &str| t.contains(r"\frac");
+    if let Some(k) = l.find(r"\begin{bmatrix}") {
+        let body = &l[k..];
+        return 0.3
+            + body
+                .split(r"\\")
+                .map(|row| if frac(row) { 1.25 } else { 0.75 })
+                .sum::<f32>();
+    }
+    if frac(l) { 1.6 } else { 1.0 }
+}
+
+/// Lines of `chars` characters a text of `n` characters takes.
+fn text_lines(n: usize, chars: usize) -> f32 {
+    n.div_ceil(chars).max(1) as f32
+}
+
+/// The groups of lines of a step split into frames: as few frames as the
+/// room on one allows, filled evenly, an equation kept on one frame
+/// unless it is taller than a frame alone (then its lines continue on the
+/// next).
+fn frames_of(groups: Vec<Vec<String>>, room: f32) -> Vec<Vec<String>> {
+    let mut pieces: Vec<(Vec<String>, f32)> = Vec::new();
+    for g in groups {
+        let mut piece: (Vec<String>, f32) = (Vec::new(), 0.0);
+        for l in g {
+            let h = line_height(&l);
+            if !piece.0.is_empty() && piece.1 + h > room {
+                pieces.push(std::mem::take(&mut piece));
+            }
+            piece.0.push(l);
+            piece.1 += h;
+        }
+        pieces.push(piece);
+    }
+    let total: f32 = pieces.iter().map(|p| p.1).sum();
+    let target = total / (total / room).ceil().max(1.0);
+    let mut frames: Vec<(Vec<String>, f32)> = Vec::new();
+    for (lines, h) in pieces {
+        match frames.last_mut() {
+            Some(f) if f.1 + h <= room && f.1 + h / 2.0 <= target => {
+                f.0.extend(lines);
+                f.1 += h;
+            }
+            _ => frames.push((lines, h)),
+        }
+    }
+    frames.into_iter().map(|f| f.0).collect()
+}
+
+/// The frames of one step: its equations in textbook form, split into
+/// continuation frames (the step's line marked *continued*) when they are
+/// taller than a frame; the verdict on the last.
+fn slides_step(o: &mut String, section_title: &str, st: &StepBlock) {
+    let title = frame_title(section_title);
+    let note = if st.doc.trim().is_empty() {
+        step_title(0, st)
+    } else {
+        prose::latex(&sentence(&st.doc))
+    };
+    let note_chars = if st.doc.trim().is_empty() {
+        8
+    } else {
+        st.doc.chars().count()
+    };
+    let room = FRAME_HEIGHT
+        - FRAME_FIXED
+        - (text_lines(prose::ascii(section_title).chars().count(), TITLE_CHARS) - 1.0)
+        - (text_lines(note_chars + 12, NOTE_CHARS) - 1.0) * NOTE_HEIGHT;
+    let frames = if st.vanishes() {
+        vec![Vec::new()]
+    } else {
+        frames_of(step_groups(st, SLIDE_BUDGET), room)
+    };
+    let last = frames.len() - 1;
+    for (k, lines) in frames.iter().enumerate() {
+        let cont = if k > 0 { " (continued)" } else { "" };
+        let _ = writeln!(
+            o,
+            "\\begin{{frame}}[{FRAME_OPTIONS}]{{{title}}}\n{{\\footnotesize {note}{cont}\\par}}"
+        );
+        if st.vanishes() {
+            let _ = writeln!(o, "{}\\par", vanishes_text(false));
+        } else {
             let _ = writeln!(
                 o,
-                "\\begin{{frame}}[{FRAME_OPTIONS}]{{{}}}\n{{\\footnotesize {}\\par}}",
-                frame_title(&s.title),
-                title
+                "\\begin{{align*}}\n{}\n\\end{{align*}}",
+                lines.join(" \\\\\n")
             );
-            if st.vanishes() {
-                let _ = writeln!(o, "{}\\par", vanishes_text(false));
-            } else {
-                let _ = writeln!(
-                    o,
-                    "\\begin{{align*}}\n{}\n\\end{{align*}}",
-                    step_lines(st, SLIDE_BUDGET)
-                );
-            }
+        }
+        if k == last {
             match &st.verdict {
                 Verdict::NoExpectation => {}
                 Verdict::Holds => {
@@ -806,8 +1025,8 @@ fn slides_chapter(o: &mut String, c: &Chapter) {
                     );
                 }
             }
-            let _ = writeln!(o, "\\end{{frame}}\n");
         }
+        let _ = writeln!(o, "\\end{{frame}}\n");
     }
 }
 

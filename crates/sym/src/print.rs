@@ -286,7 +286,8 @@ fn write_under_neg(e: &Expr, id: Id, style: &Cached, out: &mut String) {
 /// The pieces a long expression may be broken between, each printed by
 /// the printer in `style`: the top-level terms of a sum, each with the
 /// sign that joins it to the one before (`a`, `+ b`, `- c`); and, inside a
-/// term for which `too_long` holds and that is a product with a bracketed
+/// term for which `too_long` holds and that is a bracketed sum (−(a + b))
+/// or a product with a bracketed
 /// sum among its factors, the terms of that (first) bracket — the factors
 /// before it and the opening parenthesis go with its first term, the
 /// closing parenthesis and the factors after it with its last. Each piece
@@ -335,7 +336,7 @@ pub fn break_pieces(
                 write(e, id, &cached, o)
             }
         });
-        let split = if !bracketed && too_long(&whole) {
+        let split = if too_long(&whole) {
             bracket_split(e, id, &prefix, &cached)
         } else {
             None
@@ -379,8 +380,11 @@ fn sum_terms(e: &Expr, id: Id, style: &Cached) -> Vec<(String, Id, bool)> {
 /// A product term broken inside its first bracketed sum (see
 /// [`break_pieces`]); `None` when the term has no such bracket.
 fn bracket_split(e: &Expr, id: Id, prefix: &str, style: &Cached) -> Option<Vec<(String, bool)>> {
-    let Node::Mul(factors) = e.node(id) else {
-        return None;
+    let factors: &[Id] = match e.node(id) {
+        Node::Mul(factors) => factors,
+        // A bracketed sum alone (after a minus sign: −(a + b + …)).
+        Node::Add(_) => std::slice::from_ref(&id),
+        _ => return None,
     };
     if factors
         .iter()
