@@ -264,6 +264,49 @@ value = "(A_q - B_r)*u_x*u_y"
     );
 }
 
+/// A known factor prints as the file writes it, and needs no `collect`;
+/// a constant rate named by a Greek letter groups a bracket like a rate
+/// (J s + (C − A) Ω), and a difference of the letters A, B, C takes its
+/// sign from the cyclic order alone. A gyrostat's stability and a
+/// governor, written for this test.
+#[test]
+fn new_problems_print_known_factors_as_written() {
+    let out = printed(
+        r#"
+title = "A gyrostat and a governor, written for this test"
+source = "test"
+[symbols]
+constants = ["A", "B", "C", "K", "q", "Lambda", "P", "Q"]
+time = ["e_1", "e_2", "u"]
+[[step]]
+name = "k"
+value = "(K*q + (C - A)*Lambda)*(K*q + (C - B)*Lambda)*e_1/(A*B)"
+factor = ["K*q + (C - A)*Lambda", "K*q + (C - B)*Lambda"]
+[[step]]
+name = "lin"
+value = "B*e_2' - (K*q + (C - A)*Lambda)*e_1"
+collect = ["e_2'", "e_1"]
+factor = ["K*q + (C - A)*Lambda"]
+[[step]]
+name = "grouped"
+value = "(K*q + (C - A)*Lambda)*e_1"
+[[step]]
+name = "M"
+value = "P*u'' - (P - Q)*Lambda^2*sin(u)*cos(u)"
+factor = ["P - Q"]
+"#,
+    );
+    assert_eq!(
+        out,
+        [
+            "(K q + (C − A) Λ) (K q + (C − B) Λ) e_1/(A B)",
+            "B e\u{307}_2 − (K q + (C − A) Λ) e_1",
+            "(K q + (C − A) Λ) e_1",
+            "P u\u{308} − (P − Q) Λ² sin u cos u",
+        ]
+    );
+}
+
 /// A solved form is distributed over its sum when its terms have
 /// different constant divisors (the divisor cancelled in some), each term
 /// with its own constant ratio; a divisor every term shares, or one that

@@ -59,6 +59,11 @@ pub struct Presentation {
     /// Known factors, such as `A − B` and `A − C`: a bracket that equals their
     /// product (or one of them) times a monomial is printed as that product.
     pub factors: Vec<Poly>,
+    /// Each known factor as written in the file (`J s + (C − A) Ω`), in the
+    /// order of `factors`: a bracket printed as a known factor is printed
+    /// as written. Empty, or an entry that is not a plain formula (an
+    /// empty tree), leaves that factor in the default presentation.
+    pub factor_forms: Vec<Expr>,
     /// The file's order of constant factors (`[symbols] order`): the names
     /// listed come first, in this order, before the conventional one.
     pub constant_order: Vec<String>,
@@ -252,9 +257,21 @@ fn group_node(
     // Highest derivative first; then terms of constants only (J + I′ sin² θ);
     // in a distributed bracket the terms that were not divided before the
     // divided ones (θ̈ = φ̇² sin θ cos θ − (I/I′) …); then by name.
+    // (What every term has, as x in (J s + (C − A) Ω) x, does not count.)
+    let mut all = terms
+        .first()
+        .map(|t| t.1.clone())
+        .unwrap_or_else(Monomial::one);
+    for t in &terms {
+        all = all.gcd(t.1);
+    }
     terms.sort_by_key(|t| {
         let top = t.1.factors().iter().map(|f| f.0.order()).max();
-        let timed = t.1.factors().iter().any(|f| f.0.is_time_dependent());
+        let timed =
+            t.1.div(&all)
+                .factors()
+                .iter()
+                .any(|f| !leading_constant(f.0));
         (
             Reverse(top.unwrap_or(0)),
             timed,
@@ -270,15 +287,11 @@ fn group_node(
         // Rule 3 decides the sign of a difference of one cyclic family:
         // −(A − C) ω_2 ω_3, as Euler's equations are written. Constants
         // with subscripts are put positive first, so that
-        // `cyclic_difference` orders them by their subscripts whatever the
-        // sign (I_2 ω_3 − A_3 ω_3 is (I_2 − A_3) ω_3); the letters A, B, C
-        // keep their name order with the sign pulled out.
+        // `cyclic_difference` orders them by their subscripts or letters
+        // whatever the sign (I_2 ω_3 − A_3 ω_3 is (I_2 − A_3) ω_3, and
+        // C Ω − A Ω is (C − A) Ω, never −(A − C) Ω).
         if terms[0].2.is_negative() {
-            if subscripted(terms[0].1) {
-                terms.swap(0, 1);
-            } else {
-                content = -content;
-            }
+            terms.swap(0, 1);
         }
     } else if pull_sign(&terms) && lead_positive_inside(&mut terms) {
         content = -content;
@@ -329,7 +342,7 @@ fn group_node(
         outer = outer.mul(&m);
         number = &number * &c.abs();
         negative ^= c.is_negative();
-        fs.iter().map(|f| e.poly_node(f)).collect()
+        fs.iter().map(|f| known_factor_node(e, f, pres)).collect()
     } else {
         // Terms that share their time-dependent part (the same rates, sin
         // and cos) and differ in constants are one term of that part with
@@ -344,7 +357,9 @@ fn group_node(
                 }
             })
             .collect();
-        let timed = |m: &Monomial| m.split(|a| a.is_time_dependent()).0;
+        // The part that follows a bracket (rates, sin and cos, constant
+        // rates named by Greek letters: J s + (C − A) Ω).
+        let timed = |m: &Monomial| m.split(|a| !leading_constant(a)).0;
         let mut shared: BTreeMap<Monomial, Vec<(Monomial, Rational)>> = BTreeMap::new();
         for (m, c) in &parts {
             let t = timed(m);
@@ -441,13 +456,6 @@ fn cyclic_pair_of_constants(terms: &[crate::expr::PrintTerm<'_>]) -> bool {
         _ => None,
     };
     matches!((single(t0.1), single(t1.1)), (Some(a), Some(b)) if constants_of_one_family(a, b))
-}
-
-/// Whether a term's constants carry a cyclic subscript (I_2, A_3).
-fn subscripted(m: &Monomial) -> bool {
-    m.factors()
-        .iter()
-        .any(|f| !f.0.is_time_dependent() && cyclic_place(f.0).is_some_and(|p| p.2 != 2))
 }
 
 /// Whether a group's minus sign goes in front of its bracket: for a single
@@ -840,6 +848,34 @@ fn cyclic_pair(fs: &mut [(Atom, i32)]) {
             fs.swap(p, q);
         }
     }
+}
+
+/// A known factor as the file writes it (`J s + (C − A) Ω`, the author's
+/// grouping and order), when its written form expands to it; otherwise in
+/// the default presentation.
+fn known_factor_node(e: &mut Expr, f: &Poly, pres: &Presentation) -> Id {
+    let written = pres
+        .factors
+        .iter()
+        .position(|k| k == f)
+        .and_then(|k| pres.factor_forms.get(k))
+        .filter(|w| !w.is_empty() && w.to_poly() == *f);
+    match written {
+        Some(w) => graft(e, w, w.root()),
+        None => e.poly_node(f),
+    }
+}
+
+/// Copies the subtree of `src` at `id` into `e`; returns its new id.
+fn graft(e: &mut Expr, src: &Expr, id: Id) -> Id {
+    let node = match src.node(id) {
+        Node::Add(ts) => Node::Add(ts.iter().map(|&t| graft(e, src, t)).collect()),
+        Node::Mul(fs) => Node::Mul(fs.iter().map(|&f| graft(e, src, f)).collect()),
+        Node::Neg(x) => Node::Neg(graft(e, src, *x)),
+        Node::Pow(x, k) => Node::Pow(graft(e, src, *x), *k),
+        leaf => leaf.clone(),
+    };
+    e.push(node)
 }
 
 /// Writes `p` as `c · m · Π fs` with `fs` all the known factors (or a single

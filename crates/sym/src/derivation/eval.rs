@@ -792,6 +792,12 @@ impl<'a> Context<'a> {
                 let base = spans.get(k).map_or(list.span().start, |s| s.0);
                 let ast = self.parse_at(item, base)?;
                 pres.factors.push(self.scalar(&ast, base)?);
+                // Printed as written when it is a plain formula.
+                let mut written = crate::expr::Expr::new();
+                if self.symbols.lower(&ast, &mut written).is_err() {
+                    written = crate::expr::Expr::new();
+                }
+                pres.factor_forms.push(written);
             }
         }
         if let Some(list) = &s.fold {
