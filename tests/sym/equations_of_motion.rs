@@ -147,6 +147,44 @@ value = "mass_matrix(L, [phi'', theta''])"
     assert!(err.message.contains("J"), "{}", err.message);
 }
 
+/// A gyrostat-like system written for the test: the determinant `solve`
+/// cannot divide by is A_3 J (A_1 + J_t)(A_2 + J_t). The error prints it
+/// factored, and what it prints is that determinant.
+#[test]
+fn the_determinant_solve_cannot_divide_by_is_printed_factored() {
+    let text = r#"
+title = "gyrostat-like"
+source = "written for the test"
+[symbols]
+constants = ["A_1", "A_2", "A_3", "J", "J_t", "M"]
+time = ["u", "v", "w", "b"]
+[[step]]
+name = "eqs"
+value = "list((A_1 + J_t)*u'' - M, (A_2 + J_t)*v'' - M, A_3*w'' - M, J*(w'' + b'') - M)"
+[[step]]
+name = "acc"
+value = "solve(eqs, [u'', v'', w'', b''])"
+"#;
+    let err = load_str("gyrostat.toml", text).unwrap_err();
+    let msg = &err.message;
+    let printed = msg
+        .split_once(" is ")
+        .and_then(|(_, r)| r.split_once(", which cannot be divided by"))
+        .map(|(d, _)| d)
+        .unwrap_or_else(|| panic!("{msg}"));
+    assert!(
+        printed.contains("(A_1 + J_t)") && printed.contains("(A_2 + J_t)"),
+        "{printed}"
+    );
+    assert!(!printed.contains("A_1*A_2"), "expanded: {printed}");
+    let s = Symbols::parse_decl(&["A_1", "A_2", "A_3", "J", "J_t"], &[]);
+    assert_eq!(
+        s.poly(printed).unwrap(),
+        s.poly("A_3*J*(A_1 + J_t)*(A_2 + J_t)").unwrap(),
+        "{printed}"
+    );
+}
+
 #[test]
 fn absurd_sizes_fail_fast_with_the_limit_named() {
     for (value, setting) in [

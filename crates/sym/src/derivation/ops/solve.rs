@@ -85,7 +85,7 @@ pub(crate) fn solve_system(m: &[Vec<Poly>], f: &[Poly]) -> Result<Vec<Poly>, Str
         return Err(format!(
             "{what} is {}, which cannot be divided by ({}); write the equations in mass-matrix form with \
              mass_matrix(…) and forcing(…) instead",
-            Expr::from_poly(&det),
+            factored(&det),
             crate::poly::DIVISOR_RULE
         ));
     };
@@ -103,6 +103,111 @@ pub(crate) fn solve_system(m: &[Vec<Poly>], f: &[Poly]) -> Result<Vec<Poly>, Str
             &determinant(&mj) * &inv
         })
         .collect())
+}
+
+/// `p` for an error message, factored where it can be: the monomial common
+/// to all terms first, then binomial factors `x ± y` of two atoms, each
+/// found by exact division in `x` (`A_3*J*(A_1 + J_t)*(A_2 + J_t)` rather
+/// than the expanded sum).
+pub(crate) fn factored(p: &Poly) -> String {
+    let Some((first, _)) = p.terms().first() else {
+        return "0".into();
+    };
+    let common = p.terms().iter().fold(first.clone(), |g, (m, _)| g.gcd(m));
+    let mut rest = p * &Poly::term(common.recip(), Rational::ONE);
+    let mut factors: Vec<Poly> = Vec::new();
+    // A bounded search: at most a few hundred terms and atoms, each
+    // candidate one synthetic division.
+    'search: while rest.len() > 1 && rest.len() <= 256 {
+        let atoms = rest.atoms();
+        for &x in &atoms {
+            for &y in &atoms {
+                for sign in [Rational::ONE, -Rational::ONE] {
+                    if x == y {
+                        continue;
+                    }
+                    let s = Poly::term(Monomial::atom(y, 1), sign.clone());
+                    if let Some(q) = divide_by_binomial(&rest, x, &s) {
+                        factors.push(&Poly::atom(x) + &s);
+                        rest = q;
+                        continue 'search;
+                    }
+                }
+            }
+        }
+        break;
+    }
+    // A binomial that would print with a leading minus (`-B + J`) is
+    // turned round (`B - J`), its sign moved to the coefficient.
+    let mut coefficient = Poly::one();
+    for f in &mut factors {
+        if Expr::from_poly(f).to_string().starts_with('-') {
+            *f = f.scale(&-Rational::ONE);
+            coefficient = coefficient.scale(&-Rational::ONE);
+        }
+    }
+    if rest.len() > 1 {
+        factors.push(rest);
+    } else {
+        // A single term left (a number, or ±1): into the monomial part.
+        coefficient = &coefficient * &rest;
+    }
+    let m = &coefficient * &Poly::term(common, Rational::ONE);
+    match m.as_constant() {
+        Some(c) if c == Rational::ONE => join(&factors),
+        Some(c) if c == -Rational::ONE && !factors.is_empty() => format!("-{}", join(&factors)),
+        _ => {
+            factors.insert(0, m);
+            join(&factors)
+        }
+    }
+}
+
+fn join(factors: &[Poly]) -> String {
+    if factors.is_empty() {
+        return "1".into();
+    }
+    factors
+        .iter()
+        .map(|f| {
+            let e = Expr::from_poly(f);
+            if f.len() > 1 && factors.len() > 1 {
+                format!("({e})")
+            } else {
+                e.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("*")
+}
+
+/// `p / (x + s)` when it divides exactly, `p` a polynomial in the atom `x`
+/// (no negative powers of it) and `s` free of `x`: synthetic division.
+fn divide_by_binomial(p: &Poly, x: crate::atom::Atom, s: &Poly) -> Option<Poly> {
+    let mut by_power: Vec<Poly> = Vec::new();
+    for (m, c) in p.terms() {
+        let k = usize::try_from(m.exponent(x)).ok()?;
+        if by_power.len() <= k {
+            by_power.resize(k + 1, Poly::zero());
+        }
+        by_power[k] = &by_power[k] + &Poly::term(m.without(x, k as _), c.clone());
+    }
+    let d = by_power.len() - 1;
+    if d == 0 {
+        return None;
+    }
+    // p = (x + s) q: q's coefficients from the top, b_{k-1} = c_k − s b_k.
+    let mut q = vec![Poly::zero(); d];
+    q[d - 1] = by_power[d].clone();
+    for k in (1..d).rev() {
+        q[k - 1] = &by_power[k] - &(s * &q[k]);
+    }
+    if !(&by_power[0] - &(s * &q[0])).is_zero() {
+        return None;
+    }
+    Some(q.iter().enumerate().fold(Poly::zero(), |acc, (k, c)| {
+        &acc + &(c * &Poly::term(Monomial::atom(x, k as _), Rational::ONE))
+    }))
 }
 
 /// The determinant by Laplace expansion along the rows, memoised on the
