@@ -291,6 +291,10 @@ factor = ["K*q + (C - A)*Lambda"]
 name = "grouped"
 value = "(K*q + (C - A)*Lambda)*e_1"
 [[step]]
+name = "negative"
+value = "B*e_2' - (K*q + (C - A)*Lambda)*e_1"
+collect = ["e_2'", "e_1"]
+[[step]]
 name = "M"
 value = "P*u'' - (P - Q)*Lambda^2*sin(u)*cos(u)"
 factor = ["P - Q"]
@@ -302,6 +306,7 @@ factor = ["P - Q"]
             "(K q + (C − A) Λ) (K q + (C − B) Λ) e_1/(A B)",
             "B e\u{307}_2 − (K q + (C − A) Λ) e_1",
             "(K q + (C − A) Λ) e_1",
+            "B e\u{307}_2 − (K q + (C − A) Λ) e_1",
             "P u\u{308} − (P − Q) Λ² sin u cos u",
         ]
     );

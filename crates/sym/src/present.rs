@@ -371,8 +371,9 @@ fn group_node(
             }
         }
         shared.retain(|_, v| v.len() > 1);
-        // (node, negative, highest derivative order)
-        let mut nodes: Vec<(Id, bool, u32)> = Vec::with_capacity(terms.len());
+        // (node, negative, highest derivative order, has a part that
+        // follows a bracket)
+        let mut nodes: Vec<(Id, bool, u32, bool)> = Vec::with_capacity(terms.len());
         for ((sorted, _, _), (m, c)) in terms.iter().zip(&parts) {
             let top = m.factors().iter().map(|f| f.0.order()).max().unwrap_or(0);
             let t = timed(m);
@@ -381,7 +382,7 @@ fn group_node(
                 if !sub.is_empty() {
                     let sub = std::mem::take(sub);
                     let id = group_node(e, &t, &sub, pres);
-                    nodes.push((id, matches!(e.node(id), Node::Neg(_)), top));
+                    nodes.push((id, matches!(e.node(id), Node::Neg(_)), top, true));
                 }
                 continue;
             }
@@ -396,7 +397,20 @@ fn group_node(
             } else {
                 e.term_node(&f, c)
             };
-            nodes.push((id, c.is_negative(), top));
+            nodes.push((id, c.is_negative(), top, !t.is_one()));
+        }
+        // Grouping may leave every term negative (−J s − (C − A) Ω): the
+        // sign goes in front of the bracket, −(J s + (C − A) Ω) (rule 4),
+        // the terms in bracket order.
+        if nodes.iter().all(|n| n.1) {
+            for n in &mut nodes {
+                if let Node::Neg(x) = e.node(n.0) {
+                    n.0 = *x;
+                    n.1 = false;
+                }
+            }
+            negative = !negative;
+            nodes.sort_by_key(|n| (Reverse(n.2), n.3));
         }
         // The bracket leads with a positive term of its leading order.
         if nodes[0].1
