@@ -171,6 +171,16 @@ fn verify_fails_on_a_wrong_derivation_and_rejects_unknown_names() {
     let out = hdot(&["verify", "no-such-derivation"]);
     assert_eq!(out.status.code(), Some(2));
 
+    // A file that does not load: its diagnostic once, with one `error:`.
+    let out = hdot(&["verify", "tests/sym/broken/02-unknown-symbol.toml"]);
+    assert_eq!(out.status.code(), Some(2));
+    let se = text(&out.stderr);
+    assert!(
+        se.starts_with("error: ") && !se.contains("error: error"),
+        "{se}"
+    );
+    assert!(se.contains("02-unknown-symbol.toml:9:24"), "{se}");
+
     // Zero bodies would pass without checking anything: refused.
     let out = hdot(&["verify", "euler-general", "--bodies", "0"]);
     assert_eq!(out.status.code(), Some(2));

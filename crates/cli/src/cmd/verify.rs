@@ -64,7 +64,14 @@ pub fn run(args: VerifyArgs) -> anyhow::Result<ExitCode> {
         let name = p.name();
         let d = match p.load() {
             Ok(d) => d,
-            Err(e) => anyhow::bail!("{e}"),
+            // The diagnostic carries its own `error:` (as `derive` prints it).
+            Err(diag) => {
+                if let Some(b) = &bar {
+                    b.finish_and_clear();
+                }
+                eprintln!("{diag}");
+                return Ok(ExitCode::from(2));
+            }
         };
         if let Some(b) = &bar {
             b.set_message(name.clone());
