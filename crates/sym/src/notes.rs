@@ -1324,6 +1324,23 @@ mod tests {
             .collect::<Vec<_>>()
             .join(" ");
         assert_eq!(joined, print::latex(&s.expr(&bracket).unwrap()));
+        // Inside a bracket after a minus sign, −(a + b + …).
+        let negated = format!(
+            "-({})",
+            names
+                .iter()
+                .map(|n| format!("m*{n}^2"))
+                .collect::<Vec<_>>()
+                .join(" + ")
+        );
+        let lines = equation_lines("T", &s.expr(&negated).unwrap(), SLIDE_BUDGET);
+        assert!(lines.len() > 1, "{lines:?}");
+        assert!(
+            lines[0].starts_with(r"T &= -\left(m v_1^{2} + "),
+            "{lines:?}"
+        );
+        assert!(lines[0].ends_with(r"\right."), "{lines:?}");
+        assert!(lines.last().unwrap().ends_with(r"\right)"), "{lines:?}");
     }
 
     #[test]
