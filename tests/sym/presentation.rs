@@ -762,3 +762,36 @@ value = "(P*u'^2*cos(chi) - Q*u'^2*cos(chi) - e*c)*sin(chi)"
         ]
     );
 }
+
+/// Factors of one angle stay together: the cosine of an angle follows its
+/// sine (sin θ cos θ cos² λ, sin ψ cos ψ sin θ); a cosine whose sine is
+/// absent follows the sines (sin θ cos ψ). A file written for this test.
+#[test]
+fn new_problems_keep_the_factors_of_one_angle_together() {
+    let out = printed(
+        r#"
+title = "Angles, written for this test"
+source = "test"
+[symbols]
+constants = ["W", "lambda"]
+time = ["psi", "theta", "u"]
+[[step]]
+name = "a"
+value = "W^2*cos(theta)*cos(lambda)^2*sin(theta)"
+[[step]]
+name = "b"
+value = "u'*cos(psi)*sin(theta)*sin(psi)"
+[[step]]
+name = "c"
+value = "-u'*cos(psi)*sin(theta) + cos(lambda)*sin(lambda)*cos(theta)"
+"#,
+    );
+    assert_eq!(
+        out,
+        [
+            "W² sin θ cos θ cos² λ",
+            "u\u{307} sin ψ cos ψ sin θ",
+            "sin λ cos λ cos θ − u\u{307} sin θ cos ψ",
+        ]
+    );
+}

@@ -154,7 +154,9 @@ pub(crate) type PrintTerm<'a> = (SmallVec<[(Atom, i32); 8]>, &'a Monomial, &'a R
 /// `[u32::MAX − top order, (rank, −exp)…]` (without the first entry
 /// unless `derivative_first`) with the factor codes sorted,
 /// which orders lexicographically exactly as the comparisons do, and the
-/// sorted codes are the factors in print order.
+/// sorted codes are the factors in print order (then, as in
+/// [`Monomial::sorted_for_print`], a cosine is moved next to the sine of
+/// its angle).
 pub(crate) fn print_sorted(
     terms: &[(Monomial, Rational)],
     derivative_first: bool,
@@ -192,7 +194,7 @@ pub(crate) fn print_sorted(
     keyed
         .into_iter()
         .map(|(k, i)| {
-            let factors = k[1..]
+            let mut factors: SmallVec<[(Atom, i32); 8]> = k[1..]
                 .iter()
                 .map(|&c| {
                     let atom = atoms[(c >> 32) as usize];
@@ -200,6 +202,7 @@ pub(crate) fn print_sorted(
                     (atom, x as i32)
                 })
                 .collect();
+            crate::poly::trig_by_angle(&mut factors);
             (factors, &terms[i].0, &terms[i].1)
         })
         .collect()

@@ -203,11 +203,13 @@ impl Monomial {
         Monomial(self.0.iter().map(|&(a, e)| (a, -e)).collect())
     }
 
-    /// Factors sorted by [`Atom::sort_key`], for printing.
+    /// Factors sorted by [`Atom::sort_key`], for printing, with the cos of
+    /// an angle next to its sin ([`trig_by_angle`]).
     pub fn sorted_for_print(&self) -> Vec<(Atom, Exp)> {
         let mut v = self.0.to_vec();
         if v.len() > 1 {
             v.sort_by_cached_key(|f| f.0.sort_key());
+            trig_by_angle(&mut v);
         }
         v
     }
@@ -360,6 +362,25 @@ impl Poly {
         let mut terms: Vec<_> = n.into_iter().map(|(m, c)| (m.mul(&rest), c)).collect();
         terms.sort_unstable_by(|a, b| a.0.cmp(&b.0));
         Poly { terms, trig_den }
+    }
+}
+
+/// Factors in print order (sorted by [`Atom::sort_key`]: the sines by
+/// angle, then the cosines) with the cosine of an angle moved next to the
+/// sine of the same angle, so that factors of one angle stay together:
+/// `sin θ cos θ cos² λ`, `sin ψ cos ψ sin θ`; a cosine whose sine is
+/// absent keeps its place after the sines (`sin θ cos ψ`).
+pub(crate) fn trig_by_angle<E>(fs: &mut [(Atom, E)]) {
+    for k in 0..fs.len() {
+        let AtomKind::Cos(q) = fs[k].0.kind() else {
+            continue;
+        };
+        if let Some(j) = fs[..k].iter().position(|f| f.0.kind() == AtomKind::Sin(q))
+            && j + 1 < k
+        {
+            // Moving it forward shifts the factors between, all already seen.
+            fs[j + 1..=k].rotate_right(1);
+        }
     }
 }
 
