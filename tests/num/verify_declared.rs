@@ -574,3 +574,79 @@ fn the_impulse_response_has_no_false_alarm_over_many_bodies() {
         assert!(r.passed(), "seed {seed}: {:?}", r.worst());
     }
 }
+
+/// A gyrostat (a platform with a rotor spun at the rate s on its z axis)
+/// whose Euler equations are written in the moments A, B, C of the whole:
+/// a `[[known]]` whose value is a matrix binds them from the system's
+/// inertia (trial 2 §10), so the step verifies, and a wrong sign fails
+/// naming it.
+const GYROSTAT: &str = r#"
+title = "gyrostat"
+source = "test"
+[symbols]
+constants = ["Ap", "Bp", "Cp", "J", "Jt", "A", "B", "C", "s"]
+time = ["w_x", "w_y", "w_z", "beta"]
+[motion]
+given = ["beta' = s"]
+[[frame]]
+name = "P"
+angular_velocity = "[w_x, w_y, w_z]"
+[[frame]]
+name = "W"
+parent = "P"
+rotation = "z(beta)"
+[[point]]
+name = "G"
+fixed = true
+[[body]]
+name = "platform"
+frame = "P"
+point = "G"
+mass_centre = "[0, 0, 0] in P"
+inertia = "principal(Ap, Bp, Cp)"
+symmetry = "principal"
+[[body]]
+name = "rotor"
+frame = "W"
+point = "G"
+mass_centre = "[0, 0, 0] in W"
+inertia = "principal(Jt, Jt, J)"
+symmetry = "axisymmetric z"
+[[known]]
+value = "principal(A, B, C)"
+means = "inertia(system, G, P)"
+[[step]]
+name = "H"
+value = "subst(principal(Ap, Bp, Cp)*angvel(P) + express(principal(Jt, Jt, J)*angvel(W), P), beta' = s)"
+means = "angular_momentum(system, G)"
+[[step]]
+name = "euler"
+value = "subst(dt(H), Ap = A - Jt, Bp = B - Jt, Cp = C - J)"
+means = "moment(system, G)"
+"#;
+
+#[test]
+fn a_matrix_known_binds_the_moments_of_the_whole() {
+    let r = check(&load(GYROSTAT), &OPTS).unwrap();
+    assert!(r.passed() && r.steps.len() == 2, "{r:#?}");
+
+    let wrong = GYROSTAT.replace("Cp = C - J)", "Cp = C + J)");
+    assert_ne!(wrong, GYROSTAT);
+    let r = check(&load(&wrong), &OPTS).unwrap();
+    let failed: Vec<&str> = r
+        .steps
+        .iter()
+        .filter(|s| !s.passed)
+        .map(|s| s.step.as_str())
+        .collect();
+    assert_eq!(failed, ["euler"], "{r:#?}");
+
+    // A matrix known that the bodies contradict is an error naming it.
+    let e = check(
+        &load(&GYROSTAT.replace("principal(A, B, C)\"", "principal(A, A, C)\"")),
+        &OPTS,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("inertia(system, G, P)"), "{e}");
+}

@@ -796,7 +796,13 @@ fn bind_knowns(d: &Derivation, w: &World<'_>, values: &mut Values) -> Result<(),
                     }
                 }
             }
-            (_, m) => vec![[meaning_value(w, m)?.0.scalar(), f64::NAN, f64::NAN]],
+            // A scalar, or a matrix entry by entry (row by row).
+            (_, m) => meaning_value(w, m)?
+                .0
+                .components(w, None)
+                .into_iter()
+                .map(|x| [x, f64::NAN, f64::NAN])
+                .collect(),
         };
         let (_, size) = meaning_value(w, &k.meaning)?;
         for (p, jet) in k.value.components().into_iter().zip(jets) {

@@ -988,12 +988,15 @@ fn symmetry(cx: &Context<'_>, s: &Spanned<String>, axes: &[String; 3]) -> R<Symm
 fn known(cx: &Context<'_>, ph: &Physics, k: &RawKnown) -> R<Known> {
     let (ast, base) = parse_spanned(cx, &k.value)?;
     let value = cx.eval(&ast, base)?;
-    if !matches!(value, Value::Scalar(_) | Value::Vector(..)) {
+    if !matches!(
+        value,
+        Value::Scalar(_) | Value::Vector(..) | Value::Matrix(_)
+    ) {
         return Err(cx.at(
             base,
             ast.span,
             format!(
-                "a known's value is a scalar or a vector, found {}",
+                "a known's value is a scalar, a vector or a matrix, found {}",
                 value.describe()
             ),
         ));
