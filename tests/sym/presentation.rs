@@ -579,7 +579,7 @@ value = "solve(m*l^2*theta'' + m*g*l*sin(theta) - k*g*theta', [theta''])"
     assert_eq!(
         own[1..],
         [
-            "(1/2) l (l m θ\u{307}² + 2 k g θ − 2 g m cos θ)",
+            "(1/2) l² m θ\u{307}² + l g (k θ − m cos θ)",
             "g (k θ\u{307} − l m sin θ)/(l² m)"
         ],
         "{own:?}"
@@ -792,6 +792,44 @@ value = "-u'*cos(psi)*sin(theta) + cos(lambda)*sin(lambda)*cos(theta)"
             "W² sin θ cos θ cos² λ",
             "u\u{307} sin ψ cos ψ sin θ",
             "sin λ cos λ cos θ − u\u{307} sin θ cos ψ",
+        ]
+    );
+}
+
+/// A fraction is pulled out only over the terms that carry it (rule 12),
+/// on files written for this test: a pendulum's energy keeps its potential
+/// outside the ½, and a governor's swing equation keeps its integer terms
+/// whole instead of doubling them under a ½.
+#[test]
+fn new_problems_pull_a_fraction_only_over_the_terms_that_carry_it() {
+    let out = printed(
+        r#"
+title = "Fractions over part of a sum, written for this test"
+source = "test"
+[symbols]
+constants = ["m", "g", "c", "K", "Q", "Omega"]
+time = ["u", "v"]
+[[step]]
+name = "E"
+value = "K*u'^2/2 + Q*u'^2*sin(v)^2/2 + K*v'^2/2 - m*g*c*cos(v)"
+[[step]]
+name = "swing"
+value = "K*v'' - (K - Q)*Omega^2*sin(v)*cos(v) + m*g*c*sin(v)/2"
+[[step]]
+name = "steady"
+value = "g - 2*c*Omega^2*cos(v)/3"
+[[step]]
+name = "half"
+value = "K*u'^2/2 + Q*v'^2/2"
+"#,
+    );
+    assert_eq!(
+        out,
+        [
+            "(1/2) (K u\u{307}² + K v\u{307}² + Q u\u{307}² sin² v) − m g c cos v",
+            "K v\u{308} + (Q − K) Ω² sin v cos v + (1/2) m g c sin v",
+            "g − (2/3) c Ω² cos v",
+            "(1/2) (K u\u{307}² + Q v\u{307}²)",
         ]
     );
 }

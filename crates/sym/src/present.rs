@@ -172,6 +172,26 @@ pub fn present(p: &Poly, pres: &Presentation) -> Expr {
             for (t, rest) in by_time_part(ts) {
                 ids.push(group_node(&mut e, &t, &rest, pres));
             }
+        } else if let Some(classes) = (!several && k.is_one())
+            .then(|| split_by_content(ts))
+            .flatten()
+        {
+            // ½ (I′ θ̇² + …) − m g l cos θ: a fraction is pulled out only
+            // over the terms that carry it.
+            let mut parts: Vec<Id> = classes
+                .iter()
+                .map(|class| group_node(&mut e, k, class, pres))
+                .collect();
+            // Lead with a positive part: g − (2/3) L Ω² cos θ.
+            if matches!(e.node(parts[0]), Node::Neg(_))
+                && let Some(p) = parts
+                    .iter()
+                    .position(|&id| !matches!(e.node(id), Node::Neg(_)))
+            {
+                let first = parts.remove(p);
+                parts.insert(0, first);
+            }
+            ids.extend(parts);
         } else {
             ids.push(group_node(&mut e, k, ts, pres));
         }
@@ -207,6 +227,44 @@ fn by_time_part(ts: &[(Monomial, Rational)]) -> Vec<(Monomial, Vec<(Monomial, Ra
             (k, v)
         })
         .collect()
+}
+
+/// A sum whose rational content is a fraction, split so that the fraction
+/// is pulled out only over the terms that carry it: the terms are classed
+/// by their degree in the rates (time-dependent symbols and constant rates
+/// named by Greek letters; sin and cos do not count), classes of the same
+/// content are merged, highest degree first. So an energy keeps
+/// ½ (I′ θ̇² + …) and its potential − m g l cos θ apart, and
+/// I′ θ̈ − (I′ − J) Ω² sin θ cos θ + ½ m g L sin θ keeps its integer terms
+/// whole. `None` when the content is an integer or one class remains.
+fn split_by_content(ts: &[(Monomial, Rational)]) -> Option<Vec<Vec<(Monomial, Rational)>>> {
+    let content = ts.iter().fold(Rational::ZERO, |g, t| g.gcd(&t.1));
+    if content.is_zero() || content.is_integer() {
+        return None;
+    }
+    let degree = |m: &Monomial| -> i32 {
+        m.factors()
+            .iter()
+            .filter(|(a, _)| matches!(a.kind(), AtomKind::Var { .. }) && !leading_constant(*a))
+            .map(|(_, e)| *e)
+            .sum()
+    };
+    let mut by_degree: BTreeMap<Reverse<i32>, Vec<(Monomial, Rational)>> = BTreeMap::new();
+    for t in ts {
+        by_degree
+            .entry(Reverse(degree(&t.0)))
+            .or_default()
+            .push(t.clone());
+    }
+    let mut classes: Vec<(Rational, Vec<(Monomial, Rational)>)> = Vec::new();
+    for (_, class) in by_degree {
+        let c = class.iter().fold(Rational::ZERO, |g, t| g.gcd(&t.1));
+        match classes.iter_mut().find(|k| k.0 == c) {
+            Some(k) => k.1.extend(class),
+            None => classes.push((c, class)),
+        }
+    }
+    (classes.len() > 1).then(|| classes.into_iter().map(|k| k.1).collect())
 }
 
 /// The terms of a sum with every bare bracket among them opened: a sum
