@@ -821,6 +821,10 @@ value = "g - 2*c*Omega^2*cos(v)/3"
 [[step]]
 name = "half"
 value = "K*u'^2/2 + Q*v'^2/2"
+[[step]]
+name = "lin"
+value = "K*v'' + (m*g*c/2 - (K - Q)*Omega^2)*v"
+collect = ["v''", "v"]
 "#,
     );
     assert_eq!(
@@ -830,6 +834,7 @@ value = "K*u'^2/2 + Q*v'^2/2"
             "K v\u{308} + (Q − K) Ω² sin v cos v + (1/2) m g c sin v",
             "g − (2/3) c Ω² cos v",
             "(1/2) (K u\u{307}² + Q v\u{307}²)",
+            "K v\u{308} + ((Q − K) Ω² + (1/2) m g c) v",
         ]
     );
 }

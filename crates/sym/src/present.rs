@@ -192,6 +192,30 @@ pub fn present(p: &Poly, pres: &Presentation) -> Expr {
                 parts.insert(0, first);
             }
             ids.extend(parts);
+        } else if let Some(classes) = (!k.is_one() && ts.len() > 1)
+            .then(|| split_by_content(ts))
+            .flatten()
+        {
+            // The same inside a collected group's bracket:
+            // ((1/2) m g L − (I′ − J) Ω²) ε.
+            let mut parts: Vec<Id> = classes
+                .iter()
+                .map(|class| group_node(&mut e, &Monomial::one(), class, pres))
+                .collect();
+            parts = splice_sums(&mut e, parts);
+            if matches!(e.node(parts[0]), Node::Neg(_))
+                && let Some(p) = parts
+                    .iter()
+                    .position(|&id| !matches!(e.node(id), Node::Neg(_)))
+            {
+                let first = parts.remove(p);
+                parts.insert(0, first);
+            }
+            let mut factors = vec![e.add(parts)];
+            for (a, x) in k.sorted_for_print() {
+                factors.push(e.atom_pow(a, x));
+            }
+            ids.push(e.mul(factors));
         } else {
             ids.push(group_node(&mut e, k, ts, pres));
         }
