@@ -172,50 +172,20 @@ pub fn present(p: &Poly, pres: &Presentation) -> Expr {
             for (t, rest) in by_time_part(ts) {
                 ids.push(group_node(&mut e, &t, &rest, pres));
             }
-        } else if let Some(classes) = (!several && k.is_one())
-            .then(|| split_by_content(ts))
-            .flatten()
-        {
+        } else if let Some(classes) = split_by_content(ts) {
             // ½ (I′ θ̇² + …) − m g l cos θ: a fraction is pulled out only
-            // over the terms that carry it.
-            let mut parts: Vec<Id> = classes
-                .iter()
-                .map(|class| group_node(&mut e, k, class, pres))
-                .collect();
-            // Lead with a positive part: g − (2/3) L Ω² cos θ.
-            if matches!(e.node(parts[0]), Node::Neg(_))
-                && let Some(p) = parts
-                    .iter()
-                    .position(|&id| !matches!(e.node(id), Node::Neg(_)))
-            {
-                let first = parts.remove(p);
-                parts.insert(0, first);
+            // over the terms that carry it; inside a collected group's
+            // bracket too, ((J − I′) Ω² + (1/2) m g L) ε.
+            let parts = content_parts(&mut e, &classes, pres);
+            if k.is_one() {
+                ids.extend(parts);
+            } else {
+                let mut factors = vec![e.add(parts)];
+                for (a, x) in k.sorted_for_print() {
+                    factors.push(e.atom_pow(a, x));
+                }
+                ids.push(e.mul(factors));
             }
-            ids.extend(parts);
-        } else if let Some(classes) = (!k.is_one() && ts.len() > 1)
-            .then(|| split_by_content(ts))
-            .flatten()
-        {
-            // The same inside a collected group's bracket:
-            // ((1/2) m g L − (I′ − J) Ω²) ε.
-            let mut parts: Vec<Id> = classes
-                .iter()
-                .map(|class| group_node(&mut e, &Monomial::one(), class, pres))
-                .collect();
-            parts = splice_sums(&mut e, parts);
-            if matches!(e.node(parts[0]), Node::Neg(_))
-                && let Some(p) = parts
-                    .iter()
-                    .position(|&id| !matches!(e.node(id), Node::Neg(_)))
-            {
-                let first = parts.remove(p);
-                parts.insert(0, first);
-            }
-            let mut factors = vec![e.add(parts)];
-            for (a, x) in k.sorted_for_print() {
-                factors.push(e.atom_pow(a, x));
-            }
-            ids.push(e.mul(factors));
         } else {
             ids.push(group_node(&mut e, k, ts, pres));
         }
@@ -289,6 +259,28 @@ fn split_by_content(ts: &[(Monomial, Rational)]) -> Option<Vec<Vec<(Monomial, Ra
         }
     }
     (classes.len() > 1).then(|| classes.into_iter().map(|k| k.1).collect())
+}
+
+/// The classes of [`split_by_content`] as the terms of one sum, leading
+/// with a positive part: g − (2/3) L Ω² cos θ.
+fn content_parts(
+    e: &mut Expr,
+    classes: &[Vec<(Monomial, Rational)>],
+    pres: &Presentation,
+) -> Vec<Id> {
+    let parts: Vec<Id> = classes
+        .iter()
+        .map(|class| group_node(e, &Monomial::one(), class, pres))
+        .collect();
+    let mut parts = splice_sums(e, parts);
+    let negative = |e: &Expr, id: Id| matches!(e.node(id), Node::Neg(_));
+    if negative(e, parts[0])
+        && let Some(p) = parts.iter().position(|&id| !negative(e, id))
+    {
+        let first = parts.remove(p);
+        parts.insert(0, first);
+    }
+    parts
 }
 
 /// The terms of a sum with every bare bracket among them opened: a sum
