@@ -6,12 +6,8 @@
 //! coordinates), a gear train (a chain of rules in the rates, two steps
 //! long, two bodies), and a cone rolling with its apex fixed.
 
+use crate::load;
 use hdot_num::verify::{Options, Report, check};
-use hdot_sym::derivation::{Derivation, load_str};
-
-fn load(text: &str) -> Derivation {
-    load_str("test.toml", text).unwrap_or_else(|e| panic!("{e}"))
-}
 
 const OPTS: Options = Options {
     draws: 12,

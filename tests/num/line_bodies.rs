@@ -3,15 +3,11 @@
 //! along z, a bob `principal(0, 0, 0)` as particles at its point. Files
 //! written here.
 
+use crate::load;
 use hdot_num::verify::strategy::declared_bodies;
 use hdot_num::verify::{Options, check, check_bodies};
-use hdot_sym::derivation::{Derivation, load_str};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
-
-fn load(text: &str) -> Derivation {
-    load_str("test.toml", text).unwrap_or_else(|e| panic!("{e}"))
-}
 
 const OPTS: Options = Options { draws: 12, seed: 5 };
 

@@ -32,3 +32,9 @@ mod line_bodies;
 mod mutation;
 // A user's own crate: check(&derivation, &Options) and verify::strategy.
 mod user_crate;
+
+/// A derivation written in a test, loaded or the test fails with its
+/// diagnostic.
+fn load(text: &str) -> hdot_sym::derivation::Derivation {
+    hdot_sym::derivation::load_str("test.toml", text).unwrap_or_else(|e| panic!("{e}"))
+}

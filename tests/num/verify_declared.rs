@@ -1,12 +1,9 @@
 //! Verification from declarations (`[[body]]`, `[[point]]`, `means`) on
 //! derivation files written here, and the errors of bad declarations.
 
+use crate::load;
 use hdot_num::verify::{Options, check};
-use hdot_sym::derivation::{Derivation, load_str};
-
-fn load(text: &str) -> Derivation {
-    load_str("test.toml", text).unwrap_or_else(|e| panic!("{e}"))
-}
+use hdot_sym::derivation::load_str;
 
 fn err(text: &str) -> String {
     load_str("test.toml", text)
