@@ -626,6 +626,35 @@ impl Poly {
         Some(self * &d.inverse_divisor()?)
     }
 
+    /// `self / (x + s)` when it divides exactly, `self` a polynomial in the atom `x`
+    /// (no negative powers of it) and `s` free of `x`: synthetic division.
+    pub fn div_binomial(&self, x: Atom, s: &Poly) -> Option<Poly> {
+        let mut by_power: Vec<Poly> = Vec::new();
+        for (m, c) in self.terms() {
+            let k = usize::try_from(m.exponent(x)).ok()?;
+            if by_power.len() <= k {
+                by_power.resize(k + 1, Poly::zero());
+            }
+            by_power[k] = &by_power[k] + &Poly::term(m.without(x, k as _), c.clone());
+        }
+        let d = by_power.len() - 1;
+        if d == 0 {
+            return None;
+        }
+        // self = (x + s) q: q's coefficients from the top, b_{k-1} = c_k − s b_k.
+        let mut q = vec![Poly::zero(); d];
+        q[d - 1] = by_power[d].clone();
+        for k in (1..d).rev() {
+            q[k - 1] = &by_power[k] - &(s * &q[k]);
+        }
+        if !(&by_power[0] - &(s * &q[0])).is_zero() {
+            return None;
+        }
+        Some(q.iter().enumerate().fold(Poly::zero(), |acc, (k, c)| {
+            &acc + &(c * &Poly::term(Monomial::atom(x, k as _), Rational::ONE))
+        }))
+    }
+
     /// True when some term holds a negative power of `sin` or `cos`.
     pub fn has_trig_denominator(&self) -> bool {
         self.trig_den

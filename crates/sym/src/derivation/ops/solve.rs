@@ -127,7 +127,7 @@ pub(crate) fn factored(p: &Poly) -> String {
                         continue;
                     }
                     let s = Poly::term(Monomial::atom(y, 1), sign.clone());
-                    if let Some(q) = divide_by_binomial(&rest, x, &s) {
+                    if let Some(q) = rest.div_binomial(x, &s) {
                         factors.push(&Poly::atom(x) + &s);
                         rest = q;
                         continue 'search;
@@ -179,35 +179,6 @@ fn join(factors: &[Poly]) -> String {
         })
         .collect::<Vec<_>>()
         .join("*")
-}
-
-/// `p / (x + s)` when it divides exactly, `p` a polynomial in the atom `x`
-/// (no negative powers of it) and `s` free of `x`: synthetic division.
-fn divide_by_binomial(p: &Poly, x: crate::atom::Atom, s: &Poly) -> Option<Poly> {
-    let mut by_power: Vec<Poly> = Vec::new();
-    for (m, c) in p.terms() {
-        let k = usize::try_from(m.exponent(x)).ok()?;
-        if by_power.len() <= k {
-            by_power.resize(k + 1, Poly::zero());
-        }
-        by_power[k] = &by_power[k] + &Poly::term(m.without(x, k as _), c.clone());
-    }
-    let d = by_power.len() - 1;
-    if d == 0 {
-        return None;
-    }
-    // p = (x + s) q: q's coefficients from the top, b_{k-1} = c_k − s b_k.
-    let mut q = vec![Poly::zero(); d];
-    q[d - 1] = by_power[d].clone();
-    for k in (1..d).rev() {
-        q[k - 1] = &by_power[k] - &(s * &q[k]);
-    }
-    if !(&by_power[0] - &(s * &q[0])).is_zero() {
-        return None;
-    }
-    Some(q.iter().enumerate().fold(Poly::zero(), |acc, (k, c)| {
-        &acc + &(c * &Poly::term(Monomial::atom(x, k as _), Rational::ONE))
-    }))
 }
 
 /// The determinant by Laplace expansion along the rows, memoised on the
