@@ -26,6 +26,10 @@
 //! - **Convergence and charts** ([`convergence`], [`chart`]): error against
 //!   resolution, observed orders, the cheapest discretisation for a
 //!   tolerance; log–log SVG/PNG charts (shared with `hdot-sim`).
+//! - **Declared symbols bound to numbers** ([`bind`]): a derivation's
+//!   `[[body]]` and `gravity` symbols solved from given bodies' mass
+//!   properties — the one binding that `verify` and `hdot-sim`'s derived
+//!   scenes both use.
 //! - **Derived results as numbers** ([`eval`], [`verify`]): a derived
 //!   polynomial compiled to a flat f64 tape; `hdot verify`'s checks, which
 //!   bind a derivation's symbols from particle sums of random bodies and
@@ -37,7 +41,7 @@
 //!
 //! - No symbolic algebra: that is `hdot-sym`. This crate reads its
 //!   results (canonical polynomials of a loaded derivation) only in
-//!   [`eval`] and [`verify`]; the bodies, sums and scenes use no
+//!   [`eval`], [`bind`] and [`verify`]; the bodies, sums and scenes use no
 //!   expression types, so either side can change without the other.
 //! - No time integration: that is `hdot-sim` (which reuses [`chart`]).
 //! - No printing policy beyond [`report::Report`]: the CLI decides formats,
@@ -57,6 +61,7 @@
 //! assert!((iz - exact.inertia_g.moments()[2]).abs() < 1e-9 * iz);
 //! ```
 
+pub mod bind;
 pub mod body;
 pub mod chart;
 pub mod cloud;

@@ -31,6 +31,7 @@ use super::bodies::{axisymmetric, map_particles, mirrored, random_body, random_r
 use super::quantities::{Measured, measure};
 use super::world::{ORDERS, PointJet, World, mat_t_vec, vee};
 use super::{Comparison, TOLERANCE_ULPS, VerifyError, linear};
+use crate::bind::{MeasuredBody, Values, bind_all, declared_equations, nth};
 use crate::cloud::ParticleCloud;
 use crate::eval::Tape;
 
@@ -118,86 +119,6 @@ impl Report {
     }
 }
 
-/// Values of symbols (constants, and time symbols with their derivative
-/// order) and bounds on their sizes.
-#[derive(Clone, Debug, Default)]
-pub struct Values {
-    map: HashMap<Atom, (f64, f64)>,
-}
-
-/// The `n`th derivative of a time atom.
-fn nth(a: Atom, n: u32) -> Atom {
-    Atom::time(a.name(), a.order() + n)
-}
-
-impl Values {
-    /// Value and size of an atom (sin and cos of a bound angle included).
-    pub fn get(&self, a: Atom) -> Option<(f64, f64)> {
-        match a.kind() {
-            AtomKind::Var { .. } => self.map.get(&a).copied(),
-            AtomKind::Sin(q) => self.map.get(&q).map(|v| (v.0.sin(), 1.0)),
-            AtomKind::Cos(q) => self.map.get(&q).map(|v| (v.0.cos(), 1.0)),
-        }
-    }
-
-    /// The `n`th derivative of time atom `a`.
-    pub fn time(&self, a: Atom, n: u32) -> Option<(f64, f64)> {
-        self.get(nth(a, n))
-    }
-
-    fn set(&mut self, a: Atom, v: f64, size: f64) {
-        self.map.insert(a, (v, size.abs()));
-    }
-
-    /// These values with every small symbol (and each derivative of one)
-    /// times `h`: the disturbance scaled.
-    pub(crate) fn scale_small(&self, small: &[Atom], h: f64) -> Values {
-        let mut out = self.clone();
-        for (a, v) in out.map.iter_mut() {
-            if a.is_time_dependent() && small.contains(&a.base()) {
-                v.0 *= h;
-                v.1 *= h.abs();
-            }
-        }
-        out
-    }
-
-    /// These values with `a` set to `v` (of size |v|).
-    pub(crate) fn with(&self, a: Atom, v: f64) -> Values {
-        let mut out = self.clone();
-        out.set(a, v, v);
-        out
-    }
-
-    fn unset(&mut self, a: Atom) {
-        self.map.remove(&a);
-    }
-
-    fn bound(&self, a: Atom) -> bool {
-        self.get(a).is_some()
-    }
-
-    /// Value and size (Σ |terms| with each atom at its size) of `p`.
-    pub fn eval(&self, p: &Poly) -> Result<(f64, f64), VerifyError> {
-        let (mut v, mut s) = (0.0, 0.0);
-        for (m, c) in p.terms() {
-            let (mut tv, mut ts) = (c.to_f64(), c.to_f64().abs());
-            for &(a, e) in m.factors() {
-                let (x, sx) = self.get(a).ok_or_else(|| VerifyError::Unbound {
-                    derivation: String::new(),
-                    step: String::new(),
-                    symbol: a.to_string(),
-                })?;
-                tv *= x.powi(e);
-                ts *= if e < 0 { x.abs() } else { sx }.powi(e);
-            }
-            v += tv;
-            s += ts;
-        }
-        Ok((v, s))
-    }
-}
-
 /// What one draw fixes besides the symbols' values: the bodies (body axes,
 /// about the reference point), their centres, free attitudes and free
 /// points.
@@ -268,80 +189,6 @@ fn declaration(d: &Derivation, message: String) -> VerifyError {
     VerifyError::Declaration {
         derivation: d.name.clone(),
         message,
-    }
-}
-
-/// Binds the one unbound symbol of each `(poly, target)` (linear in it),
-/// as long as progress is made; checks those without one.
-fn bind_all(
-    d: &Derivation,
-    values: &mut Values,
-    mut eqs: Vec<(Poly, f64, f64, String)>,
-) -> Result<(), VerifyError> {
-    loop {
-        let before = eqs.len();
-        let mut rest = Vec::new();
-        for (p, target, size, what) in eqs {
-            let unbound: Vec<Atom> = {
-                let mut u: Vec<Atom> = p
-                    .atoms()
-                    .into_iter()
-                    .map(|a| match a.kind() {
-                        AtomKind::Sin(q) | AtomKind::Cos(q) => q,
-                        _ => a,
-                    })
-                    .filter(|a| !values.bound(*a))
-                    .collect();
-                u.sort_by_key(|a| a.sort_key());
-                u.dedup();
-                u
-            };
-            match unbound.as_slice() {
-                [] => {
-                    let (v, s) = values.eval(&p)?;
-                    if (v - target).abs() > 1e-9 * (s + size.abs() + target.abs()) {
-                        return Err(declaration(
-                            d,
-                            format!(
-                                "{what} is declared {} = {v:e} but the body has {target:e}: the declared symmetry does not make it so",
-                                p.to_source()
-                            ),
-                        ));
-                    }
-                }
-                [s] if p.terms().iter().all(|(m, _)| m.exponent(*s) <= 1)
-                    && Atom::sin(*s).is_none_or(|x| !p.contains(x))
-                    && Atom::cos(*s).is_none_or(|x| !p.contains(x)) =>
-                {
-                    let coef = p.partial(*s);
-                    let rest = p.subst(&mut |a| (a == *s).then(Poly::zero));
-                    let (c, _) = values.eval(&coef)?;
-                    let (r, _) = values.eval(&rest)?;
-                    if c == 0.0 {
-                        return Err(declaration(
-                            d,
-                            format!("{what}: cannot solve {} for {s}", p.to_source()),
-                        ));
-                    }
-                    values.set(*s, (target - r) / c, size / c.abs());
-                }
-                _ => rest.push((p, target, size, what)),
-            }
-        }
-        if rest.is_empty() {
-            return Ok(());
-        }
-        if rest.len() == before {
-            let (p, _, _, what) = &rest[0];
-            return Err(declaration(
-                d,
-                format!(
-                    "{what}: {} has more than one symbol not bound yet (bind all but one elsewhere)",
-                    p.to_source()
-                ),
-            ));
-        }
-        eqs = rest;
     }
 }
 
@@ -578,7 +425,7 @@ fn place(
     for k in 0..3 {
         c[k] = values
             .eval(&mc.0[k])
-            .map_err(|e| e.in_step(d, &format!("mass_centre of {}", b.name)))?
+            .map_err(|e| VerifyError::from(e).in_step(d, &format!("mass_centre of {}", b.name)))?
             .0;
     }
     Ok((map_particles(base, |p, m| [(p + c, m)])?, c))
@@ -594,107 +441,6 @@ fn body_equations(b: &Body, cloud: &ParticleCloud) -> Vec<(Poly, f64, f64, Strin
         inertia: inertia_about_origin(cloud),
     };
     declared_equations(b, &measured, !b.inertia_about_centre)
-}
-
-/// What a given body has for a derivation's `[[body]]`, in the body
-/// frame's axes: its mass, G from the reference point, and the inertia
-/// tensor about the point the declared inertia is about.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct MeasuredBody {
-    /// Σ m.
-    pub mass: f64,
-    /// G from the reference point.
-    pub centre: Vector3<f64>,
-    /// Σ m (|ρ|² E − ρ ρᵀ) about the reference point, or about G when the
-    /// declaration's inertia is about the centre.
-    pub inertia: Matrix3<f64>,
-}
-
-/// Binds the symbols of a derivation's body declarations (mass,
-/// `mass_centre`, inertia) from given bodies, one per declared body
-/// (`None`: not given), with the symbols `given` already known; a
-/// declared entry the bodies do not meet is an error naming it; the
-/// file's `gravity` (declared in N) binds its symbols from `gravity`, a
-/// vector in N's axes, when given. Returns every constant bound this way,
-/// by name. A simulation binds its bodies' symbols so (`hdot_sim::scene`,
-/// derived scenes).
-pub fn bind_bodies(
-    d: &Derivation,
-    measured: &[Option<MeasuredBody>],
-    gravity: Option<Vector3<f64>>,
-    given: &BTreeMap<String, f64>,
-) -> Result<BTreeMap<String, f64>, VerifyError> {
-    let mut values = Values::default();
-    for (name, v) in given {
-        values.set(Atom::constant(name), *v, *v);
-    }
-    let mut eqs = Vec::new();
-    if let Some(g) = gravity {
-        let declared = d.physics.gravity.as_ref().filter(|(_, f)| f == "N");
-        let Some((v, _)) = declared else {
-            return Err(declaration(
-                d,
-                "a gravity vector is given but the file declares no gravity in N".into(),
-            ));
-        };
-        for k in 0..3 {
-            eqs.push((
-                v.0[k].clone(),
-                g[k],
-                g.norm(),
-                format!("component {} of gravity", k + 1),
-            ));
-        }
-    }
-    for (b, m) in d.physics.bodies.iter().zip(measured) {
-        if let Some(m) = m {
-            eqs.extend(declared_equations(b, m, true));
-        }
-    }
-    bind_all(d, &mut values, eqs)?;
-    Ok(values
-        .map
-        .iter()
-        .filter(|(a, _)| !given.contains_key(a.name()))
-        .map(|(a, (v, _))| (a.name().to_string(), *v))
-        .collect())
-}
-
-/// The declarations of `b` as equations on a body's measured properties
-/// (those of `mass_centre` when `with_centre`).
-fn declared_equations(
-    b: &Body,
-    m: &MeasuredBody,
-    with_centre: bool,
-) -> Vec<(Poly, f64, f64, String)> {
-    let (mass, c, i) = (m.mass, m.centre, m.inertia);
-    // The body's extent: the size positions are computed to.
-    let extent = (i.trace() / mass).sqrt() + c.norm();
-    let mut eqs: Vec<_> = b
-        .mass
-        .iter()
-        .map(|p| (p.clone(), mass, mass, format!("the mass of {}", b.name)))
-        .collect();
-    for k in (0..3).filter(|_| b.mass_centre.is_some() && with_centre) {
-        eqs.push((
-            b.mass_centre.as_ref().expect("declared").0[k].clone(),
-            c[k],
-            extent,
-            format!("component {} of the mass centre of {}", k + 1, b.name),
-        ));
-    }
-    let size = 0.5 * i.trace();
-    for r in 0..3 {
-        for s in r..3 {
-            eqs.push((
-                b.inertia.0[r][s].clone(),
-                i[(r, s)],
-                size,
-                format!("inertia entry ({}, {}) of {}", r + 1, s + 1, b.name),
-            ));
-        }
-    }
-    eqs
 }
 
 /// Applies conditions to the values (rules in order).
@@ -716,7 +462,11 @@ fn apply(d: &Derivation, values: &mut Values, rules: &[Rule]) -> Result<(), Veri
                         Ok(x) => x,
                         // Derivatives beyond those drawn (a rule in a rate).
                         Err(_) if n > from => break,
-                        Err(e) => return Err(e.in_step(d, &format!("given {}", r.text))),
+                        Err(e) => {
+                            return Err(
+                                VerifyError::from(e).in_step(d, &format!("given {}", r.text))
+                            );
+                        }
                     };
                     values.set(nth(base, n), v, s);
                     q = q.dt();

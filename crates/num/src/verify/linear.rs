@@ -25,7 +25,7 @@ use hdot_sym::atom::Atom;
 use nalgebra::{DMatrix, DVector};
 
 use super::VerifyError;
-use super::declared::Values;
+use crate::bind::Values;
 
 /// A meaning measured at given values: its components and the magnitudes
 /// of the terms summed into them.

@@ -41,11 +41,10 @@ use hdot_sym::atom::Atom;
 use hdot_sym::derivation::Derivation;
 
 pub use bodies::{random_body, random_cloud};
-pub use declared::{
-    Draw, MeasuredBody, Options, Report, StepCheck, Values, bind_bodies, check, check_bodies,
-    check_with, symmetric,
-};
+pub use declared::{Draw, Options, Report, StepCheck, check, check_bodies, check_with, symmetric};
 
+use crate::bind::BindError;
+pub use crate::bind::Values;
 use crate::error::BodyError;
 
 /// Pass threshold, in units of `f64::EPSILON` relative to the scale.
@@ -83,6 +82,27 @@ pub enum VerifyError {
         /// What is wrong.
         message: String,
     },
+}
+
+impl From<BindError> for VerifyError {
+    /// An unbound symbol is attributed to its step later
+    /// ([`VerifyError::in_step`]).
+    fn from(e: BindError) -> Self {
+        match e {
+            BindError::Unbound(symbol) => VerifyError::Unbound {
+                derivation: String::new(),
+                step: String::new(),
+                symbol,
+            },
+            BindError::Declaration {
+                derivation,
+                message,
+            } => VerifyError::Declaration {
+                derivation,
+                message,
+            },
+        }
+    }
 }
 
 impl VerifyError {

@@ -411,7 +411,11 @@ fn after_impulse(w: &World<'_>, a: &[Arg]) -> Result<[(Vector3<f64>, f64); 2], V
             .expect("validated by hdot-sym");
     let mut local = Vector3::zeros();
     for (k, c) in f.0.iter().enumerate() {
-        local[k] = w.values.eval(c).map_err(|e| e.in_step(w.d, "impulse"))?.0;
+        local[k] = w
+            .values
+            .eval(c)
+            .map_err(|e| VerifyError::from(e).in_step(w.d, "impulse"))?
+            .0;
     }
     let fhat = w.frames[fi][0] * local;
     let m: f64 = ps.iter().map(|q| q.m).sum();

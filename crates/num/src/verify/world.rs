@@ -14,7 +14,8 @@ use hdot_sym::vector::Vec3;
 use nalgebra::{Matrix3, Vector3};
 
 use super::VerifyError;
-use super::declared::{Draw, Values};
+use super::declared::Draw;
+use crate::bind::Values;
 
 /// Orders kept in a jet: the value and three time derivatives.
 pub const ORDERS: usize = 4;
@@ -195,7 +196,10 @@ pub(crate) fn displacement(
                             v += cy
                                 * values
                                     .eval(&dy)
-                                    .map_err(|e| e.in_step(d, &format!("given {}", r.text)))?
+                                    .map_err(|e| {
+                                        VerifyError::from(e)
+                                            .in_step(d, &format!("given {}", r.text))
+                                    })?
                                     .0;
                         }
                     }

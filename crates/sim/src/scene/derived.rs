@@ -30,7 +30,7 @@
 //! derivation declares one). The symbols of the derivation's declarations
 //! (`mass = "m"`, `mass_centre = "[0, 0, l] in R"`, `inertia =
 //! "principal(Ip, Ip, I)"`) are bound from the tables' mass properties
-//! ([`hdot_num::verify::bind_bodies`]), after checking that the body has
+//! ([`hdot_num::bind::bind_bodies`]), after checking that the body has
 //! the declared symmetry. The scene's gravity vector `g` binds the symbols
 //! of the derivation's `gravity` the same way.
 
@@ -38,8 +38,8 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
+use hdot_num::bind::{MeasuredBody, bind_bodies};
 use hdot_num::scene::{Bodies, Group};
-use hdot_num::verify::{MeasuredBody, bind_bodies};
 use hdot_sym::derivation::Derivation;
 use hdot_sym::derivation::physics::{Body, Symmetry};
 use hdot_sym::symbols::Decl;
