@@ -5,6 +5,7 @@ use std::process::Command;
 use hdot_tests::{hdot_bin, repo_root};
 
 mod reliability;
+mod review;
 
 fn hdot(args: &[&str]) -> std::process::Output {
     Command::new(hdot_bin())

@@ -72,6 +72,61 @@ fn is_manifest(p: &Path) -> bool {
         .is_some_and(|n| n == hdot_sym::course::MANIFEST_FILE)
 }
 
+/// What a `*.toml` file in a lecturer's folder is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FileKind {
+    /// A derivation (also a file that does not parse: its loader says where).
+    Derivation,
+    /// A scene (`hdot inertia|dynamics|simulate`), recognised by its tables.
+    Scene,
+    /// The notes manifest (`notes.toml`, or a file of `[[chapter]]`s).
+    Manifest,
+}
+
+/// Top-level keys that only scenes have (docs/scenes.md, docs/simulation.md).
+const SCENE_KEYS: &[&str] = &[
+    "kind",
+    "initial",
+    "t_end",
+    "force",
+    "couple",
+    "constraint",
+    "impulse",
+    "derivation",
+    "top",
+    "shaft",
+    "motor",
+];
+
+/// Classifies the file at `p` with text `text`: a file with `[[step]]`s is
+/// a derivation; without, `notes.toml` or a file of `[[chapter]]`s is the
+/// manifest and a file with a scene's tables is a scene. Anything else is
+/// read as a derivation, so that a broken one is reported, not skipped.
+pub fn kind_of(p: &Path, text: &str) -> FileKind {
+    let Ok(table) = text.parse::<toml::Table>() else {
+        return if is_manifest(p) {
+            FileKind::Manifest
+        } else {
+            FileKind::Derivation
+        };
+    };
+    if table.contains_key("step") {
+        FileKind::Derivation
+    } else if is_manifest(p) || table.contains_key("chapter") {
+        FileKind::Manifest
+    } else if SCENE_KEYS.iter().any(|k| table.contains_key(*k)) {
+        FileKind::Scene
+    } else {
+        FileKind::Derivation
+    }
+}
+
+/// Whether the file at `p` is a derivation (see [`kind_of`]); an
+/// unreadable file counts as one, so that the loader reports it.
+pub fn is_derivation_file(p: &Path) -> bool {
+    std::fs::read_to_string(p).map_or(true, |t| kind_of(p, &t) == FileKind::Derivation)
+}
+
 /// The notes manifest of `dir`, if it has one: its path (as shown) and text.
 pub fn manifest(dir: &Dir) -> Option<(PathBuf, String)> {
     match dir {
@@ -92,8 +147,9 @@ pub fn manifest(dir: &Dir) -> Option<(PathBuf, String)> {
     }
 }
 
-/// Every derivation of `dir` (not the notes manifest), sorted by name; an
-/// error when there is none (checking nothing must not pass).
+/// Every derivation of `dir` (not the notes manifest, not a scene beside
+/// them: see [`kind_of`]), sorted by name; an error when there is none
+/// (checking nothing must not pass).
 pub fn all(dir: &Dir) -> anyhow::Result<Vec<Entry>> {
     let dir = match dir {
         Dir::Bundled => {
@@ -108,7 +164,9 @@ pub fn all(dir: &Dir) -> anyhow::Result<Vec<Entry>> {
     let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
         .with_context(|| format!("cannot read the derivations folder {}", dir.display()))?
         .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|x| x == "toml") && !is_manifest(p))
+        .filter(|p| {
+            p.extension().is_some_and(|x| x == "toml") && !is_manifest(p) && is_derivation_file(p)
+        })
         .collect();
     v.sort();
     if v.is_empty() {

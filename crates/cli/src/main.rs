@@ -14,6 +14,7 @@ use clap::{Parser, Subcommand};
 mod catalog;
 mod cmd;
 mod output;
+mod review;
 
 /// Derive, print, check and verify the equations of three-dimensional
 /// rigid-body kinetics.
@@ -33,6 +34,8 @@ enum Command {
     Convergence(cmd::convergence::ConvergenceArgs),
     /// Derive one derivation's equations and print them in textbook form.
     Derive(cmd::derive::DeriveArgs),
+    /// What changed in the mathematics of derivation files, step by step.
+    Diff(cmd::diff::DiffArgs),
     /// H_G, H_O, T, required resultants and solved unknowns of a scene.
     Dynamics(cmd::dynamics::DynamicsArgs),
     /// Mass, centre, inertia about G and O, principal axes of a scene.
@@ -43,6 +46,8 @@ enum Command {
     Notes(cmd::notes::NotesArgs),
     /// Simulate a scene with the least exact model; report error, drift and cost.
     Simulate(cmd::simulate::SimulateArgs),
+    /// One review file per derivation; --check fails when one would change.
+    Snapshot(cmd::snapshot::SnapshotArgs),
     /// Derived equations against particle sums on random bodies and states.
     Verify(cmd::verify::VerifyArgs),
     /// Sweep every method over steps and tolerances; write CSV and chart.
@@ -77,11 +82,13 @@ fn dispatch(cli: Cli) -> ExitCode {
         Command::Check(a) => cmd::check::run(a),
         Command::Convergence(a) => cmd::convergence::run(a),
         Command::Derive(a) => cmd::derive::run(a),
+        Command::Diff(a) => cmd::diff::run(a),
         Command::Dynamics(a) => cmd::dynamics::run(a),
         Command::Inertia(a) => cmd::inertia::run(a),
         Command::List(a) => cmd::list::run(a),
         Command::Notes(a) => cmd::notes::run(a),
         Command::Simulate(a) => cmd::simulate::run(a),
+        Command::Snapshot(a) => cmd::snapshot::run(a),
         Command::Verify(a) => cmd::verify::run(a),
         Command::WorkPrecision(a) => cmd::work_precision::run(a),
     };

@@ -3,10 +3,12 @@
 pub mod check;
 pub mod convergence;
 pub mod derive;
+pub mod diff;
 pub mod dynamics;
 pub mod inertia;
 pub mod list;
 pub mod notes;
 pub mod simulate;
+pub mod snapshot;
 pub mod verify;
 pub mod work_precision;
