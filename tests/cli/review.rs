@@ -212,16 +212,16 @@ fn lecturer_repo() -> tempfile::TempDir {
     git(d, &["config", "user.email", "lecturer@example.invalid"]);
     git(d, &["config", "user.name", "Lecturer"]);
     git(d, &["config", "commit.gpgsign", "false"]);
-    write(d, "course/euler-principal.toml", &euler());
+    write(d, "derivations/euler-principal.toml", &euler());
     let scene = std::fs::read_to_string(repo_root().join("docs/examples/sim-heavy-top.toml"));
-    write(d, "course/heavy-top-scene.toml", &scene.unwrap());
+    write(d, "derivations/heavy-top-scene.toml", &scene.unwrap());
     write(
         d,
-        "course/notes.toml",
+        "derivations/notes.toml",
         "title = \"Rigid bodies\"\n\n[[chapter]]\ntitle = \"Euler\"\nderivations = [\"euler-principal\"]\n",
     );
     git(d, &["add", "."]);
-    git(d, &["commit", "-q", "-m", "course"]);
+    git(d, &["commit", "-q", "-m", "derivations"]);
     dir
 }
 
@@ -233,12 +233,12 @@ fn diff_against_a_git_revision() {
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
     assert!(text(&out.stdout).contains("nothing changed: 1 derivation file compared"));
 
-    write(d, "course/euler-principal.toml", &sign_error(&euler()));
-    let out = hdot_in(&d.join("course"), &["diff", "--git", "HEAD", "."]);
+    write(d, "derivations/euler-principal.toml", &sign_error(&euler()));
+    let out = hdot_in(&d.join("derivations"), &["diff", "--git", "HEAD", "."]);
     assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
     let so = text(&out.stdout);
     assert!(
-        so.contains("course/euler-principal.toml: different mathematics"),
+        so.contains("derivations/euler-principal.toml: different mathematics"),
         "{so}"
     );
 
@@ -257,13 +257,13 @@ fn diff_against_a_git_revision() {
     // A file that does not load at the revision or now: which, and where.
     write(
         d,
-        "course/euler-principal.toml",
+        "derivations/euler-principal.toml",
         "title = \"x\"\n[[step]]\nname = \n",
     );
     let out = hdot_in(d, &["diff", "--git", "HEAD"]);
     assert_eq!(out.status.code(), Some(2));
     let se = text(&out.stderr);
-    assert!(se.contains("course/euler-principal.toml:3"), "{se}");
+    assert!(se.contains("derivations/euler-principal.toml:3"), "{se}");
     assert!(se.contains("the new version"), "{se}");
 }
 
@@ -271,7 +271,7 @@ fn diff_against_a_git_revision() {
 fn check_and_snapshot_skip_a_scene_and_the_manifest_beside_derivations() {
     let repo = lecturer_repo();
     let d = repo.path();
-    let out = hdot_in(d, &["check", "course"]);
+    let out = hdot_in(d, &["check", "derivations"]);
     assert_eq!(
         out.status.code(),
         Some(0),
@@ -284,7 +284,7 @@ fn check_and_snapshot_skip_a_scene_and_the_manifest_beside_derivations() {
         "{}",
         text(&out.stdout)
     );
-    let out = hdot_in(d, &["snapshot", "course", "--accept", "--bodies", "4"]);
+    let out = hdot_in(d, &["snapshot", "derivations", "--accept", "--bodies", "4"]);
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
     let names: Vec<String> = std::fs::read_dir(d.join("snapshots"))
         .unwrap()
@@ -298,7 +298,7 @@ fn snapshot_files_are_deterministic_and_hold_no_absolute_path() {
     let repo = lecturer_repo();
     let d = repo.path();
     let run = || {
-        let out = hdot_in(d, &["snapshot", "course", "--accept", "--bodies", "4"]);
+        let out = hdot_in(d, &["snapshot", "derivations", "--accept", "--bodies", "4"]);
         assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
         std::fs::read_to_string(d.join("snapshots/euler-principal.hdot.txt")).unwrap()
     };
@@ -306,9 +306,12 @@ fn snapshot_files_are_deterministic_and_hold_no_absolute_path() {
     std::fs::remove_dir_all(d.join("snapshots")).unwrap();
     assert_eq!(run(), first);
     assert!(!first.contains(&d.display().to_string()), "{first}");
-    assert!(first.contains("of course/euler-principal.toml"), "{first}");
+    assert!(
+        first.contains("of derivations/euler-principal.toml"),
+        "{first}"
+    );
     // Every shown equation of `derive`, one per line, then its canonical form.
-    let derived = hdot_in(d, &["derive", "course/euler-principal.toml"]);
+    let derived = hdot_in(d, &["derive", "derivations/euler-principal.toml"]);
     let eq = "ΣM_y = I_y ω̇_y − (I_z − I_x) ω_z ω_x";
     assert!(text(&derived.stdout).contains(eq));
     let lines: Vec<&str> = first.lines().collect();
@@ -330,7 +333,10 @@ fn snapshot_refuses_a_folder_that_is_a_file_and_a_file_that_does_not_load() {
     let repo = lecturer_repo();
     let d = repo.path();
     write(d, "snapfile", "not a folder");
-    let out = hdot_in(d, &["snapshot", "course", "--check", "--dir", "snapfile"]);
+    let out = hdot_in(
+        d,
+        &["snapshot", "derivations", "--check", "--dir", "snapfile"],
+    );
     assert_eq!(out.status.code(), Some(2));
     assert!(
         text(&out.stderr).contains("snapfile is a file"),
@@ -343,10 +349,10 @@ fn snapshot_refuses_a_folder_that_is_a_file_and_a_file_that_does_not_load() {
     );
     write(
         d,
-        "course/broken.toml",
+        "derivations/broken.toml",
         "title = \"b\"\n[[step]]\nname = \"x\"\nvalue = \"q +\"\n",
     );
-    let out = hdot_in(d, &["snapshot", "course", "--accept"]);
+    let out = hdot_in(d, &["snapshot", "derivations", "--accept"]);
     assert_eq!(out.status.code(), Some(2));
     assert!(
         text(&out.stderr).contains("broken.toml:"),
@@ -356,66 +362,149 @@ fn snapshot_refuses_a_folder_that_is_a_file_and_a_file_that_does_not_load() {
     assert!(!d.join("snapshots").exists(), "nothing written");
 }
 
-/// Issue 22's loop on a lecturer's repository: a presentation-only commit
-/// passes `snapshot --check` and `diff` and is reported as such; a commit
-/// that changes the mathematics fails both, naming the step, the component
-/// and the difference.
+/// The `hdot` command lines of the CI recipe (docs/ci/hdot-review.yml),
+/// for a pull request into `main`.
+fn workflow_commands() -> Vec<String> {
+    let yml = std::fs::read_to_string(repo_root().join("docs/ci/hdot-review.yml")).unwrap();
+    let v: Vec<String> = yml
+        .lines()
+        .filter_map(|l| l.trim().strip_prefix("run: "))
+        .filter(|c| c.starts_with("hdot "))
+        .map(|c| c.replace("${{ github.base_ref }}", "main"))
+        .collect();
+    assert!(v.len() >= 5, "{v:?}");
+    v
+}
+
+/// Runs each workflow command in `dir` (with this build's `hdot` first on
+/// PATH): (command, exit code, stdout).
+fn run_workflow(dir: &Path) -> Vec<(String, Option<i32>, String)> {
+    let bin = hdot_bin();
+    let path = format!(
+        "{}:{}",
+        bin.parent().unwrap().display(),
+        std::env::var("PATH").unwrap_or_default()
+    );
+    workflow_commands()
+        .into_iter()
+        .map(|c| {
+            let out = Command::new("sh")
+                .args(["-c", &c])
+                .env("PATH", &path)
+                .current_dir(dir)
+                .output()
+                .expect("run sh");
+            let so = format!("{}{}", text(&out.stdout), text(&out.stderr));
+            (c, out.status.code(), so)
+        })
+        .collect()
+}
+
+/// The exit code and output of the workflow command starting with `start`.
+fn outcome<'a>(
+    results: &'a [(String, Option<i32>, String)],
+    start: &str,
+) -> &'a (String, Option<i32>, String) {
+    results
+        .iter()
+        .find(|(c, ..)| c.starts_with(start))
+        .unwrap_or_else(|| panic!("no `{start}` in the workflow"))
+}
+
+/// Issue 22's loop on a lecturer's repository, with the CI recipe's own
+/// commands: a presentation-only commit passes every step and is reported
+/// as such; a commit that changes the mathematics fails `snapshot --check`
+/// (and `check`), and the review text names the step, the component and
+/// the difference.
 #[test]
 fn a_lecturers_repository_goes_through_the_review_loop() {
     let repo = lecturer_repo();
     let d = repo.path();
-    let ok = |args: &[&str]| {
-        let out = hdot_in(d, args);
-        assert_eq!(
-            out.status.code(),
-            Some(0),
-            "{args:?}: {}{}",
-            text(&out.stdout),
-            text(&out.stderr)
-        );
-        text(&out.stdout)
+    let accept = || {
+        let out = hdot_in(d, &["snapshot", "derivations", "--accept"]);
+        assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
     };
-    ok(&["check", "course"]);
-    ok(&["verify", "course", "--require", "--bodies", "4"]);
-    ok(&["snapshot", "course", "--accept", "--bodies", "4"]);
-    git(d, &["add", "."]);
-    git(d, &["commit", "-q", "-m", "snapshots"]);
-    git(d, &["branch", "reviewed"]);
+    let publish = || {
+        git(d, &["add", "derivations", "snapshots"]);
+        git(d, &["commit", "-q", "-m", "reviewed"]);
+        git(d, &["update-ref", "refs/remotes/origin/main", "HEAD"]);
+    };
+    accept();
+    publish();
 
     // Commit 1: the same mathematics, presented differently.
     write(
         d,
-        "course/euler-principal.toml",
+        "derivations/euler-principal.toml",
         &presentation_only(&euler()),
     );
-    let so = ok(&["snapshot", "course", "--check", "--bodies", "4"]);
-    assert!(so.contains("differ in presentation only"), "{so}");
-    let so = ok(&["diff", "--git", "reviewed", "--format", "markdown"]);
-    assert!(so.contains("same mathematics, new presentation"), "{so}");
-    assert!(!so.contains(": different mathematics"), "{so}");
-    ok(&["snapshot", "course", "--accept", "--bodies", "4"]);
-    git(d, &["commit", "-q", "-am", "collect the rates last"]);
-    git(d, &["branch", "-f", "reviewed"]);
+    git(
+        d,
+        &[
+            "commit",
+            "-q",
+            "-am",
+            "transport theorem as dt(H); rates last",
+        ],
+    );
+    let results = run_workflow(d);
+    for (c, code, so) in &results {
+        assert_eq!(*code, Some(0), "{c}: {so}");
+    }
+    assert!(
+        outcome(&results, "hdot snapshot")
+            .2
+            .contains("differ in presentation only")
+    );
+    let review = std::fs::read_to_string(d.join("hdot-review.md")).unwrap();
+    assert!(
+        review.contains("same mathematics, new presentation"),
+        "{review}"
+    );
+    assert!(!review.contains(": different mathematics"), "{review}");
+    assert!(d.join("build/notes/hdot-slides.tex").is_file());
+    accept();
+    publish();
 
     // Commit 2: a sign error in the transport theorem.
     write(
         d,
-        "course/euler-principal.toml",
+        "derivations/euler-principal.toml",
         &presentation_only(&sign_error(&euler())),
     );
     git(d, &["commit", "-q", "-am", "sign"]);
-    let out = hdot_in(d, &["snapshot", "course", "--check", "--bodies", "4"]);
-    assert_eq!(out.status.code(), Some(1));
-    let so = text(&out.stdout);
+    let results = run_workflow(d);
+    assert_eq!(
+        outcome(&results, "hdot diff").1,
+        Some(0),
+        "the review text is written"
+    );
+    assert_eq!(outcome(&results, "hdot check").1, Some(1));
+    let (_, code, so) = outcome(&results, "hdot snapshot");
+    assert_eq!(*code, Some(1), "{so}");
     assert!(so.contains("step M: different mathematics"), "{so}");
     assert!(so.contains("component y: different mathematics"), "{so}");
     assert!(so.contains("new − old = 2 (I_z − I_x) ω_z ω_x"), "{so}");
     assert!(so.contains("check: FAILED"), "{so}");
-    let out = hdot_in(d, &["diff", "--git", "reviewed", "--format", "json"]);
+    let review = std::fs::read_to_string(d.join("hdot-review.md")).unwrap();
+    assert!(
+        review.contains("### `derivations/euler-principal.toml`: different mathematics"),
+        "{review}"
+    );
+    assert!(
+        review.contains("- **step `M`**: different mathematics"),
+        "{review}"
+    );
+    assert!(
+        review.contains(r"new − old: $2 \left(I_z - I_x\right) \omega_z \omega_x$"),
+        "{review}"
+    );
+    let out = hdot_in(d, &["diff", "--git", "origin/main", "--format", "json"]);
     assert_eq!(out.status.code(), Some(1));
     let r = json(&out);
-    let m = step(&r["files"][0], "M");
-    assert_eq!(m["change"], "mathematics");
-    assert_eq!(r["files"][0]["new"], "course/euler-principal.toml");
-    assert_eq!(r["files"][0]["old"], "reviewed:course/euler-principal.toml");
+    assert_eq!(step(&r["files"][0], "M")["change"], "mathematics");
+    assert_eq!(
+        r["files"][0]["old"],
+        "origin/main:derivations/euler-principal.toml"
+    );
 }

@@ -22,15 +22,15 @@ pub struct LoadFailure {
     /// How that version is named (a path, or `REV:path`).
     pub name: String,
     /// Where and why.
-    pub diagnostic: Diagnostic,
+    pub diagnostic: Box<Diagnostic>,
 }
 
 /// Loads the text `text` of the version named `name`.
 fn load(which: &'static str, name: &str, text: &str) -> Result<Derivation, LoadFailure> {
     hdot_sym::derivation::load_str(name, text).map_err(|diagnostic| LoadFailure {
+        diagnostic: Box::new(diagnostic),
         which,
         name: name.to_owned(),
-        diagnostic,
     })
 }
 
