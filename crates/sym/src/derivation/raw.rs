@@ -25,7 +25,7 @@ pub(crate) struct RawFile {
     pub steps: Vec<RawStep>,
     /// Resource limits for this file (crate::limits).
     pub limits: Option<RawLimits>,
-    /// The weight per unit mass, a vector expression (physics.rs).
+    /// The weight per unit mass, a vector expression (`physics/declare.rs`).
     pub gravity: Option<Spanned<String>>,
     #[serde(default, rename = "point")]
     pub points: Vec<RawPoint>,
@@ -36,7 +36,7 @@ pub(crate) struct RawFile {
     pub motion: Option<RawMotion>,
 }
 
-/// `[[point]]` (physics.rs).
+/// `[[point]]` (`physics/bodies.rs`).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawPoint {
@@ -48,7 +48,7 @@ pub(crate) struct RawPoint {
     pub at: Option<Spanned<String>>,
 }
 
-/// `[[body]]` (physics.rs).
+/// `[[body]]` (`physics/bodies.rs`).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawBody {
@@ -67,7 +67,7 @@ pub(crate) struct RawBody {
     pub symmetry: Option<Spanned<String>>,
 }
 
-/// `[[known]]` (physics.rs).
+/// `[[known]]` (`physics/declare.rs`).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawKnown {
@@ -75,7 +75,7 @@ pub(crate) struct RawKnown {
     pub means: Spanned<String>,
 }
 
-/// `[motion]` (physics.rs).
+/// `[motion]` (`physics/declare.rs`).
 #[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawMotion {
@@ -153,7 +153,7 @@ pub(crate) struct RawStep {
     pub fold: Option<Spanned<Vec<String>>>,
     /// Known factors to print brackets as products of: `["A - B", "A - C"]`.
     pub factor: Option<Spanned<Vec<String>>>,
-    /// What the step means physically (physics.rs).
+    /// What the step means physically (`physics/means.rs`).
     pub means: Option<Spanned<String>>,
     /// Conditions on the motion under which `means` holds.
     #[serde(default)]

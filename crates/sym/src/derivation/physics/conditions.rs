@@ -1,0 +1,251 @@
+//! A step's meaning and its conditions: `means` with `given` (rules on
+//! the motion, points at rest, inequalities selecting a class of bodies)
+//! and `symmetry`; the rules of `[motion] given` are read here too.
+
+use toml::Spanned;
+
+use super::declare::{no_step_names, unknown};
+use super::means::{check_shape, meaning};
+use super::{Physics, PointKind, Rule, RuleValue, StepMeaning};
+use crate::atom::Atom;
+use crate::derivation::eval::{Context, R};
+use crate::derivation::raw::RawStep;
+use crate::derivation::value::Value;
+use crate::parse::AstKind;
+use crate::poly::Poly;
+use crate::symbols::Decl;
+
+/// Reads a step's `means` and `given` and checks the meaning's shape
+/// against the step's value.
+pub(crate) fn step_meaning(
+    cx: &Context<'_>,
+    ph: &Physics,
+    s: &RawStep,
+    value: &Value,
+) -> R<Option<StepMeaning>> {
+    let Some(means) = &s.means else {
+        if let Some(g) = s.given.first() {
+            let n = g.get_ref().len();
+            return Err(cx.diag_string(
+                g,
+                0,
+                n,
+                "`given` is the condition of a step's `means`; this step has none",
+            ));
+        }
+        if let Some(t) = &s.symmetry {
+            let span = t.span();
+            return Err(cx.diag(
+                span.start,
+                span.end,
+                "`symmetry` is the condition of a step's `means`; this step has none",
+            ));
+        }
+        return Ok(None);
+    };
+    let meaning = meaning(cx, ph, means)?;
+    check_shape(cx, means, &meaning, value)?;
+    let mut given = Vec::new();
+    let mut at_rest = Vec::new();
+    let mut bounds = Vec::new();
+    for r in &s.given {
+        if r.get_ref().contains(['<', '>']) {
+            bounds.push(bound(cx, r)?);
+            continue;
+        }
+        match point_at_rest(cx, ph, r)? {
+            Some(p) => at_rest.push(p),
+            None => given.push(rule(cx, r)?),
+        }
+    }
+    let mut conditions = Vec::new();
+    if !s.given.is_empty() {
+        let items: Vec<String> = s
+            .given
+            .iter()
+            .map(|g| format!("{:?}", g.get_ref()))
+            .collect();
+        conditions.push(format!("given = [{}]", items.join(", ")));
+    }
+    if let Some(t) = &s.symmetry {
+        let items: Vec<String> = t
+            .get_ref()
+            .iter()
+            .map(|(k, v)| format!("{k} = {:?}", v.get_ref()))
+            .collect();
+        conditions.push(format!("symmetry = {{{}}}", items.join(", ")));
+    }
+    let mut symmetry = Vec::new();
+    for (name, sym) in s.symmetry.iter().flat_map(|t| t.get_ref()) {
+        let table = s.symmetry.as_ref().expect("present");
+        let Some(i) = ph.bodies.iter().position(|b| &b.name == name) else {
+            let known: Vec<String> = ph.bodies.iter().map(|b| b.name.clone()).collect();
+            let span = table.span();
+            return Err(cx.diag(span.start, span.end, unknown("body", name, &known)));
+        };
+        symmetry.push((
+            i,
+            super::bodies::symmetry(cx, sym, &cx.frames[ph.bodies[i].frame].axes)?,
+        ));
+    }
+    Ok(Some(StepMeaning {
+        meaning,
+        text: means.get_ref().clone(),
+        given,
+        at_rest,
+        symmetry,
+        bounds,
+        conditions: conditions.join(", "),
+    }))
+}
+
+/// Parses an inequality `a > b` or `a < b` of the file's symbols into
+/// `a − b` (or `b − a`), positive.
+fn bound(cx: &Context<'_>, s: &Spanned<String>) -> R<(Poly, String)> {
+    let text = s.get_ref();
+    let base = cx.content_start(s);
+    let bad = |msg: &str| cx.diag_string(s, 0, text.len(), msg);
+    let Some(i) = text.find(['<', '>']) else {
+        return Err(bad("expected an inequality `a > b`"));
+    };
+    if text[i + 1..].contains(['<', '>', '=']) || text[..i].contains('=') {
+        return Err(bad(
+            "a class of bodies is given by strict inequalities, one per item: `A > B`, `B > C`",
+        ));
+    }
+    let side = |from: usize, to: usize| -> R<Poly> {
+        let ast = cx.parse_at(&text[from..to], base + from)?;
+        no_step_names(cx, &ast, base + from)?;
+        Ok(cx.unfold(&cx.scalar(&ast, base + from)?))
+    };
+    let (lhs, rhs) = (side(0, i)?, side(i + 1, text.len())?);
+    if lhs
+        .atoms()
+        .into_iter()
+        .chain(rhs.atoms())
+        .any(Atom::is_time_dependent)
+    {
+        return Err(bad(
+            "an inequality selects a class of bodies: it is written in constants (the moments A, B, C), not functions of time",
+        ));
+    }
+    let p = if text.as_bytes()[i] == b'>' {
+        &lhs - &rhs
+    } else {
+        &rhs - &lhs
+    };
+    Ok((p, text.clone()))
+}
+
+/// `P' = 0` (`P'' = 0`, …) for a point P that the verifier moves freely:
+/// the point's velocity (acceleration, …) vanishes. `None` when the
+/// condition is not about a point.
+fn point_at_rest(
+    cx: &Context<'_>,
+    ph: &Physics,
+    s: &Spanned<String>,
+) -> R<Option<(String, usize)>> {
+    let Some((lhs, rhs)) = s.get_ref().split_once('=') else {
+        return Ok(None);
+    };
+    let name = lhs.trim().trim_end_matches('\'');
+    let order = lhs.trim().len() - name.len();
+    let declared = ph.points.iter().find(|p| p.name == name);
+    let centre = ph.bodies.iter().find(|b| b.centre.as_deref() == Some(name));
+    if declared.is_none() && centre.is_none() {
+        return Ok(None);
+    }
+    let n = s.get_ref().len();
+    if order == 0 || rhs.trim() != "0" {
+        return Err(cx.diag_string(
+            s,
+            0,
+            n,
+            format!("a condition on point {name} is `{name}' = 0` (at rest) or `{name}'' = 0` (no acceleration)"),
+        ));
+    }
+    let free = match (declared, centre) {
+        (Some(p), _) => p.kind == PointKind::Free,
+        (None, Some(b)) => b.about_centre(),
+        (None, None) => false,
+    };
+    if !free {
+        return Err(cx.diag_string(
+            s,
+            0,
+            n,
+            format!("point {name} moves as its declaration says; only a point that moves freely (a `[[point]]` without `fixed` or `from`, or the centre of a body about its centre) can be set at rest"),
+        ));
+    }
+    Ok(Some((name.to_owned(), order)))
+}
+
+/// Parses a rule `q = e`, `q' = e`, `q = pi/2`.
+pub(super) fn rule(cx: &Context<'_>, s: &Spanned<String>) -> R<Rule> {
+    // Parsed as the argument of a call, where `name = value` is allowed.
+    let base = cx.content_start(s);
+    let wrapped = format!("f({})", s.get_ref());
+    let shifted = base.wrapping_sub(2);
+    let ast = crate::parse::parse(&wrapped).map_err(|e| cx.at(shifted, e.span, e.message))?;
+    let bad = || {
+        cx.diag_string(
+            s,
+            0,
+            s.get_ref().len(),
+            "a condition is written `q = e`, `q' = e` or `q = pi/2`, q a time symbol",
+        )
+    };
+    let AstKind::Call { args, .. } = &ast.kind else {
+        return Err(bad());
+    };
+    let [arg] = args.as_slice() else {
+        return Err(bad());
+    };
+    let AstKind::Assign {
+        name,
+        primes,
+        name_span,
+        value,
+    } = &arg.kind
+    else {
+        return Err(bad());
+    };
+    if !matches!(cx.symbols.get(name), Some(Decl::Time)) {
+        return Err(cx.at(
+            shifted,
+            *name_span,
+            format!("`{name}` is not a time symbol: a condition sets a coordinate or a rate"),
+        ));
+    }
+    let target = Atom::time(name, *primes);
+    let value = match crate::derivation::ops::quarter_turns(value) {
+        Some(t) if *primes == 0 => RuleValue::QuarterTurns(t),
+        Some(_) => {
+            return Err(cx.at(
+                shifted,
+                value.span,
+                "a multiple of pi is an angle, not a rate",
+            ));
+        }
+        None => {
+            no_step_names(cx, value, shifted)?;
+            let p = cx.scalar(value, shifted)?;
+            if p.atoms()
+                .iter()
+                .any(|a| a.base() == target.base() && a.order() >= *primes)
+            {
+                return Err(cx.at(
+                    shifted,
+                    value.span,
+                    format!("the value of `{name}` cannot depend on it"),
+                ));
+            }
+            RuleValue::Expr(cx.unfold(&p))
+        }
+    };
+    Ok(Rule {
+        target,
+        value,
+        text: s.get_ref().clone(),
+    })
+}

@@ -1,0 +1,264 @@
+//! Reading a file's declarations in order: how each frame moves, gravity,
+//! the names of points and bodies, `[[known]]`s and `[motion]`; with the
+//! small checks the other readers of the model share.
+
+use std::collections::HashSet;
+
+use toml::Spanned;
+
+use super::bodies::{body, point};
+use super::conditions::rule;
+use super::means::{check_shape, meaning};
+use super::{FrameMotion, Known, Physics, PointKind, Shape};
+use crate::atom::{Atom, AtomKind};
+use crate::derivation::eval::{Context, R};
+use crate::derivation::raw::{RawFile, RawKnown};
+use crate::derivation::value::Value;
+use crate::parse::{Ast, AstKind};
+use crate::vector::{Mat3, Vec3};
+
+/// The frame's rotation (axis, angle) when its matrix is a rotation about
+/// one axis of its parent.
+fn rotation_of(m: &Mat3) -> Option<(usize, Atom)> {
+    (0..3).find_map(|k| {
+        let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+        match m.0[j][i].as_atom()?.kind() {
+            AtomKind::Sin(q) => Some((k, q)),
+            _ => None,
+        }
+    })
+}
+
+/// Parses a spanned string; the AST and the byte offset of its contents.
+pub(super) fn parse_spanned(cx: &Context<'_>, s: &Spanned<String>) -> R<(Ast, usize)> {
+    let base = cx.content_start(s);
+    Ok((cx.parse_at(s.get_ref(), base)?, base))
+}
+
+/// Reads the declarations of `raw` (after its symbols and frames).
+pub(crate) fn declarations(cx: &Context<'_>, raw: &RawFile) -> R<Physics> {
+    let mut ph = Physics {
+        small: cx.small.clone(),
+        positive: cx.positive.clone(),
+        ..Physics::default()
+    };
+    for f in &cx.frames {
+        ph.frames.push(match &f.parent {
+            Some((p, m)) => {
+                let (axis, angle) = rotation_of(m).expect("frames turn about one axis");
+                FrameMotion::Rotation {
+                    parent: cx.frame_index(p).expect("parent exists"),
+                    axis,
+                    angle,
+                }
+            }
+            None if f.omega.is_zero() => FrameMotion::Inertial,
+            None => FrameMotion::AngularVelocity,
+        });
+    }
+    if let Some(g) = &raw.gravity {
+        let (ast, base) = parse_spanned(cx, g)?;
+        let (v, f) = cx.vector(&ast, base)?;
+        constant(cx, &v, g, "gravity")?;
+        ph.gravity = Some((v, f));
+    }
+    let mut names: HashSet<String> = HashSet::new();
+    let taken = |names: &mut HashSet<String>, s: &Spanned<String>, what: &str| -> R<()> {
+        let n = s.get_ref();
+        let valid = n.chars().next().is_some_and(char::is_alphabetic)
+            && n.chars().all(|c| c.is_alphanumeric() || c == '_');
+        if !valid {
+            return Err(cx.diag_string(
+                s,
+                0,
+                n.len(),
+                format!("`{n}` is not a valid {what} name (letters, digits, _)"),
+            ));
+        }
+        if n == "system" || !names.insert(n.clone()) || cx.frame_index(n).is_some() {
+            return Err(cx.diag_string(
+                s,
+                0,
+                n.len(),
+                format!("`{n}` is already the name of a point, a body or a frame"),
+            ));
+        }
+        Ok(())
+    };
+    for p in &raw.points {
+        taken(&mut names, &p.name, "point")?;
+    }
+    let one_body = raw.bodies.len() == 1;
+    let mut centres = Vec::new();
+    for b in &raw.bodies {
+        taken(&mut names, &b.name, "body")?;
+        let centre = match &b.centre {
+            Some(c) => {
+                taken(&mut names, c, "point")?;
+                Some(c.get_ref().clone())
+            }
+            None if one_body && !names.contains("G") => {
+                names.insert("G".into());
+                Some("G".into())
+            }
+            None => None,
+        };
+        centres.push(centre);
+    }
+    let point_names: Vec<String> = raw
+        .points
+        .iter()
+        .map(|p| p.name.get_ref().clone())
+        .chain(centres.iter().flatten().cloned())
+        .collect();
+    let known_point = |s: &Spanned<String>| -> R<String> {
+        let n = s.get_ref();
+        if point_names.contains(n) {
+            Ok(n.clone())
+        } else {
+            Err(cx.diag_string(s, 0, n.len(), unknown("point", n, &point_names)))
+        }
+    };
+    for p in &raw.points {
+        ph.points.push(point(cx, p, &known_point)?);
+    }
+    // A point measured from another must not lead back to itself.
+    for p in &raw.points {
+        let mut at = p.name.get_ref().clone();
+        for _ in 0..=ph.points.len() {
+            match ph.points.iter().find(|q| q.name == at).map(|q| &q.kind) {
+                Some(PointKind::From { from, .. }) => at = from.clone(),
+                _ => break,
+            }
+            if &at == p.name.get_ref() {
+                let n = at.len();
+                return Err(cx.diag_string(
+                    &p.name,
+                    0,
+                    n,
+                    "this point is measured from itself (through `from`)",
+                ));
+            }
+        }
+    }
+    for (b, centre) in raw.bodies.iter().zip(centres) {
+        ph.bodies.push(body(cx, b, centre, &known_point)?);
+    }
+    for k in &raw.knowns {
+        ph.knowns.push(known(cx, &ph, k)?);
+    }
+    if let Some(m) = &raw.motion {
+        for r in &m.given {
+            ph.motion.push(rule(cx, r)?);
+        }
+        for v in &m.vanishes {
+            let m = meaning(cx, &ph, v)?;
+            if !matches!(m.shape(), Shape::Scalar | Shape::Vector) {
+                let n = v.get_ref().len();
+                return Err(cx.diag_string(
+                    v,
+                    0,
+                    n,
+                    format!(
+                        "`vanishes` takes a scalar or vector quantity; this is {}",
+                        m.shape().describe()
+                    ),
+                ));
+            }
+            ph.vanishes.push((m, v.get_ref().clone()));
+        }
+    }
+    Ok(ph)
+}
+
+pub(super) fn unknown(what: &str, name: &str, known: &[String]) -> String {
+    if known.is_empty() {
+        format!("unknown {what} `{name}`: none is declared")
+    } else {
+        format!("unknown {what} `{name}` (declared: {})", known.join(", "))
+    }
+}
+
+/// Checks `v` uses constants only.
+pub(super) fn constant(cx: &Context<'_>, v: &Vec3, at: &Spanned<String>, key: &str) -> R<()> {
+    if v.0
+        .iter()
+        .any(|p| p.atoms().iter().any(|a| a.is_time_dependent()))
+    {
+        let n = at.get_ref().len();
+        return Err(cx.diag_string(
+            at,
+            0,
+            n,
+            format!("`{key}` must be an expression of constants"),
+        ));
+    }
+    Ok(())
+}
+
+fn known(cx: &Context<'_>, ph: &Physics, k: &RawKnown) -> R<Known> {
+    let (ast, base) = parse_spanned(cx, &k.value)?;
+    let value = cx.eval(&ast, base)?;
+    if !matches!(
+        value,
+        Value::Scalar(_) | Value::Vector(..) | Value::Matrix(_)
+    ) {
+        return Err(cx.at(
+            base,
+            ast.span,
+            format!(
+                "a known's value is a scalar, a vector or a matrix, found {}",
+                value.describe()
+            ),
+        ));
+    }
+    let meaning = meaning(cx, ph, &k.means)?;
+    check_shape(cx, &k.means, &meaning, &value)?;
+    Ok(Known {
+        value,
+        meaning,
+        text: k.means.get_ref().clone(),
+    })
+}
+
+/// Refuses a step's name inside a meaning's arguments or a condition:
+/// they are written in the file's symbols (a step would bring its derived
+/// value into what it is compared with).
+pub(super) fn no_step_names(cx: &Context<'_>, ast: &Ast, base: usize) -> R<()> {
+    let mut err = None;
+    walk(ast, &mut |a| {
+        if let AstKind::Name { name, .. } = &a.kind
+            && err.is_none()
+            && cx.is_step(name)
+        {
+            err = Some(cx.at(
+                base,
+                a.span,
+                format!(
+                    "`{name}` is a step: a meaning's arguments and a step's conditions are written in the file's symbols (write what the step stands for, e.g. the impulse's components), so that the derived result is not compared with itself"
+                ),
+            ));
+        }
+    });
+    err.map_or(Ok(()), Err)
+}
+
+/// Calls `f` on `a` and every node below it.
+fn walk(a: &Ast, f: &mut dyn FnMut(&Ast)) {
+    f(a);
+    match &a.kind {
+        AstKind::Num(_) | AstKind::Name { .. } => {}
+        AstKind::Call { args, .. } => args.iter().for_each(|x| walk(x, f)),
+        AstKind::Assign { value, .. } => walk(value, f),
+        AstKind::Vector { items, .. } | AstKind::Add(items) | AstKind::Mul(items) => {
+            items.iter().for_each(|x| walk(x, f))
+        }
+        AstKind::Recip(x) | AstKind::Neg(x) | AstKind::Pow(x, _) | AstKind::Member(x, ..) => {
+            walk(x, f)
+        }
+        AstKind::Cross(x, y) => {
+            walk(x, f);
+            walk(y, f)
+        }
+    }
+}
