@@ -524,7 +524,7 @@ impl MeaningParser<'_, '_> {
                 if let Some(k) = items.iter().position(|m| m.shape() != Shape::Scalar) {
                     return self.err(&args[k], "the items of list(…) are scalar meanings");
                 }
-                return Ok(Meaning::List(items));
+                Ok(Meaning::List(items))
             }
             "along" => {
                 if args.len() != 2 {
@@ -539,7 +539,7 @@ impl MeaningParser<'_, '_> {
                 }
                 no_step_names(self.cx, &args[1], self.base)?;
                 let (v, f) = self.cx.vector(&args[1], self.base)?;
-                return Ok(Meaning::Along(Box::new(m), v, f));
+                Ok(Meaning::Along(Box::new(m), v, f))
             }
             "applied" => {
                 let [e] = args else {
@@ -547,7 +547,7 @@ impl MeaningParser<'_, '_> {
                 };
                 no_step_names(self.cx, e, self.base)?;
                 let p = self.cx.scalar(e, self.base)?;
-                return Ok(Meaning::Applied(self.cx.unfold(&p)));
+                Ok(Meaning::Applied(self.cx.unfold(&p)))
             }
             "solves" => {
                 if args.len() != 1 {
@@ -557,7 +557,7 @@ impl MeaningParser<'_, '_> {
                 if matches!(m.shape(), Shape::Matrix) {
                     return self.err(&args[0], "solves(X): X is a vector, a scalar or a list");
                 }
-                return Ok(Meaning::Solves(Box::new(m)));
+                Ok(Meaning::Solves(Box::new(m)))
             }
             "linear" => {
                 let [x] = args else {
@@ -569,7 +569,7 @@ impl MeaningParser<'_, '_> {
                         "linear(X) is X to first order in the small symbols: declare them, [symbols] small = [...]",
                     );
                 }
-                return Ok(Meaning::Linear(Box::new(self.parse(x)?)));
+                Ok(Meaning::Linear(Box::new(self.parse(x)?)))
             }
             "rate" => self.rate(ast, args),
             "coefficient" => {
@@ -583,7 +583,7 @@ impl MeaningParser<'_, '_> {
                 if m.shape() != Shape::Scalar {
                     return self.err(x, "coefficient(X, e): X is a scalar meaning");
                 }
-                return Ok(Meaning::Coefficient(Box::new(m), self.small(e)?));
+                Ok(Meaning::Coefficient(Box::new(m), self.small(e)?))
             }
             "sign" => {
                 let [x] = args else {
@@ -593,7 +593,7 @@ impl MeaningParser<'_, '_> {
                 if m.shape() != Shape::Scalar {
                     return self.err(x, "sign(X): X is a scalar meaning");
                 }
-                return Ok(Meaning::Sign(Box::new(m)));
+                Ok(Meaning::Sign(Box::new(m)))
             }
             "mass_matrix" | "forcing" => self.matrix_form(ast, func, args),
             _ => self.quantity(ast, func, args),
