@@ -12,6 +12,7 @@ mod broken;
 mod chain;
 mod equations_of_motion;
 mod identities;
+mod injection;
 mod laurent;
 mod notes;
 mod presentation;

@@ -33,69 +33,12 @@
 use std::collections::BTreeMap;
 
 use crate::derivation::{Check, Derivation, Step, Value};
+use crate::escape;
 use crate::expr::Expr;
 use crate::print;
 use crate::symbols::Decl;
 
-// --------------------------------------------------------------- labels --
-
-/// A label word with trailing primes: `epsilon_2''` → (`epsilon_2`, 2).
-fn label_word(w: &str) -> (&str, u32) {
-    let base = w.trim_end_matches('\'');
-    (base, (w.len() - base.len()) as u32)
-}
-
-/// The body of a label (its words written by `symbol`, joined by `sep`)
-/// and whether it already carries a subscript, so that a component must be
-/// attached around parentheses.
-fn label_body(label: &str, symbol: fn(&str, u32) -> String, sep: &str) -> (String, bool) {
-    let words: Vec<String> = label
-        .split_whitespace()
-        .map(|w| {
-            let (b, k) = label_word(w);
-            symbol(b, k)
-        })
-        .collect();
-    let subscripted = label
-        .split_whitespace()
-        .last()
-        .is_some_and(|w| w.contains('_'));
-    (words.join(sep), subscripted)
-}
-
-/// A label such as `Sigma M` with component `x`, in LaTeX: `\Sigma M_{x}`.
-pub fn latex_label(label: &str, component: &str) -> String {
-    // Characters with a meaning in LaTeX that no symbol's LaTeX contains
-    // are escaped (`%` would comment out the rest of the equation).
-    let escape = |t: String| {
-        t.chars().fold(String::new(), |mut o, c| {
-            if matches!(c, '%' | '&' | '#' | '$') {
-                o.push('\\');
-            }
-            o.push(c);
-            o
-        })
-    };
-    let (body, sub) = label_body(label, print::latex_symbol, " ");
-    let component = escape(component.to_owned());
-    match ((escape(body), sub), component.is_empty()) {
-        ((body, _), true) => body,
-        ((body, false), false) => format!("{body}_{{{component}}}"),
-        ((body, true), false) => format!(r"\left({body}\right)_{{{component}}}"),
-    }
-}
-
-/// A label with component in Unicode: `ΣM_x`.
-pub fn unicode_label(label: &str, component: &str) -> String {
-    match (
-        label_body(label, print::unicode_symbol, ""),
-        component.is_empty(),
-    ) {
-        ((body, _), true) => body,
-        ((body, false), false) => format!("{body}_{component}"),
-        ((body, true), false) => format!("({body})_{component}"),
-    }
-}
+pub use crate::label::{LabelMath, latex_label, unicode_label};
 
 // ------------------------------------------------------------- document --
 
@@ -178,91 +121,6 @@ pub enum Lhs {
     Math(LabelMath, String),
 }
 
-/// A step label written as mathematics rather than a name: an expression
-/// of the file's symbols (`phi''*sin(theta)` prints φ̈ sin θ), a partial
-/// derivative (`partial(T, theta')` prints ∂T/∂θ̇), or `0`, which prints
-/// the equation as `… = 0`.
-#[derive(Clone, Debug)]
-pub enum LabelMath {
-    /// An expression as written.
-    Expr(Expr),
-    /// ∂f/∂q: the name of f (a label word) and q.
-    Partial(String, crate::atom::Atom),
-    /// The equation is `result = 0`.
-    Zero,
-}
-
-impl LabelMath {
-    /// Reads a label: `None` for a plain name (`Sigma M`, `I_x(P)`); a
-    /// label with `*`, `/` or `^`, or one written `partial(f, q)`, must be
-    /// an expression of the declared symbols (the error says why not).
-    pub fn parse(label: &str, symbols: &crate::Symbols) -> Result<Option<LabelMath>, String> {
-        let t = label.trim();
-        if t == "0" {
-            return Ok(Some(LabelMath::Zero));
-        }
-        if let Some(args) = t.strip_prefix("partial(").and_then(|a| a.strip_suffix(')')) {
-            let Some((f, q)) = args.split_once(',') else {
-                return Err(format!(
-                    "`{t}`: write a partial derivative as partial(T, theta')"
-                ));
-            };
-            let q = q.trim();
-            let base = q.trim_end_matches('\'');
-            let primes = (q.len() - base.len()) as u32;
-            let atom = symbols
-                .atom(base, primes, crate::parse::Span::default())
-                .map_err(|e| format!("`{t}`: {}", e.message))?;
-            return Ok(Some(LabelMath::Partial(f.trim().to_owned(), atom)));
-        }
-        if !t.contains(['*', '/', '^']) {
-            return Ok(None);
-        }
-        symbols
-            .expr(t)
-            .map(|e| Some(LabelMath::Expr(e)))
-            .map_err(|e| {
-                format!(
-                    "`{t}` is not an expression of the declared symbols: {}",
-                    e.message
-                )
-            })
-    }
-
-    fn latex(&self) -> String {
-        match self {
-            LabelMath::Expr(e) => print::latex(e),
-            LabelMath::Partial(f, q) => format!(
-                r"\frac{{\partial {}}}{{\partial {}}}",
-                latex_label(f, ""),
-                print::Style::atom(&print::Latex, *q)
-            ),
-            LabelMath::Zero => "0".to_owned(),
-        }
-    }
-
-    fn unicode(&self) -> String {
-        match self {
-            LabelMath::Expr(e) => print::unicode(e),
-            LabelMath::Partial(f, q) => format!(
-                "∂{}/∂{}",
-                unicode_label(f, ""),
-                print::Style::atom(&print::Unicode, *q)
-            ),
-            LabelMath::Zero => "0".to_owned(),
-        }
-    }
-
-    /// Whether the body needs parentheses before a component subscript.
-    fn compound(&self) -> bool {
-        match self {
-            LabelMath::Expr(e) => !matches!(e.node(e.root()), crate::expr::Node::Atom(_)),
-            LabelMath::Partial(..) => true,
-            LabelMath::Zero => false,
-        }
-    }
-}
-
 impl Lhs {
     /// LaTeX.
     pub fn latex(&self) -> String {
@@ -271,8 +129,10 @@ impl Lhs {
             Lhs::Expr(e) => print::latex(e),
             Lhs::Math(LabelMath::Zero, _) => "0".to_owned(),
             Lhs::Math(m, c) if c.is_empty() => m.latex(),
-            Lhs::Math(m, c) if m.compound() => format!(r"\left({}\right)_{{{c}}}", m.latex()),
-            Lhs::Math(m, c) => format!("{}_{{{c}}}", m.latex()),
+            Lhs::Math(m, c) if m.compound() => {
+                format!(r"\left({}\right)_{{{}}}", m.latex(), escape::latex_math(c))
+            }
+            Lhs::Math(m, c) => format!("{}_{{{}}}", m.latex(), escape::latex_math(c)),
         }
     }
 

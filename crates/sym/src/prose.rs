@@ -35,7 +35,10 @@
 //! assert_eq!(prose::latex("A disk of mass m about O"), r"A disk of mass $m$ about $O$");
 //! ```
 
+use crate::escape::{self, Latex, precomposed_accent};
 use crate::symbols;
+
+pub use crate::escape::{combining_accent, unicode_math};
 
 /// A piece of prose: text as written, or math as LaTeX.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -437,7 +440,7 @@ pub fn math_latex(s: &str) -> String {
     while i < chars.len() {
         let c = chars[i];
         if let Some(acc) = chars.get(i + 1).and_then(|&n| combining_accent(n)) {
-            let base = symbols::greek_latex(c).map_or_else(|| letter(c), str::to_owned);
+            let base = symbols::greek_latex(c).map_or_else(|| escape::letter(c), str::to_owned);
             push_atom(&mut o, &format!("{acc}{{{base}}}"));
             i += 2;
             continue;
@@ -481,26 +484,18 @@ pub fn math_latex(s: &str) -> String {
         }
         let t: String = match c {
             ' ' => " ".into(),
-            '{' => r"\{".into(),
-            '}' => r"\}".into(),
-            '%' | '&' | '#' => format!("\\{c}"),
-            '\\' => r"\backslash ".into(),
-            '~' => r"\sim ".into(),
-            '$' => r"\$".into(),
-            c if c.is_ascii() => c.to_string(),
-            c => {
-                if let Some(g) = symbols::greek_latex(c) {
-                    g.to_owned()
-                } else if let Some(m) = unicode_math(c) {
-                    m
-                } else if let Some((acc, b)) = precomposed_accent(c) {
-                    format!("{acc}{{{b}}}")
-                } else if let Some(t) = text_symbol(c) {
-                    format!(r"\text{{{t}}}")
-                } else {
-                    letter(c)
-                }
+            // A script mark with nothing to attach to (at the end, before
+            // a space or another mark) is the character itself.
+            '_' | '^'
+                if chars
+                    .get(i + 1)
+                    .is_none_or(|n| n.is_whitespace() || "_^".contains(*n)) =>
+            {
+                escape::latex_math_char(c)
             }
+            '_' | '^' => c.to_string(),
+            c if c.is_ascii_alphanumeric() => c.to_string(),
+            c => escape::latex_math_char(c),
         };
         push_atom(&mut o, &t);
         i += 1;
@@ -508,58 +503,11 @@ pub fn math_latex(s: &str) -> String {
     o
 }
 
-/// A letter as math: itself when ASCII, a Latin-1 letter as text, else its
-/// code point (visible in the output, never a pdflatex error).
-fn letter(c: char) -> String {
-    if c.is_ascii_alphanumeric() {
-        c.to_string()
-    } else if matches!(c, 'À'..='ÿ') && c.is_alphabetic() {
-        format!(r"\text{{{c}}}")
-    } else {
-        format!(r"\text{{[U+{:04X}]}}", c as u32)
-    }
-}
-
 /// Text for LaTeX: special characters escaped, a permitted line break
 /// after a slash, typographic punctuation as LaTeX ligatures; any notation that is not in a math piece is kept
 /// visible as its code point.
 fn latex_plain(s: &str) -> String {
-    let mut o = String::with_capacity(s.len());
-    for c in s.chars() {
-        match c {
-            '\\' => o.push_str(r"\textbackslash{}"),
-            '&' | '%' | '$' | '#' | '_' | '{' | '}' => {
-                o.push('\\');
-                o.push(c);
-            }
-            '~' => o.push_str(r"\textasciitilde{}"),
-            '^' => o.push_str(r"\textasciicircum{}"),
-            '<' => o.push_str(r"\textless{}"),
-            '>' => o.push_str(r"\textgreater{}"),
-            '|' => o.push_str(r"\textbar{}"),
-            // A path such as docs/equations.md may break after a slash.
-            '/' => o.push_str(r"/\allowbreak{}"),
-            c if c.is_ascii() => o.push(c),
-            c => {
-                if let Some(t) = text_symbol(c) {
-                    o.push_str(t);
-                } else if matches!(c, 'À'..='ÿ') && c.is_alphabetic() {
-                    o.push(c);
-                } else if let Some(m) =
-                    unicode_math(c).or_else(|| symbols::greek_latex(c).map(str::to_owned))
-                {
-                    o.push('$');
-                    o.push_str(&m);
-                    o.push('$');
-                } else if let Some((acc, b)) = precomposed_accent(c) {
-                    o.push_str(&format!("${acc}{{{b}}}$"));
-                } else {
-                    o.push_str(&format!("[U+{:04X}]", c as u32));
-                }
-            }
-        }
-    }
-    o
+    escape::latex(s, Latex::Text)
 }
 
 /// Prose as LaTeX text with `$…$` math; it holds only characters pdflatex
@@ -585,17 +533,10 @@ pub fn markdown(s: &str) -> String {
     let mut o = String::with_capacity(s.len() + 16);
     for p in pieces(s) {
         match p {
-            Piece::Text(t) => {
-                for c in t.chars() {
-                    if "\\*_`$[]<".contains(c) {
-                        o.push('\\');
-                    }
-                    o.push(c);
-                }
-            }
+            Piece::Text(t) => o.push_str(&escape::markdown(&t)),
             Piece::Math(m) => {
                 o.push('$');
-                o.push_str(&m);
+                o.push_str(&escape::markdown_math(&m));
                 o.push('$');
             }
         }
@@ -633,171 +574,4 @@ pub fn ascii(s: &str) -> String {
         }
     }
     o
-}
-
-// ------------------------------------------------------------- tables --
-
-/// Combining accents over the preceding letter: dots of time derivatives,
-/// hat, bar, tilde, vector arrow.
-pub fn combining_accent(c: char) -> Option<&'static str> {
-    Some(match c {
-        '\u{307}' => r"\dot",
-        '\u{308}' => r"\ddot",
-        '\u{20DB}' => r"\dddot",
-        '\u{20DC}' => r"\ddddot",
-        '\u{302}' => r"\hat",
-        '\u{303}' => r"\tilde",
-        '\u{304}' | '\u{305}' => r"\bar",
-        '\u{20D7}' => r"\vec",
-        _ => return None,
-    })
-}
-
-/// Precomposed Latin letters with a dot, diaeresis or bar above (`Ḣ`,
-/// `ẋ`, `ẍ`, `ā`): time derivatives and mean values in prose. Latin-1
-/// letters with a diaeresis (`ö`) are left to the text font.
-fn precomposed_accent(c: char) -> Option<(&'static str, char)> {
-    const DOT: &str = "ḂBḃbĊCċcḊDḋdĖEėeḞFḟfĠGġgḢHḣhİIṀMṁmṄNṅnȮOȯoṖPṗpṘRṙrṠSṡsṪTṫtẆWẇwẊXẋxẎYẏyŻZżz";
-    const DDOT: &str = "ḦHḧhẗtẄWẅwẌXẍx";
-    const BAR: &str = "ĀAāaĒEēeĪIīiŌOōoŪUūuȲYȳy";
-    for (table, acc) in [(DOT, r"\dot"), (DDOT, r"\ddot"), (BAR, r"\bar")] {
-        let cs: Vec<char> = table.chars().collect();
-        if let Some(p) = cs.chunks(2).find(|p| p[0] == c) {
-            return Some((acc, p[1]));
-        }
-    }
-    None
-}
-
-/// Typographic punctuation and text symbols, as LaTeX text.
-fn text_symbol(c: char) -> Option<&'static str> {
-    Some(match c {
-        '§' => r"\S{}",
-        '¶' => r"\P{}",
-        '—' => "---",
-        '–' | '‒' => "--",
-        '‐' | '‑' => "-",
-        '‘' => "`",
-        '’' => "'",
-        '“' => "``",
-        '”' => "''",
-        '„' => ",,",
-        '«' => r"\guillemotleft{}",
-        '»' => r"\guillemotright{}",
-        '…' => r"\ldots{}",
-        '\u{a0}' => "~",
-        '\u{2009}' | '\u{202F}' | '\u{2002}' | '\u{2003}' => r"\,",
-        '\u{200B}' | '\u{FEFF}' | '\u{AD}' => "",
-        '†' => r"\dag{}",
-        '‡' => r"\ddag{}",
-        '©' => r"\textcopyright{}",
-        '®' => r"\textregistered{}",
-        '•' => r"\textbullet{}",
-        '✓' | '✔' => r"$\checkmark$",
-        '✗' | '✘' => r"$\times$",
-        _ => return None,
-    })
-}
-
-/// The LaTeX math for a Unicode character that belongs in math (Greek
-/// letters are in [`symbols::greek_latex`]): operators and relations,
-/// arrows, primes, super- and subscripts. `None` for characters that are
-/// text.
-pub fn unicode_math(c: char) -> Option<String> {
-    if let Some(g) = symbols::greek_latex(c) {
-        return Some(g.to_owned());
-    }
-    const SUP: &str = "⁰¹²³⁴⁵⁶⁷⁸⁹";
-    const SUB: &str = "₀₁₂₃₄₅₆₇₈₉";
-    if let Some(k) = SUP.chars().position(|d| d == c) {
-        return Some(format!("^{{{k}}}"));
-    }
-    if let Some(k) = SUB.chars().position(|d| d == c) {
-        return Some(format!("_{{{k}}}"));
-    }
-    let s = match c {
-        '⁺' => "^{+}",
-        '⁻' => "^{-}",
-        'ⁿ' => "^{n}",
-        'ⁱ' => "^{i}",
-        'ᵀ' => "^{T}",
-        'ᵗ' => "^{t}",
-        '₊' => "_{+}",
-        '₋' => "_{-}",
-        'ₓ' => "_{x}",
-        'ᵧ' => "_{y}",
-        'ₐ' => "_{a}",
-        'ₑ' => "_{e}",
-        'ₒ' => "_{o}",
-        'ᵢ' => "_{i}",
-        'ⱼ' => "_{j}",
-        'ₖ' => "_{k}",
-        'ₙ' => "_{n}",
-        '×' => r"\times",
-        '·' | '⋅' => r"\cdot",
-        '÷' => r"\div",
-        '∗' => r"\ast",
-        '∘' => r"\circ",
-        '−' => "-",
-        '±' => r"\pm",
-        '∓' => r"\mp",
-        '≥' | '⩾' => r"\geq",
-        '≤' | '⩽' => r"\leq",
-        '≠' => r"\neq",
-        '≈' => r"\approx",
-        '≡' => r"\equiv",
-        '≔' => r"\mathrel{:=}",
-        '∼' => r"\sim",
-        '≪' => r"\ll",
-        '≫' => r"\gg",
-        '∝' => r"\propto",
-        '∫' => r"\int",
-        '∮' => r"\oint",
-        '∑' => r"\sum",
-        '∏' => r"\prod",
-        '∂' => r"\partial",
-        '∇' => r"\nabla",
-        '∞' => r"\infty",
-        '√' => r"\surd",
-        '∈' => r"\in",
-        '∉' => r"\notin",
-        '⊂' => r"\subset",
-        '⊆' => r"\subseteq",
-        '∪' => r"\cup",
-        '∩' => r"\cap",
-        '∀' => r"\forall",
-        '∃' => r"\exists",
-        '∅' => r"\emptyset",
-        '⊥' => r"\perp",
-        '∥' => r"\parallel",
-        '‖' => r"\|",
-        '∠' => r"\angle",
-        '→' => r"\to",
-        '←' => r"\leftarrow",
-        '↔' => r"\leftrightarrow",
-        '⇒' => r"\Rightarrow",
-        '⇐' => r"\Leftarrow",
-        '⇔' => r"\Leftrightarrow",
-        '↦' => r"\mapsto",
-        '⟨' => r"\langle",
-        '⟩' => r"\rangle",
-        '′' => "'",
-        '″' => "''",
-        '‴' => "'''",
-        '°' => r"^{\circ}",
-        '½' => r"\tfrac{1}{2}",
-        '¼' => r"\tfrac{1}{4}",
-        '¾' => r"\tfrac{3}{4}",
-        'ℏ' => r"\hbar",
-        'ℓ' => r"\ell",
-        '¬' => r"\neg",
-        '∧' => r"\wedge",
-        '∨' => r"\vee",
-        '⊗' => r"\otimes",
-        '⊕' => r"\oplus",
-        '⋯' => r"\cdots",
-        '⋮' => r"\vdots",
-        _ => return None,
-    };
-    Some(s.to_owned())
 }

@@ -104,9 +104,9 @@ pub struct Step {
     /// Whether the step is printed.
     pub show: bool,
     /// The label when it is mathematics rather than a name (see
-    /// [`crate::document::LabelMath`]): `phi''*sin(theta)`,
+    /// [`crate::label::LabelMath`]): `phi''*sin(theta)`,
     /// `partial(T, theta')`, `0`.
-    pub label_math: Option<crate::document::LabelMath>,
+    pub label_math: Option<crate::label::LabelMath>,
     /// The value.
     pub value: Value,
     /// How to present it.
@@ -390,17 +390,15 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
         )?;
         let (value, presentation, axes, checks, meaning) = out.expect("evaluated");
         let label_math = match &s.label {
-            Some(l) => {
-                crate::document::LabelMath::parse(l.get_ref(), &cx.symbols).map_err(|m| {
-                    let n = s.name.get_ref();
-                    cx.diag_string(
-                        l,
-                        0,
-                        l.get_ref().len(),
-                        format!("step `{n}`, field `label`: {m}"),
-                    )
-                })?
-            }
+            Some(l) => crate::label::LabelMath::parse(l.get_ref(), &cx.symbols).map_err(|m| {
+                let n = s.name.get_ref();
+                cx.diag_string(
+                    l,
+                    0,
+                    l.get_ref().len(),
+                    format!("step `{n}`, field `label`: {m}"),
+                )
+            })?,
             None => None,
         };
         cx.bind(s.name.get_ref(), value.clone());

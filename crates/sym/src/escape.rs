@@ -1,0 +1,355 @@
+//! Escaping: how any string of a file is written in each output language,
+//! in one place. [`latex`] for LaTeX (text, typewriter code, math, a
+//! comment line), [`markdown`] and [`markdown_code`] for Markdown; every
+//! field of every backend that is not built from expression trees goes
+//! through one of them, so no string a user wrote reaches an output as
+//! commands (`\input`, `\write18`, `\def`, unbalanced braces, HTML).
+//!
+//! The tables of how a Unicode character is written in LaTeX (Greek
+//! letters are in [`crate::symbols`]) live here too: operators and arrows
+//! ([`unicode_math`]), accents ([`combining_accent`]), typographic
+//! punctuation. The output holds only characters pdflatex can typeset:
+//! ASCII and the accented letters of Latin-1; anything else is kept
+//! visible as its code point.
+//!
+//! # Example
+//! ```
+//! use hdot_sym::escape::{Latex, latex, markdown_code};
+//! assert_eq!(latex(r"50% \input{x}", Latex::Text), r"50\% \textbackslash{}input\{x\}");
+//! assert_eq!(latex(r"\def\x{\x}", Latex::Math), r"\backslash def\backslash x\{\backslash x\}");
+//! assert_eq!(latex("a'b, c", Latex::Code), r"a\textquotesingle{}b,\allowbreak{} c");
+//! assert_eq!(markdown_code("a `b`"), "`` a `b` ``");
+//! ```
+
+use crate::symbols;
+
+/// Where in a LaTeX document a string is written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Latex {
+    /// Running text (prose that is not math): a permitted line break after
+    /// a slash, typographic punctuation as LaTeX ligatures.
+    Text,
+    /// Typewriter text (`\texttt`: a formula as written, a file name):
+    /// straight quotes, a permitted line break after a comma.
+    Code,
+    /// Inside math (`\mathrm{…}`, a subscript): every character that means
+    /// something to TeX escaped.
+    Math,
+    /// A comment line: only line breaks (which would end the comment) and
+    /// control characters are replaced, by spaces.
+    Comment,
+}
+
+/// `s` escaped for LaTeX at `to` (see [`Latex`]).
+pub fn latex(s: &str, to: Latex) -> String {
+    let mut o = String::with_capacity(s.len() + 8);
+    for c in s.chars() {
+        if c.is_ascii_control() && !(to == Latex::Text && matches!(c, '\n' | '\t')) {
+            o.push(' ');
+            continue;
+        }
+        match (to, c) {
+            (Latex::Comment, c) => o.push(c),
+            (Latex::Math, c) => o.push_str(&latex_math_char(c)),
+            (_, '\\') => o.push_str(r"\textbackslash{}"),
+            (_, '&' | '%' | '$' | '#' | '_' | '{' | '}') => {
+                o.push('\\');
+                o.push(c);
+            }
+            (_, '~') => o.push_str(r"\textasciitilde{}"),
+            (_, '^') => o.push_str(r"\textasciicircum{}"),
+            (_, '<') => o.push_str(r"\textless{}"),
+            (_, '>') => o.push_str(r"\textgreater{}"),
+            (Latex::Text, '|') => o.push_str(r"\textbar{}"),
+            // A path such as docs/equations.md may break after a slash.
+            (Latex::Text, '/') => o.push_str(r"/\allowbreak{}"),
+            // Straight quotes in typewriter type, and a break point after
+            // commas so long formulas can wrap.
+            (Latex::Code, '\'') => o.push_str(r"\textquotesingle{}"),
+            (Latex::Code, '"') => o.push_str(r"\textquotedbl{}"),
+            (Latex::Code, ',') => o.push_str(r",\allowbreak{}"),
+            (_, c) if c.is_ascii() => o.push(c),
+            (_, c) => o.push_str(&latex_text_char(c)),
+        }
+    }
+    o
+}
+
+/// `s` escaped inside LaTeX math: [`latex`] at [`Latex::Math`].
+pub fn latex_math(s: &str) -> String {
+    latex(s, Latex::Math)
+}
+
+/// One character inside LaTeX math: letters and digits as themselves,
+/// TeX's special characters escaped, non-ASCII notation by its table.
+pub fn latex_math_char(c: char) -> String {
+    match c {
+        '{' => r"\{".into(),
+        '}' => r"\}".into(),
+        '%' | '&' | '#' | '$' | '_' => format!("\\{c}"),
+        '\\' => r"\backslash ".into(),
+        '~' => r"\sim ".into(),
+        '^' => r"\hat{}".into(),
+        c if c.is_ascii_control() => " ".into(),
+        c if c.is_ascii() => c.to_string(),
+        c => {
+            if let Some(g) = symbols::greek_latex(c) {
+                g.to_owned()
+            } else if let Some(m) = unicode_math(c) {
+                m
+            } else if let Some((acc, b)) = precomposed_accent(c) {
+                format!("{acc}{{{b}}}")
+            } else if let Some(t) = text_symbol(c) {
+                format!(r"\text{{{t}}}")
+            } else {
+                letter(c)
+            }
+        }
+    }
+}
+
+/// A non-ASCII character in LaTeX text: typographic punctuation as
+/// ligatures, a Latin-1 letter as itself, notation as math, anything else
+/// as its code point.
+fn latex_text_char(c: char) -> String {
+    if let Some(t) = text_symbol(c) {
+        t.to_owned()
+    } else if matches!(c, 'À'..='ÿ') && c.is_alphabetic() {
+        c.to_string()
+    } else if let Some(m) = unicode_math(c) {
+        format!("${m}$")
+    } else if let Some((acc, b)) = precomposed_accent(c) {
+        format!("${acc}{{{b}}}$")
+    } else {
+        format!("[U+{:04X}]", c as u32)
+    }
+}
+
+/// A letter as math: itself when ASCII, a Latin-1 letter as text, else its
+/// code point (visible in the output, never a pdflatex error).
+pub fn letter(c: char) -> String {
+    if c.is_ascii_alphanumeric() {
+        c.to_string()
+    } else if matches!(c, 'À'..='ÿ') && c.is_alphabetic() {
+        format!(r"\text{{{c}}}")
+    } else {
+        format!(r"\text{{[U+{:04X}]}}", c as u32)
+    }
+}
+
+/// Markdown text: `\`, `*`, `_`, `` ` ``, `$`, `[`, `]` and `<` show as
+/// themselves (no emphasis, code, math, link or HTML).
+pub fn markdown(s: &str) -> String {
+    let mut o = String::with_capacity(s.len() + 8);
+    for c in s.chars() {
+        if "\\*_`$[]<".contains(c) {
+            o.push('\\');
+        }
+        o.push(c);
+    }
+    o
+}
+
+/// LaTeX math for a Markdown page (`$…$`, `$$…$$`): a `<` that a
+/// Markdown reader would take for the start of an HTML tag (before a
+/// letter, `/`, `!` or `?`) is followed by a space, which math ignores.
+pub fn markdown_math(s: &str) -> String {
+    let mut o = String::with_capacity(s.len());
+    let mut cs = s.chars().peekable();
+    while let Some(c) = cs.next() {
+        o.push(c);
+        if c == '<'
+            && cs
+                .peek()
+                .is_some_and(|n| n.is_alphabetic() || "/!?".contains(*n))
+        {
+            o.push(' ');
+        }
+    }
+    o
+}
+
+/// Markdown inline code holding `s` as written: fenced by one backtick
+/// more than its longest run of backticks, line breaks as spaces.
+pub fn markdown_code(s: &str) -> String {
+    let s: String = s
+        .chars()
+        .map(|c| if c.is_control() { ' ' } else { c })
+        .collect();
+    let longest = s.split(|c| c != '`').map(str::len).max().unwrap_or(0);
+    if longest == 0 {
+        format!("`{s}`")
+    } else {
+        let fence = "`".repeat(longest + 1);
+        format!("{fence} {s} {fence}")
+    }
+}
+
+// ------------------------------------------------------------- tables --
+
+/// Combining accents over the preceding letter: dots of time derivatives,
+/// hat, bar, tilde, vector arrow.
+/// Combining accents over the preceding letter: dots of time derivatives,
+/// hat, bar, tilde, vector arrow.
+pub fn combining_accent(c: char) -> Option<&'static str> {
+    Some(match c {
+        '\u{307}' => r"\dot",
+        '\u{308}' => r"\ddot",
+        '\u{20DB}' => r"\dddot",
+        '\u{20DC}' => r"\ddddot",
+        '\u{302}' => r"\hat",
+        '\u{303}' => r"\tilde",
+        '\u{304}' | '\u{305}' => r"\bar",
+        '\u{20D7}' => r"\vec",
+        _ => return None,
+    })
+}
+
+/// Precomposed Latin letters with a dot, diaeresis or bar above (`Ḣ`,
+/// `ẋ`, `ẍ`, `ā`): time derivatives and mean values in prose. Latin-1
+/// letters with a diaeresis (`ö`) are left to the text font.
+pub(crate) fn precomposed_accent(c: char) -> Option<(&'static str, char)> {
+    const DOT: &str = "ḂBḃbĊCċcḊDḋdĖEėeḞFḟfĠGġgḢHḣhİIṀMṁmṄNṅnȮOȯoṖPṗpṘRṙrṠSṡsṪTṫtẆWẇwẊXẋxẎYẏyŻZżz";
+    const DDOT: &str = "ḦHḧhẗtẄWẅwẌXẍx";
+    const BAR: &str = "ĀAāaĒEēeĪIīiŌOōoŪUūuȲYȳy";
+    for (table, acc) in [(DOT, r"\dot"), (DDOT, r"\ddot"), (BAR, r"\bar")] {
+        let cs: Vec<char> = table.chars().collect();
+        if let Some(p) = cs.chunks(2).find(|p| p[0] == c) {
+            return Some((acc, p[1]));
+        }
+    }
+    None
+}
+
+/// Typographic punctuation and text symbols, as LaTeX text.
+pub(crate) fn text_symbol(c: char) -> Option<&'static str> {
+    Some(match c {
+        '§' => r"\S{}",
+        '¶' => r"\P{}",
+        '—' => "---",
+        '–' | '‒' => "--",
+        '‐' | '‑' => "-",
+        '‘' => "`",
+        '’' => "'",
+        '“' => "``",
+        '”' => "''",
+        '„' => ",,",
+        '«' => r"\guillemotleft{}",
+        '»' => r"\guillemotright{}",
+        '…' => r"\ldots{}",
+        '\u{a0}' => "~",
+        '\u{2009}' | '\u{202F}' | '\u{2002}' | '\u{2003}' => r"\,",
+        '\u{200B}' | '\u{FEFF}' | '\u{AD}' => "",
+        '†' => r"\dag{}",
+        '‡' => r"\ddag{}",
+        '©' => r"\textcopyright{}",
+        '®' => r"\textregistered{}",
+        '•' => r"\textbullet{}",
+        '✓' | '✔' => r"$\checkmark$",
+        '✗' | '✘' => r"$\times$",
+        _ => return None,
+    })
+}
+
+/// The LaTeX math for a Unicode character that belongs in math (Greek
+/// letters are in [`symbols::greek_latex`]): operators and relations,
+/// arrows, primes, super- and subscripts. `None` for characters that are
+/// text.
+pub fn unicode_math(c: char) -> Option<String> {
+    if let Some(g) = symbols::greek_latex(c) {
+        return Some(g.to_owned());
+    }
+    const SUP: &str = "⁰¹²³⁴⁵⁶⁷⁸⁹";
+    const SUB: &str = "₀₁₂₃₄₅₆₇₈₉";
+    if let Some(k) = SUP.chars().position(|d| d == c) {
+        return Some(format!("^{{{k}}}"));
+    }
+    if let Some(k) = SUB.chars().position(|d| d == c) {
+        return Some(format!("_{{{k}}}"));
+    }
+    let s = match c {
+        '⁺' => "^{+}",
+        '⁻' => "^{-}",
+        'ⁿ' => "^{n}",
+        'ⁱ' => "^{i}",
+        'ᵀ' => "^{T}",
+        'ᵗ' => "^{t}",
+        '₊' => "_{+}",
+        '₋' => "_{-}",
+        'ₓ' => "_{x}",
+        'ᵧ' => "_{y}",
+        'ₐ' => "_{a}",
+        'ₑ' => "_{e}",
+        'ₒ' => "_{o}",
+        'ᵢ' => "_{i}",
+        'ⱼ' => "_{j}",
+        'ₖ' => "_{k}",
+        'ₙ' => "_{n}",
+        '×' => r"\times",
+        '·' | '⋅' => r"\cdot",
+        '÷' => r"\div",
+        '∗' => r"\ast",
+        '∘' => r"\circ",
+        '−' => "-",
+        '±' => r"\pm",
+        '∓' => r"\mp",
+        '≥' | '⩾' => r"\geq",
+        '≤' | '⩽' => r"\leq",
+        '≠' => r"\neq",
+        '≈' => r"\approx",
+        '≡' => r"\equiv",
+        '≔' => r"\mathrel{:=}",
+        '∼' => r"\sim",
+        '≪' => r"\ll",
+        '≫' => r"\gg",
+        '∝' => r"\propto",
+        '∫' => r"\int",
+        '∮' => r"\oint",
+        '∑' => r"\sum",
+        '∏' => r"\prod",
+        '∂' => r"\partial",
+        '∇' => r"\nabla",
+        '∞' => r"\infty",
+        '√' => r"\surd",
+        '∈' => r"\in",
+        '∉' => r"\notin",
+        '⊂' => r"\subset",
+        '⊆' => r"\subseteq",
+        '∪' => r"\cup",
+        '∩' => r"\cap",
+        '∀' => r"\forall",
+        '∃' => r"\exists",
+        '∅' => r"\emptyset",
+        '⊥' => r"\perp",
+        '∥' => r"\parallel",
+        '‖' => r"\|",
+        '∠' => r"\angle",
+        '→' => r"\to",
+        '←' => r"\leftarrow",
+        '↔' => r"\leftrightarrow",
+        '⇒' => r"\Rightarrow",
+        '⇐' => r"\Leftarrow",
+        '⇔' => r"\Leftrightarrow",
+        '↦' => r"\mapsto",
+        '⟨' => r"\langle",
+        '⟩' => r"\rangle",
+        '′' => "'",
+        '″' => "''",
+        '‴' => "'''",
+        '°' => r"^{\circ}",
+        '½' => r"\tfrac{1}{2}",
+        '¼' => r"\tfrac{1}{4}",
+        '¾' => r"\tfrac{3}{4}",
+        'ℏ' => r"\hbar",
+        'ℓ' => r"\ell",
+        '¬' => r"\neg",
+        '∧' => r"\wedge",
+        '∨' => r"\vee",
+        '⊗' => r"\otimes",
+        '⊕' => r"\oplus",
+        '⋯' => r"\cdots",
+        '⋮' => r"\vdots",
+        _ => return None,
+    };
+    Some(s.to_owned())
+}
