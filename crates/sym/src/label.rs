@@ -75,7 +75,7 @@ fn label_body(label: &str, symbol: fn(&str, u32) -> String, sep: &str) -> (Strin
 /// ```
 /// use hdot_sym::label::latex_label;
 /// assert_eq!(latex_label("Sigma M", "x"), r"\Sigma M_{x}");
-/// assert_eq!(latex_label(r"\input x", ""), r"\mathrm{\backslash{}input} x");
+/// assert_eq!(latex_label(r"\input x", ""), r"\mathrm{\backslash input} x");
 /// ```
 pub fn latex_label(label: &str, component: &str) -> String {
     let (body, sub) = label_body(label, latex_name, " ");
