@@ -372,6 +372,62 @@ fn every_quantity_has_one_particle_sum() {
         assert_eq!(n, 1, "{}", q.name);
     }
     assert_eq!(REGISTRY.len(), QUANTITIES.len());
+    // The call the docs show is the quantity's name with its arguments.
+    for m in REGISTRY {
+        let sig = m.quantity.sig();
+        let (name, args) = m.call.split_once('(').expect("a call");
+        assert_eq!(name, sig.name);
+        assert_eq!(args.split(',').count(), sig.args.len(), "{}", m.call);
+    }
+}
+
+#[test]
+fn every_combinator_of_the_parser_has_one_entry() {
+    use hdot_num::verify::means::COMBINATORS as ENTRIES;
+    use hdot_sym::derivation::physics::COMBINATORS;
+    for name in COMBINATORS {
+        let n = ENTRIES.iter().filter(|c| c.name == *name).count();
+        assert_eq!(n, 1, "{name}");
+        let c = ENTRIES.iter().find(|c| c.name == *name).unwrap();
+        assert!(c.call.starts_with(&format!("{name}(")), "{}", c.call);
+    }
+    // Besides the functions: the operators `+` and `*`.
+    assert_eq!(ENTRIES.len(), COMBINATORS.len() + 2);
+    assert!(ENTRIES.iter().any(|c| c.name == "+") && ENTRIES.iter().any(|c| c.name == "*"));
+}
+
+/// The tables of *Meanings* in docs/derivation-format.md are the
+/// registries'.
+#[test]
+fn docs_list_every_meaning_of_the_registries() {
+    use hdot_num::verify::means::{combinators_table, quantities_table};
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/derivation-format.md");
+    let mut doc = std::fs::read_to_string(&path).unwrap();
+    let mut stale = Vec::new();
+    for (marker, table) in [
+        ("quantities", quantities_table()),
+        ("combinators", combinators_table()),
+    ] {
+        let begin = format!("<!-- means:{marker}:begin -->\n");
+        let end = format!("<!-- means:{marker}:end -->");
+        let a = doc.find(&begin).expect("begin marker") + begin.len();
+        let b = doc.find(&end).expect("end marker");
+        if doc[a..b] != table {
+            stale.push(marker);
+            doc = format!("{}{}{}", &doc[..a], table, &doc[b..]);
+        }
+    }
+    if !stale.is_empty() {
+        if std::env::var_os("HDOT_UPDATE_DOCS").is_some() {
+            std::fs::write(&path, doc).unwrap();
+        } else {
+            panic!(
+                "docs/derivation-format.md's {stale:?} table differs from the registry; rerun with \
+                 HDOT_UPDATE_DOCS=1 to regenerate it"
+            );
+        }
+    }
 }
 
 proptest::proptest! {

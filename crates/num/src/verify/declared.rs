@@ -28,9 +28,9 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 use super::bodies::{axisymmetric, map_particles, mirrored, random_body, random_rotation};
-use super::quantities::{Measured, measure};
+use super::means::{against_of, frame_index, meaning_value};
 use super::world::{ORDERS, PointJet, World, mat_t_vec, vee};
-use super::{Comparison, TOLERANCE_ULPS, VerifyError, linear};
+use super::{Comparison, VerifyError};
 use crate::bind::{MeasuredBody, Values, bind_all, declared_equations, nth};
 use crate::cloud::ParticleCloud;
 use crate::eval::Tape;
@@ -583,13 +583,6 @@ fn bind_knowns(d: &Derivation, w: &World<'_>, values: &mut Values) -> Result<(),
     Ok(())
 }
 
-fn frame_index(d: &Derivation, f: &str) -> usize {
-    d.frames
-        .iter()
-        .position(|x| x.name == f)
-        .expect("frame exists")
-}
-
 /// The jet (N's axes, orders 0..2) of a point-kinematics or angular-velocity
 /// meaning.
 fn kinematic_jet(w: &World<'_>, m: &Meaning) -> Option<[Vector3<f64>; ORDERS]> {
@@ -627,176 +620,6 @@ fn kinematic_jet(w: &World<'_>, m: &Meaning) -> Option<[Vector3<f64>; ORDERS]> {
         }
         _ => return None,
     })
-}
-
-/// A measured meaning: a vector in N's axes, a scalar, a matrix in its
-/// frame's axes or a list; and its scale.
-#[derive(Clone, Debug, PartialEq)]
-enum Val {
-    Scalar(f64),
-    Vector(Vector3<f64>),
-    Matrix(Matrix3<f64>),
-    List(Vec<f64>),
-}
-
-impl Val {
-    fn vector(&self) -> Vector3<f64> {
-        match self {
-            Val::Vector(v) => *v,
-            _ => unreachable!("shapes are validated"),
-        }
-    }
-
-    fn scalar(&self) -> f64 {
-        match self {
-            Val::Scalar(v) => *v,
-            _ => unreachable!("shapes are validated"),
-        }
-    }
-
-    fn scaled(&self, c: f64) -> Val {
-        match self {
-            Val::Scalar(x) => Val::Scalar(c * x),
-            Val::Vector(v) => Val::Vector(c * v),
-            Val::Matrix(m) => Val::Matrix(c * m),
-            Val::List(l) => Val::List(l.iter().map(|x| c * x).collect()),
-        }
-    }
-
-    fn add(&self, o: &Val) -> Val {
-        match (self, o) {
-            (Val::Scalar(a), Val::Scalar(b)) => Val::Scalar(a + b),
-            (Val::Vector(a), Val::Vector(b)) => Val::Vector(a + b),
-            (Val::Matrix(a), Val::Matrix(b)) => Val::Matrix(a + b),
-            (Val::List(a), Val::List(b)) => {
-                Val::List(a.iter().zip(b).map(|(x, y)| x + y).collect())
-            }
-            _ => unreachable!("shapes are validated"),
-        }
-    }
-
-    /// A value of this shape from its components (as [`Val::components`]
-    /// gives them without a frame).
-    fn like(&self, c: &[f64]) -> Val {
-        match self {
-            Val::Scalar(_) => Val::Scalar(c[0]),
-            Val::Vector(_) => Val::Vector(Vector3::from_column_slice(c)),
-            Val::Matrix(_) => Val::Matrix(Matrix3::from_row_slice(c)),
-            Val::List(_) => Val::List(c.to_vec()),
-        }
-    }
-
-    /// Components, a vector in the axes of `frame`.
-    fn components(&self, w: &World<'_>, frame: Option<usize>) -> Vec<f64> {
-        match self {
-            Val::Scalar(x) => vec![*x],
-            Val::Vector(v) => {
-                let r = frame.map_or(Matrix3::identity(), |f| w.frames[f][0]);
-                (r.transpose() * v).iter().copied().collect()
-            }
-            Val::Matrix(m) => m.transpose().iter().copied().collect(),
-            Val::List(l) => l.clone(),
-        }
-    }
-}
-
-fn meaning_value(w: &World<'_>, m: &Meaning) -> Result<(Val, f64), VerifyError> {
-    Ok(match m {
-        Meaning::Quantity(q, args) => {
-            let (v, s) = (measure(*q).compute)(w, args)?;
-            (
-                match v {
-                    Measured::Scalar(x) => Val::Scalar(x),
-                    Measured::Vector(v) => Val::Vector(v),
-                    Measured::Matrix(m) => Val::Matrix(m),
-                },
-                s,
-            )
-        }
-        Meaning::Sum(terms) => {
-            let mut acc: Option<Val> = None;
-            let mut scale = 0.0;
-            for (c, t) in terms {
-                let c = c.to_f64();
-                let (v, s) = meaning_value(w, t)?;
-                let v = v.scaled(c);
-                scale += c.abs() * s;
-                acc = Some(match acc {
-                    None => v,
-                    Some(a) => a.add(&v),
-                });
-            }
-            (acc.expect("a sum has terms"), scale)
-        }
-        Meaning::Along(x, e, f) => {
-            let (v, s) = meaning_value(w, x)?;
-            let fi = frame_index(w.d, f);
-            let mut values_e = Vec::new();
-            for c in &e.0 {
-                values_e.push(w.values.eval(c)?.0);
-            }
-            let e = w.frames[fi][0] * Vector3::new(values_e[0], values_e[1], values_e[2]);
-            (Val::Scalar(v.vector().dot(&e)), s * e.norm())
-        }
-        Meaning::List(items) => {
-            let mut out = Vec::new();
-            let mut scale: f64 = 0.0;
-            for it in items {
-                let (v, s) = meaning_value(w, it)?;
-                out.push(v.scalar());
-                scale = scale.max(s);
-            }
-            (Val::List(out), scale)
-        }
-        Meaning::Solves(x) | Meaning::MassMatrix(x, _) | Meaning::Forcing(x, _) => {
-            meaning_value(w, x)?
-        }
-        Meaning::Applied(p) => {
-            let (v, s) = w.values.eval(p)?;
-            (Val::Scalar(v), s)
-        }
-        Meaning::Scaled(p, x) => {
-            let (c, cs) = w.values.eval(p)?;
-            let (v, s) = meaning_value(w, x)?;
-            (v.scaled(c), cs * s)
-        }
-        Meaning::Sign(x) => {
-            let (v, s) = meaning_value(w, x)?;
-            let v = v.scalar();
-            let sign = if v.abs() <= TOLERANCE_ULPS * f64::EPSILON * s {
-                0.0
-            } else {
-                v.signum()
-            };
-            (Val::Scalar(sign), 1.0)
-        }
-        Meaning::Linear(x) => {
-            let shape = meaning_value(w, x)?.0;
-            let (v, s) = linear::linear(&at(w, x), &w.values, &w.d.physics.small)?;
-            (shape.like(&v), s)
-        }
-        Meaning::Coefficient(x, e) => {
-            let (v, s) = linear::coefficient(&at(w, x), &w.values, *e)?;
-            (Val::Scalar(v), s)
-        }
-        Meaning::Rate(e, x) => {
-            let (v, s) = linear::rate(&at(w, x), &w.values, &w.d.physics.small, *e, &w.d.name)?;
-            (Val::Scalar(v), s)
-        }
-    })
-}
-
-/// `x` measured at other values of the symbols (the same draw): its
-/// components (N's axes for a vector) and scale.
-fn at<'a>(
-    w: &'a World<'_>,
-    x: &'a Meaning,
-) -> impl Fn(&Values) -> Result<(Vec<f64>, f64), VerifyError> + 'a {
-    move |values: &Values| {
-        let w2 = w.at(values)?;
-        let (v, s) = meaning_value(&w2, x)?;
-        Ok((v.components(&w2, None), s))
-    }
 }
 
 /// A step compiled once.
@@ -1108,46 +931,6 @@ fn coordinate(m: &Meaning) -> Vec<Atom> {
         }
     }
     out
-}
-
-/// What a meaning is measured as, for reports.
-fn against_of(m: &Meaning) -> String {
-    match m {
-        Meaning::Linear(x) => format!(
-            "X(0) + central differences in the small symbols, X = {}",
-            against_of(x)
-        ),
-        Meaning::Rate(e, x) => format!(
-            "{e} from −Q⁻¹(X₀ + P ε) (and J = −Q⁻¹P), P, Q the first-order part of X = {}",
-            against_of(x)
-        ),
-        Meaning::Coefficient(x, e) => {
-            format!("central differences in {e} of {}", against_of(x))
-        }
-        Meaning::Sign(x) => format!("the sign of {}", against_of(x)),
-        Meaning::Scaled(_, x) => against_of(x),
-        Meaning::Sum(terms) => terms
-            .iter()
-            .map(|(_, x)| against_of(x))
-            .fold(Vec::new(), |mut v, s| {
-                if !v.contains(&s) {
-                    v.push(s);
-                }
-                v
-            })
-            .join(", "),
-        _ => m
-            .quantities()
-            .iter()
-            .map(|(q, _)| measure(*q).measured_as)
-            .fold(Vec::new(), |mut v, s| {
-                if !v.contains(&s) {
-                    v.push(s);
-                }
-                v
-            })
-            .join(", "),
-    }
 }
 
 /// Verifies every step of `d` that has a meaning, on `options.draws`

@@ -31,6 +31,7 @@
 mod bodies;
 mod declared;
 mod linear;
+pub mod means;
 pub mod motion;
 pub mod quantities;
 #[cfg(feature = "proptest")]

@@ -1,6 +1,8 @@
 //! The measurable quantities: a registry of self-describing entries, one
 //! per [`Quantity`] of `hdot_sym::derivation::physics`, each with its
-//! particle sum and the magnitudes its round-off is relative to.
+//! particle sum and the magnitudes its round-off is relative to, its
+//! call and its documentation (the quantity table of
+//! `docs/derivation-format.md` is generated from it: [`super::means`]).
 
 use hdot_sym::derivation::physics::{Arg, Bodies, Quantity};
 use nalgebra::{Matrix3, Vector3};
@@ -24,121 +26,171 @@ pub enum Measured {
 pub struct Measure {
     /// The quantity.
     pub quantity: Quantity,
+    /// How it is written in `means`, with its arguments named, for the
+    /// docs: `position(point, from)`.
+    pub call: &'static str,
+    /// How it is measured on the particles, for the docs table
+    /// (Markdown).
+    pub doc: &'static str,
     /// What it is compared with, for reports.
     pub measured_as: &'static str,
     /// The particle sum (or point kinematics) and its scale.
     pub compute: fn(&World<'_>, &[Arg]) -> Out,
 }
 
-/// Every measurable quantity.
+/// Every measurable quantity, in the order of the docs table.
 pub static REGISTRY: &[Measure] = &[
     Measure {
         quantity: Quantity::Mass,
+        call: "mass(body)",
+        doc: "Σ m",
         measured_as: "Σ m",
         compute: mass,
     },
     Measure {
         quantity: Quantity::Position,
+        call: "position(point, from)",
+        doc: "r_point − r_from",
         measured_as: "r_P − r_Q",
         compute: position,
     },
     Measure {
         quantity: Quantity::Velocity,
+        call: "velocity(point)",
+        doc: "ṙ of the point",
         measured_as: "ṙ of the point",
         compute: velocity,
     },
     Measure {
         quantity: Quantity::Acceleration,
+        call: "acceleration(point)",
+        doc: "r̈ of the point",
         measured_as: "r̈ of the point",
         compute: acceleration,
     },
     Measure {
         quantity: Quantity::AngularVelocity,
+        call: "angular_velocity(frame)",
+        doc: "ω of the frame relative to N, read from Ṙ Rᵀ",
         measured_as: "the axial vector of Ṙ Rᵀ",
         compute: angular_velocity,
     },
     Measure {
         quantity: Quantity::AngularAcceleration,
+        call: "angular_acceleration(frame)",
+        doc: "α of the frame relative to N, read from d(Ṙ Rᵀ)/dt",
         measured_as: "the axial vector of d(Ṙ Rᵀ)/dt",
         compute: angular_acceleration,
     },
     Measure {
         quantity: Quantity::Momentum,
+        call: "momentum(body)",
+        doc: "Σ m v",
         measured_as: "Σ m v",
         compute: momentum,
     },
     Measure {
         quantity: Quantity::Force,
+        call: "force(body)",
+        doc: "Σ m a (the resultant force the motion requires)",
         measured_as: "Σ m a",
         compute: force,
     },
     Measure {
         quantity: Quantity::AngularMomentum,
+        call: "angular_momentum(body, point)",
+        doc: "Σ m (r − r_point) × v",
         measured_as: "Σ m (r − r_P) × v",
         compute: angular_momentum,
     },
     Measure {
         quantity: Quantity::Moment,
+        call: "moment(body, point)",
+        doc: "Σ m (r − r_point) × a (the resultant moment the motion requires)",
         measured_as: "Σ m (r − r_P) × a",
         compute: moment,
     },
     Measure {
         quantity: Quantity::KineticEnergy,
+        call: "kinetic_energy(body)",
+        doc: "Σ ½ m v²",
         measured_as: "Σ ½ m v²",
         compute: kinetic_energy,
     },
     Measure {
         quantity: Quantity::Inertia,
+        call: "inertia(body, point, frame)",
+        doc: "Σ m (\\|ρ\\|² E − ρ ρᵀ), ρ = r − r_point, in the frame's axes",
         measured_as: "Σ m (|ρ|² E − ρ ρᵀ) in the frame's axes",
         compute: inertia,
     },
     Measure {
         quantity: Quantity::Weight,
+        call: "weight(body)",
+        doc: "Σ m g (needs `gravity`)",
         measured_as: "Σ m g",
         compute: weight,
     },
     Measure {
         quantity: Quantity::WeightMoment,
+        call: "weight_moment(body, point)",
+        doc: "Σ (r − r_point) × m g",
         measured_as: "Σ (r − r_P) × m g",
         compute: weight_moment,
     },
     Measure {
         quantity: Quantity::PotentialEnergy,
+        call: "potential_energy(body, point)",
+        doc: "−Σ m g · (r − r_point)",
         measured_as: "−Σ m g · (r − r_P)",
         compute: potential_energy,
     },
     Measure {
         quantity: Quantity::GeneralizedForce,
+        call: "generalized_force(body, q)",
+        doc: "Σ m a · ∂r/∂q (the left side of Lagrange's equation for q); ∂r/∂q moves the coordinates `[motion]`'s rules tie to q with it (*Conditions*, below)",
         measured_as: "Σ m a · ∂r/∂q",
         compute: generalized_force,
     },
     Measure {
         quantity: Quantity::GeneralizedMomentum,
+        call: "generalized_momentum(body, q)",
+        doc: "Σ m v · ∂r/∂q (= ∂T/∂q̇)",
         measured_as: "Σ m v · ∂r/∂q",
         compute: generalized_momentum,
     },
     Measure {
         quantity: Quantity::GeneralizedWeight,
+        call: "generalized_weight(body, q)",
+        doc: "Σ m g · ∂r/∂q (= −∂V/∂q)",
         measured_as: "Σ m g · ∂r/∂q",
         compute: generalized_weight,
     },
     Measure {
         quantity: Quantity::PointVelocity,
+        call: "point_velocity(body, point)",
+        doc: "ṙ of the body's own (material) point at the point's place: ṙ_O + Ṙ q with q = Rᵀ (r_P − r_O) fixed in the body (a rolling disk's point at the contact C, whose velocity is zero, while C itself moves along the floor)",
         measured_as: "ṙ_O + Ṙ q of the body's point q = Rᵀ (r_P − r_O)",
         compute: point_velocity,
     },
     Measure {
         quantity: Quantity::PointAcceleration,
+        call: "point_acceleration(body, point)",
+        doc: "r̈ of the body's own (material) point at the point's place: r̈_O + R̈ q with q = Rᵀ (r_P − r_O) fixed in the body",
         measured_as: "r̈_O + R̈ q of the body's point q = Rᵀ (r_P − r_O)",
         compute: point_acceleration,
     },
     Measure {
         quantity: Quantity::VelocityAfterImpulse,
+        call: "velocity_after_impulse(body, point, F)",
+        doc: "v̄ of the body, at rest before, just after an impulse F (a vector expression, `[F_x, F_y, F_z] in N`) at the point: the rigid velocity field v = v̄ + ω × (r − r_G) of the particles that satisfies Σ m v = F and Σ m (r − r_G) × v = (r_point − r_G) × F; v̄ = F/Σ m (`derivations/impulse-momentum.toml`)",
         measured_as: "v̄ solving Σ m v = F̂, Σ m (r − r_G) × v = (r_P − r_G) × F̂ over the particles",
         compute: velocity_after_impulse,
     },
     Measure {
         quantity: Quantity::AngularVelocityAfterImpulse,
+        call: "angular_velocity_after_impulse(body, point, F)",
+        doc: "ω of the body, at rest before, just after an impulse F at the point (the same rigid velocity field): the 3 × 3 system about G whose columns are the particle sums Σ m ρ × (e_j × ρ), solved by LU",
         measured_as: "ω solving Σ m v = F̂, Σ m (r − r_G) × v = (r_P − r_G) × F̂ over the particles",
         compute: angular_velocity_after_impulse,
     },

@@ -311,8 +311,9 @@ fn is_meaning(a: &Ast) -> bool {
     }
 }
 
-/// The functions that combine meanings.
-const COMBINATORS: &[&str] = &[
+/// The functions that combine meanings (their docs and evaluation are
+/// entries of `hdot_num::verify::means::COMBINATORS`).
+pub const COMBINATORS: &[&str] = &[
     "list",
     "along",
     "applied",

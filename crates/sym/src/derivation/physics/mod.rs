@@ -23,7 +23,9 @@ mod means;
 
 pub(crate) use conditions::step_meaning;
 pub(crate) use declare::declarations;
-pub use means::{Arg, ArgKind, Bodies, Meaning, QUANTITIES, Quantity, QuantitySig, Shape};
+pub use means::{
+    Arg, ArgKind, Bodies, COMBINATORS, Meaning, QUANTITIES, Quantity, QuantitySig, Shape,
+};
 
 use super::value::Value;
 use crate::atom::Atom;
