@@ -128,6 +128,20 @@ fn every_command_has_help() {
     }
 }
 
+/// `hdot simulate --help` lists every model of the registry.
+#[test]
+fn simulate_help_lists_every_model() {
+    let out = hdot(&["simulate", "--help"]);
+    assert!(out.status.success());
+    let help = text(&out.stdout)
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ");
+    for e in hdot_sim::models::MODELS {
+        assert!(help.contains(e.name()), "{} missing from: {help}", e.name());
+    }
+}
+
 #[test]
 fn verify_passes_on_every_bundled_derivation() {
     let out = hdot(&["verify", "--bodies", "20"]);

@@ -6,9 +6,9 @@
 //! `docs/charts/separatrix-error.{svg,png}` when `HDOT_DOCS_CHARTS=1`.
 
 use hdot_sim::exact::TorqueFree;
-use hdot_sim::models::FreeBody;
-use hdot_sim::models::free::pack;
 use hdot_sim::nalgebra::{UnitQuaternion, Vector3};
+use hdot_sim::systems::FreeBody;
+use hdot_sim::systems::free::pack;
 use hdot_sim::{Limits, Method, Step, integrate};
 
 use crate::reference::{DdState, attitude_rate_error, torque_free};

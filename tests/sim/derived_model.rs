@@ -1,17 +1,17 @@
-//! Integrating what a derivation derived (`hdot_sim::models::derived`):
+//! Integrating what a derivation derived (`hdot_sim::systems::derived`):
 //! the heavy top in Eulerian angles, solved for its accelerations by the
 //! engine, against the built-in quaternion heavy top; the mass-matrix form
 //! against the explicit form; singularities and bad input.
 
 use std::collections::BTreeMap;
 
-use hdot_sim::models::derived::{
+use hdot_sim::nalgebra::Vector3;
+use hdot_sim::systems::derived::{
     DerivedModel, DerivedSpec, DerivedSystem, EquationsSpec, TimeFunction,
 };
-use hdot_sim::models::euler_angles::quaternion_from_angles;
-use hdot_sim::models::free::{attitude, omega, pack};
-use hdot_sim::models::{FreeBody, Gravity};
-use hdot_sim::nalgebra::Vector3;
+use hdot_sim::systems::euler_angles::quaternion_from_angles;
+use hdot_sim::systems::free::{attitude, omega, pack};
+use hdot_sim::systems::{FreeBody, Gravity};
 use hdot_sim::{Limits, Method, SimError, Step, integrate};
 use hdot_sym::derivation::{Derivation, load_str};
 

@@ -1,4 +1,4 @@
-//! Scenes of `kind = "derived"` (scene/derived.rs, run/derived.rs): the
+//! Scenes of `kind = "derived"` (scene/derived.rs, models/derived.rs): the
 //! bundled derived heavy top against the built-in quaternion heavy top,
 //! a problem written for this test (a pendulum hanging from a turntable
 //! driven at a given rate), work-precision on a derived scene, and bad
@@ -6,9 +6,9 @@
 
 use std::path::PathBuf;
 
-use hdot_sim::models::euler_angles::quaternion_from_angles;
 use hdot_sim::run::{self, Model, Output, Request};
 use hdot_sim::scene::{Scene, SceneKind};
+use hdot_sim::systems::euler_angles::quaternion_from_angles;
 use hdot_sim::{Method, SimError, Step};
 use hdot_tests::repo_root;
 
@@ -40,14 +40,14 @@ fn derived_heavy_top_scene_agrees_with_the_built_in_one() {
     let b = run_scene(
         &builtin,
         Request {
-            model: Some(Model::RigidBody),
+            model: Some(Model::named("rigid-body").unwrap()),
             ..req
         },
     );
-    assert_eq!(a.plan.model, Model::Derived);
+    assert_eq!(a.plan.model, Model::named("derived").unwrap());
     let frame = a.frame.expect("the scene names frame R");
     let y: &[f64; 7] = b.final_state[..].try_into().expect("7 components");
-    let q = hdot_sim::models::free::attitude(y);
+    let q = hdot_sim::systems::free::attitude(y);
     let r_builtin = q.to_rotation_matrix();
     let w_builtin = &b.final_state[4..7];
     let mut worst: f64 = 0.0;
@@ -446,7 +446,7 @@ fn model_derived_is_refused_for_a_built_in_scene() {
     let err = run::plan(
         &scene,
         &Request {
-            model: Some(Model::Derived),
+            model: Some(Model::named("derived").unwrap()),
             ..Request::default()
         },
     )
@@ -456,7 +456,7 @@ fn model_derived_is_refused_for_a_built_in_scene() {
     let err = run::plan(
         &derived,
         &Request {
-            model: Some(Model::RigidBody),
+            model: Some(Model::named("rigid-body").unwrap()),
             ..Request::default()
         },
     )
@@ -477,7 +477,7 @@ fn bundled_derived_scenes_run() {
     ] {
         let scene = Scene::from_file(&example(name)).unwrap_or_else(|e| panic!("{name}: {e}"));
         let r = run_scene(&scene, Request::default());
-        assert_eq!(r.plan.model, Model::Derived, "{name}");
+        assert_eq!(r.plan.model, Model::named("derived").unwrap(), "{name}");
         assert!(r.error.is_some_and(f64::is_finite), "{name}");
         assert!(r.final_state.iter().all(|v| v.is_finite()), "{name}");
         assert!(r.drifts.iter().all(|d| d.relative.is_finite()), "{name}");

@@ -1,7 +1,7 @@
 use hdot_sim::exact::{SteadyTop, TorqueFree};
-use hdot_sim::models::free::{pack, state_distance};
-use hdot_sim::models::{FreeBody, Gravity};
 use hdot_sim::nalgebra::{UnitQuaternion, Vector3};
+use hdot_sim::systems::free::{pack, state_distance};
+use hdot_sim::systems::{FreeBody, Gravity};
 use hdot_sim::{Limits, Method, Step, integrate};
 use proptest::prelude::*;
 
@@ -64,7 +64,7 @@ fn elliptic_solution_conserves_spatial_momentum_and_energy() {
     for k in 0..50 {
         let t = 0.37 * k as f64 + 0.1;
         let y = exact.state(t);
-        let q = hdot_sim::models::free::attitude(&y);
+        let q = hdot_sim::systems::free::attitude(&y);
         let h = q * Vector3::from(body.momentum(&y));
         assert!(
             (h - h0).norm() <= 64.0 * f64::EPSILON * h0.norm() * (1.0 + t),

@@ -7,8 +7,8 @@
 //! Sweeps to T = 100; `slow-tests` adds random bodies.
 
 use hdot_sim::exact::TorqueFree;
-use hdot_sim::models::free::pack;
 use hdot_sim::nalgebra::{UnitQuaternion, Vector3};
+use hdot_sim::systems::free::pack;
 
 use crate::reference::{DdState, attitude_rate_error, torque_free};
 

@@ -1,6 +1,6 @@
 use hdot_sim::exact::TorqueFree;
-use hdot_sim::models::free::{pack, state_distance};
-use hdot_sim::models::{FreeBody, Gravity, Shaft};
+use hdot_sim::systems::free::{pack, state_distance};
+use hdot_sim::systems::{FreeBody, Gravity, Shaft};
 use hdot_sim::{Limits, Method, SimError, Step, integrate};
 
 use crate::exact::issue_body;
@@ -207,8 +207,8 @@ fn bearing_reactions_balance_the_effective_forces() {
 
 #[test]
 fn euler_angle_and_quaternion_models_agree_away_from_the_singularity() {
-    use hdot_sim::models::EulerAngleBody;
-    use hdot_sim::models::euler_angles::{quaternion_from_angles, to_quaternion_state};
+    use hdot_sim::systems::EulerAngleBody;
+    use hdot_sim::systems::euler_angles::{quaternion_from_angles, to_quaternion_state};
     let moments = [0.03, 0.03, 0.01];
     let wl = 0.2;
     let q0 = quaternion_from_angles(0.2, 0.7, -0.4);

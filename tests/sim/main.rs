@@ -6,9 +6,9 @@ mod strategies;
 
 // The hand-written right-hand sides against the derived equations.
 mod derived;
-// models/derived.rs: equations of motion from derivation files, integrated.
+// systems/derived.rs: equations of motion from derivation files, integrated.
 mod derived_model;
-// scene/derived.rs and run/derived.rs: scenes of kind "derived".
+// scene/derived.rs and models/derived.rs: scenes of kind "derived".
 mod derived_scene;
 // scene/derived.rs: a derived scene's `[[body]]` tables bind the derivation's symbols.
 mod derived_bodies;
@@ -22,14 +22,16 @@ mod exact_separatrix;
 mod charts;
 // scene.rs: the bodies of every scene (the shared `[[body]]` schema).
 mod bodies;
-// run.rs: error estimates of closed forms, --check, non-finite refusal.
+// estimate.rs and run.rs: error estimates of closed forms, --check, non-finite refusal.
 mod honest;
-// run.rs: the pilot-based method choice for a heavy top.
+// models/rigid_body.rs: the pilot-based method choice for a heavy top.
 mod pilot;
 // Test support: a 32-digit Taylor integrator of the torque-free body.
 mod reference;
 // integrate.rs: orders, invariants, step control.
 mod integrate;
+// models/mod.rs: the registry's docs table and help list every model.
+mod registry;
 // Stability where methods fail (issue 5, item 4).
 mod stability;
 // scene.rs and run.rs: bad input, model choice (snapshots).

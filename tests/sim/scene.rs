@@ -46,7 +46,7 @@ rejects! {
     missing_file: Scene::from_file(Path::new("no/such/scene.toml")) => SimError::Io { .. }, "no/such/scene.toml";
     unknown_method: "rk5".parse::<Method>() => SimError::UnknownName { .. }, "dop853";
     unknown_model: "newton".parse::<Model>() => SimError::UnknownName { .. }, "elliptic";
-    fixed_axis_on_a_free_body: run::plan(&free_with("[1.0, 0.0, 0.0, 0.0]").unwrap(), &Request { model: Some(Model::FixedAxis), ..Request::default() })
+    fixed_axis_on_a_free_body: run::plan(&free_with("[1.0, 0.0, 0.0, 0.0]").unwrap(), &Request { model: Some(Model::named("fixed-axis").unwrap()), ..Request::default() })
         => SimError::ModelNotApplicable { .. }, "no bearing";
     tolerance_for_a_fixed_step_method: run::plan(&free_with("[1.0, 0.0, 0.0, 0.0]").unwrap(), &Request { method: Some(Method::Rk4), step: Some(Step::Tolerance(1e-6)), ..Request::default() })
         .and_then(|p| run::run(&free_with("[1.0, 0.0, 0.0, 0.0]").unwrap(), &p, &mut Output::default()))
@@ -55,12 +55,12 @@ rejects! {
     // exactly solvable parts: the splitting is refused naming the model.
     splitting_names_the_model: {
         let scene = free_with("[0.9, 0.3, 0.1, 0.3]").unwrap();
-        let plan = run::plan(&scene, &Request { model: Some(Model::PrecessionAngle), method: Some(Method::Split2), step: Some(Step::Fixed(1e-2)), ..Request::default() }).unwrap();
+        let plan = run::plan(&scene, &Request { model: Some(Model::named("precession-angle").unwrap()), method: Some(Method::Split2), step: Some(Step::Fixed(1e-2)), ..Request::default() }).unwrap();
         run::run(&scene, &plan, &mut Output::default())
     } => SimError::MethodNotApplicable { .. }, "cannot integrate model `precession-angle`";
     splitting_names_the_eulerian_angle_model: {
         let scene = free_with("[0.9, 0.3, 0.1, 0.3]").unwrap();
-        let plan = run::plan(&scene, &Request { model: Some(Model::EulerAngles), method: Some(Method::Split4), step: Some(Step::Fixed(1e-2)), ..Request::default() }).unwrap();
+        let plan = run::plan(&scene, &Request { model: Some(Model::named("euler-angles").unwrap()), method: Some(Method::Split4), step: Some(Step::Fixed(1e-2)), ..Request::default() }).unwrap();
         run::run(&scene, &plan, &mut Output::default())
     } => SimError::MethodNotApplicable { .. }, "cannot integrate model `euler-angles`";
     stored_output_over_budget: {
@@ -221,7 +221,7 @@ fn gyroscope_precession_rate_matches_section_7() {
         },
     )
     .unwrap();
-    assert_eq!(plan.model, Model::RigidBody);
+    assert_eq!(plan.model, Model::named("rigid-body").unwrap());
     let report = run::run(&scene, &plan, &mut Output::default()).unwrap();
     let p = report.precession.expect("steady scene");
     // Integrated with the Euler equations, compared with §7's relation:
@@ -242,7 +242,7 @@ fn torque_free_integration_uses_the_precession_angle_model() {
         ..Request::default()
     };
     let plan = run::plan(&scene, &req).unwrap();
-    assert_eq!(plan.model, Model::PrecessionAngle);
+    assert_eq!(plan.model, Model::named("precession-angle").unwrap());
     assert!(
         plan.reason.contains("one angle φ about H"),
         "{}",
@@ -257,7 +257,10 @@ fn torque_free_integration_uses_the_precession_angle_model() {
         step: Some(Step::Fixed(0.01)),
         ..Request::default()
     };
-    assert_eq!(run::plan(&scene, &split).unwrap().model, Model::RigidBody);
+    assert_eq!(
+        run::plan(&scene, &split).unwrap().model,
+        Model::named("rigid-body").unwrap()
+    );
 
     let top = Scene::from_file(
         &Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/examples/sim-heavy-top.toml"),
@@ -266,7 +269,7 @@ fn torque_free_integration_uses_the_precession_angle_model() {
     let err = run::plan(
         &top,
         &Request {
-            model: Some(Model::PrecessionAngle),
+            model: Some(Model::named("precession-angle").unwrap()),
             ..Request::default()
         },
     )
@@ -308,7 +311,7 @@ fn plan_and_run_agree_with_the_registry_on_every_bundled_scene() {
             },
         )
         .unwrap();
-        for model in Model::ALL {
+        for model in Model::all() {
             let req = Request {
                 model: Some(model),
                 t_end: Some(t_end),
@@ -379,11 +382,21 @@ fn a_top_off_steady_precession_falls_back_to_integration_and_says_why() {
     };
     // The same state written as attitude and ω: still steady, closed form.
     let exact = plan_of(&scene_with([w0.x, w0.y, w0.z]));
-    assert_eq!(exact.model, Model::SteadyPrecession, "{}", exact.reason);
+    assert_eq!(
+        exact.model,
+        Model::named("steady-precession").unwrap(),
+        "{}",
+        exact.reason
+    );
     assert!(exact.reason.contains("no integration"), "{}", exact.reason);
     // Off by 1e-6 in the precession part of ω: integrated, and why.
     let off = plan_of(&scene_with([w0.x * (1.0 + 1e-6), w0.y, w0.z]));
-    assert_eq!(off.model, Model::RigidBody, "{}", off.reason);
+    assert_eq!(
+        off.model,
+        Model::named("rigid-body").unwrap(),
+        "{}",
+        off.reason
+    );
     assert!(off.method.is_some());
     for says in [
         "no closed form covers this scene",

@@ -2,10 +2,10 @@
 //! 10⁶-step energy study is `crates/sim/tests/long_run.rs` (feature `slow-tests`).
 
 use hdot_sim::exact::TorqueFree;
-use hdot_sim::models::euler_angles::angles_from_quaternion;
-use hdot_sim::models::free::{pack, state_distance};
-use hdot_sim::models::{EulerAngleBody, FreeBody};
 use hdot_sim::nalgebra::{UnitQuaternion, Vector3};
+use hdot_sim::systems::euler_angles::angles_from_quaternion;
+use hdot_sim::systems::free::{pack, state_distance};
+use hdot_sim::systems::{EulerAngleBody, FreeBody};
 use hdot_sim::{Limits, Method, SimError, Step, integrate};
 
 use crate::exact::issue_body;

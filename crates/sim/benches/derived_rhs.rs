@@ -12,12 +12,12 @@ use std::path::Path;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use hdot_sim::System;
-use hdot_sim::models::derived::DerivedSystem;
-use hdot_sim::models::euler_angles::quaternion_from_angles;
-use hdot_sim::models::free::pack;
-use hdot_sim::models::{EulerAngleBody, FreeBody, Gravity};
 use hdot_sim::nalgebra::Vector3;
 use hdot_sim::scene::{Scene, SceneKind};
+use hdot_sim::systems::derived::DerivedSystem;
+use hdot_sim::systems::euler_angles::quaternion_from_angles;
+use hdot_sim::systems::free::pack;
+use hdot_sim::systems::{EulerAngleBody, FreeBody, Gravity};
 
 fn scene(mass_matrix: bool) -> Scene {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))

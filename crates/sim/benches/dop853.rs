@@ -16,9 +16,9 @@
 
 use criterion::{Criterion, black_box, criterion_group, criterion_main};
 use hdot_sim::exact::TorqueFree;
-use hdot_sim::models::free::{EulerEquations, pack, state_error};
-use hdot_sim::models::{FreeBody, PrecessionAngle};
 use hdot_sim::nalgebra::{UnitQuaternion, Vector3};
+use hdot_sim::systems::free::{EulerEquations, pack, state_error};
+use hdot_sim::systems::{FreeBody, PrecessionAngle};
 use hdot_sim::{Limits, Method, Step, System, integrate};
 use ode_solvers::{Dop853, OutputType, SVector};
 

@@ -17,8 +17,8 @@ use nalgebra::{Matrix3, Rotation3, Unit, UnitQuaternion, Vector3};
 use crate::SimError;
 use crate::dd::Dd;
 use crate::elliptic::Jacobi;
-use crate::models::euler_angles::quaternion_from_angles;
-use crate::models::free::pack;
+use crate::systems::euler_angles::quaternion_from_angles;
+use crate::systems::free::pack;
 
 /// The exact torque-free motion from a given initial state.
 #[derive(Debug, Clone)]

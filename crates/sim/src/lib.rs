@@ -1,13 +1,23 @@
 //! # hdot-sim: the motion of rigid bodies, integrated or exact
 //!
 //! **Owns**: the equations of motion as ODE right-hand sides
-//! ([`models`]: torque-free body and heavy top with a unit-quaternion
-//! attitude, the same in Eulerian angles, a shaft about a fixed axis), the
-//! integrators ([`integrate()`]: explicit Euler, RK4, Dormand–Prince 5(4)
-//! and 8(5,3), implicit midpoint, symplectic splittings of order 2 and 4),
-//! the closed-form motions ([`exact`], with Jacobi elliptic functions of our
-//! own in [`elliptic`]), scenes ([`scene`]), the choice of the least exact
-//! model for a scene and the reports and sweeps the CLI prints ([`run`]).
+//! ([`systems`]: torque-free body and heavy top with a unit-quaternion
+//! attitude, the same in Eulerian angles, a shaft about a fixed axis, a
+//! derivation's compiled equations), the integrators ([`integrate()`]:
+//! explicit Euler, RK4, Dormand–Prince 5(4) and 8(5,3), implicit midpoint,
+//! symplectic splittings of order 2 and 4), the closed-form motions
+//! ([`exact`], with Jacobi elliptic functions of our own in [`elliptic`]),
+//! scenes ([`scene`]), the models of the motion as self-describing
+//! registry entries ([`model`] says what an entry is, [`models`] lists
+//! them, one file each), the choice of the least exact model for a scene,
+//! the run and its report ([`run`], recording through [`record`]) and the
+//! work-precision sweep ([`sweep`]).
+//!
+//! **A simulation's path**: [`scene::Scene`] reads the file; [`run::plan`]
+//! asks each entry of [`models::MODELS`] whether it applies and covers the
+//! scene and picks the least; [`run::run`] runs the planned entry, whose
+//! integrated systems record through [`record::integrate_recorded`], and
+//! builds the [`run::Report`] from the entry's [`model::Outcome`].
 //!
 //! **Does not own**: deriving the equations (that is `hdot-sym`: this crate
 //! codes the *results* of §5–§10 of `docs/equations.md`, which the symbolic
@@ -36,12 +46,17 @@ pub mod body;
 pub mod dd;
 pub mod elliptic;
 mod error;
+pub mod estimate;
 pub mod exact;
 mod integrate;
+pub mod model;
 pub mod models;
+pub mod record;
 pub mod run;
 pub mod scene;
+pub mod sweep;
 mod system;
+pub mod systems;
 mod tableau;
 
 pub use body::PrincipalMoments;

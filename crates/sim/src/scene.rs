@@ -25,7 +25,7 @@ use serde::Deserialize;
 use serde::de::IgnoredAny;
 
 use crate::exact::SteadyTop;
-use crate::models::Shaft;
+use crate::systems::Shaft;
 use crate::{PrincipalMoments, SimError};
 
 mod derived;
@@ -158,6 +158,21 @@ pub enum SceneKind {
     },
     /// The equations of motion a derivation file derived.
     Derived(Box<DerivedScene>),
+}
+
+impl Scene {
+    /// The largest rate of the scene's motion, `|ω₀|` (`|ω|` of a shaft,
+    /// the largest `|q̇|` of a derived scene).
+    pub fn rate_scale(&self) -> f64 {
+        match &self.kind {
+            SceneKind::Free { w0, .. } | SceneKind::HeavyTop { w0, .. } => w0.norm(),
+            SceneKind::FixedAxis { y0, .. } => y0[1].abs(),
+            SceneKind::Derived(ds) => {
+                let n = ds.y0.len() / 2;
+                ds.y0[n..].iter().fold(0.0, |m: f64, v| m.max(v.abs()))
+            }
+        }
+    }
 }
 
 impl SceneKind {
@@ -375,7 +390,7 @@ impl Scene {
                     };
                     let y = top.state(0.0);
                     (
-                        crate::models::free::attitude(&y),
+                        crate::systems::free::attitude(&y),
                         Vector3::new(y[4], y[5], y[6]),
                         Some(top),
                     )
@@ -667,7 +682,7 @@ fn detect_steady(
     if (i[0] - i[1]).abs() > 1e-12 * i[0] {
         return None;
     }
-    let (phi, theta, psi) = crate::models::euler_angles::angles_from_quaternion(q0);
+    let (phi, theta, psi) = crate::systems::euler_angles::angles_from_quaternion(q0);
     if theta.sin() < 1e-8 {
         return None;
     }

@@ -7,7 +7,7 @@ use crate::SimError;
 /// An ordinary differential equation `ẏ = f(t, y)` on `[f64; N]`.
 pub trait System<const N: usize> {
     /// The model's name, for errors (`rigid-body`, `derived`): the names
-    /// of [`crate::run::Model`] where the system is one of its models.
+    /// of the registry [`crate::models::MODELS`] where the system is one of its models.
     fn name(&self) -> &str;
 
     /// The right-hand side `f(t, y)`.

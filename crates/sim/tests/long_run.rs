@@ -3,9 +3,9 @@
 //! RK4's energy error drifts secularly, the Strang splitting's stays bounded.
 #![cfg(feature = "slow-tests")]
 
-use hdot_sim::models::FreeBody;
-use hdot_sim::models::free::pack;
 use hdot_sim::nalgebra::{UnitQuaternion, Vector3};
+use hdot_sim::systems::FreeBody;
+use hdot_sim::systems::free::pack;
 use hdot_sim::{Limits, Method, Step, integrate};
 
 /// Largest relative energy error in each tenth of a 10⁶-step run.

@@ -8,9 +8,9 @@
 //! against the exact elliptic solution, whatever state the integrator used.
 
 use hdot_sim::exact::TorqueFree;
-use hdot_sim::models::free::{EulerEquations, pack, state_error};
-use hdot_sim::models::{FreeBody, PrecessionAngle};
 use hdot_sim::nalgebra::{UnitQuaternion, Vector3};
+use hdot_sim::systems::free::{EulerEquations, pack, state_error};
+use hdot_sim::systems::{FreeBody, PrecessionAngle};
 use hdot_sim::{Limits, Method, Stats, Step, System, integrate};
 
 const T: f64 = 100.0;

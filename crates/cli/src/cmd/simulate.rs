@@ -19,8 +19,8 @@ pub struct SimulateArgs {
     /// Integration method: euler, rk4, dopri5, dop853, midpoint, split2, split4.
     #[arg(long)]
     pub method: Option<String>,
-    /// Model: fixed-axis, steady-precession, elliptic, precession-angle, rigid-body, euler-angles, derived.
-    #[arg(long)]
+    /// The models of the registry (`hdot_sim::models::MODELS`).
+    #[arg(long, help = hdot_sim::models::help())]
     pub model: Option<String>,
     /// Fixed step size.
     #[arg(long, conflicts_with = "tol", allow_negative_numbers = true)]

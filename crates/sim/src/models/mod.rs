@@ -1,23 +1,87 @@
-//! The equations of motion, one model per file.
+//! The models of the motion: one self-describing entry per file (a
+//! [`ModelEntry`]), and the one registry [`MODELS`] the model choice, the
+//! `--model` help, the docs table and the refusals are all made from.
 //!
-//! * [`free`]: a body about its mass centre (torque-free) or about a fixed
-//!   point under gravity (heavy top): unit quaternion + body angular velocity.
-//! * [`euler_angles`]: the same body with Eulerian angles (φ, θ, ψ), for
-//!   comparison; singular at θ = 0 and θ = π.
-//! * [`derived`]: the equations of motion a derivation file derived
-//!   (solved accelerations or mass-matrix form), compiled and integrated in
-//!   its own coordinates.
-//! * [`shaft`]: rotation about a fixed axis, one degree of freedom, with the
-//!   bearing reactions of §6.
+//! Adding a model is one new file here implementing [`ModelEntry`] and
+//! one line in [`MODELS`] (least exact first: the choice takes the first
+//! closed form that covers a scene, else the first entry chosen to
+//! integrate it).
 
+mod body;
 pub mod derived;
+pub mod elliptic;
 pub mod euler_angles;
-pub mod free;
-pub mod precession;
-pub mod shaft;
-pub mod time_function;
+pub mod fixed_axis;
+pub mod precession_angle;
+pub mod rigid_body;
+pub mod steady_precession;
 
-pub use euler_angles::EulerAngleBody;
-pub use free::{FreeBody, Gravity};
-pub use precession::PrecessionAngle;
-pub use shaft::Shaft;
+use std::str::FromStr;
+
+pub use body::reference_state;
+
+use crate::SimError;
+pub use crate::model::{Model, ModelEntry};
+
+/// Every model, least exact first: the one list of them.
+pub static MODELS: &[&dyn ModelEntry] = &[
+    &fixed_axis::FIXED_AXIS,
+    &steady_precession::STEADY_PRECESSION,
+    &elliptic::ELLIPTIC,
+    &precession_angle::PRECESSION_ANGLE,
+    &rigid_body::RIGID_BODY,
+    &euler_angles::EULER_ANGLES,
+    &derived::DERIVED,
+];
+
+impl Model {
+    /// Every model of the registry, in its order.
+    pub fn all() -> impl Iterator<Item = Model> {
+        MODELS.iter().map(|e| Model(*e))
+    }
+
+    /// The model called `name`.
+    pub fn named(name: &str) -> Option<Model> {
+        Model::all().find(|m| m.name() == name)
+    }
+}
+
+impl FromStr for Model {
+    type Err = SimError;
+    fn from_str(s: &str) -> Result<Self, SimError> {
+        Model::named(s).ok_or_else(|| SimError::UnknownName {
+            what: "model",
+            name: s.to_string(),
+            expected: names(),
+        })
+    }
+}
+
+/// Every model's name, comma-separated, in the registry's order.
+pub fn names() -> String {
+    Model::all().map(Model::name).collect::<Vec<_>>().join(", ")
+}
+
+/// The help of `hdot simulate --model`.
+pub fn help() -> String {
+    format!("Model: {}.", names())
+}
+
+/// The models table of `docs/simulation.md`, as Markdown rows (a test
+/// keeps the document in step with the registry).
+pub fn docs_table() -> String {
+    let mut s = String::from(
+        "| model | applies to | why it is chosen there | closed form | integrates |\n|---|---|---|---|---|\n",
+    );
+    for e in MODELS {
+        let closed = if e.integrated() { "no" } else { "yes" };
+        let integrates = if e.can_integrate() { "yes" } else { "no" };
+        s.push_str(&format!(
+            "| `{}` | {} | {} | {closed} | {integrates} |\n",
+            e.name(),
+            e.applies_to().replace('|', "\\|"),
+            e.why().replace('|', "\\|"),
+        ));
+    }
+    s
+}

@@ -47,7 +47,7 @@ use nalgebra::{Matrix3, Vector3};
 use serde::Deserialize;
 
 use crate::SimError;
-use crate::models::derived::{DerivedModel, DerivedSpec, EquationsSpec, TimeFunction};
+use crate::systems::derived::{DerivedModel, DerivedSpec, EquationsSpec, TimeFunction};
 
 /// The `[derivation]` table.
 #[derive(Debug, Deserialize)]
@@ -275,7 +275,7 @@ pub(super) fn parse(
 /// which must then be the step's in its order (M's columns are in that
 /// order: another order would integrate other equations).
 fn coordinates_of_step(d: &Derivation, step: &str, given: &mut Vec<String>) -> Result<(), String> {
-    let listed = crate::models::derived::step_coordinates(d, step);
+    let listed = crate::systems::derived::step_coordinates(d, step);
     match (given.is_empty(), listed) {
         (true, Some(q)) => *given = q,
         (true, None) => {

@@ -118,7 +118,7 @@ impl Shaft {
 
 impl System<2> for Shaft {
     fn name(&self) -> &str {
-        crate::run::Model::FixedAxis.name()
+        "fixed-axis"
     }
 
     #[inline]

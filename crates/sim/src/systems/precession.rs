@@ -46,7 +46,7 @@ use nalgebra::{UnitQuaternion, Vector3};
 
 use crate::System;
 use crate::exact::{cyclic_perm, invariable_frame};
-use crate::models::free::pack;
+use crate::systems::free::pack;
 
 /// Euler's equations plus the angle turned about the invariable `H`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -144,7 +144,7 @@ fn max_sq_on_orbit(i: [f64; 3], c: usize, l2: f64, two_e: f64, current: f64) -> 
 
 impl System<4> for PrecessionAngle {
     fn name(&self) -> &str {
-        crate::run::Model::PrecessionAngle.name()
+        "precession-angle"
     }
 
     /// Moves ω back onto the initial `|H|` and energy (see

@@ -83,7 +83,7 @@ impl StateError {
 ///
 /// # Example
 /// ```
-/// use hdot_sim::models::free::{pack, state_error};
+/// use hdot_sim::systems::free::{pack, state_error};
 /// use hdot_sim::nalgebra::{UnitQuaternion, Vector3};
 /// let w = Vector3::new(1.0, 2.0, 3.0);
 /// let a = pack(&UnitQuaternion::identity(), &w);
@@ -227,7 +227,7 @@ impl FreeBody {
 
 impl System<7> for FreeBody {
     fn name(&self) -> &str {
-        crate::run::Model::RigidBody.name()
+        "rigid-body"
     }
 
     #[inline]

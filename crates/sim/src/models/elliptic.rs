@@ -1,0 +1,76 @@
+//! The `elliptic` model: the closed form of the asymmetric torque-free
+//! body through Jacobi elliptic functions.
+
+use super::body::{
+    HEAVY_TOP_DOF, QUATERNION_HEADER, closed_form_meets_bound, refuse_non_body, run_closed_form,
+    untrusted_closed_form,
+};
+use crate::exact::TorqueFree;
+use crate::model::{Cover, ModelEntry, Outcome, Plan};
+use crate::record::Recorder;
+use crate::scene::{Scene, SceneKind};
+use crate::{Method, SimError};
+
+/// The entry.
+pub struct Elliptic;
+
+/// The entry, as the registry lists it.
+pub static ELLIPTIC: Elliptic = Elliptic;
+
+impl ModelEntry for Elliptic {
+    fn name(&self) -> &'static str {
+        "elliptic"
+    }
+    fn applies_to(&self) -> &'static str {
+        "a free body with three distinct moments"
+    }
+    fn why(&self) -> &'static str {
+        "closed form through Jacobi elliptic functions, no integration"
+    }
+    fn integrated(&self) -> bool {
+        false
+    }
+    fn refusal(&self, scene: &Scene) -> Result<Option<&'static str>, SimError> {
+        Ok(match &scene.kind {
+            SceneKind::Free { moments, q0, w0 } => {
+                match TorqueFree::new(moments.get(), *q0, *w0)? {
+                    TorqueFree::Elliptic(_) => None,
+                    _ => Some(
+                        "the elliptic form needs three distinct moments and a motion that is not a permanent rotation; \
+                     use steady-precession",
+                    ),
+                }
+            }
+            SceneKind::HeavyTop { .. } => Some(HEAVY_TOP_DOF),
+            _ => refuse_non_body(scene),
+        })
+    }
+    fn covers(&self, scene: &Scene, t_end: f64) -> Option<Result<Cover, SimError>> {
+        Some(closed_form_meets_bound(scene, t_end).map(|ok| {
+            if ok {
+                Cover::Covered(
+                    "torque-free asymmetric body: exact solution by Jacobi elliptic functions, no integration",
+                )
+            } else {
+                untrusted_closed_form()
+            }
+        }))
+    }
+    fn can_integrate(&self) -> bool {
+        false
+    }
+    fn takes(&self, _: Method) -> bool {
+        false
+    }
+    fn stream_header(&self, _: &Scene) -> String {
+        QUATERNION_HEADER.into()
+    }
+    fn run(
+        &self,
+        scene: &Scene,
+        plan: &Plan,
+        rec: &mut Recorder<'_, '_>,
+    ) -> Result<Outcome, SimError> {
+        run_closed_form(scene, plan, rec)
+    }
+}

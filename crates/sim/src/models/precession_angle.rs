@@ -1,0 +1,106 @@
+//! The `precession-angle` model: a torque-free body integrated as ω and
+//! the angle turned about the invariable H (4 components, projected onto
+//! the conserved energy and |H|).
+
+use super::body::{QUATERNION_HEADER, body_of, finish_free, refuse_non_body};
+use crate::model::{
+    Integration, Model, ModelEntry, Outcome, Plan, Request, not_a_splitting, not_applicable,
+};
+use crate::record::{Recorder, integrate_recorded, time_and_state};
+use crate::scene::{Scene, SceneKind};
+use crate::systems::PrecessionAngle as System;
+use crate::{Method, SimError, Step};
+
+/// The entry.
+pub struct PrecessionAngle;
+
+/// The entry, as the registry lists it.
+pub static PRECESSION_ANGLE: PrecessionAngle = PrecessionAngle;
+
+/// Why the model does not apply to a body at rest.
+const AT_REST: &str = "the body is at rest: H = 0 defines no invariable axis";
+
+impl ModelEntry for PrecessionAngle {
+    fn name(&self) -> &'static str {
+        "precession-angle"
+    }
+    fn applies_to(&self) -> &'static str {
+        "a free body that turns (H ≠ 0)"
+    }
+    fn why(&self) -> &'static str {
+        "torque-free, H is fixed in space: the attitude is fixed by body H and one angle φ about H, so [ω, φ] is integrated (4 components, ω projected back onto the conserved energy and |H| after every step) instead of the quaternion form"
+    }
+    fn integrated(&self) -> bool {
+        true
+    }
+    fn refusal(&self, scene: &Scene) -> Result<Option<&'static str>, SimError> {
+        Ok(match &scene.kind {
+            SceneKind::Free { w0, .. } if w0.norm() == 0.0 => Some(AT_REST),
+            SceneKind::Free { .. } => None,
+            SceneKind::HeavyTop { .. } => Some(
+                "gravity turns H in space, so the attitude is not fixed by body H and one angle about it",
+            ),
+            _ => refuse_non_body(scene),
+        })
+    }
+    fn can_integrate(&self) -> bool {
+        true
+    }
+    /// Chosen over a closed form that is not trusted: DOP853 at tol 1e-13.
+    fn integration(
+        &self,
+        _: &Scene,
+        req: &Request,
+        _: f64,
+        chosen: bool,
+    ) -> Result<Integration, SimError> {
+        if !chosen {
+            return Ok(Integration::dop853(req));
+        }
+        let step = Step::Tolerance(1e-13);
+        Ok(Integration {
+            method: Method::Dop853,
+            step,
+            fit_error: None,
+            detail: format!("dop853 at {}", crate::model::step_label(step)),
+        })
+    }
+    fn takes(&self, method: Method) -> bool {
+        not_a_splitting(method)
+    }
+    fn default_choice(&self) -> bool {
+        true
+    }
+    fn stream_header(&self, _: &Scene) -> String {
+        QUATERNION_HEADER.into()
+    }
+    fn run(
+        &self,
+        scene: &Scene,
+        plan: &Plan,
+        rec: &mut Recorder<'_, '_>,
+    ) -> Result<Outcome, SimError> {
+        let (body, y0) = body_of(scene, plan.model)?;
+        let SceneKind::Free { moments, q0, w0 } = &scene.kind else {
+            return Err(not_applicable(
+                plan.model,
+                scene,
+                "the scene is not of a kind this model describes",
+            ));
+        };
+        let (sys, z0) = System::new(moments.get(), q0, w0)
+            .ok_or_else(|| not_applicable(Model(&PRECESSION_ANGLE), scene, AT_REST))?;
+        let (z, stats, wall) =
+            integrate_recorded(&sys, plan.method_step()?, z0, plan.t_end, rec, |t, z| {
+                time_and_state(t, &sys.full_state(z))
+            })?;
+        let mut out = Outcome {
+            wall_s: wall,
+            stats,
+            ..Outcome::default()
+        };
+        let y = sys.full_state(&z);
+        finish_free(scene, &body, &y0, &y, plan.t_end, &mut out)?;
+        Ok(out)
+    }
+}
