@@ -143,6 +143,87 @@ def sympy_chain(k):
 
 
 # --------------------------------------------------------------------------
+# Peers without a mechanics module: SymEngine and Symbolica do chain-K's
+# expansion and d/dt on plain symbols (q_i, its rate qd_i and acceleration
+# qdd_i; d/dt by the chain rule), the same rotations and inertia tensors.
+# --------------------------------------------------------------------------
+
+
+def chain_h(k, sym, sin, cos):
+    """H of chain-K in N on plain symbols, with (q, qd, qdd) per body."""
+
+    def rot(axis, q):
+        c, s = cos(q), sin(q)
+        if axis == "z":
+            return [[c, -s, 0], [s, c, 0], [0, 0, 1]]
+        if axis == "x":
+            return [[1, 0, 0], [0, c, -s], [0, s, c]]
+        return [[c, 0, s], [0, 1, 0], [-s, 0, c]]
+
+    def mat_vec(a, v):
+        return [sum(a[i][m] * v[m] for m in range(3)) for i in range(3)]
+
+    def mat_mul(a, b):
+        return [[sum(a[i][m] * b[m][j] for m in range(3)) for j in range(3)] for i in range(3)]
+
+    R = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
+    omega, H, rates = [0, 0, 0], [0, 0, 0], []
+    for i in range(1, k + 1):
+        q, qd, qdd = sym(f"q_{i}"), sym(f"qd_{i}"), sym(f"qdd_{i}")
+        rates.append((q, qd, qdd))
+        axis = "xyz".index("zxy"[(i - 1) % 3])
+        Ri = rot("xyz"[axis], q)
+        # ω of body i in its own axes: the parent's turned, plus qd about the axis.
+        omega = mat_vec([[Ri[j][m] for j in range(3)] for m in range(3)], omega)
+        omega[axis] = omega[axis] + qd
+        R = mat_mul(R, Ri)
+        ix, iy, iz, ixy, iyz, izx = (sym(f"I_{i}{c}") for c in ("x", "y", "z", "xy", "yz", "zx"))
+        inertia_i = [[ix, -ixy, -izx], [-ixy, iy, -iyz], [-izx, -iyz, iz]]
+        h = mat_vec(R, mat_vec(inertia_i, omega))
+        H = [H[j] + h[j] for j in range(3)]
+    return H, rates
+
+
+def chain_hdot(H, rates, diff, expand):
+    """Ḣ = Σ ∂H/∂q q̇ + ∂H/∂q̇ q̈, each component expanded."""
+    out = []
+    for h in H:
+        h = expand(h)
+        d = 0
+        for q, qd, qdd in rates:
+            d = d + diff(h, q) * qd + diff(h, qd) * qdd
+        out.append(expand(d))
+    return out
+
+
+def peer_chain_symengine(k):
+    """chain-K in SymEngine: (seconds, terms)."""
+    import symengine as se
+
+    t0 = time.perf_counter()
+    H, rates = chain_h(k, se.Symbol, se.sin, se.cos)
+    res = chain_hdot(H, rates, lambda e, x: e.diff(x), se.expand)
+    dt = time.perf_counter() - t0
+    return dt, sum(len(r.args) if isinstance(r, se.Add) else 1 for r in res)
+
+
+def peer_chain_symbolica(k):
+    """chain-K in Symbolica: (seconds, terms)."""
+    from symbolica import E, S
+
+    sin, cos = S("sin"), S("cos")
+    t0 = time.perf_counter()
+    H, rates = chain_h(k, S, lambda q: sin(q), lambda q: cos(q))
+    H = [E("0") + h for h in H]
+    res = chain_hdot(H, rates, lambda e, x: e.derivative(x), lambda e: e.expand())
+    dt = time.perf_counter() - t0
+    terms = 0
+    for r in res:
+        terms += len(r) if str(r.get_type()).endswith("Add") else 1
+    return dt, terms
+
+
+# --------------------------------------------------------------------------
 # hdot
 # --------------------------------------------------------------------------
 
@@ -386,12 +467,27 @@ def main():
     ap.add_argument("--chart", default=str(ROOT / "docs" / "perf" / "chain-k"),
                     help="chart path without extension (.png and .svg are written)")
     ap.add_argument("--no-chart", action="store_true")
+    ap.add_argument("--bench", action="store_true",
+                    help="engine benchmark: hdot processes (LaTeX output, median, peak memory) "
+                         "against SymPy, SymEngine and Symbolica in the same run")
+    ap.add_argument("--bench-chains", type=int, nargs="+", default=[4, 6, 7, 8],
+                    help="chain-K workloads of --bench (default 4 6 7 8)")
+    ap.add_argument("--sympy-max-k", type=int, default=5,
+                    help="largest chain-K SymPy does in --bench (chain-6 takes ~40 s)")
+    ap.add_argument("--peer-max-k", type=int, default=7,
+                    help="largest chain-K SymEngine and Symbolica do in --bench")
+    ap.add_argument("--peer-runs", type=int, default=3, help="peer runs per workload in --bench")
+    ap.add_argument("--append", default=None,
+                    help="--bench: append the table to this Markdown file (docs/performance.md)")
     args = ap.parse_args()
 
     exe = args.hdot
     if not Path(exe).exists():
         sys.exit(f"compare_sympy: {exe} not found; build it with `cargo build --release -p hdot` "
                  "or pass --hdot")
+    if args.bench:
+        bench(args)
+        return
     crit = args.criterion if Path(args.criterion).is_dir() else None
     if crit is None:
         print(f"(no criterion results in {args.criterion}: only process times for hdot)")
@@ -453,6 +549,128 @@ def main():
         chart(rows, args.chart)
     if any(r[9] != "yes" for r in rows):
         sys.exit("compare_sympy: hdot and sympy disagree on some workload")
+
+
+# --------------------------------------------------------------------------
+# Engine benchmark (`scripts/bench`): hdot as a whole process against the
+# peers in process, in one run, ratios appended to docs/performance.md.
+# --------------------------------------------------------------------------
+
+
+def run_process(argv):
+    """Wall time and peak resident memory (bytes) of one process.
+
+    The memory is measured by `/usr/bin/time` when it is there: a child
+    forked from this Python process would report the parent's resident
+    memory at the fork as its peak (`wait4` counts the copy before exec)."""
+    gnu_time = Path("/usr/bin/time")
+    wrapped = [str(gnu_time), "-f", "%M"] + argv if gnu_time.exists() else argv
+    t0 = time.perf_counter()
+    p = subprocess.Popen(wrapped, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    _, status, usage = os.wait4(p.pid, 0)
+    dt = time.perf_counter() - t0
+    code = os.waitstatus_to_exitcode(status)
+    err = p.stderr.read().decode(errors="replace")
+    p.stderr.close()
+    if code != 0:
+        sys.exit(f"bench: {' '.join(argv)} failed ({code}): {err[:400]}")
+    if wrapped is argv:
+        return dt, usage.ru_maxrss * 1024
+    return dt, int(err.strip().splitlines()[-1]) * 1024
+
+
+def median_runs(fn, runs, budget):
+    """Median of up to `runs` results of fn() (each a tuple whose first
+    element is seconds); fewer runs when one already exceeds `budget`."""
+    results = []
+    for _ in range(runs):
+        results.append(fn())
+        if results[-1][0] * len(results) > budget:
+            break
+    results.sort(key=lambda r: r[0])
+    return results[len(results) // 2], len(results)
+
+
+def machine():
+    """(CPU model, cores, load averages) of this machine."""
+    model = "unknown"
+    try:
+        out = subprocess.run(["lscpu"], capture_output=True, text=True, check=True).stdout
+        for line in out.splitlines():
+            if line.startswith("Model name:"):
+                model = line.split(":", 1)[1].strip()
+    except (OSError, subprocess.CalledProcessError):
+        pass
+    return model, os.cpu_count(), os.getloadavg()
+
+
+def bench(args):
+    exe = args.hdot
+    hdot_workloads = ["gyroscope", "heavy-top"] + [f"chain-{k}" for k in args.bench_chains]
+    peers = []
+    for name, fn, mod in (("SymEngine", peer_chain_symengine, "symengine"),
+                          ("Symbolica", peer_chain_symbolica, "symbolica")):
+        try:
+            __import__(mod)
+            peers.append((name, fn))
+        except ImportError:
+            print(f"({name}: the Python module `{mod}` is missing — skipped)")
+    model, cores, load0 = machine()
+    started = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
+    print(f"{started}; {model}, {cores} cores; load {load0[0]:.2f} {load0[1]:.2f} {load0[2]:.2f}")
+    hd = {}
+    for name in hdot_workloads:
+        (t, rss), n = median_runs(
+            lambda: run_process([exe, "derive", name, "--format", "latex"]), args.runs, 10.0)
+        hd[name] = (t, rss, n)
+        print(f"hdot {name:<10} {fmt_time(t):>10}  peak {rss / 1e6:7.1f} MB  (median of {n})", flush=True)
+    rows = []  # (workload, peer, peer seconds, peer terms, runs)
+    sympy_work = [("gyroscope", lambda: (time_sympy(sympy_gyroscope, max_runs=1)[0], 0))]
+    sympy_work += [(f"chain-{k}", (lambda k=k: (time_sympy(sympy_chain, k, max_runs=1)[0], 0)))
+                   for k in args.bench_chains if k <= args.sympy_max_k]
+    for name, fn in sympy_work:
+        (t, _), n = median_runs(fn, args.peer_runs, 20.0)
+        rows.append((name, "SymPy", t, None, n))
+        print(f"SymPy {name:<10} {fmt_time(t):>10}  (median of {n})", flush=True)
+    for peer, fn in peers:
+        for k in args.bench_chains:
+            if k > args.peer_max_k:
+                continue
+            (t, terms), n = median_runs(lambda k=k: fn(k), args.peer_runs, 20.0)
+            rows.append((f"chain-{k}", peer, t, terms, n))
+            print(f"{peer} chain-{k:<4} {fmt_time(t):>10}  {terms:,} terms (median of {n})", flush=True)
+    load1 = os.getloadavg()
+    lines = [
+        "",
+        f"### Run of {started} (`scripts/bench`)",
+        "",
+        f"Machine: {model} (`lscpu`), {cores} cores (`nproc`); `uptime` load average "
+        f"{load0[0]:.2f} / {load0[1]:.2f} / {load0[2]:.2f} at the start and "
+        f"{load1[0]:.2f} at the end. hdot: median wall time of {args.runs} runs of the whole "
+        "process `hdot derive NAME --format latex` (start-up, parse, derive, check, present, "
+        "print), peak resident memory from `wait4`. Peers in process, median of up to "
+        f"{args.peer_runs} runs: SymPy as `benches/compare_sympy.py` writes the workloads "
+        "(sympy.physics.mechanics, expand), SymEngine and Symbolica chain-K's expansion and "
+        "d/dt on plain symbols only (no trigonometric reduction, no printing). "
+        "Ratio = peer time / hdot time (above 1: hdot faster).",
+        "",
+        "| workload | hdot (process) | hdot peak memory | peer | peer time | ratio |",
+        "|---|---|---|---|---|---|",
+    ]
+    for name in hdot_workloads:
+        t, rss, _ = hd[name]
+        mine = [r for r in rows if r[0] == name]
+        if not mine:
+            lines.append(f"| {name} | {fmt_time(t)} | {rss / 1e6:.0f} MB | — | — | — |")
+        for w, peer, pt, _, _ in mine:
+            lines.append(f"| {name} | {fmt_time(t)} | {rss / 1e6:.0f} MB | {peer} | {fmt_time(pt)} "
+                         f"| {pt / t:,.1f}× |")
+    text = "\n".join(lines) + "\n"
+    print(text)
+    if args.append:
+        with open(args.append, "a") as f:
+            f.write(text)
+        print(f"appended to {os.path.relpath(args.append)}")
 
 
 def chart(rows, stem):

@@ -5,7 +5,9 @@
 //! - `identities`: one-line `input => expected` identities;
 //! - `presentation`: presented forms expand back to the derived values;
 //! - `snapshots`: every derivation file in every output format (insta);
-//! - `broken`: broken derivation files, each asserting its error's location.
+//! - `broken`: broken derivation files, each asserting its error's location;
+//! - `work_budget`: deterministic work of reference workloads against the
+//!   committed budget (`work_budget.toml`).
 
 mod algebra;
 mod broken;
@@ -18,3 +20,4 @@ mod notes;
 mod presentation;
 mod snapshots;
 mod strategies;
+mod work_budget;

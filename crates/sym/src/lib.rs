@@ -55,6 +55,7 @@ pub mod render;
 pub mod subst;
 pub mod symbols;
 pub mod vector;
+pub mod work;
 
 pub use atom::{Atom, AtomKind};
 pub use expr::{Expr, Node};

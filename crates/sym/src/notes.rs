@@ -200,22 +200,26 @@ fn math_width(s: &str) -> f32 {
     while let Some(c) = chars.next() {
         match c {
             '\\' => {
-                let mut name = String::new();
-                while let Some(&n) = chars.peek() {
-                    if n.is_ascii_alphabetic() {
-                        name.push(n);
-                        chars.next();
-                    } else {
-                        break;
-                    }
+                // The command's name, without allocating (the names that
+                // matter are short; a longer one counts as any other).
+                let (mut name, mut len) = ([0u8; 8], 0);
+                while let Some(&n) = chars.peek().filter(|n| n.is_ascii_alphabetic()) {
+                    name[len.min(7)] = n as u8;
+                    len += 1;
+                    chars.next();
                 }
+                let name = if len <= 7 {
+                    std::str::from_utf8(&name[..len]).unwrap_or("")
+                } else {
+                    "long"
+                };
                 if name.is_empty() {
                     chars.next(); // `\,` and friends
                     w += 0.3;
                     continue;
                 }
                 w += scale(script)
-                    * match name.as_str() {
+                    * match name {
                         "left" | "right" => 0.0,
                         "dot" | "ddot" | "dddot" | "ddddot" | "mathrm" | "frac" => 0.0,
                         "sin" | "cos" => 3.0,

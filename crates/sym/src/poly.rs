@@ -60,11 +60,16 @@ pub type Exp = i32;
 
 /// A product of atoms with non-zero exponents, sorted by atom id.
 ///
+/// Twelve factors are held inline: a term of chain-8's Ḣ has up to a
+/// constant, two rates and a sine or cosine of each of eight angles, and a
+/// monomial spilled to the heap costs an allocation and more memory than
+/// the inline room it leaves unused.
+///
 /// Invariant: sorted strictly by atom, no zero exponents, negative
 /// exponents only on constant symbols and trigonometric atoms, at most the
 /// first power of any `sin` atom (in a canonical [`Poly`]).
 #[derive(Clone, Debug, Default, PartialEq, Eq, PartialOrd, Ord)]
-pub struct Monomial(SmallVec<[(Atom, Exp); 8]>);
+pub struct Monomial(SmallVec<[(Atom, Exp); 12]>);
 
 /// One well-mixed word per monomial. The derived hash fed the factors to
 /// `FxHasher` one by one, a linear function of small integers that put
@@ -101,9 +106,9 @@ impl Monomial {
     /// Builds a monomial from factors in any order (exponents of repeated
     /// atoms are added).
     pub fn from_factors(factors: impl IntoIterator<Item = (Atom, Exp)>) -> Monomial {
-        let mut v: SmallVec<[(Atom, Exp); 8]> = factors.into_iter().filter(|f| f.1 != 0).collect();
+        let mut v: SmallVec<[(Atom, Exp); 12]> = factors.into_iter().filter(|f| f.1 != 0).collect();
         v.sort_unstable_by_key(|f| f.0);
-        let mut out: SmallVec<[(Atom, Exp); 8]> = SmallVec::with_capacity(v.len());
+        let mut out: SmallVec<[(Atom, Exp); 12]> = SmallVec::with_capacity(v.len());
         for (a, e) in v {
             match out.last_mut() {
                 Some(last) if last.0 == a => last.1 = limits::add_exponents(last.1, e),
@@ -136,6 +141,7 @@ impl Monomial {
 
     /// The product of two monomials (no trigonometric reduction).
     pub fn mul(&self, other: &Monomial) -> Monomial {
+        crate::work::monomial_product();
         let (a, b) = (&self.0, &other.0);
         let mut out = SmallVec::with_capacity(a.len() + b.len());
         let (mut i, mut j) = (0, 0);
@@ -265,6 +271,7 @@ impl Accum {
         if c.is_zero() {
             return;
         }
+        crate::work::term_accumulated();
         self.trig_den |= m.has_trig_denominator();
         // Find a sin atom with exponent >= 2 and rewrite sin^2 = 1 - cos^2
         // (the exponent test comes first: it is cheaper than the kind).

@@ -48,6 +48,21 @@ use crate::atom::{Atom, AtomKind};
 use crate::expr::{Expr, Id, Node, print_sorted};
 use crate::poly::{Monomial, Poly};
 use crate::rational::Rational;
+use rustc_hash::FxHashMap;
+use smallvec::SmallVec;
+
+mod sin_squares;
+use sin_squares::merge_trig_squares;
+
+/// A group (a bracket, or the whole sum) of more terms than this is
+/// presented plainly: each term as the canonical form holds it (sin² θ as
+/// 1 − cos² θ), no terms gathered under a shared bracket of constants. The
+/// rules that choose sin² θ and shared brackets cost several times the
+/// algebra per term; above this size (chain-7's Ḣ, 14,072 terms per
+/// component) nobody reads the result term by term, and the display must
+/// not cost more than the algebra that made it. Still exact: a plain form
+/// expands to the same value.
+pub const PLAIN_ABOVE: usize = 10_000;
 
 /// How a result should be shown.
 #[derive(Clone, Debug, Default)]
@@ -158,7 +173,9 @@ pub fn present(p: &Poly, pres: &Presentation) -> Expr {
     groups.sort_by_key(|g| group_key(&g.0));
 
     for (_, ts) in &mut groups {
-        merge_trig_squares(ts);
+        if ts.len() <= PLAIN_ABOVE {
+            merge_trig_squares(ts);
+        }
     }
     groups.retain(|(_, ts)| !ts.is_empty());
     let mut e = Expr::new();
@@ -194,6 +211,7 @@ pub fn present(p: &Poly, pres: &Presentation) -> Expr {
         ids = splice_sums(&mut e, ids);
     }
     e.add(ids);
+    crate::work::presented(e.len());
     e
 }
 
@@ -337,15 +355,23 @@ fn group_node(
         .map(|t| t.1.clone())
         .unwrap_or_else(Monomial::one);
     for t in &terms {
+        if all.is_one() {
+            break;
+        }
         all = all.gcd(t.1);
     }
-    terms.sort_by_key(|t| {
+    terms.sort_by_cached_key(|t| {
         let top = t.1.factors().iter().map(|f| f.0.order()).max();
+        // Some factor of t / all that is not a leading constant (t / all
+        // is not built: the exponents are compared).
         let timed =
-            t.1.div(&all)
-                .factors()
+            t.1.factors()
                 .iter()
-                .any(|f| !leading_constant(f.0));
+                .any(|&(a, e)| e != all.exponent(a) && !leading_constant(a))
+                || all
+                    .factors()
+                    .iter()
+                    .any(|&(a, _)| t.1.exponent(a) == 0 && !leading_constant(a));
         (
             Reverse(top.unwrap_or(0)),
             timed,
@@ -433,29 +459,30 @@ fn group_node(
             .collect();
         // The part that follows a bracket (rates, sin and cos, constant
         // rates named by Greek letters: J s + (C − A) Ω).
-        let timed = |m: &Monomial| m.split(|a| !leading_constant(a)).0;
-        let mut shared: BTreeMap<Monomial, Vec<(Monomial, Rational)>> = BTreeMap::new();
-        for (m, c) in &parts {
-            let t = timed(m);
-            if !t.is_one() {
-                shared
-                    .entry(t.clone())
-                    .or_default()
-                    .push((m.div(&t), c.clone()));
+        let timed: Vec<Monomial> = parts
+            .iter()
+            .map(|(m, _)| m.split(|a| !leading_constant(a)).0)
+            .collect();
+        // (Not in a plain bracket: see PLAIN_ABOVE.)
+        let mut shared: FxHashMap<&Monomial, Vec<(Monomial, Rational)>> = FxHashMap::default();
+        if terms.len() <= PLAIN_ABOVE {
+            for ((m, c), t) in parts.iter().zip(&timed) {
+                if !t.is_one() {
+                    shared.entry(t).or_default().push((m.div(t), c.clone()));
+                }
             }
+            shared.retain(|_, v| v.len() > 1);
         }
-        shared.retain(|_, v| v.len() > 1);
         // (node, negative, highest derivative order, has a part that
         // follows a bracket)
         let mut nodes: Vec<(Id, bool, u32, bool)> = Vec::with_capacity(terms.len());
-        for ((sorted, _, _), (m, c)) in terms.iter().zip(&parts) {
+        for (((sorted, _, _), (m, c)), t) in terms.iter().zip(&parts).zip(&timed) {
             let top = m.factors().iter().map(|f| f.0.order()).max().unwrap_or(0);
-            let t = timed(m);
-            if let Some(sub) = shared.get_mut(&t) {
+            if let Some(sub) = shared.get_mut(t) {
                 // The first term of the shared part stands for all of them.
                 if !sub.is_empty() {
                     let sub = std::mem::take(sub);
-                    let id = group_node(e, &t, &sub, pres);
+                    let id = group_node(e, t, &sub, pres);
                     nodes.push((id, matches!(e.node(id), Node::Neg(_)), top, true));
                 }
                 continue;
@@ -665,151 +692,6 @@ fn ratio_term(e: &mut Expr, factors: &[(Atom, i32)], c: &Rational) -> Id {
     }
 }
 
-/// Chooses between `sin² θ` and `1 − cos² θ` so that the group has the
-/// fewest terms. The canonical form holds sin² θ as 1 − cos² θ, so for each
-/// angle the terms that differ only in their power of cos θ (the same
-/// other factors X, whatever power of cos θ divides them) form a
-/// polynomial P(cos θ); when P = (1 − cos² θ)ᵏ Q with Q of fewer terms than
-/// P, the terms are written X sin²ᵏ θ Q(cos θ). So φ̇² − φ̇² cos² θ prints
-/// φ̇² sin² θ, I′ − I′ cos² θ + J prints J + I′ sin² θ, a cone's
-/// (cos² γ − 1) φ̇/cos γ prints −sin² γ φ̇/cos γ and
-/// I cos⁴ γ − 2 I cos² γ + I prints I sin⁴ γ. What remains, a pair
-/// X cosⁿ θ − X cosⁿ⁺² θ, becomes X cosⁿ θ sin² θ. Exact: every term
-/// expands back to the terms it replaces.
-fn merge_trig_squares(ts: &mut Vec<(Monomial, Rational)>) {
-    let mut angles: Vec<Atom> = ts
-        .iter()
-        .flat_map(|(m, _)| m.factors().iter())
-        .filter_map(|&(a, _)| match a.kind() {
-            AtomKind::Cos(q) => Some(q),
-            _ => None,
-        })
-        .collect();
-    angles.sort_by_key(|a| a.sort_key());
-    angles.dedup();
-    for q in angles {
-        if let (Some(cos), Some(sin)) = (Atom::cos(q), Atom::sin(q)) {
-            factor_sin_squares(ts, cos, sin);
-            merge_pairs(ts, cos, sin);
-        }
-    }
-    // Two rewritten terms may meet on one monomial: add them.
-    let mut sum: BTreeMap<Monomial, Rational> = BTreeMap::new();
-    let mut order = Vec::new();
-    for (m, c) in ts.drain(..) {
-        match sum.get_mut(&m) {
-            Some(s) => *s = &*s + &c,
-            None => {
-                order.push(m.clone());
-                sum.insert(m, c);
-            }
-        }
-    }
-    ts.extend(
-        order
-            .into_iter()
-            .filter_map(|m| sum.remove(&m).filter(|c| !c.is_zero()).map(|c| (m, c))),
-    );
-}
-
-/// The terms whose factors other than `cos` agree, as a polynomial in
-/// `cos` (exponent → coefficient), each divided by (1 − cos²) as often as
-/// that leaves the fewest terms (fewer than before).
-fn factor_sin_squares(ts: &mut Vec<(Monomial, Rational)>, cos: Atom, sin: Atom) {
-    let mut by_rest: BTreeMap<Monomial, BTreeMap<i32, Rational>> = BTreeMap::new();
-    for (m, c) in ts.iter() {
-        let e = m.exponent(cos);
-        by_rest
-            .entry(m.without(cos, e))
-            .or_default()
-            .insert(e, c.clone());
-    }
-    let mut out = Vec::with_capacity(ts.len());
-    let mut changed = false;
-    for (rest, p) in by_rest {
-        let mut best = (0, p.clone());
-        let mut q = p.clone();
-        let mut k = 0;
-        while let Some(next) = divide_one_minus_square(&q) {
-            k += 1;
-            if next.len() < best.1.len() {
-                best = (k, next.clone());
-            }
-            q = next;
-        }
-        let (k, q) = best;
-        changed |= k > 0;
-        let rest = rest.mul(&Monomial::atom(sin, 2 * k));
-        out.extend(
-            q.into_iter()
-                .map(|(e, c)| (rest.mul(&Monomial::atom(cos, e)), c)),
-        );
-    }
-    if changed {
-        *ts = out;
-    }
-}
-
-/// `p / (1 − x²)` when it divides exactly (Laurent exponents allowed).
-fn divide_one_minus_square(p: &BTreeMap<i32, Rational>) -> Option<BTreeMap<i32, Rational>> {
-    let low = *p.keys().next()?;
-    let mut r = p.clone();
-    let mut q = BTreeMap::new();
-    // Long division from the top: a xⁿ = (1 − x²)(−a xⁿ⁻²) + a xⁿ⁻².
-    while let Some((&n, a)) = r.iter().next_back() {
-        if n < low + 2 {
-            return None;
-        }
-        let a = a.clone();
-        r.remove(&n);
-        q.insert(n - 2, -&a);
-        let s = &r.get(&(n - 2)).cloned().unwrap_or(Rational::ZERO) + &a;
-        if s.is_zero() {
-            r.remove(&(n - 2));
-        } else {
-            r.insert(n - 2, s);
-        }
-    }
-    Some(q)
-}
-
-/// A pair `X cosⁿ θ − X cosⁿ⁺² θ` becomes the single term
-/// `X cosⁿ θ sin² θ` (n of any sign).
-fn merge_pairs(ts: &mut Vec<(Monomial, Rational)>, cos: Atom, sin: Atom) {
-    // Each term's partner is looked up in an ordered index of the monomials
-    // (n log n: a result of many terms must not make display quadratic).
-    let mut index: BTreeMap<Monomial, usize> = ts
-        .iter()
-        .enumerate()
-        .map(|(i, (m, _))| (m.clone(), i))
-        .collect();
-    let mut removed = vec![false; ts.len()];
-    for k in 0..ts.len() {
-        if removed[k] || ts[k].0.exponent(cos) == 0 {
-            continue;
-        }
-        let (m, c) = ts[k].clone();
-        let rest = m.div(&Monomial::atom(cos, 2));
-        let partner = index
-            .get(&rest)
-            .copied()
-            .filter(|&j| j != k && !removed[j] && (&ts[j].1 + &c).is_zero());
-        if let Some(j) = partner {
-            let merged = rest.mul(&Monomial::atom(sin, 2));
-            index.remove(&rest);
-            index.insert(merged.clone(), j);
-            ts[j].0 = merged;
-            index.remove(&m);
-            removed[k] = true;
-        }
-    }
-    let mut k = 0;
-    ts.retain(|_| {
-        k += 1;
-        !removed[k - 1]
-    });
-}
-
 /// The place of a constant factor: the names of the file's own order
 /// (`[symbols] order`) first, in that order; then the conventional one —
 /// mass first, then inertia, then gravity, then the others (lengths),
@@ -827,11 +709,14 @@ fn constant_class(a: Atom, order: &[String]) -> (usize, u8, &'static str) {
     (own, class, name)
 }
 
+/// A place in a cyclic order: (family, position, which order).
+type Place = (&'static str, usize, u8);
+
 /// The position of a subscript or letter in a cyclic order (x → y → z,
 /// 1 → 2 → 3, A → B → C, also with a common subscript: A_p → B_p → C_p),
 /// the family (the name without the subscript, or the letters' common
 /// subscript), and which of the three orders it is in.
-fn cyclic_place(a: Atom) -> Option<(&'static str, usize, u8)> {
+fn cyclic_place(a: Atom) -> Option<Place> {
     let name = a.name();
     if let Some((base, sub)) = name.rsplit_once('_') {
         if let Some(k) = ["x", "y", "z"].iter().position(|c| *c == sub) {
@@ -849,15 +734,6 @@ fn cyclic_place(a: Atom) -> Option<(&'static str, usize, u8)> {
         .iter()
         .position(|c| *c == name)
         .map(|k| ("", k, 2))
-}
-
-/// Whether `b` follows `a` in their cyclic order (same family: the same
-/// name with subscripts x, y, z or 1, 2, 3, or the letters A, B, C).
-fn cyclic_next(a: Atom, b: Atom) -> bool {
-    match (cyclic_place(a), cyclic_place(b)) {
-        (Some((fa, ka, oa)), Some((fb, kb, ob))) => fa == fb && oa == ob && (ka + 1) % 3 == kb,
-        _ => false,
-    }
 }
 
 /// Whether two constants are of one cyclic family as moments of inertia
@@ -906,7 +782,16 @@ fn cyclic_difference(
 /// they were, two rates of one cyclic family in cyclic order.
 fn conventional(fs: &mut [(Atom, i32)], order: &[String]) {
     let constant = leading_constant;
-    fs.sort_by_key(|&(a, _)| {
+    let constants = fs.iter().filter(|f| constant(f.0)).count();
+    if constants <= 1 {
+        // The sort below would only move the one constant to the front.
+        if let Some(k) = fs.iter().position(|f| constant(f.0)) {
+            fs[..=k].rotate_right(1);
+        }
+        cyclic_pair(fs);
+        return;
+    }
+    fs.sort_by_cached_key(|&(a, _)| {
         if constant(a) {
             (0, constant_class(a, order))
         } else {
@@ -919,21 +804,25 @@ fn conventional(fs: &mut [(Atom, i32)], order: &[String]) {
 /// Two rates of one cyclic family in cyclic order: ω_x ω_z → ω_z ω_x
 /// (the order Euler's equations write them in).
 fn cyclic_pair(fs: &mut [(Atom, i32)]) {
+    // Each factor's place is looked up once (names are compared as
+    // strings), and a swap moves two factors of one family, so the places
+    // move with them.
+    let mut places: SmallVec<[Option<Place>; 8]> = fs.iter().map(|f| cyclic_place(f.0)).collect();
+    let next = |a: Place, b: Place| a.0 == b.0 && a.2 == b.2 && (a.1 + 1) % 3 == b.1;
     for i in 0..fs.len() {
-        let Some((family, _, _)) = cyclic_place(fs[i].0) else {
+        let Some((family, _, _)) = places[i] else {
             continue;
         };
-        let same: Vec<usize> = (0..fs.len())
-            .filter(|&k| cyclic_place(fs[k].0).is_some_and(|(f, _, _)| f == family))
-            .collect();
-        if let [p, q] = same[..]
-            && p == i
-            && fs[p].1 == 1
-            && fs[q].1 == 1
-            && cyclic_next(fs[q].0, fs[p].0)
-            && !cyclic_next(fs[p].0, fs[q].0)
-        {
+        let mut same = (0..fs.len()).filter(|&k| places[k].is_some_and(|(f, _, _)| f == family));
+        let (Some(p), Some(q), None) = (same.next(), same.next(), same.next()) else {
+            continue;
+        };
+        let (Some(pp), Some(pq)) = (places[p], places[q]) else {
+            continue;
+        };
+        if p == i && fs[p].1 == 1 && fs[q].1 == 1 && next(pq, pp) && !next(pp, pq) {
             fs.swap(p, q);
+            places.swap(p, q);
         }
     }
 }

@@ -1,0 +1,272 @@
+//! Presentation rule 1: `sin² θ` or `1 − cos² θ`, whichever leaves a
+//! group of terms the fewest terms.
+//!
+//! The work is linear in the terms (hash grouping, one pass per angle
+//! over the terms, and only the terms with a power of `cos θ` are keyed):
+//! a result of 100,000 terms must not make its display slower than the
+//! algebra that made it.
+
+use std::collections::BTreeMap;
+
+use rustc_hash::FxHashMap;
+use smallvec::SmallVec;
+
+use crate::atom::{Atom, AtomKind};
+use crate::poly::Monomial;
+use crate::rational::Rational;
+
+type Terms = Vec<(Monomial, Rational)>;
+
+/// One chain: the terms `X cosᵉ θ` of one rest `X`, as (exponent, index
+/// into the terms), ascending by exponent.
+type Chain = (Monomial, SmallVec<[(i32, usize); 4]>);
+
+/// Chooses between `sin² θ` and `1 − cos² θ` so that the group has the
+/// fewest terms. The canonical form holds sin² θ as 1 − cos² θ, so for each
+/// angle the terms that differ only in their power of cos θ (the same
+/// other factors X, whatever power of cos θ divides them) form a
+/// polynomial P(cos θ); when P = (1 − cos² θ)ᵏ Q with Q of fewer terms than
+/// P, the terms are written X sin²ᵏ θ Q(cos θ). So φ̇² − φ̇² cos² θ prints
+/// φ̇² sin² θ, I′ − I′ cos² θ + J prints J + I′ sin² θ, a cone's
+/// (cos² γ − 1) φ̇/cos γ prints −sin² γ φ̇/cos γ and
+/// I cos⁴ γ − 2 I cos² γ + I prints I sin⁴ γ. What remains, a pair
+/// X cosⁿ θ − X cosⁿ⁺² θ, becomes X cosⁿ θ sin² θ, the pairs of one X
+/// taken from the lowest power of cos θ up. Exact: every term expands back
+/// to the terms it replaces. The order of the terms afterwards is not
+/// meaningful (the printer sorts them).
+pub(super) fn merge_trig_squares(ts: &mut Terms) {
+    let mut angles: Vec<Atom> = ts
+        .iter()
+        .flat_map(|(m, _)| m.factors().iter())
+        .filter_map(|&(a, _)| match a.kind() {
+            AtomKind::Cos(q) => Some(q),
+            _ => None,
+        })
+        .collect();
+    angles.sort_unstable();
+    angles.dedup();
+    angles.sort_by_cached_key(|a| a.sort_key());
+    let mut changed = false;
+    for q in angles {
+        if let (Some(cos), Some(sin)) = (Atom::cos(q), Atom::sin(q)) {
+            changed |= factor_sin_squares(ts, cos, sin);
+            changed |= merge_pairs(ts, cos, sin);
+        }
+    }
+    if changed {
+        // Two rewritten terms may meet on one monomial: add them.
+        add_equal_monomials(ts);
+    }
+}
+
+/// The chains of `cos` in `ts` that have two terms or more: the terms with
+/// a power of `cos` keyed by what is left without it, and the term without
+/// `cos` of the same rest joined to its chain. Equal exponents in a chain
+/// (two equal monomials left by an earlier angle) are added into the first.
+///
+/// The terms are keyed by a hash of the rest computed in place (no rest
+/// is built until a chain is found), and a bucket is split by comparing
+/// the rests factor by factor, so hash collisions cost time, never
+/// correctness.
+fn chains(ts: &mut Terms, cos: Atom) -> Vec<Chain> {
+    let mut buckets: FxHashMap<u64, SmallVec<[usize; 2]>> = FxHashMap::default();
+    for (i, (m, _)) in ts.iter().enumerate() {
+        if m.exponent(cos) != 0 {
+            buckets.entry(rest_hash(m, cos)).or_default().push(i);
+        }
+    }
+    if buckets.is_empty() {
+        return Vec::new();
+    }
+    for (i, (m, _)) in ts.iter().enumerate() {
+        if m.exponent(cos) == 0
+            && let Some(b) = buckets.get_mut(&rest_hash(m, cos))
+        {
+            b.push(i);
+        }
+    }
+    let mut out: Vec<Chain> = Vec::new();
+    for (_, mut bucket) in buckets {
+        while bucket.len() > 1 {
+            let first = bucket[0];
+            let (same, other): (SmallVec<[usize; 2]>, SmallVec<[usize; 2]>) = bucket
+                .into_iter()
+                .partition(|&i| same_rest(&ts[i].0, &ts[first].0, cos));
+            if same.len() > 1 {
+                let m = &ts[first].0;
+                let rest = m.without(cos, m.exponent(cos));
+                let chain = same.iter().map(|&i| (ts[i].0.exponent(cos), i)).collect();
+                out.push((rest, chain));
+            }
+            bucket = other;
+        }
+    }
+    for (_, c) in &mut out {
+        c.sort_unstable();
+        // Equal monomials: one term (a zero sum keeps a zero coefficient,
+        // removed with the other zeros by `add_equal_monomials`).
+        let mut k = 1;
+        while k < c.len() {
+            if c[k].0 == c[k - 1].0 {
+                let extra = std::mem::replace(&mut ts[c[k].1].1, Rational::ZERO);
+                let first = &mut ts[c[k - 1].1].1;
+                *first = &*first + &extra;
+                c.remove(k);
+            } else {
+                k += 1;
+            }
+        }
+    }
+    out.sort_unstable_by_key(|(_, c)| c[0].1);
+    out
+}
+
+/// A hash of `m` without its power of `cos`.
+fn rest_hash(m: &Monomial, cos: Atom) -> u64 {
+    let mut h: u64 = 0x243F_6A88_85A3_08D3;
+    for &(a, e) in m.factors() {
+        if a != cos {
+            let w = (u64::from(a.id()) << 32) | u64::from(e as u32);
+            h = (h ^ w).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+            h ^= h >> 29;
+        }
+    }
+    h
+}
+
+/// Whether `a` and `b` agree but for their powers of `cos`.
+fn same_rest(a: &Monomial, b: &Monomial, cos: Atom) -> bool {
+    let x = a.factors().iter().filter(|f| f.0 != cos);
+    let y = b.factors().iter().filter(|f| f.0 != cos);
+    x.eq(y)
+}
+
+/// Each chain as a polynomial P(cos) (exponent → coefficient), divided by
+/// (1 − cos²) as often as that leaves the fewest terms (fewer than
+/// before). True when a chain was rewritten.
+fn factor_sin_squares(ts: &mut Terms, cos: Atom, sin: Atom) -> bool {
+    let mut removed: Vec<usize> = Vec::new();
+    let mut added: Terms = Vec::new();
+    for (rest, chain) in chains(ts, cos) {
+        let p: BTreeMap<i32, Rational> = chain
+            .iter()
+            .filter(|&&(_, i)| !ts[i].1.is_zero())
+            .map(|&(e, i)| (e, ts[i].1.clone()))
+            .collect();
+        let mut best = (0, None);
+        let mut q = p.clone();
+        let mut k = 0;
+        let mut fewest = p.len();
+        while let Some(next) = divide_one_minus_square(&q) {
+            k += 1;
+            if next.len() < fewest {
+                fewest = next.len();
+                best = (k, Some(next.clone()));
+            }
+            q = next;
+        }
+        let (k, Some(q)) = best else { continue };
+        removed.extend(chain.iter().map(|&(_, i)| i));
+        let rest = rest.mul(&Monomial::atom(sin, 2 * k));
+        added.extend(
+            q.into_iter()
+                .map(|(e, c)| (rest.mul(&Monomial::atom(cos, e)), c)),
+        );
+    }
+    if removed.is_empty() {
+        return false;
+    }
+    remove_indices(ts, &removed);
+    ts.extend(added);
+    true
+}
+
+/// `p / (1 − x²)` when it divides exactly (Laurent exponents allowed).
+fn divide_one_minus_square(p: &BTreeMap<i32, Rational>) -> Option<BTreeMap<i32, Rational>> {
+    let low = *p.keys().next()?;
+    let mut r = p.clone();
+    let mut q = BTreeMap::new();
+    // Long division from the top: a xⁿ = (1 − x²)(−a xⁿ⁻²) + a xⁿ⁻².
+    while let Some((&n, a)) = r.iter().next_back() {
+        if n < low + 2 {
+            return None;
+        }
+        let a = a.clone();
+        r.remove(&n);
+        q.insert(n - 2, -&a);
+        let s = &r.get(&(n - 2)).cloned().unwrap_or(Rational::ZERO) + &a;
+        if s.is_zero() {
+            r.remove(&(n - 2));
+        } else {
+            r.insert(n - 2, s);
+        }
+    }
+    Some(q)
+}
+
+/// A pair `X cosⁿ θ − X cosⁿ⁺² θ` becomes the single term
+/// `X cosⁿ θ sin² θ` (n of any sign); in a chain of one X the pairs are
+/// taken from the lowest power up, each term in one pair at most. True
+/// when a pair was merged.
+fn merge_pairs(ts: &mut Terms, cos: Atom, sin: Atom) -> bool {
+    let mut removed: Vec<usize> = Vec::new();
+    for (rest, chain) in chains(ts, cos) {
+        let mut used: SmallVec<[bool; 4]> = SmallVec::from_elem(false, chain.len());
+        for b in 0..chain.len() {
+            let (e, k) = chain[b];
+            if e == 0 || used[b] {
+                continue;
+            }
+            let Some(a) = chain[..b].iter().rposition(|&(x, _)| x == e - 2) else {
+                continue;
+            };
+            let j = chain[a].1;
+            if used[a] || ts[k].1.is_zero() || !(&ts[j].1 + &ts[k].1).is_zero() {
+                continue;
+            }
+            ts[j].0 = rest.mul(&Monomial::from_factors([(cos, e - 2), (sin, 2)]));
+            used[a] = true;
+            used[b] = true;
+            removed.push(k);
+        }
+    }
+    if removed.is_empty() {
+        return false;
+    }
+    remove_indices(ts, &removed);
+    true
+}
+
+/// Removes the terms at `indices` (any order, no repeats).
+fn remove_indices(ts: &mut Terms, indices: &[usize]) {
+    let mut gone = vec![false; ts.len()];
+    for &i in indices {
+        gone[i] = true;
+    }
+    let mut k = 0;
+    ts.retain(|_| {
+        k += 1;
+        !gone[k - 1]
+    });
+}
+
+/// Adds the coefficients of equal monomials into the first of them and
+/// drops zero coefficients, keeping the order of first appearance.
+fn add_equal_monomials(ts: &mut Terms) {
+    let mut first: FxHashMap<&Monomial, usize> = FxHashMap::default();
+    let mut moves: Vec<(usize, usize)> = Vec::new();
+    for (i, (m, _)) in ts.iter().enumerate() {
+        match first.get(m) {
+            Some(&j) => moves.push((i, j)),
+            None => {
+                first.insert(m, i);
+            }
+        }
+    }
+    drop(first);
+    for (i, j) in moves {
+        let extra = std::mem::replace(&mut ts[i].1, Rational::ZERO);
+        ts[j].1 = &ts[j].1 + &extra;
+    }
+    ts.retain(|(_, c)| !c.is_zero());
+}
