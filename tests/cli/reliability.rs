@@ -223,6 +223,136 @@ fn outputs_never_destroy_inputs_or_leave_partial_files() {
     }
 }
 
+/// Every file a command reads is an input no output may replace: the
+/// derivation a scene names, a notes manifest, a derivation the notes are
+/// made of (issue 21). Refused with exit 2, nothing written.
+#[test]
+fn files_a_command_reads_are_never_overwritten() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let root = repo_root();
+    let heavy_top = std::fs::read_to_string(root.join("derivations/heavy-top.toml")).unwrap();
+    // simulate s.toml --output d.toml, the scene's derivation being d.toml.
+    let derivation = d.join("d.toml");
+    std::fs::write(&derivation, &heavy_top).unwrap();
+    let scene = std::fs::read_to_string(example("sim-derived-heavy-top.toml"))
+        .unwrap()
+        .replace("file = \"heavy-top\"", "file = \"d.toml\"");
+    assert!(scene.contains("d.toml"));
+    let s = d.join("s.toml");
+    std::fs::write(&s, scene).unwrap();
+    let out = hdot(&[
+        "simulate",
+        s.to_str().unwrap(),
+        "--t-end",
+        "0.01",
+        "--output",
+        derivation.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stderr).contains("is an input"),
+        "{}",
+        text(&out.stderr)
+    );
+    assert_eq!(std::fs::read_to_string(&derivation).unwrap(), heavy_top);
+
+    // notes in --manifest o/hdot-notes.md --out o.
+    let input = d.join("in");
+    std::fs::create_dir_all(&input).unwrap();
+    std::fs::write(input.join("heavy-top.toml"), &heavy_top).unwrap();
+    let o = d.join("o");
+    std::fs::create_dir_all(&o).unwrap();
+    let manifest = o.join("hdot-notes.md");
+    let manifest_text = "title = \"t\"\nauthor = \"a\"\n[[chapter]]\ntitle = \"c\"\nderivations = [\"heavy-top\"]\n";
+    std::fs::write(&manifest, manifest_text).unwrap();
+    let out = hdot(&[
+        "notes",
+        input.to_str().unwrap(),
+        "--manifest",
+        manifest.to_str().unwrap(),
+        "--out",
+        o.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2), "{}", text(&out.stderr));
+    assert_eq!(std::fs::read_to_string(&manifest).unwrap(), manifest_text);
+    assert!(!o.join("hdot-notes.tex").exists());
+
+    // A derivation at o/hdot-notes.tex, or at o/fragments/d.tex, with --out o.
+    let as_notes = o.join("hdot-notes.tex");
+    std::fs::write(&as_notes, &heavy_top).unwrap();
+    let out = hdot(&[
+        "notes",
+        as_notes.to_str().unwrap(),
+        "--out",
+        o.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2), "{}", text(&out.stderr));
+    assert_eq!(std::fs::read_to_string(&as_notes).unwrap(), heavy_top);
+    std::fs::create_dir_all(o.join("fragments")).unwrap();
+    let as_fragment = o.join("fragments/d.tex");
+    std::fs::write(&as_fragment, &heavy_top).unwrap();
+    let out = hdot(&[
+        "notes",
+        as_fragment.to_str().unwrap(),
+        "--fragments",
+        "--out",
+        o.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2), "{}", text(&out.stderr));
+    assert_eq!(std::fs::read_to_string(&as_fragment).unwrap(), heavy_top);
+    for e in std::fs::read_dir(&o).unwrap() {
+        let name = e.unwrap().file_name();
+        assert!(!name.to_string_lossy().starts_with(".hdot-tmp"), "{name:?}");
+    }
+}
+
+/// Files in the wrong encoding are located errors; `check` takes the
+/// names `derive` takes (issue 21).
+#[test]
+fn encodings_are_located_and_check_takes_chain_names() {
+    let dir = tempfile::tempdir().unwrap();
+    let text_of = |name: &str| std::fs::read_to_string(repo_root().join(name)).unwrap();
+    let euler = text_of("derivations/euler-principal.toml");
+    let latin1 = dir.path().join("latin1.toml");
+    std::fs::write(&latin1, [euler.as_bytes(), &b"# \xe9\n"[..]].concat()).unwrap();
+    let out = hdot(&["derive", latin1.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    let line = euler.lines().count() + 1;
+    assert!(
+        text(&out.stderr).contains(&format!("latin1.toml:{line}:3")),
+        "{}",
+        text(&out.stderr)
+    );
+    let scene = dir.path().join("utf16.toml");
+    let le: Vec<u8> = [0xFF, 0xFE]
+        .into_iter()
+        .chain(
+            text_of("docs/examples/sim-shaft-unbalanced.toml")
+                .encode_utf16()
+                .flat_map(u16::to_le_bytes),
+        )
+        .collect();
+    std::fs::write(&scene, le).unwrap();
+    for command in ["inertia", "simulate"] {
+        let out = hdot(&[command, scene.to_str().unwrap()]);
+        assert_eq!(out.status.code(), Some(2), "{command}");
+        assert!(
+            text(&out.stderr).contains("UTF-16") && text(&out.stderr).contains("utf16.toml"),
+            "{command}: {}",
+            text(&out.stderr)
+        );
+    }
+
+    let out = hdot(&["check", "chain-2"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stdout).contains("chain-2"),
+        "{}",
+        text(&out.stdout)
+    );
+}
+
 #[test]
 fn empty_folders_and_crashing_files_do_not_pass_silently() {
     let dir = tempfile::tempdir().unwrap();

@@ -56,6 +56,31 @@ fn csv_errors_name_file_line_and_field() {
     assert!(matches!(e.kind, CsvErrorKind::Io(_)));
 }
 
+/// A CSV cloud that is not UTF-8 is an error at its line and column; a
+/// cloud read is an input no output may replace (issue 21).
+#[test]
+fn a_csv_cloud_in_the_wrong_encoding_is_located_and_never_overwritten() {
+    let dir = tempfile::tempdir().unwrap();
+    let bad = dir.path().join("latin1.csv");
+    std::fs::write(&bad, b"x,y,z,m\n0,0,0,1 # \xb5\n").unwrap();
+    let e = ParticleCloud::from_csv_path(&bad).unwrap_err();
+    assert_eq!(e.line, 2, "{e}");
+    assert!(
+        e.to_string().contains("column 11") && e.to_string().contains("not UTF-8"),
+        "{e}"
+    );
+
+    let cloud = dir.path().join("cloud.csv");
+    std::fs::write(&cloud, "0,0,0,1\n1,0,0,1\n").unwrap();
+    ParticleCloud::from_csv_path(&cloud).unwrap();
+    let e = hdot_num::fsio::write_atomic(&cloud, b"replaced").unwrap_err();
+    assert!(hdot_num::fsio::is_input_refusal(&e), "{e}");
+    assert_eq!(
+        std::fs::read_to_string(&cloud).unwrap(),
+        "0,0,0,1\n1,0,0,1\n"
+    );
+}
+
 #[test]
 fn bad_bodies_are_rejected() {
     let p = Pose::identity();

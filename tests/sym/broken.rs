@@ -106,3 +106,34 @@ expect = "A + A*e + e"
     let d = load_str("small.toml", text).unwrap();
     assert!(d.all_hold(), "{:?}", d.failures());
 }
+
+/// A file that is not UTF-8 is an error at the line and column of its
+/// first bad byte; a UTF-16 file is named as such (issue 21).
+#[test]
+fn a_file_in_the_wrong_encoding_is_a_located_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = "title = \"t\"\nsource = \"s\"\n[symbols]\nconstants = [\"a\"]\n";
+    let latin1 = dir.path().join("latin1.toml");
+    let mut bytes = text.as_bytes().to_vec();
+    bytes.extend(b"# caf\xe9\n");
+    std::fs::write(&latin1, &bytes).unwrap();
+    let e = hdot_sym::derivation::load(&latin1).unwrap_err();
+    assert_eq!((e.line, e.column), (5, 6), "{e}");
+    assert!(
+        e.message.contains("not UTF-8") && e.message.contains("0xE9"),
+        "{e}"
+    );
+    assert!(e.to_string().contains("latin1.toml:5:6"), "{e}");
+
+    let utf16 = dir.path().join("utf16.toml");
+    let le: Vec<u8> = [0xFF, 0xFE]
+        .into_iter()
+        .chain(text.encode_utf16().flat_map(u16::to_le_bytes))
+        .collect();
+    std::fs::write(&utf16, le).unwrap();
+    let e = hdot_sym::derivation::load(&utf16).unwrap_err();
+    assert!(
+        e.message.contains("the file is UTF-16") && e.message.contains("save it as UTF-8"),
+        "{e}"
+    );
+}

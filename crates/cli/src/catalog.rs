@@ -44,6 +44,8 @@ pub enum Entry {
     File(PathBuf),
     /// An embedded derivation: its name and text.
     Bundled(&'static str, &'static str),
+    /// The generated scaling family `chain-K`.
+    Chain(usize),
 }
 
 impl Entry {
@@ -52,6 +54,7 @@ impl Entry {
         match self {
             Entry::File(p) => name_of(p),
             Entry::Bundled(n, _) => (*n).to_owned(),
+            Entry::Chain(k) => format!("chain-{k}"),
         }
     }
 
@@ -62,6 +65,7 @@ impl Entry {
             Entry::Bundled(n, text) => {
                 hdot_sym::derivation::load_str(&format!("derivations/{n}.toml"), text)
             }
+            Entry::Chain(k) => hdot_sym::chain::derivation(*k),
         }
     }
 }
@@ -127,12 +131,16 @@ pub fn is_derivation_file(p: &Path) -> bool {
     std::fs::read_to_string(p).map_or(true, |t| kind_of(p, &t) == FileKind::Derivation)
 }
 
-/// The notes manifest of `dir`, if it has one: its path (as shown) and text.
-pub fn manifest(dir: &Dir) -> Option<(PathBuf, String)> {
-    match dir {
+/// The notes manifest of `dir`, if it has one: its path (as shown) and
+/// text; an error when it is there but cannot be read.
+pub fn manifest(dir: &Dir) -> anyhow::Result<Option<(PathBuf, String)>> {
+    Ok(match dir {
         Dir::Folder(d) => {
             let m = d.join(hdot_sym::course::MANIFEST_FILE);
-            let text = std::fs::read_to_string(&m).ok()?;
+            if !m.exists() {
+                return Ok(None);
+            }
+            let text = hdot_sym::textfile::read(&m)?;
             Some((m, text))
         }
         Dir::Bundled => bundled::DERIVATIONS
@@ -144,7 +152,7 @@ pub fn manifest(dir: &Dir) -> Option<(PathBuf, String)> {
                     (*t).to_owned(),
                 )
             }),
-    }
+    })
 }
 
 /// Every derivation of `dir` (not the notes manifest, not a scene beside
@@ -177,7 +185,8 @@ pub fn all(dir: &Dir) -> anyhow::Result<Vec<Entry>> {
 
 /// The derivations a command's arguments name: every derivation of `dir`
 /// when there are none; otherwise each argument resolved (see
-/// [`resolve`]), a folder standing for every derivation file in it.
+/// [`target`]: `chain-K` too, as `derive` takes it), a folder standing
+/// for every derivation file in it.
 pub fn select(dir: &Dir, args: &[String]) -> anyhow::Result<Vec<Entry>> {
     if args.is_empty() {
         return all(dir);
@@ -188,7 +197,7 @@ pub fn select(dir: &Dir, args: &[String]) -> anyhow::Result<Vec<Entry>> {
         if p.is_dir() {
             v.extend(all(&Dir::Folder(p.to_owned()))?);
         } else {
-            v.push(resolve(dir, a)?);
+            v.push(target(dir, a)?);
         }
     }
     Ok(v)
@@ -200,31 +209,20 @@ pub fn name_of(p: &Path) -> String {
         .map_or_else(String::new, |s| s.to_string_lossy().into_owned())
 }
 
-/// What a command-line argument names: a derivation, or the generated
-/// scaling family `chain-K`.
-pub enum Target {
-    /// A derivation.
-    Entry(Entry),
-    /// `chain-K`.
-    Chain(usize),
-}
-
-/// Resolves a derivation or `chain-K` (see [`resolve`]).
-pub fn target(dir: &Dir, arg: &str) -> anyhow::Result<Target> {
+/// Resolves a derivation (see [`resolve`]) or, when no derivation has
+/// that name, the generated scaling family `chain-K`.
+pub fn target(dir: &Dir, arg: &str) -> anyhow::Result<Entry> {
     if let Some(k) = hdot_sym::chain::parse_name(arg)
         && resolve(dir, arg).is_err()
     {
-        return Ok(Target::Chain(k));
+        return Ok(Entry::Chain(k));
     }
-    resolve(dir, arg).map(Target::Entry)
+    resolve(dir, arg)
 }
 
 /// Loads what `arg` names.
 pub fn load(dir: &Dir, arg: &str) -> anyhow::Result<Result<Derivation, Diagnostic>> {
-    Ok(match target(dir, arg)? {
-        Target::Entry(e) => e.load(),
-        Target::Chain(k) => hdot_sym::chain::derivation(k),
-    })
+    Ok(target(dir, arg)?.load())
 }
 
 /// Resolves `NAME` (a derivation of `dir`) or `PATH` (an existing file, or
@@ -288,17 +286,20 @@ pub fn bundled_scene(arg: &Path) -> Option<(String, &'static str)> {
 pub fn scene(path: &Path) -> anyhow::Result<hdot_sim::scene::Scene> {
     let find = |name: &str| {
         hdot_sim::scene::resolve_near(path, name).or_else(|near| {
-            let entry = resolve(&derivations_dir(None), name).map_err(|_| near)?;
+            let Ok(entry) = resolve(&derivations_dir(None), name) else {
+                return Err(near);
+            };
             match entry {
                 Entry::File(file) => {
-                    let text = std::fs::read_to_string(&file)
-                        .map_err(|e| format!("cannot read {}: {e}", file.display()))?;
+                    let text = hdot_sym::textfile::read(&file).map_err(|e| e.to_string())?;
                     Ok((file, text))
                 }
                 Entry::Bundled(n, text) => Ok((
                     PathBuf::from(format!("derivations/{n}.toml")),
                     text.to_owned(),
                 )),
+                // `resolve` names files and bundled derivations only.
+                Entry::Chain(_) => Err(near),
             }
         })
     };

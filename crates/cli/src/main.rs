@@ -96,6 +96,10 @@ fn dispatch(cli: Cli) -> ExitCode {
         Ok(code) => code,
         Err(err) => match err.downcast_ref::<output::OutputError>() {
             Some(o) if o.is_closed_stdout() => ExitCode::SUCCESS,
+            Some(o) if o.is_input_refusal() => {
+                eprintln!("error: {err:#}");
+                ExitCode::from(2)
+            }
             Some(_) => {
                 eprintln!("error: {err:#}");
                 ExitCode::from(1)

@@ -3,8 +3,9 @@
 //!
 //! A failure to write a result is an [`OutputError`]: `main` ends the
 //! command quietly with exit 0 when standard output was closed by its
-//! reader (`hdot list | head -1`), and with exit 1 on any other write
-//! failure (a full disk, an unwritable `--out`).
+//! reader (`hdot list | head -1`), with exit 2 when the output is one of
+//! the command's inputs (refused before anything is written), and with
+//! exit 1 on any other write failure (a full disk, an unwritable `--out`).
 
 use std::io::Write;
 use std::path::Path;
@@ -35,6 +36,13 @@ impl OutputError {
     /// the command).
     pub fn is_closed_stdout(&self) -> bool {
         self.context == STDOUT && self.source.kind() == std::io::ErrorKind::BrokenPipe
+    }
+
+    /// Whether the output is a file the command read (exit 2: the command
+    /// line is wrong; nothing was written). Every write refuses one
+    /// ([`hdot_num::fsio`]).
+    pub fn is_input_refusal(&self) -> bool {
+        hdot_num::fsio::is_input_refusal(&self.source)
     }
 }
 
@@ -80,10 +88,4 @@ pub fn emit(out: Option<&Path>, text: &str) -> Result<(), OutputError> {
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), OutputError> {
     hdot_num::fsio::write_atomic(path, bytes)
         .map_err(|e| OutputError::new(format!("cannot write {}", path.display()), e))
-}
-
-/// Refuses an output path that is one of the command's inputs (exit 2:
-/// the command line is wrong, nothing was written).
-pub fn refuse_overwriting_inputs(output: &Path, inputs: &[&Path]) -> anyhow::Result<()> {
-    hdot_num::fsio::refuse_overwriting_inputs(output, inputs).map_err(anyhow::Error::from)
 }

@@ -91,21 +91,14 @@ impl ParticleCloud {
 
     /// Reads a CSV file (see the module docs).
     pub fn from_csv_path(path: &Path) -> Result<Self, CsvError> {
-        let bytes = std::fs::read(path).map_err(|e| CsvError {
+        let text = hdot_sym::textfile::read(path).map_err(|e| CsvError {
             file: path.to_path_buf(),
-            line: 0,
+            line: e.line_column().map_or(0, |(l, _)| l),
             field: "-".into(),
-            kind: CsvErrorKind::Io(e.to_string()),
-        })?;
-        let text = String::from_utf8(bytes).map_err(|e| {
-            let ok = e.utf8_error().valid_up_to();
-            let line = e.as_bytes()[..ok].iter().filter(|&&b| b == b'\n').count() + 1;
-            CsvError {
-                file: path.to_path_buf(),
-                line,
-                field: "-".into(),
-                kind: CsvErrorKind::Io(format!("not UTF-8 text (byte {} of the file)", ok + 1)),
-            }
+            kind: CsvErrorKind::Io(match e.line_column() {
+                Some((_, c)) => format!("column {c}: {}", e.message),
+                None => e.message,
+            }),
         })?;
         Self::from_csv_str(path, &text)
     }

@@ -72,8 +72,9 @@ pub struct CsvError {
 /// What is wrong with a CSV field.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum CsvErrorKind {
-    /// The file could not be read.
-    #[error("cannot read file: {0}")]
+    /// The file could not be read, or is not UTF-8 text (the message
+    /// says which, and where).
+    #[error("{0}")]
     Io(String),
     /// Fewer than four fields on the line.
     #[error("missing (expected 4 fields x,y,z,m)")]

@@ -14,8 +14,13 @@
 //!   over, and they hold no earlier content to protect.
 //! - New files get the permissions `0o666` less the process umask, as
 //!   `File::create` would; a replaced file keeps its permissions.
-//! - An output that is an input of the same command is refused
-//!   ([`refuse_overwriting_inputs`]).
+//! - An output that is an input of the same command is refused before
+//!   anything is written: every file the process read through
+//!   [`hdot_sym::textfile::read`] (derivations, the ones scenes name,
+//!   notes manifests, scenes, CSV clouds) is such an input, and
+//!   [`AtomicFile::create`] checks each destination against them
+//!   ([`refuse_overwriting_inputs`]; [`is_input_refusal`] tells the
+//!   refusal from a failure to write).
 
 use std::fs::{File, OpenOptions};
 use std::io::{self, Write};
@@ -76,8 +81,10 @@ pub struct AtomicFile {
 }
 
 impl AtomicFile {
-    /// Starts writing `path` (see the module documentation).
+    /// Starts writing `path` (see the module documentation); refuses a
+    /// file this process has read as an input.
     pub fn create(path: &Path) -> io::Result<AtomicFile> {
+        refuse_overwriting_inputs(path, &hdot_sym::textfile::inputs())?;
         if is_special(path) {
             let f = OpenOptions::new().append(true).open(path)?;
             return Ok(AtomicFile {
@@ -210,21 +217,49 @@ pub fn same_file(a: &Path, b: &Path) -> bool {
     }
 }
 
+/// An output that is an input of the same command (the error inside the
+/// [`io::Error`] of [`refuse_overwriting_inputs`]).
+#[derive(Debug)]
+pub struct OverwritesInput {
+    /// The output asked for.
+    pub output: PathBuf,
+    /// The input it is (links followed).
+    pub input: PathBuf,
+}
+
+impl std::fmt::Display for OverwritesInput {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "the output {} is an input of this command ({}); choose another path",
+            self.output.display(),
+            self.input.display()
+        )
+    }
+}
+
+impl std::error::Error for OverwritesInput {}
+
+/// Whether `e` is the refusal of [`refuse_overwriting_inputs`] (a mistake
+/// of the command line, not a failure to write).
+pub fn is_input_refusal(e: &io::Error) -> bool {
+    e.get_ref().is_some_and(|x| x.is::<OverwritesInput>())
+}
+
 /// Refuses to write `output` when it is one of `inputs` (links followed):
 /// `hdot derive F --out F` would destroy its own input.
-pub fn refuse_overwriting_inputs(output: &Path, inputs: &[&Path]) -> io::Result<()> {
-    if is_special(output) {
+pub fn refuse_overwriting_inputs(output: &Path, inputs: &[impl AsRef<Path>]) -> io::Result<()> {
+    if is_special(output) || !output.exists() {
         return Ok(());
     }
     for input in inputs {
-        if same_file(output, input) {
+        if same_file(output, input.as_ref()) {
             return Err(io::Error::new(
                 io::ErrorKind::AlreadyExists,
-                format!(
-                    "the output {} is an input of this command ({}); choose another path",
-                    output.display(),
-                    input.display()
-                ),
+                OverwritesInput {
+                    output: output.to_path_buf(),
+                    input: input.as_ref().to_path_buf(),
+                },
             ));
         }
     }
@@ -265,7 +300,22 @@ mod tests {
         );
         assert_eq!(std::fs::read_to_string(&real).unwrap(), "new");
         write_atomic(Path::new("/dev/null"), b"x").unwrap();
-        assert!(refuse_overwriting_inputs(&link, &[&real]).is_err());
+        assert!(refuse_overwriting_inputs(&link, &[&real]).is_err_and(|e| is_input_refusal(&e)));
         assert!(refuse_overwriting_inputs(&dir.path().join("other"), &[&real]).is_ok());
+        // A file read through the one reader is refused as an output.
+        let input = dir.path().join("input.toml");
+        std::fs::write(&input, "x = 1").unwrap();
+        write_atomic(&input, b"x = 2").unwrap();
+        hdot_sym::textfile::read(&input).unwrap();
+        let e = write_atomic(&link_to(&input, dir.path()), b"x = 3").unwrap_err();
+        assert!(is_input_refusal(&e), "{e}");
+        assert_eq!(std::fs::read_to_string(&input).unwrap(), "x = 2");
+    }
+
+    #[cfg(unix)]
+    fn link_to(target: &Path, dir: &Path) -> PathBuf {
+        let link = dir.join("input-link.toml");
+        std::os::unix::fs::symlink(target, &link).unwrap();
+        link
     }
 }

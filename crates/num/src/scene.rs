@@ -254,11 +254,14 @@ fn v3(a: V3) -> Vector3<f64> {
 impl Scene {
     /// Reads and validates a scene file.
     pub fn from_path(path: &Path) -> Result<Self, SceneError> {
-        let text = std::fs::read_to_string(path).map_err(|e| SceneError {
+        let text = hdot_sym::textfile::read(path).map_err(|e| SceneError {
             file: path.to_path_buf(),
-            line: 0,
+            line: e.line_column().map_or(0, |(l, _)| l),
             field: "-".into(),
-            message: format!("cannot read file: {e}"),
+            message: match e.line_column() {
+                Some((_, c)) => format!("column {c}: {}", e.message),
+                None => e.message,
+            },
         })?;
         Self::from_str_at(path, &text)
     }

@@ -212,9 +212,19 @@ impl Scene {
     /// [`Scene::from_file`] with the derivation of a derived scene found
     /// by `resolve` (the command line also knows the bundled ones).
     pub fn from_file_with(path: &Path, resolve: Resolve<'_>) -> Result<Scene, SimError> {
-        let text = std::fs::read_to_string(path).map_err(|source| SimError::Io {
-            file: path.to_path_buf(),
-            source,
+        let text = hdot_sym::textfile::read(path).map_err(|e| match (e.io, e.line_column()) {
+            (Some(kind), _) => SimError::Io {
+                file: path.to_path_buf(),
+                source: std::io::Error::new(kind, e.message),
+            },
+            (None, Some((l, c))) => SimError::Parse {
+                file: path.to_path_buf(),
+                message: format!("line {l}, column {c}: {}", e.message),
+            },
+            (None, None) => SimError::Parse {
+                file: path.to_path_buf(),
+                message: e.message,
+            },
         })?;
         Scene::parse_with(&text, path, resolve)
     }

@@ -67,8 +67,7 @@ struct RawChapter {
 /// Reads the manifest at `path` and checks it against `ds`.
 pub fn load(path: &Path, ds: &[Derivation]) -> Result<Course, Diagnostic> {
     let shown = path.display().to_string();
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| Diagnostic::file(&shown, format!("cannot read the notes manifest: {e}")))?;
+    let text = crate::textfile::read(path).map_err(|e| Diagnostic::read(&shown, e))?;
     parse(&shown, &text, ds)
 }
 

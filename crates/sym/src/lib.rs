@@ -54,6 +54,7 @@ pub mod rational;
 pub mod render;
 pub mod subst;
 pub mod symbols;
+pub mod textfile;
 pub mod vector;
 pub mod work;
 

@@ -46,11 +46,6 @@ pub struct DeriveArgs {
 
 pub fn run(args: DeriveArgs) -> anyhow::Result<ExitCode> {
     let dir = catalog::derivations_dir(args.dir.as_deref());
-    if let (Some(out), catalog::Target::Entry(catalog::Entry::File(input))) =
-        (&args.out, catalog::target(&dir, &args.target)?)
-    {
-        output::refuse_overwriting_inputs(out, &[&input])?;
-    }
     let d = match catalog::load(&dir, &args.target)? {
         Ok(d) => d,
         Err(diag) => {

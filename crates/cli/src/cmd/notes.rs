@@ -99,11 +99,11 @@ pub fn run(args: NotesArgs) -> anyhow::Result<ExitCode> {
     let manifest: Option<(PathBuf, String)> = if args.no_manifest {
         None
     } else if let Some(m) = &args.manifest {
-        let text = std::fs::read_to_string(m)
-            .map_err(|e| anyhow::anyhow!("cannot read the notes manifest {}: {e}", m.display()))?;
+        let text = hdot_sym::textfile::read(m)
+            .map_err(|e| anyhow::anyhow!("cannot read the notes manifest: {e}"))?;
         Some((m.clone(), text))
     } else if let [dir] = folders.as_slice() {
-        catalog::manifest(dir)
+        catalog::manifest(dir)?
     } else {
         None
     };

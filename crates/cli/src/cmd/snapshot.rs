@@ -122,6 +122,7 @@ fn load_wanted(paths: &[String]) -> anyhow::Result<Result<Wanted, ExitCode>> {
         let path = match &e {
             Entry::File(p) => shown(p),
             Entry::Bundled(n, _) => format!("derivations/{n}.toml"),
+            Entry::Chain(k) => format!("chain-{k}"),
         };
         if let Some((other, _)) = wanted.get(&file) {
             bail!("{path} and {other} would both be snapshot {file}: rename one");

@@ -59,13 +59,6 @@ pub fn run(args: WorkPrecisionArgs) -> anyhow::Result<ExitCode> {
         text.push_str(&r.csv());
         text.push('\n');
     }
-    for p in [
-        csv.clone(),
-        stem.with_extension("svg"),
-        stem.with_extension("png"),
-    ] {
-        output::refuse_overwriting_inputs(&p, &[&args.scene])?;
-    }
     let mut batch = output::Batch::new();
     batch
         .write(&csv, text.as_bytes())

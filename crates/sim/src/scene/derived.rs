@@ -87,8 +87,7 @@ pub fn resolve_near(scene: &Path, name: &str) -> Result<(PathBuf, String), Strin
     };
     for c in &candidates {
         if c.is_file() {
-            let text = std::fs::read_to_string(c)
-                .map_err(|e| format!("cannot read {}: {e}", c.display()))?;
+            let text = hdot_sym::textfile::read(c).map_err(|e| e.to_string())?;
             return Ok((c.clone(), text));
         }
     }

@@ -65,6 +65,15 @@ impl Diagnostic {
         }
     }
 
+    /// A file that could not be read or decoded ([`crate::textfile`]): at
+    /// its first byte that is not UTF-8, or about the file as a whole.
+    pub fn read(path: &str, e: crate::textfile::ReadError) -> Diagnostic {
+        match &e.at {
+            Some((offset, text)) => Diagnostic::at(path, text, *offset, offset + 1, e.message),
+            None => Diagnostic::file(path, e.message),
+        }
+    }
+
     /// A diagnostic about a file as a whole (no line to show).
     pub fn file(path: &str, message: impl Into<String>) -> Diagnostic {
         Diagnostic {

@@ -66,8 +66,12 @@ impl<'a> Context<'a> {
         &self.frames[self.frame_index(name).expect("frame exists")]
     }
 
+    /// A diagnostic at bytes `start..end`: offsets into the file, or into
+    /// a string's value counted from its content start (mapped past the
+    /// string's escapes, [`super::raw::file_offset`]).
     pub(crate) fn diag(&self, start: usize, end: usize, msg: impl Into<String>) -> Diagnostic {
-        Diagnostic::at(self.path, self.text, start, end, msg)
+        let at = |i| super::raw::file_offset(self.text, i);
+        Diagnostic::at(self.path, self.text, at(start), at(end), msg)
     }
 
     /// The byte offset where the contents of a spanned TOML string begin.
@@ -264,6 +268,17 @@ impl<'a> Context<'a> {
                     sp.start,
                     sp.end,
                     "`axes` must name three axes, such as [\"1\", \"2\", \"3\"]",
+                ));
+            }
+            if let Some(k) = (1..3).find(|&k| a[..k].contains(&a[k])) {
+                let sp = axes.span();
+                return Err(self.diag(
+                    sp.start,
+                    sp.end,
+                    format!(
+                        "`axes` names the axis `{}` twice: the three axes of a frame must differ",
+                        a[k]
+                    ),
                 ));
             }
             frame.axes = [a[0].clone(), a[1].clone(), a[2].clone()];

@@ -257,8 +257,7 @@ pub(crate) fn unfold(abbrevs: &[Abbreviation], p: &Poly) -> Poly {
 /// Loads, runs and checks the derivation file at `path`.
 pub fn load(path: &Path) -> Result<Derivation, Diagnostic> {
     let shown = path.display().to_string();
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| Diagnostic::file(&shown, format!("cannot read the file: {e}")))?;
+    let text = crate::textfile::read(path).map_err(|e| Diagnostic::read(&shown, e))?;
     load_str(&shown, &text)
 }
 
@@ -365,6 +364,16 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
             ));
         }
         let n = s.name.get_ref();
+        if cx.frame_index(n) == Some(0) {
+            return Err(cx.diag_string(
+                &s.name,
+                0,
+                n.len(),
+                format!(
+                    "a step may not be named `{n}`: {n} is the inertial frame, which every derivation has; choose another name"
+                ),
+            ));
+        }
         if cx.symbols.get(n).is_some() || cx.frame_index(n).is_some() {
             return Err(cx.diag_string(
                 &s.name,

@@ -188,6 +188,57 @@ pub(crate) fn parse(path: &str, text: &str) -> Result<RawFile, Diagnostic> {
 /// `text[start..end]` (basic `"…"`, literal `'…'`, and their triple-quoted
 /// forms), in order.
 pub(crate) fn string_contents(text: &str, start: usize, end: usize) -> Vec<(usize, usize)> {
+    literals(text, start, end)
+        .into_iter()
+        .map(|(s, e, _)| (s, e))
+        .collect()
+}
+
+/// Maps an offset into a string's value, written as the string's content
+/// start in the file plus an offset into its unescaped value (as the spans
+/// of parsed expressions are), to the offset in the file: an escape such
+/// as `\t`, `\"` or `\u00e9` takes more bytes in the file than in the
+/// value, and a caret after it would otherwise fall short. Offsets outside
+/// a basic string are returned unchanged.
+pub(crate) fn file_offset(text: &str, pos: usize) -> usize {
+    let bytes = text.as_bytes();
+    let Some((start, end, _)) = literals(text, 0, text.len())
+        .into_iter()
+        .find(|&(s, e, q)| q == b'"' && s <= pos && pos <= e)
+    else {
+        return pos;
+    };
+    let (mut i, mut v) = (start, start);
+    while v < pos && i < end {
+        if bytes[i] != b'\\' {
+            i += 1;
+            v += 1;
+            continue;
+        }
+        let hex = |n: usize| {
+            text.get(i + 2..i + 2 + n)
+                .and_then(|h| u32::from_str_radix(h, 16).ok())
+                .and_then(char::from_u32)
+                .map_or(1, char::len_utf8)
+        };
+        match bytes.get(i + 1) {
+            Some(b'u') => (i, v) = (i + 6, v + hex(4)),
+            Some(b'U') => (i, v) = (i + 10, v + hex(8)),
+            // A line-ending backslash drops the whitespace that follows.
+            Some(b' ' | b'\t' | b'\r' | b'\n') => {
+                i += 1;
+                while i < end && bytes[i].is_ascii_whitespace() {
+                    i += 1;
+                }
+            }
+            _ => (i, v) = (i + 2, v + 1),
+        }
+    }
+    i.min(end)
+}
+
+/// [`string_contents`] with the opening quote of each literal.
+fn literals(text: &str, start: usize, end: usize) -> Vec<(usize, usize, u8)> {
     let bytes = text.as_bytes();
     let mut out = Vec::new();
     let mut i = start;
@@ -211,7 +262,7 @@ pub(crate) fn string_contents(text: &str, start: usize, end: usize) -> Vec<(usiz
                 }
                 j += 1;
             }
-            out.push((cstart, j.min(bytes.len())));
+            out.push((cstart, j.min(bytes.len()), q));
             i = j + open;
         } else if q == b'#' {
             while i < end && bytes[i] != b'\n' {
