@@ -384,6 +384,34 @@ fn simulate_refuses_what_f64_cannot_carry_and_reports_estimates() {
     assert!(text(&out.stderr).contains("not met"));
 }
 
+/// Issue 21 item 10: `work-precision` on a body at rest (every method
+/// exact, no positive error to draw on a log scale) exited 1 on the
+/// chart; it writes the CSV, says why there is no chart, and exits 0.
+#[test]
+fn work_precision_on_a_body_at_rest_succeeds() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("rest.toml");
+    std::fs::write(
+        &scene,
+        "name = \"rest\"\nkind = \"free\"\nt_end = 1.0\n[[body]]\nprincipal_moments = [1.0, 2.0, 2.5]\n\
+         mass = 1.0\n[initial]\nangular_velocity = [0.0, 0.0, 0.0]\n",
+    )
+    .unwrap();
+    let out = hdot(&[
+        "work-precision",
+        scene.to_str().unwrap(),
+        "--min-time",
+        "0",
+        "--out",
+        dir.path().to_str().unwrap(),
+    ]);
+    let so = text(&out.stdout);
+    assert!(out.status.success(), "{so}{}", text(&out.stderr));
+    assert!(so.contains("no chart"), "{so}");
+    assert!(dir.path().join("rest-work-precision.csv").is_file());
+    assert!(!dir.path().join("rest-work-precision.svg").exists());
+}
+
 /// A derived scene run without --tol and --method fits its tolerance to
 /// the default target 1e-8: when that is not met (an inverted pendulum
 /// started at its top, written for the test, whose state at T depends on

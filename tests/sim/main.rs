@@ -32,6 +32,8 @@ mod reference;
 mod integrate;
 // models/mod.rs: the registry's docs table and help list every model.
 mod registry;
+// Issue 21's reproducers: crashes, wrong closed forms, misplaced blame.
+mod reliability;
 // Stability where methods fail (issue 5, item 4).
 mod stability;
 // scene.rs and run.rs: bad input, model choice (snapshots).

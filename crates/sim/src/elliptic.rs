@@ -177,6 +177,10 @@ fn descending(u: f64, m: f64, mc: f64) -> (f64, f64, f64) {
 /// `(sn, cn, dn)(v | m)` for `0 ≤ v ≤ K(m)/2`, `m ≥ 1/2`, by the ascending
 /// Landen transformation; see [`Jacobi`].
 fn ascending(v: f64, m: f64, mc: f64) -> (f64, f64, f64) {
+    if mc.is_nan() || m.is_nan() {
+        // Not a parameter: no transformation would reach m_c < 1e-12.
+        return (f64::NAN, f64::NAN, f64::NAN);
+    }
     if mc < 1e-12 {
         // A&S 16.15: first order in m_c; the next term is O(m_c² e^{4v}),
         // below round-off for v ≤ K/2 (e^{2v} ≤ 4/√m_c).

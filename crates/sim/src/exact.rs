@@ -162,7 +162,7 @@ impl TorqueFree {
         q0: UnitQuaternion<f64>,
         w0: Vector3<f64>,
     ) -> Result<Self, SimError> {
-        let i = moments;
+        let i = unit_scale(moments);
         // Permanent rotation: ω ∥ H exactly (ω along a principal axis, or a
         // sphere). A spin merely close to an axis is not permanent: near the
         // intermediate axis it flips, so the elliptic form takes it.
@@ -198,6 +198,18 @@ impl TorqueFree {
     ) -> Result<Elliptic, SimError> {
         Elliptic::new(moments, q0, w0)
     }
+}
+
+/// The moments scaled by a power of two (exactly) into a range where
+/// their products of three stay finite, when they are not there already:
+/// the torque-free motion depends on their ratios only.
+fn unit_scale(moments: [f64; 3]) -> [f64; 3] {
+    let imax = moments[0].max(moments[1]).max(moments[2]);
+    if !(imax.is_finite() && imax > 0.0) || (1e-50..=1e50).contains(&imax) {
+        return moments;
+    }
+    let s = 2f64.powi(-(imax.log2().round() as i32));
+    moments.map(|m| m * s)
 }
 
 /// # Evaluation

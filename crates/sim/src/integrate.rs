@@ -701,7 +701,9 @@ where
         if last {
             h = t_end - t;
         }
-        if h.abs() <= 10.0 * f64::EPSILON * t.abs().max(1.0) {
+        // A step lost in t's round-off (on the run's own scale: a run of
+        // 1e-15 takes steps of 1e-15).
+        if h.abs() <= 10.0 * f64::EPSILON * t.abs().max(hmax.abs().min(1.0)) {
             return Err(SimError::StepSizeUnderflow { t, h });
         }
         let (ynew, fnew_opt, err) = match method {

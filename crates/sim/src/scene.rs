@@ -382,6 +382,12 @@ impl Scene {
                             "must lie in (0, π)".into(),
                         ));
                     }
+                    if !s.spin.is_finite() {
+                        return Err(bad(
+                            "initial.steady_precession.spin",
+                            format!("{}must be finite, got {}", at_line(text, "spin"), s.spin),
+                        ));
+                    }
                     let phi_dot =
                         SteadyTop::slow_precession_rate(i[2], i[0], weight_arm, s.theta, s.spin)
                             .ok_or_else(|| {
@@ -464,6 +470,25 @@ impl Scene {
                             ));
                         }
                     };
+                    // ω² must not underflow: the invariants and the closed
+                    // forms square it.
+                    let w2 = w0.norm_squared();
+                    if w0.amax() != 0.0 && w2 < 1e-290 {
+                        let (field, key) = if initial.angular_momentum.is_some() {
+                            ("initial.angular_momentum", "angular_momentum")
+                        } else {
+                            ("initial.angular_velocity", "angular_velocity")
+                        };
+                        return Err(bad(
+                            field,
+                            format!(
+                                "{}the angular velocity |ω| = {:e} (in body axes) is so small that \
+                                 ω² underflows f64: rescale the units (moments, time)",
+                                at_line(text, key),
+                                w0.amax()
+                            ),
+                        ));
+                    }
                     let steady = if heavy {
                         detect_steady(i, weight_arm, &q0, &w0)
                     } else {
@@ -606,14 +631,110 @@ impl Scene {
                 ));
             }
         };
-        Ok(Scene {
+        let scene = Scene {
             name: raw.name,
             description: raw.description,
             file: file.to_path_buf(),
             t_end: raw.t_end,
             kind,
+        };
+        scene.check_initial_rates(text)?;
+        Ok(scene)
+    }
+
+    /// Refuses initial rates so large that the phase `|ω| T` over the
+    /// scene's own end time is beyond 2^52 or not finite (f64 time no
+    /// longer resolves one turn), naming the field that gives them and
+    /// its line — not the end time.
+    fn check_initial_rates(&self, text: &str) -> Result<(), SimError> {
+        let w = self.rate_scale();
+        let phase = w * self.t_end;
+        if phase.is_finite() && phase <= 2f64.powi(52) {
+            return Ok(());
+        }
+        let has = |key: &str| line_of(text, key).is_some();
+        let (field, key) = match &self.kind {
+            SceneKind::Free { .. } | SceneKind::HeavyTop { .. } => {
+                if has("angular_momentum") {
+                    (
+                        "initial.angular_momentum".to_string(),
+                        "angular_momentum".to_string(),
+                    )
+                } else if has("angular_velocity") {
+                    (
+                        "initial.angular_velocity".to_string(),
+                        "angular_velocity".to_string(),
+                    )
+                } else {
+                    (
+                        "initial.steady_precession.spin".to_string(),
+                        "spin".to_string(),
+                    )
+                }
+            }
+            SceneKind::FixedAxis { .. } => ("initial.rate".to_string(), "rate".to_string()),
+            SceneKind::Derived(ds) => {
+                let n = ds.y0.len() / 2;
+                let k = (0..n)
+                    .max_by(|&a, &b| ds.y0[n + a].abs().total_cmp(&ds.y0[n + b].abs()))
+                    .unwrap_or(0);
+                let name = ds.model.coordinates()[k].name().to_string();
+                (format!("initial.rates.{name}"), name)
+            }
+        };
+        Err(SimError::BadField {
+            file: self.file.clone(),
+            field: field.clone(),
+            message: format!(
+                "{}the initial rate |ω| = {w:e} gives a phase |ω| T = {phase:e} over t_end = {}, \
+                 beyond 2^52 (f64 time no longer resolves one turn) or not finite: give a \
+                 smaller rate, or rescale the units (moments, masses)",
+                at_line_after(
+                    text,
+                    &key,
+                    if field.starts_with("initial.rates") {
+                        "rates"
+                    } else {
+                        ""
+                    }
+                ),
+                self.t_end
+            ),
         })
     }
+}
+
+/// The 1-based line of the first `key = …` in `text` (at a line's start or
+/// inside an inline table), if any.
+fn line_of(text: &str, key: &str) -> Option<usize> {
+    line_of_after(text, key, "")
+}
+
+/// [`line_of`] among the lines that also contain `context`.
+fn line_of_after(text: &str, key: &str, context: &str) -> Option<usize> {
+    text.lines()
+        .position(|l| {
+            l.contains(context)
+                && l.match_indices(key).any(|(i, _)| {
+                    let before = l[..i].chars().next_back();
+                    let after = l[i + key.len()..].trim_start();
+                    before.is_none_or(|c| c.is_whitespace() || c == '{' || c == ',')
+                        && after.starts_with('=')
+                })
+        })
+        .map(|k| k + 1)
+}
+
+/// `line N: ` for the line of `key`, or nothing when it is not found.
+fn at_line(text: &str, key: &str) -> String {
+    at_line_after(text, key, "")
+}
+
+/// [`at_line`] among the lines that also contain `context`.
+fn at_line_after(text: &str, key: &str, context: &str) -> String {
+    line_of_after(text, key, context)
+        .or_else(|| line_of(text, key))
+        .map_or(String::new(), |n| format!("line {n}: "))
 }
 
 /// Why a free body, heavy top or shaft without `[[body]]` tables is refused.

@@ -59,31 +59,46 @@ pub fn run(args: WorkPrecisionArgs) -> anyhow::Result<ExitCode> {
         text.push_str(&r.csv());
         text.push('\n');
     }
+    // A log–log chart needs a positive error: a scene every method computes
+    // exactly (a body at rest) has none, and gets its CSV alone.
+    let drawable = rows
+        .iter()
+        .any(|r| r.status == "ok" && r.error.is_finite() && r.error > 0.0);
     let mut batch = output::Batch::new();
     batch
         .write(&csv, text.as_bytes())
         .map_err(|e| OutputError::new(format!("cannot write {}", csv.display()), e))?;
-    run::stage_chart(
-        &mut batch,
-        &rows,
-        &stem,
-        &format!("{} (T = {t_end})", scene.name),
-    )
-    .map_err(|e| {
-        OutputError::new(
-            "cannot write the chart",
-            std::io::Error::other(e.to_string()),
+    if drawable {
+        run::stage_chart(
+            &mut batch,
+            &rows,
+            &stem,
+            &format!("{} (T = {t_end})", scene.name),
         )
-    })?;
+        .map_err(|e| {
+            OutputError::new(
+                "cannot write the chart",
+                std::io::Error::other(e.to_string()),
+            )
+        })?;
+    }
     batch
         .commit()
         .map_err(|e| OutputError::new(format!("cannot write {}", stem.display()), e))?;
-    crate::outln!(
-        "wrote {}, {}.svg, {}.png",
-        csv.display(),
-        stem.display(),
-        stem.display()
-    );
+    if drawable {
+        crate::outln!(
+            "wrote {}, {}.svg, {}.png",
+            csv.display(),
+            stem.display(),
+            stem.display()
+        );
+    } else {
+        crate::outln!(
+            "wrote {}; no chart: no run has a positive error at T to draw on a log scale \
+             (every method computes this motion exactly, e.g. a body at rest)",
+            csv.display()
+        );
+    }
     // What the drift columns hold, or why a column is empty.
     let columns = run::drift_columns(&scene)?;
     for (name, column) in [

@@ -77,7 +77,7 @@ impl Shaft {
     /// Closed-form state at time `t` from `y0` at time 0.
     pub fn exact(&self, y0: &[f64; 2], t: f64) -> [f64; 2] {
         let (a, b) = self.coefficients();
-        if b * t.abs() < 1e-300 || b == 0.0 {
+        if (b * t).abs() < 1e-300 {
             return [y0[0] + y0[1] * t + 0.5 * a * t * t, y0[1] + a * t];
         }
         let w_inf = a / b;
