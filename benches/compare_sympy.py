@@ -648,7 +648,7 @@ def bench(args):
         f"{load0[0]:.2f} / {load0[1]:.2f} / {load0[2]:.2f} at the start and "
         f"{load1[0]:.2f} at the end. hdot: median wall time of {args.runs} runs of the whole "
         "process `hdot derive NAME --format latex` (start-up, parse, derive, check, present, "
-        "print), peak resident memory from `wait4`. Peers in process, median of up to "
+        "print), peak resident memory by `/usr/bin/time`. Peers in process, median of up to "
         f"{args.peer_runs} runs: SymPy as `benches/compare_sympy.py` writes the workloads "
         "(sympy.physics.mechanics, expand), SymEngine and Symbolica chain-K's expansion and "
         "d/dt on plain symbols only (no trigonometric reduction, no printing). "
