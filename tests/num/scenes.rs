@@ -268,3 +268,73 @@ fn scene_with_a_csv_cloud_and_a_bad_cloud() {
     assert_eq!((e.line, e.field.as_str()), (1, "cloud[0].file"));
     assert!(e.message.contains("c.csv:3: field `m`"), "{e}");
 }
+
+/// Issue 21: a CSV cloud whose total mass overflows panicked in `hdot
+/// inertia` and `hdot dynamics`; it is an error naming the CSV file.
+#[test]
+fn a_cloud_whose_total_mass_overflows_is_an_error_naming_the_csv() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("big.csv"), "0,0,0,1.7e308\n1,0,0,1.7e308\n").unwrap();
+    let scene_path = dir.path().join("s.toml");
+    let e = Scene::from_str_at(&scene_path, "[[cloud]]\nfile = \"big.csv\"\n").unwrap_err();
+    assert_eq!((e.line, e.field.as_str()), (1, "cloud[0].file"));
+    assert!(
+        e.message.contains("big.csv") && e.message.contains("mass is not finite"),
+        "{e}"
+    );
+    // Finite masses whose second moments overflow: the same, naming the
+    // inertia.
+    std::fs::write(dir.path().join("big.csv"), "1e200,0,0,1\n-1e200,0,0,1\n").unwrap();
+    let e = Scene::from_str_at(&scene_path, "[[cloud]]\nfile = \"big.csv\"\n").unwrap_err();
+    assert!(
+        e.message.contains("big.csv") && e.message.contains("inertia is not finite"),
+        "{e}"
+    );
+}
+
+/// Issue 21: a body of 1 mg and 1 mm printed its inertia tensor as zeros;
+/// the text report prints significant digits however small the body.
+#[test]
+fn small_bodies_print_significant_digits() {
+    let text = "[[body]]\nshape = \"sphere\"\nmass = 1e-6\nradius = 1e-3\n";
+    let s = Scene::from_str_at(Path::new("small.toml"), text).unwrap();
+    let r = hdot_num::report::Report::inertia(&s);
+    // I = (2/5) m r², printed with 6 significant digits.
+    let i = 0.4 * 1e-6 * 1e-6;
+    let printed = r.text(6);
+    assert!(
+        printed.contains(&hdot_num::report::fmt_num_at(i, i, 6)),
+        "{printed}"
+    );
+    // Off-diagonal entries, exactly zero, still print as 0.
+    assert!(printed.contains(" 0 "), "{printed}");
+    let text = "[[body]]\nshape = \"sphere\"\nmass = 1e-13\nradius = 1.0\n";
+    let s = Scene::from_str_at(Path::new("small.toml"), text).unwrap();
+    let printed = hdot_num::report::Report::inertia(&s).text(6);
+    let fmt = |x: f64| hdot_num::report::fmt_num_at(x, x, 6);
+    assert!(
+        printed.contains(&format!("mass              {}", fmt(1e-13))),
+        "{printed}"
+    );
+    assert!(printed.contains(&fmt(0.4e-13)), "{printed}");
+    assert!(fmt(0.4e-13) != "0");
+}
+
+/// Issue 25: a scene of N `[[body]]` tables took time ∝ N² (the line of
+/// each table counted from the start of the file). A large scene loads,
+/// its mass the sum of its bodies'.
+#[test]
+fn a_scene_of_many_bodies_loads() {
+    let n = 20_000;
+    let mut text = String::new();
+    for k in 0..n {
+        text.push_str(&format!(
+            "[[body]]\nshape = \"sphere\"\nmass = 1.0\nradius = 0.1\nposition = [{k}.0, 0.0, 0.0]\n"
+        ));
+    }
+    let s = Scene::from_str_at(Path::new("many.toml"), &text).unwrap();
+    let p = s.body.mass_properties();
+    assert!((p.mass - n as f64).abs() <= 1e-12 * n as f64);
+    let centre = (n - 1) as f64 / 2.0;
+    assert!((p.center.x - centre).abs() <= 1e-9 * centre);
+}

@@ -5,7 +5,9 @@ use nalgebra::{Rotation3, UnitQuaternion, Vector3};
 
 use crate::cloud::ParticleCloud;
 use crate::error::BodyError;
-use crate::inertia::{Inertia, Principal, point_mass_tensor};
+use crate::inertia::Inertia;
+pub use crate::mass::MassProperties;
+use crate::mass::check_mass;
 
 /// Position and attitude of a body's local frame in the world frame.
 ///
@@ -338,23 +340,6 @@ impl Body {
     }
 }
 
-pub(crate) fn check_mass(what: &str, mass: f64) -> Result<(), BodyError> {
-    if !mass.is_finite() {
-        return Err(BodyError::NotFinite {
-            what: what.to_string(),
-            field: "mass",
-            value: mass,
-        });
-    }
-    if mass <= 0.0 {
-        return Err(BodyError::NonPositiveMass {
-            what: what.to_string(),
-            value: mass,
-        });
-    }
-    Ok(())
-}
-
 /// One part of a composite.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Part {
@@ -399,68 +384,5 @@ impl Composite {
     pub fn mass_properties(&self) -> MassProperties {
         let props: Vec<MassProperties> = self.parts.iter().map(Part::mass_properties).collect();
         MassProperties::combine(&props).expect("composite is non-empty with positive masses")
-    }
-}
-
-/// Mass, centre G and inertia about G, all in world axes.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct MassProperties {
-    /// Total mass.
-    pub mass: f64,
-    /// Mass centre G in world coordinates.
-    pub center: Vector3<f64>,
-    /// Inertia about G in world axes.
-    pub inertia_g: Inertia,
-}
-
-impl MassProperties {
-    /// A point mass.
-    pub fn point(mass: f64, at: Vector3<f64>) -> Self {
-        Self {
-            mass,
-            center: at,
-            inertia_g: Inertia::zero(),
-        }
-    }
-
-    /// Inertia about `point` in world axes (parallel-axis theorem).
-    pub fn inertia_about(&self, point: &Vector3<f64>) -> Inertia {
-        self.inertia_g
-            .shifted_from_centre(self.mass, &(self.center - point))
-    }
-
-    /// Inertia about `point` in the axes whose unit vectors (in world
-    /// coordinates) are the columns of `axes`.
-    pub fn inertia_about_in(&self, point: &Vector3<f64>, axes: &Rotation3<f64>) -> Inertia {
-        self.inertia_about(point).in_axes(axes)
-    }
-
-    /// Principal moments and canonical axes about G (world axes).
-    pub fn principal(&self) -> Principal {
-        self.inertia_g.principal()
-    }
-
-    /// Combines parts into one body: total mass, mass-weighted centre,
-    /// inertia about the common centre.
-    pub fn combine(parts: &[MassProperties]) -> Result<Self, BodyError> {
-        if parts.is_empty() {
-            return Err(BodyError::Empty {
-                what: "composite".into(),
-            });
-        }
-        let mass: f64 = parts.iter().map(|p| p.mass).sum();
-        check_mass("composite", mass)?;
-        let center = parts
-            .iter()
-            .fold(Vector3::zeros(), |acc, p| acc + p.center * p.mass)
-            / mass;
-        let m = parts.iter().fold(nalgebra::Matrix3::zeros(), |acc, p| {
-            acc + p.inertia_g.matrix() + point_mass_tensor(p.mass, &(p.center - center))
-        });
-        Ok(Self {
-            mass,
-            center,
-            inertia_g: Inertia::new_unchecked((m + m.transpose()) * 0.5),
-        })
     }
 }

@@ -9,12 +9,13 @@ use std::path::{Path, PathBuf};
 
 use nalgebra::Vector3;
 
-use crate::body::MassProperties;
 use crate::error::{BodyError, CsvError, CsvErrorKind};
+use crate::mass::MassProperties;
 use crate::sums::{Block, LEAF, ParticleSource};
 
 /// Point masses in world coordinates, stored as four arrays.
-/// Invariant: non-empty, positions finite, masses finite and positive.
+/// Invariant: non-empty, positions finite, masses finite and positive,
+/// and the mass properties (total mass, centre, inertia) finite.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ParticleCloud {
     x: Vec<f64>,
@@ -57,7 +58,7 @@ impl ParticleCloud {
                     });
                 }
             }
-            crate::body::check_mass(&what(), m)?;
+            crate::mass::check_mass(&what(), m)?;
             c.x.push(p.x);
             c.y.push(p.y);
             c.z.push(p.z);
@@ -68,7 +69,33 @@ impl ParticleCloud {
                 what: "particle cloud".into(),
             });
         }
+        if let Some((field, value)) = c.overflow() {
+            return Err(BodyError::NotFinite {
+                what: "particle cloud".into(),
+                field,
+                value,
+            });
+        }
         Ok(c)
+    }
+
+    /// The first of the cloud's mass properties that is not finite (the
+    /// sums of finite particles can overflow), with its value: the
+    /// invariant that [`ParticleCloud::mass_properties`] relies on.
+    fn overflow(&self) -> Option<(&'static str, f64)> {
+        let mass: f64 = self.m.iter().sum();
+        if !mass.is_finite() {
+            return Some(("mass", mass));
+        }
+        let p = crate::sums::mass_properties(self).ok()?;
+        if let Some(x) = p.center.iter().find(|x| !x.is_finite()) {
+            return Some(("mass centre", *x));
+        }
+        p.inertia_g
+            .matrix()
+            .iter()
+            .find(|x| !x.is_finite())
+            .map(|x| ("inertia", *x))
     }
 
     /// A cloud from four arrays, checked.
@@ -156,7 +183,12 @@ impl ParticleCloud {
             return Err(err(0, "-", CsvErrorKind::Empty));
         }
         let [x, y, z, m] = cols;
-        Ok(Self { x, y, z, m })
+        let c = Self { x, y, z, m };
+        if let Some((what, _)) = c.overflow() {
+            let field = if what == "mass" { "m" } else { "-" };
+            return Err(err(0, field, CsvErrorKind::Overflow(what)));
+        }
+        Ok(c)
     }
 }
 
@@ -205,6 +237,13 @@ impl ParticleCloud {
         if c.m.is_empty() {
             return Err(BodyError::Empty {
                 what: "particle cloud".into(),
+            });
+        }
+        if let Some((field, value)) = c.overflow() {
+            return Err(BodyError::NotFinite {
+                what: "particle cloud".into(),
+                field,
+                value,
             });
         }
         Ok(c)

@@ -94,4 +94,8 @@ pub enum CsvErrorKind {
     /// No particle in the file.
     #[error("no particles in file")]
     Empty,
+    /// The particles' sums overflow (their total mass, first or second
+    /// moments are not finite), named: `mass`, `mass centre`, `inertia`.
+    #[error("the particles' {0} is not finite (the sums over the file overflow)")]
+    Overflow(&'static str),
 }

@@ -71,6 +71,7 @@ pub mod error;
 pub mod eval;
 pub mod fsio;
 pub mod inertia;
+pub mod mass;
 pub mod report;
 pub mod scene;
 pub mod solve;

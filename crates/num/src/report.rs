@@ -164,13 +164,42 @@ impl Report {
     /// Human-readable form (`--format text`), with `digits` significant
     /// digits.
     pub fn text(&self, digits: usize) -> String {
-        let f = |x: f64| fmt_num(x, digits);
-        let fv = |a: &Vec3| format!("({}, {}, {})", f(a[0]), f(a[1]), f(a[2]));
+        // Round-off of an exact zero prints as 0 relative to the size of
+        // the numbers it stands among, never to an absolute threshold (a
+        // body of 1 mg and 1 mm has moments of 1e-13 that must print):
+        // each group's largest entry, and for the rates the body's own
+        // units (mass m, length L, per second) when the group is all zero.
+        let mag = |xs: &[f64]| xs.iter().fold(0.0_f64, |a, x| a.max(x.abs()));
+        let opt_mag = |xs: &[&Option<Vec3>]| {
+            xs.iter()
+                .copied()
+                .flatten()
+                .fold(0.0_f64, |a, v| a.max(mag(v)))
+        };
+        let moments = mag(&self.principal_moments)
+            .max(mag(&self.inertia_g.concat()))
+            .max(mag(&self.inertia_o.concat()));
+        let length = mag(&self.center)
+            .max(mag(&self.reference))
+            .max((mag(&self.principal_moments) / self.mass).sqrt());
+        let (m, l) = (self.mass, length);
+        let momenta = opt_mag(&[&self.h_g, &self.h_o]).max(m * l * l);
+        let force = opt_mag(&[&self.resultant_force]).max(m * l);
+        let moment = opt_mag(&[&self.resultant_moment, &self.resultant_moment_g]).max(m * l * l);
+        let f = |x: f64, scale: f64| fmt_num_at(x, scale, digits);
+        let fv = |a: &Vec3, scale: f64| {
+            format!(
+                "({}, {}, {})",
+                f(a[0], scale),
+                f(a[1], scale),
+                f(a[2], scale)
+            )
+        };
         let mut s = String::new();
         let _ = writeln!(s, "{}", self.name);
-        let _ = writeln!(s, "  mass              {}", f(self.mass));
-        let _ = writeln!(s, "  centre G          {}", fv(&self.center));
-        let _ = writeln!(s, "  reference O       {}", fv(&self.reference));
+        let _ = writeln!(s, "  mass              {}", f(self.mass, self.mass));
+        let _ = writeln!(s, "  centre G          {}", fv(&self.center, length));
+        let _ = writeln!(s, "  reference O       {}", fv(&self.reference, length));
         for (label, mat) in [
             ("inertia about G", &self.inertia_g),
             ("inertia about O", &self.inertia_o),
@@ -180,38 +209,43 @@ impl Report {
                 let _ = writeln!(
                     s,
                     "    [{:>12} {:>12} {:>12}]",
-                    f(row[0]),
-                    f(row[1]),
-                    f(row[2])
+                    f(row[0], moments),
+                    f(row[1], moments),
+                    f(row[2], moments)
                 );
             }
         }
-        let _ = writeln!(s, "  principal moments {}", fv(&self.principal_moments));
+        let _ = writeln!(
+            s,
+            "  principal moments {}",
+            fv(&self.principal_moments, moments)
+        );
         for (i, a) in self.principal_axes.iter().enumerate() {
-            let _ = writeln!(s, "  principal axis {}  {}", i + 1, fv(a));
+            let _ = writeln!(s, "  principal axis {}  {}", i + 1, fv(a, 1.0));
         }
         if self.h_g.is_some() {
             let _ = writeln!(s, "  problem           {}", self.problem);
         }
-        let opt = |s: &mut String, label: &str, x: &Option<Vec3>| {
+        let opt = |s: &mut String, label: &str, x: &Option<Vec3>, scale: f64| {
             if let Some(x) = x {
-                let _ = writeln!(s, "  {label:<17} {}", fv(x));
+                let _ = writeln!(s, "  {label:<17} {}", fv(x, scale));
             }
         };
-        opt(&mut s, "H_G", &self.h_g);
-        opt(&mut s, "H_O", &self.h_o);
+        opt(&mut s, "H_G", &self.h_g, momenta);
+        opt(&mut s, "H_O", &self.h_o, momenta);
         if let Some(t) = self.kinetic_energy {
-            let _ = writeln!(s, "  kinetic energy    {}", f(t));
+            let _ = writeln!(s, "  kinetic energy    {}", f(t, t.abs().max(m * l * l)));
         }
-        opt(&mut s, "ΣF = m ā", &self.resultant_force);
-        opt(&mut s, "ΣM_O", &self.resultant_moment);
-        opt(&mut s, "ΣM_G = Ḣ_G", &self.resultant_moment_g);
+        opt(&mut s, "ΣF = m ā", &self.resultant_force, force);
+        opt(&mut s, "ΣM_O", &self.resultant_moment, moment);
+        opt(&mut s, "ΣM_G = Ḣ_G", &self.resultant_moment_g, moment);
         if let Some(u) = &self.unknowns
             && !u.is_empty()
         {
+            let scale = u.iter().fold(force.min(moment), |a, (_, x)| a.max(x.abs()));
             let _ = writeln!(s, "  unknowns:");
             for (k, x) in u {
-                let _ = writeln!(s, "    {k:<14} = {}", f(*x));
+                let _ = writeln!(s, "    {k:<14} = {}", f(*x, scale));
             }
         }
         if let Some(e) = &self.unsolved {
@@ -234,10 +268,10 @@ impl Report {
     }
 }
 
-/// `x` with `digits` significant digits; tiny values (round-off of an
-/// exact zero) print as 0.
-pub fn fmt_num(x: f64, digits: usize) -> String {
-    if x == 0.0 || x.abs() < 1e-12 {
+/// `x` with `digits` significant digits; values below 10⁻¹² of `scale`
+/// (round-off of an exact zero among numbers of that size) print as 0.
+pub fn fmt_num_at(x: f64, scale: f64, digits: usize) -> String {
+    if x == 0.0 || x.abs() < 1e-12 * scale.abs() {
         return "0".into();
     }
     let e = x.abs().log10().floor() as i32;

@@ -242,9 +242,20 @@ pub struct Scene {
     pub constraints: Vec<Constraint>,
 }
 
-/// Line (1-based) of a byte offset.
-fn line_of(text: &str, offset: usize) -> usize {
-    text[..offset.min(text.len())].matches('\n').count() + 1
+/// The byte offsets of a text's line breaks, found once, so that the line
+/// of an offset is a binary search: a scene of N bodies asks N times, and
+/// counting from the start each time made loading quadratic in N.
+struct Lines(Vec<usize>);
+
+impl Lines {
+    fn new(text: &str) -> Lines {
+        Lines(text.match_indices('\n').map(|(i, _)| i).collect())
+    }
+
+    /// Line (1-based) of a byte offset.
+    fn of(&self, offset: usize) -> usize {
+        self.0.partition_point(|&nl| nl < offset) + 1
+    }
 }
 
 fn v3(a: V3) -> Vector3<f64> {
@@ -269,9 +280,9 @@ impl Scene {
     /// Parses scene text; `file` names it in errors and anchors relative
     /// cloud paths.
     pub fn from_str_at(file: &Path, text: &str) -> Result<Self, SceneError> {
-        let cx = Cx { file, text };
+        let cx = Cx::new(file, text);
         let raw: RawScene = toml::from_str(text).map_err(|e| {
-            let line = e.span().map(|s| line_of(text, s.start)).unwrap_or(0);
+            let line = e.span().map(|s| cx.lines.of(s.start)).unwrap_or(0);
             cx.err(line, "-", e.message().to_string())
         })?;
         let reference = raw
@@ -290,7 +301,7 @@ impl Scene {
         let problem = match (&raw.motion, &raw.impulse) {
             (Some(_), Some(s)) => {
                 return Err(cx.err(
-                    line_of(text, s.span().start),
+                    cx.lines.of(s.span().start),
                     "impulse",
                     "give [motion] or [impulse], not both".into(),
                 ));
@@ -380,7 +391,7 @@ impl Scene {
         // Unknown scalars by name, with the line that names each.
         let mut names: BTreeMap<String, usize> = BTreeMap::new();
         let mut load = |kind: &str, i: usize, s: &Spanned<RawForce>, couple: bool| {
-            let line = line_of(text, s.span().start);
+            let line = cx.lines.of(s.span().start);
             let l = s.get_ref();
             let f = |n: &str| format!("{kind}[{i}].{n}");
             let point = match (&l.point, couple) {
@@ -457,7 +468,7 @@ impl Scene {
         }
         let mut constraints = Vec::new();
         for (i, s) in raw.constraint.iter().enumerate() {
-            let line = line_of(text, s.span().start);
+            let line = cx.lines.of(s.span().start);
             let c = s.get_ref();
             let f = |n: &str| format!("constraint[{i}].{n}");
             if !matches!(problem, Problem::Impulse { .. }) {
@@ -548,9 +559,9 @@ impl Bodies {
 /// text; other keys are left to the scene's own reader. `file` names the
 /// scene in errors and anchors relative cloud paths.
 pub fn bodies(file: &Path, text: &str) -> Result<Bodies, SceneError> {
-    let cx = Cx { file, text };
+    let cx = Cx::new(file, text);
     let raw: RawBodies = toml::from_str(text).map_err(|e| {
-        let line = e.span().map(|s| line_of(text, s.start)).unwrap_or(0);
+        let line = e.span().map(|s| cx.lines.of(s.start)).unwrap_or(0);
         if let Some(err) = old_body_table(&cx) {
             return err;
         }
@@ -562,7 +573,7 @@ pub fn bodies(file: &Path, text: &str) -> Result<Bodies, SceneError> {
     // Per part: its `of`, the field naming it and the line.
     let mut owners: Vec<(Option<String>, String, usize)> = Vec::new();
     for (i, sb) in raw.body.iter().enumerate() {
-        let line = line_of(text, sb.span().start);
+        let line = cx.lines.of(sb.span().start);
         let b = sb.get_ref();
         let f = |name: &str| format!("body[{i}].{name}");
         owners.push(match &b.of {
@@ -722,7 +733,7 @@ pub fn bodies(file: &Path, text: &str) -> Result<Bodies, SceneError> {
         parts.push(Part::Solid(body));
     }
     for (i, sc) in raw.cloud.iter().enumerate() {
-        let line = line_of(text, sc.span().start);
+        let line = cx.lines.of(sc.span().start);
         let p = file
             .parent()
             .unwrap_or(Path::new("."))
@@ -787,7 +798,7 @@ pub fn bodies(file: &Path, text: &str) -> Result<Bodies, SceneError> {
 /// A part's mass, checked positive and finite (for the parts that are not
 /// primitives, whose mass [`Body::try_new`] checks).
 fn check_part_mass(cx: &Cx<'_>, field: &str, at: &RF, mass: f64) -> Result<f64, SceneError> {
-    crate::body::check_mass("body", mass).map_err(|e| cx.err(cx.line(at), field, e.to_string()))?;
+    crate::mass::check_mass("body", mass).map_err(|e| cx.err(cx.line(at), field, e.to_string()))?;
     Ok(mass)
 }
 
@@ -858,9 +869,18 @@ fn old_body_table(cx: &Cx<'_>) -> Option<SceneError> {
 struct Cx<'a> {
     file: &'a Path,
     text: &'a str,
+    lines: Lines,
 }
 
-impl Cx<'_> {
+impl<'a> Cx<'a> {
+    fn new(file: &'a Path, text: &'a str) -> Cx<'a> {
+        Cx {
+            file,
+            text,
+            lines: Lines::new(text),
+        }
+    }
+
     fn err(&self, line: usize, field: &str, message: String) -> SceneError {
         SceneError {
             file: self.file.to_path_buf(),
@@ -873,7 +893,7 @@ impl Cx<'_> {
     /// The line a value is written on (that of its key, unless the value
     /// itself spans lines).
     fn line<T>(&self, v: &Spanned<T>) -> usize {
-        line_of(self.text, v.span().start)
+        self.lines.of(v.span().start)
     }
 
     /// A number, checked finite.
@@ -941,7 +961,7 @@ fn rotation_of(
     sr: &Spanned<RawRotation>,
 ) -> Result<UnitQuaternion<f64>, SceneError> {
     let r = sr.get_ref();
-    let line = line_of(cx.text, sr.span().start);
+    let line = cx.lines.of(sr.span().start);
     if r.euler_deg.is_some() {
         return Err(cx.err(
             line,

@@ -14,9 +14,9 @@
 
 use nalgebra::Vector3;
 
-use crate::body::MassProperties;
 use crate::error::BodyError;
 use crate::inertia::Inertia;
+use crate::mass::MassProperties;
 
 /// Particles per leaf of the summation tree.
 pub const LEAF: usize = 512;
@@ -349,7 +349,7 @@ pub fn mass_properties<S: ParticleSource + ?Sized>(src: &S) -> Result<MassProper
         });
     }
     let first = moments(src, Vector3::zeros());
-    crate::body::check_mass("particle set", first.mass)?;
+    crate::mass::check_mass("particle set", first.mass)?;
     let center = first.first / first.mass;
     let second = moments(src, center);
     // Correct the (round-off) residual first moment about the centre.

@@ -30,6 +30,7 @@
 
 mod bodies;
 mod declared;
+mod draw;
 mod linear;
 pub mod means;
 pub mod motion;
@@ -42,7 +43,8 @@ use hdot_sym::atom::Atom;
 use hdot_sym::derivation::Derivation;
 
 pub use bodies::{random_body, random_cloud};
-pub use declared::{Draw, Options, Report, StepCheck, check, check_bodies, check_with, symmetric};
+pub use declared::{Options, Report, StepCheck, check, check_bodies, check_with};
+pub use draw::{Draw, symmetric};
 
 use crate::bind::BindError;
 pub use crate::bind::Values;
@@ -83,6 +85,14 @@ pub enum VerifyError {
         /// What is wrong.
         message: String,
     },
+}
+
+/// A declaration the drawn bodies and motions cannot meet.
+pub(crate) fn declaration(d: &Derivation, message: String) -> VerifyError {
+    VerifyError::Declaration {
+        derivation: d.name.clone(),
+        message,
+    }
 }
 
 impl From<BindError> for VerifyError {

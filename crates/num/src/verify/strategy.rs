@@ -56,7 +56,7 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
 use super::bodies::random_body;
-use super::declared::{line_axes, on_axes, symmetric};
+use super::draw::{line_axes, on_axes, symmetric};
 use crate::cloud::ParticleCloud;
 
 /// A body with `symmetry` about the origin (its reference point).

@@ -14,7 +14,7 @@ use hdot_sym::vector::Vec3;
 use nalgebra::{Matrix3, Vector3};
 
 use super::VerifyError;
-use super::declared::Draw;
+use super::draw::Draw;
 use crate::bind::Values;
 
 /// Orders kept in a jet: the value and three time derivatives.
