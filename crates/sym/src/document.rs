@@ -356,6 +356,23 @@ impl Section {
     }
 }
 
+/// What a step labelled `0` whose result is identically zero shows
+/// instead of `0 = 0` (see [`StepBlock::vanishes`]).
+pub const VANISHES: &str = "the formula reduces to 0: the relation holds identically";
+
+/// An output format of the document: it renders what a [`Section`] or a
+/// [`Document`] holds, in its own language and layout, and decides
+/// nothing about the content (every backend shows the same things in the
+/// same order). The backends are listed in [`crate::notes::BACKENDS`].
+pub trait Backend: Sync {
+    /// The format's name (`unicode`, `latex`, `markdown`, `slides`).
+    fn name(&self) -> &'static str;
+    /// One derivation's section on its own, as `hdot derive` writes it.
+    fn section(&self, s: &Section) -> String;
+    /// A whole document (the notes), or `None` for a format without one.
+    fn document(&self, doc: &Document) -> Option<String>;
+}
+
 /// Default title of notes without a manifest.
 pub const DEFAULT_TITLE: &str = "Three-dimensional rigid-body kinetics: the derivations of hdot";
 

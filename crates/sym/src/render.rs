@@ -5,17 +5,16 @@
 //! assumed, the symbols and frames, then every shown step with its
 //! components in textbook form and whether its expectation holds. The
 //! Unicode, LaTeX and Markdown formats are backends over the derivation's
-//! [`Section`] of the document model ([`crate::document`]): Unicode here
-//! ([`unicode_section`]), LaTeX and Markdown in [`crate::notes`] (the same
-//! section the lecture notes print). SymPy and JSON export the steps.
+//! [`Section`] of the document model ([`crate::document`]), one file each
+//! in [`crate::notes`] (the same section the lecture notes print). SymPy
+//! and JSON export the steps.
 
 use std::fmt::Write;
 
 use crate::derivation::{Derivation, Value};
-use crate::document::{Equation, Section, Verdict};
+use crate::document::Section;
 use crate::expr::Expr;
-use crate::print::{self, Latex, Sympy, Unicode, unicode_symbol};
-use crate::prose;
+use crate::print::{self, Latex, Sympy, Unicode};
 use crate::symbols::Decl;
 
 /// The output formats.
@@ -34,133 +33,28 @@ pub enum Format {
     Json,
 }
 
-/// Renders `d` in `format`.
+/// Renders `d` in `format`: the derivation's [`Section`] by the backend
+/// of that name ([`crate::notes::BACKENDS`]), or an export of the steps.
 pub fn render(d: &Derivation, format: Format) -> String {
+    let section = |name: &str| {
+        crate::notes::backend(name)
+            .expect("every section format has a backend")
+            .section(&Section::of(d, None))
+    };
     match format {
-        Format::Unicode => unicode_section(&Section::of(d, None)),
-        Format::Latex => crate::notes::latex_fragment(d),
-        Format::Markdown => crate::notes::markdown_fragment(d),
+        Format::Unicode => section("unicode"),
+        Format::Latex => section("latex"),
+        Format::Markdown => section("markdown"),
         Format::Sympy => sympy(d),
         Format::Json => serde_json::to_string_pretty(&json(d)).expect("JSON of plain data") + "\n",
     }
 }
 
-/// Step labels are part of the document model ([`crate::document`]).
+/// Step labels are part of the document model ([`crate::label`]).
 pub use crate::document::{latex_label, unicode_label};
 
-/// One derivation's section as Unicode text for a terminal (`hdot
-/// derive`): the backend of [`Section`] that [`crate::notes`] renders as
-/// LaTeX and Markdown, showing the same things in the same order.
-pub fn unicode_section(s: &Section) -> String {
-    let mut o = String::new();
-    let title = prose::unicode(&s.title);
-    let _ = writeln!(o, "{title}");
-    let _ = writeln!(o, "{}", "=".repeat(title.chars().count()));
-    let _ = writeln!(o, "Source: {}", prose::unicode(&s.source));
-    if !s.summary.is_empty() {
-        let _ = writeln!(o, "\n{}", prose::unicode(&s.summary));
-    }
-    if !s.assumptions.is_empty() {
-        let _ = writeln!(o, "\nAssumptions:");
-        for a in &s.assumptions {
-            let _ = writeln!(o, "  • {}", prose::unicode(a));
-        }
-    }
-    let names = |ns: &[String]| {
-        ns.iter()
-            .map(|n| unicode_symbol(n, 0))
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
-    let _ = writeln!(o, "\nSymbols:");
-    if !s.constants.is_empty() {
-        let _ = writeln!(o, "  constants: {}", names(&s.constants));
-    }
-    if !s.time.is_empty() {
-        let _ = writeln!(o, "  functions of time: {}", names(&s.time));
-    }
-    for (name, def, doc) in &s.abbreviations {
-        let _ = writeln!(
-            o,
-            "  abbreviation: {} = {}{}",
-            unicode_symbol(name, 0),
-            print::unicode(def),
-            doc_suffix(doc)
-        );
-    }
-    if !s.frames.is_empty() {
-        let _ = writeln!(o, "\nFrames (Ω relative to N, in the frame's own axes):");
-        for f in &s.frames {
-            let c: Vec<String> = f.omega.iter().map(|e| print::unicode(&e.rhs)).collect();
-            let _ = writeln!(
-                o,
-                "  {}: Ω = ({}){}",
-                f.name,
-                c.join(", "),
-                doc_suffix(&f.doc)
-            );
-        }
-    }
-    for (n, st) in s.steps.iter().enumerate() {
-        // The heading: what the step defines, = the formula as written; a
-        // step labelled 0 states that its formula is zero.
-        let heading = if st.heading.is_zero() {
-            format!("{} = 0", st.formula)
-        } else {
-            format!("{} = {}", st.heading.unicode(), st.formula)
-        };
-        let _ = writeln!(o, "\n{}. {heading}{}", n + 1, doc_suffix(&st.doc));
-        if let Some(f) = &st.frame {
-            let _ = writeln!(o, "   (components in frame {f})");
-        }
-        if st.vanishes() {
-            let _ = writeln!(o, "   {VANISHES}");
-        } else {
-            for e in &st.equations {
-                let _ = writeln!(o, "   {}", equation_unicode(e));
-            }
-        }
-        match &st.verdict {
-            Verdict::NoExpectation => {}
-            Verdict::Holds => {
-                let _ = writeln!(o, "   ✓ equals the expected (textbook) form");
-            }
-            Verdict::Fails(f) => {
-                for (expected, difference) in f {
-                    let _ = writeln!(
-                        o,
-                        "   ✗ {}: expected {}; derived − expected = {}",
-                        expected.lhs.unicode(),
-                        print::unicode(&expected.rhs),
-                        print::unicode(&difference.rhs)
-                    );
-                }
-            }
-        }
-    }
-    o
-}
-
-/// What a step labelled `0` whose result is identically zero shows
-/// instead of `0 = 0` (see [`crate::document::StepBlock::vanishes`]).
-pub const VANISHES: &str = "the formula reduces to 0: the relation holds identically";
-
-/// `lhs = rhs` in Unicode; `rhs = 0` for a left side `0`.
-fn equation_unicode(e: &Equation) -> String {
-    if e.lhs.is_zero() {
-        format!("{} = 0", print::unicode(&e.rhs))
-    } else {
-        format!("{} = {}", e.lhs.unicode(), print::unicode(&e.rhs))
-    }
-}
-
-fn doc_suffix(doc: &str) -> String {
-    if doc.is_empty() {
-        String::new()
-    } else {
-        format!("  — {}", prose::unicode(doc))
-    }
-}
+pub use crate::document::VANISHES;
+pub use crate::notes::unicode_section;
 
 /// Prose (titles, summaries, docs) as LaTeX text with its notation set
 /// as math; see [`crate::prose`].

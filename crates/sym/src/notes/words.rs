@@ -1,0 +1,76 @@
+//! Words the backends write around the mathematics: a step's title, the
+//! sentence for a relation that holds identically, sentences with a
+//! capital and a full stop, code and anchors.
+
+use crate::document::StepBlock;
+use crate::escape;
+use crate::prose;
+
+/// A step's title in LaTeX (also Markdown's math): `Step 3: $\\Sigma M$`,
+/// the label as mathematics; only `Step 3` for a step labelled `0` (its
+/// equations read `… = 0`). Number 0 gives the title of a slide without
+/// a doc: the label alone.
+pub(super) fn step_title(n: usize, st: &StepBlock) -> String {
+    if st.heading.is_zero() {
+        if n == 0 {
+            "Equation".to_owned()
+        } else {
+            format!("Step {n}")
+        }
+    } else if n == 0 {
+        format!("${}$", st.heading.latex())
+    } else {
+        format!("Step {n}: ${}$", st.heading.latex())
+    }
+}
+
+/// The sentence that replaces `0 = 0` for a step whose result vanishes
+/// identically, as prose of the backend.
+pub(super) fn vanishes_text(markdown: bool) -> String {
+    let text = capitalise(crate::document::VANISHES);
+    if markdown {
+        format!("*{}.*", prose::markdown(&text))
+    } else {
+        format!("\\emph{{{}.}}", prose::latex(&text))
+    }
+}
+
+/// Code (a formula as written, a file name) for `\texttt`: every
+/// character is kept as it is written, none becomes math.
+pub(super) fn latex_code(s: &str) -> String {
+    escape::latex(s, escape::Latex::Code)
+}
+
+pub(super) fn label_key(name: &str) -> String {
+    name.chars()
+        .map(|c| if c.is_ascii_alphanumeric() { c } else { '-' })
+        .collect()
+}
+
+/// The text with a capital first letter and a final full stop.
+pub(super) fn sentence(s: &str) -> String {
+    let s = capitalise(s.trim());
+    if s.is_empty() || s.ends_with(['.', '!', '?', ':']) {
+        s
+    } else {
+        format!("{s}.")
+    }
+}
+
+/// The text with a capital first letter, unless it begins with notation
+/// that a capital would change: a function name before its argument
+/// (`tan γ = …` stays `tan γ`).
+pub(super) fn capitalise(s: &str) -> String {
+    let first = s
+        .split(|c: char| !c.is_ascii_alphabetic())
+        .next()
+        .unwrap_or("");
+    if prose::FUNCTIONS.contains(&first) && s[first.len()..].starts_with(' ') {
+        return s.to_owned();
+    }
+    let mut cs = s.chars();
+    match cs.next() {
+        Some(c) if c.is_ascii_lowercase() => c.to_ascii_uppercase().to_string() + cs.as_str(),
+        _ => s.to_owned(),
+    }
+}
