@@ -4,13 +4,12 @@
 //! its parent and the root is last (the layout of egg's `RecExpr`). It is
 //! the *shape* of an expression as written or as it should be printed;
 //! arithmetic happens on the canonical [`Poly`], reached by
-//! [`Expr::to_poly`]. `Display` prints source syntax that
+//! [`Expr::to_poly`]. `Display` (in the printer, `print.rs`, which this
+//! file does not import) prints source syntax that
 //! [`crate::Symbols::expr`] parses back to an identical tree.
 //!
 //! Invariant: `Num` holds non-negative rationals (signs are `Neg` nodes);
 //! `Add` and `Mul` have at least two children; `Pow` exponents are ≥ 2.
-
-use std::fmt;
 
 use smallvec::SmallVec;
 
@@ -298,21 +297,5 @@ impl Expr {
 impl PartialEq for Expr {
     fn eq(&self, other: &Expr) -> bool {
         !self.is_empty() && !other.is_empty() && self.same_tree(self.root(), other, other.root())
-    }
-}
-
-/// Source syntax, parsed back by [`crate::Symbols::expr`] to the same tree.
-impl fmt::Display for Expr {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if self.is_empty() {
-            return f.write_str("0");
-        }
-        f.write_str(&crate::print::print(self, &crate::print::Source))
-    }
-}
-
-impl fmt::Debug for Expr {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "Expr({self})")
     }
 }

@@ -796,11 +796,6 @@ impl Poly {
             .filter(|&(i, _)| size[root(&mut parent, i)] == 1)
             .fold(1u64, |n, (_, p)| n.saturating_mul(p.len() as u64))
     }
-
-    /// Source syntax in a stable, name-sorted term order (for messages and JSON).
-    pub fn to_source(&self) -> String {
-        crate::expr::Expr::from_poly(self).to_string()
-    }
 }
 
 /// ln C(n, k) for real arguments, by Stirling's series (relative error far

@@ -750,3 +750,27 @@ pub fn unicode(e: &Expr) -> String {
 pub fn latex(e: &Expr) -> String {
     print(e, &Latex)
 }
+
+/// Source syntax, parsed back by [`crate::Symbols::expr`] to the same tree.
+impl std::fmt::Display for Expr {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.is_empty() {
+            return f.write_str("0");
+        }
+        f.write_str(&print(self, &Source))
+    }
+}
+
+impl std::fmt::Debug for Expr {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "Expr({self})")
+    }
+}
+
+impl crate::poly::Poly {
+    /// Source syntax in a stable, name-sorted term order (for messages and
+    /// JSON): the polynomial's [`Expr`] printed by [`Source`].
+    pub fn to_source(&self) -> String {
+        Expr::from_poly(self).to_string()
+    }
+}
