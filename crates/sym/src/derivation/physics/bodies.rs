@@ -4,7 +4,7 @@
 
 use toml::Spanned;
 
-use super::declare::{constant, parse_spanned, unknown};
+use super::check::{constant, parse_spanned, unknown};
 use super::{Body, Point, PointKind, Symmetry};
 use crate::derivation::eval::{Context, R};
 use crate::derivation::raw::{RawBody, RawPoint};

@@ -4,7 +4,7 @@
 
 use toml::Spanned;
 
-use super::declare::{no_step_names, unknown};
+use super::check::{no_step_names, unknown};
 use super::means::{check_shape, meaning};
 use super::{Physics, PointKind, Rule, RuleValue, StepMeaning};
 use crate::atom::Atom;

@@ -7,6 +7,7 @@ use std::collections::HashSet;
 use toml::Spanned;
 
 use super::bodies::{body, point};
+use super::check::{constant, parse_spanned, unknown};
 use super::conditions::rule;
 use super::means::{check_shape, meaning};
 use super::{FrameMotion, Known, Physics, PointKind, Shape};
@@ -14,8 +15,7 @@ use crate::atom::{Atom, AtomKind};
 use crate::derivation::eval::{Context, R};
 use crate::derivation::raw::{RawFile, RawKnown};
 use crate::derivation::value::Value;
-use crate::parse::{Ast, AstKind};
-use crate::vector::{Mat3, Vec3};
+use crate::vector::Mat3;
 
 /// The frame's rotation (axis, angle) when its matrix is a rotation about
 /// one axis of its parent.
@@ -27,12 +27,6 @@ fn rotation_of(m: &Mat3) -> Option<(usize, Atom)> {
             _ => None,
         }
     })
-}
-
-/// Parses a spanned string; the AST and the byte offset of its contents.
-pub(super) fn parse_spanned(cx: &Context<'_>, s: &Spanned<String>) -> R<(Ast, usize)> {
-    let base = cx.content_start(s);
-    Ok((cx.parse_at(s.get_ref(), base)?, base))
 }
 
 /// Reads the declarations of `raw` (after its symbols and frames).
@@ -171,31 +165,6 @@ pub(crate) fn declarations(cx: &Context<'_>, raw: &RawFile) -> R<Physics> {
     Ok(ph)
 }
 
-pub(super) fn unknown(what: &str, name: &str, known: &[String]) -> String {
-    if known.is_empty() {
-        format!("unknown {what} `{name}`: none is declared")
-    } else {
-        format!("unknown {what} `{name}` (declared: {})", known.join(", "))
-    }
-}
-
-/// Checks `v` uses constants only.
-pub(super) fn constant(cx: &Context<'_>, v: &Vec3, at: &Spanned<String>, key: &str) -> R<()> {
-    if v.0
-        .iter()
-        .any(|p| p.atoms().iter().any(|a| a.is_time_dependent()))
-    {
-        let n = at.get_ref().len();
-        return Err(cx.diag_string(
-            at,
-            0,
-            n,
-            format!("`{key}` must be an expression of constants"),
-        ));
-    }
-    Ok(())
-}
-
 fn known(cx: &Context<'_>, ph: &Physics, k: &RawKnown) -> R<Known> {
     let (ast, base) = parse_spanned(cx, &k.value)?;
     let value = cx.eval(&ast, base)?;
@@ -219,46 +188,4 @@ fn known(cx: &Context<'_>, ph: &Physics, k: &RawKnown) -> R<Known> {
         meaning,
         text: k.means.get_ref().clone(),
     })
-}
-
-/// Refuses a step's name inside a meaning's arguments or a condition:
-/// they are written in the file's symbols (a step would bring its derived
-/// value into what it is compared with).
-pub(super) fn no_step_names(cx: &Context<'_>, ast: &Ast, base: usize) -> R<()> {
-    let mut err = None;
-    walk(ast, &mut |a| {
-        if let AstKind::Name { name, .. } = &a.kind
-            && err.is_none()
-            && cx.is_step(name)
-        {
-            err = Some(cx.at(
-                base,
-                a.span,
-                format!(
-                    "`{name}` is a step: a meaning's arguments and a step's conditions are written in the file's symbols (write what the step stands for, e.g. the impulse's components), so that the derived result is not compared with itself"
-                ),
-            ));
-        }
-    });
-    err.map_or(Ok(()), Err)
-}
-
-/// Calls `f` on `a` and every node below it.
-fn walk(a: &Ast, f: &mut dyn FnMut(&Ast)) {
-    f(a);
-    match &a.kind {
-        AstKind::Num(_) | AstKind::Name { .. } => {}
-        AstKind::Call { args, .. } => args.iter().for_each(|x| walk(x, f)),
-        AstKind::Assign { value, .. } => walk(value, f),
-        AstKind::Vector { items, .. } | AstKind::Add(items) | AstKind::Mul(items) => {
-            items.iter().for_each(|x| walk(x, f))
-        }
-        AstKind::Recip(x) | AstKind::Neg(x) | AstKind::Pow(x, _) | AstKind::Member(x, ..) => {
-            walk(x, f)
-        }
-        AstKind::Cross(x, y) => {
-            walk(x, f);
-            walk(y, f)
-        }
-    }
 }

@@ -12,7 +12,7 @@
 use toml::Spanned;
 
 use super::Physics;
-use super::declare::{no_step_names, parse_spanned, unknown};
+use super::check::{no_step_names, parse_spanned, unknown};
 use crate::atom::Atom;
 use crate::derivation::eval::{Context, R};
 use crate::derivation::value::Value;

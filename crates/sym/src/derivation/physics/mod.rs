@@ -14,9 +14,11 @@
 //! gravity, names, knowns, `[motion]`), `bodies.rs` a `[[point]]` and a
 //! `[[body]]` table, `means.rs` the `means` language (its vocabulary of
 //! quantities, its tree [`Meaning`] and its parser) and `conditions.rs` a
-//! step's meaning with its conditions (`given`, `symmetry`).
+//! step's meaning with its conditions (`given`, `symmetry`); `check.rs`
+//! holds the small checks they share.
 
 mod bodies;
+mod check;
 mod conditions;
 mod declare;
 mod means;
