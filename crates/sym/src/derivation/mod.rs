@@ -29,10 +29,14 @@
 //! assert!(d.all_hold());
 //! ```
 
+mod checks;
+mod context;
 mod error;
 mod eval;
+mod frames;
 pub mod ops;
 pub mod physics;
+mod presentation;
 mod raw;
 mod value;
 
@@ -271,17 +275,9 @@ pub fn load_str(path: &str, text: &str) -> Result<Derivation, Diagnostic> {
 /// [`load_str`] under `limits` (a file's `[limits]` table overrides them).
 pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivation, Diagnostic> {
     let raw = raw::parse(path, text)?;
-    let limits = match &raw.limits {
-        None => limits,
-        Some(l) => Limits {
-            max_terms: l.max_terms.unwrap_or(limits.max_terms),
-            max_work: l.max_work.unwrap_or(limits.max_work),
-            max_exponent: l.max_exponent.unwrap_or(limits.max_exponent),
-            max_bits: l.max_bits.unwrap_or(limits.max_bits),
-        },
-    };
+    let limits = raw.limits.as_ref().map_or(limits, |l| l.over(limits));
     // Runs `f` under the limits; a limit exceeded becomes an error at `at`.
-    let limited = |cx: &eval::Context<'_>,
+    let limited = |cx: &context::Context<'_>,
                    at: &toml::Spanned<String>,
                    what: &str,
                    f: &mut dyn FnMut() -> Result<(), Diagnostic>| {
@@ -301,27 +297,9 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
     let name = Path::new(path)
         .file_stem()
         .map_or_else(|| path.to_owned(), |s| s.to_string_lossy().into_owned());
-    let mut cx = eval::Context::new(path, text);
+    let mut cx = context::Context::new(path, text);
 
-    // Symbols.
-    for (list, decl) in [
-        (&raw.symbols.constants, Decl::Constant),
-        (&raw.symbols.time, Decl::Time),
-        (&raw.symbols.small, Decl::Time),
-    ] {
-        for s in list.iter() {
-            cx.declare(s, decl.clone())?;
-        }
-    }
-    for s in &raw.symbols.small {
-        cx.small.push(Atom::time(s.get_ref(), 0));
-    }
-    for s in &raw.symbols.positive {
-        cx.declare_positive(s)?;
-    }
-    for s in &raw.symbols.order {
-        cx.declare_order(s)?;
-    }
+    cx.declare_symbols(&raw.symbols)?;
     // Abbreviations: time-dependent names standing for an expression.
     let mut abbreviations = Vec::new();
     for a in &raw.abbreviations {

@@ -95,6 +95,18 @@ pub(crate) struct RawLimits {
     pub max_bits: Option<u64>,
 }
 
+impl RawLimits {
+    /// `base` with the settings this table gives.
+    pub fn over(&self, base: crate::limits::Limits) -> crate::limits::Limits {
+        crate::limits::Limits {
+            max_terms: self.max_terms.unwrap_or(base.max_terms),
+            max_work: self.max_work.unwrap_or(base.max_work),
+            max_exponent: self.max_exponent.unwrap_or(base.max_exponent),
+            max_bits: self.max_bits.unwrap_or(base.max_bits),
+        }
+    }
+}
+
 #[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawSymbols {

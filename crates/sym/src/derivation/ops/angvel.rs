@@ -1,7 +1,7 @@
 //! `angvel(B)`: a frame's angular velocity.
 
 use super::{Call, Op};
-use crate::derivation::eval::R;
+use crate::derivation::context::R;
 use crate::derivation::value::Value;
 
 pub(crate) const ANGVEL: Op = Op {

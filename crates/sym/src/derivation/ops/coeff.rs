@@ -1,7 +1,7 @@
 //! `coeff(x, a)` and `jacobian(v, [a, b, …])`: coefficients of symbols.
 
 use super::{Call, Op, coefficient};
-use crate::derivation::eval::R;
+use crate::derivation::context::R;
 use crate::derivation::value::Value;
 use crate::vector::Mat3;
 

@@ -1,7 +1,7 @@
 //! `dt(x)` and `dt_rel(v)`: time derivatives.
 
 use super::{Call, Op};
-use crate::derivation::eval::R;
+use crate::derivation::context::R;
 use crate::derivation::value::Value;
 
 pub(crate) const DT: Op = Op {

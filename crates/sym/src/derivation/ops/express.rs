@@ -1,7 +1,7 @@
 //! `express(v, C)`: a vector in another frame's components.
 
 use super::{Call, Op};
-use crate::derivation::eval::R;
+use crate::derivation::context::R;
 use crate::derivation::value::Value;
 
 pub(crate) const EXPRESS: Op = Op {

@@ -2,7 +2,7 @@
 
 use super::{Call, Op};
 use crate::atom::Atom;
-use crate::derivation::eval::R;
+use crate::derivation::context::R;
 use crate::derivation::value::Value;
 use crate::poly::Poly;
 

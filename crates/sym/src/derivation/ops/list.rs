@@ -1,7 +1,7 @@
 //! `list(e1, e2, …)`: a list of scalars (equations, for `solve`).
 
 use super::{Call, Op};
-use crate::derivation::eval::R;
+use crate::derivation::context::R;
 use crate::derivation::value::Value;
 
 pub(crate) const LIST: Op = Op {

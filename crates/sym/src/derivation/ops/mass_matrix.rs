@@ -4,7 +4,7 @@
 
 use super::{Call, Op, coefficient};
 use crate::atom::Atom;
-use crate::derivation::eval::R;
+use crate::derivation::context::R;
 use crate::derivation::value::Value;
 use crate::poly::Poly;
 

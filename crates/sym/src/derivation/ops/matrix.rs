@@ -1,7 +1,7 @@
 //! Matrices: `inertia(…)`, `principal(…)`/`diag(…)`, `transpose(M)`.
 
 use super::{Call, Op};
-use crate::derivation::eval::R;
+use crate::derivation::context::R;
 use crate::derivation::value::Value;
 use crate::poly::Poly;
 use crate::vector::Mat3;

@@ -26,7 +26,7 @@ mod vector;
 
 pub(crate) use subst::quarter_turns;
 
-use super::eval::{Context, R};
+use super::context::{Context, R};
 use super::value::Value;
 use crate::atom::Atom;
 use crate::parse::{Ast, AstKind, Span};

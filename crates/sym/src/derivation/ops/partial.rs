@@ -1,7 +1,7 @@
 //! `partial(x, q)`: the partial derivative.
 
 use super::{Call, Op};
-use crate::derivation::eval::R;
+use crate::derivation::context::R;
 use crate::derivation::value::Value;
 
 pub(crate) const PARTIAL: Op = Op {

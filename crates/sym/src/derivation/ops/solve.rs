@@ -3,7 +3,7 @@
 
 use super::mass_matrix::system;
 use super::{Call, Op};
-use crate::derivation::eval::R;
+use crate::derivation::context::R;
 use crate::derivation::value::Value;
 use crate::expr::Expr;
 use crate::poly::{Monomial, Poly};

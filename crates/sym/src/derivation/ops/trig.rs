@@ -1,7 +1,7 @@
 //! `sin(θ)`, `cos(θ)` of an angle symbol.
 
 use super::{Call, Op};
-use crate::derivation::eval::R;
+use crate::derivation::context::R;
 use crate::derivation::value::Value;
 use crate::poly::Poly;
 

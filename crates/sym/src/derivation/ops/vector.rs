@@ -1,7 +1,7 @@
 //! `cross(a, b)` and `dot(a, b)`.
 
 use super::{Call, Op};
-use crate::derivation::eval::R;
+use crate::derivation::context::R;
 use crate::derivation::value::Value;
 
 pub(crate) const CROSS: Op = Op {

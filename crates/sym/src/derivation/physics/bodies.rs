@@ -6,7 +6,7 @@ use toml::Spanned;
 
 use super::check::{constant, parse_spanned, unknown};
 use super::{Body, Point, PointKind, Symmetry};
-use crate::derivation::eval::{Context, R};
+use crate::derivation::context::{Context, R};
 use crate::derivation::raw::{RawBody, RawPoint};
 use crate::derivation::value::Value;
 use crate::vector::Vec3;

@@ -5,7 +5,7 @@
 
 use toml::Spanned;
 
-use crate::derivation::eval::{Context, R};
+use crate::derivation::context::{Context, R};
 use crate::parse::{Ast, AstKind};
 use crate::vector::Vec3;
 

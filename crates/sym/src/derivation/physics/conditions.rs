@@ -8,7 +8,7 @@ use super::check::{no_step_names, unknown};
 use super::means::{check_shape, meaning};
 use super::{Physics, PointKind, Rule, RuleValue, StepMeaning};
 use crate::atom::Atom;
-use crate::derivation::eval::{Context, R};
+use crate::derivation::context::{Context, R};
 use crate::derivation::raw::RawStep;
 use crate::derivation::value::Value;
 use crate::parse::AstKind;

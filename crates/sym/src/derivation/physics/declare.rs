@@ -12,7 +12,7 @@ use super::conditions::rule;
 use super::means::{check_shape, meaning};
 use super::{FrameMotion, Known, Physics, PointKind, Shape};
 use crate::atom::{Atom, AtomKind};
-use crate::derivation::eval::{Context, R};
+use crate::derivation::context::{Context, R};
 use crate::derivation::raw::{RawFile, RawKnown};
 use crate::derivation::value::Value;
 use crate::vector::Mat3;

@@ -14,7 +14,7 @@ use toml::Spanned;
 use super::Physics;
 use super::check::{no_step_names, parse_spanned, unknown};
 use crate::atom::Atom;
-use crate::derivation::eval::{Context, R};
+use crate::derivation::context::{Context, R};
 use crate::derivation::value::Value;
 use crate::parse::{Ast, AstKind};
 use crate::poly::Poly;
