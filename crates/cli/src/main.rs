@@ -13,6 +13,7 @@ use clap::{Parser, Subcommand};
 
 mod catalog;
 mod cmd;
+mod html;
 mod output;
 mod review;
 

@@ -122,6 +122,19 @@ pub struct Scene {
     pub t_end: f64,
     /// What moves and how it is supported.
     pub kind: SceneKind,
+    /// A free body's or heavy top's body frame in the axes of its
+    /// `[[body]]` tables (what a drawing of the tables turns with).
+    pub body_frame: Option<BodyFrame>,
+}
+
+/// The body frame of a free body or heavy top, in the tables' axes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BodyFrame {
+    /// Its origin: the mass centre G, or the pivot O of a heavy top.
+    pub origin: Vector3<f64>,
+    /// Its axes (the columns) in the tables' axes: a point `p` of the
+    /// tables is at `axesᵀ (p − origin)` in the body frame.
+    pub axes: Rotation3<f64>,
 }
 
 /// The three kinds of scene.
@@ -274,6 +287,7 @@ impl Scene {
                 Err(bad(field, format!("components must be finite, got {v:?}")))
             }
         };
+        let mut body_frame = None;
         let kind = match raw.kind.as_str() {
             "free" | "heavy-top" => {
                 let all = bodies(file, text)?;
@@ -356,6 +370,10 @@ impl Scene {
                     (*props.inertia_g.matrix(), None, 0.0)
                 };
                 let (moments, axes) = body_axes(&about, axis3).map_err(|m| bad("body", m))?;
+                body_frame = Some(BodyFrame {
+                    origin: props.center - axis3.unwrap_or_else(Vector3::zeros),
+                    axes,
+                });
                 let moments =
                     PrincipalMoments::new(moments).map_err(|e| bad("body", e.to_string()))?;
                 // ω and H are given in the axes of the [[body]] tables; the
@@ -637,6 +655,7 @@ impl Scene {
             file: file.to_path_buf(),
             t_end: raw.t_end,
             kind,
+            body_frame,
         };
         scene.check_initial_rates(text)?;
         Ok(scene)

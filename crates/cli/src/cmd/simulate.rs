@@ -1,5 +1,6 @@
 //! `hdot simulate SCENE`: run a scene with the least exact model (or the one
-//! asked for) and report error, invariant drift, cost and wall time.
+//! asked for) and report error, invariant drift, cost and wall time;
+//! `--html FILE` also writes the run's page (`crate::html`).
 
 use std::io::{BufWriter, IsTerminal, Write};
 use std::path::PathBuf;
@@ -47,6 +48,11 @@ pub struct SimulateArgs {
     /// Also compare a closed-form run with a tight DOP853 run (tol 1e-13).
     #[arg(long)]
     pub check: bool,
+    /// Write a self-contained web page of the run: report, plots against
+    /// time and a 3D view of the body moving (keeps the trajectory in
+    /// memory, bounded by --memory-budget).
+    #[arg(long, value_name = "FILE")]
+    pub html: Option<PathBuf>,
 }
 
 /// Errors of the input (exit 2) as opposed to failures of a run (exit 1).
@@ -90,6 +96,19 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<ExitCode> {
         check: args.check,
     };
     let plan = run::plan(&scene, &request)?;
+    if let Some(page) = &args.html {
+        let mut inputs = vec![args.scene.as_path()];
+        if let hdot_sim::scene::SceneKind::Derived(ds) = &scene.kind {
+            inputs.push(ds.derivation.as_path());
+        }
+        output::refuse_overwriting_inputs(page, &inputs)?;
+        if args.output.as_deref() == Some(page.as_path()) {
+            anyhow::bail!(
+                "--html and --output name the same file {}; choose another path",
+                page.display()
+            );
+        }
+    }
 
     let mut file = match &args.output {
         // Streamed to a temporary file, renamed into place when the run
@@ -136,7 +155,7 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<ExitCode> {
     };
     let mut out = Output {
         stream: file.as_mut().map(|w| w as &mut dyn Write),
-        store: args.trajectory,
+        store: args.trajectory || args.html.is_some(),
         memory_budget: args.memory_budget,
         progress: bar.as_ref().map(|_| &mut tick as &mut dyn FnMut(f64)),
     };
@@ -160,6 +179,19 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<ExitCode> {
             return Ok(ExitCode::from(1));
         }
     };
+    if let Some(path) = &args.html {
+        let source = match crate::catalog::bundled_scene(&args.scene) {
+            Some((_, text)) => text.to_owned(),
+            None => std::fs::read_to_string(&args.scene)?,
+        };
+        let page = crate::html::simulation_page(&scene, &source, &report)?;
+        output::write_atomic(path, page.as_bytes())?;
+    }
+    // The trajectory kept for the page is not printed unless asked for.
+    let mut report = report;
+    if !args.trajectory {
+        report.trajectory = None;
+    }
     let text = if args.format == "json" {
         serde_json::to_string_pretty(&report)? + "\n"
     } else {

@@ -111,6 +111,11 @@ pub struct DerivedScene {
     pub y0: Vec<f64>,
     /// The frame whose attitude and angular velocity are reported.
     pub frame: Option<String>,
+    /// The derivation's declared bodies, each with the frame fixed in it
+    /// followed by that frame's ancestors (what a drawing of the scene's
+    /// `[[body]]` groups turns with: the first whose attitude is a
+    /// function of the state).
+    pub body_frames: Vec<(String, Vec<String>)>,
 }
 
 impl DerivedScene {
@@ -260,12 +265,31 @@ pub(super) fn parse(
             format!("the equations break down at the initial state: {why}"),
         ));
     }
+    let body_frames = d
+        .physics
+        .bodies
+        .iter()
+        .map(|b| {
+            let mut chain = vec![d.frames[b.frame].name.clone()];
+            while let Some((parent, _)) = d
+                .frames
+                .iter()
+                .find(|f| Some(&f.name) == chain.last())
+                .and_then(|f| f.parent.as_ref())
+                && chain.len() <= d.frames.len()
+            {
+                chain.push(parent.clone());
+            }
+            (b.name.clone(), chain)
+        })
+        .collect();
     Ok(DerivedScene {
         derivation: path,
         model: Rc::new(model),
         spec,
         y0,
         frame: raw.frame,
+        body_frames,
     })
 }
 
