@@ -144,6 +144,41 @@ fn every_bundled_scene_writes_a_page_the_browser_accepts() {
         "a run 60 times longer: {size} bytes against {short}"
     );
     pages.push(long);
+    // A body of a tenth of a millimetre and one of ten kilometres: the view
+    // is scaled to each (its scale within a factor 2 of the body's size).
+    for (name, size) in [("tiny", 1e-4f64), ("huge", 1e4)] {
+        let scene = dir.path().join(format!("{name}.toml"));
+        std::fs::write(
+            &scene,
+            format!(
+                "name = \"{name} box\"\nkind = \"free\"\nt_end = 5.0\n[[body]]\nshape = \"prism\"\n\
+                 a = {}\nb = {}\nc = {}\nmass = {}\n[initial]\nangular_velocity = [0.3, 2.0, 0.1]\n",
+                3.0 * size,
+                2.0 * size,
+                size,
+                size.powi(3)
+            ),
+        )
+        .unwrap();
+        let page = dir.path().join(format!("{name}.html"));
+        let out = hdot(&[
+            "simulate",
+            scene.to_str().unwrap(),
+            "--html",
+            page.to_str().unwrap(),
+        ]);
+        assert!(out.status.success(), "{name}: {}", text(&out.stderr));
+        check_page_file(&page);
+        let scale = view_data(&std::fs::read_to_string(&page).unwrap())["scale"]
+            .as_f64()
+            .unwrap();
+        // The box's half-diagonal is √14/2 = 1.87 sizes.
+        assert!(
+            (size..=4.0 * size).contains(&scale),
+            "{name}: scale {scale} for a size {size}"
+        );
+        pages.push(page);
+    }
     browser_check(&pages);
 }
 

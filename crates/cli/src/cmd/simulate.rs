@@ -184,7 +184,16 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<ExitCode> {
             Some((_, text)) => text.to_owned(),
             None => std::fs::read_to_string(&args.scene)?,
         };
-        let page = crate::html::simulation_page(&scene, &source, &report)?;
+        // A non-finite sample is a failure of the run (exit 1), as when
+        // the run itself ends on one.
+        let page = match crate::html::simulation_page(&scene, &source, &report) {
+            Ok(page) => page,
+            Err(e @ crate::html::PageError::NonFinite { .. }) => {
+                eprintln!("error: {e}");
+                return Ok(ExitCode::from(1));
+            }
+            Err(e) => return Err(e.into()),
+        };
         output::write_atomic(path, page.as_bytes())?;
     }
     // The trajectory kept for the page is not printed unless asked for.

@@ -177,33 +177,39 @@ fn split_by_range(plot: Plot) -> Vec<Plot> {
             });
         hi - lo
     };
-    let mut rest = plot.series;
-    let mut out = vec![];
+    // Each curve with its place in the plot, so the parts keep the order.
+    if plot.series.is_empty() {
+        return vec![plot];
+    }
+    let mut rest: Vec<(usize, Series)> = plot.series.into_iter().enumerate().collect();
+    let mut out: Vec<Vec<(usize, Series)>> = vec![];
     while !rest.is_empty() {
-        let top = rest.iter().map(range).fold(0.0f64, f64::max);
-        let (big, small): (Vec<Series>, Vec<Series>) = rest
+        let top = rest.iter().map(|(_, s)| range(s)).fold(0.0f64, f64::max);
+        let (big, small) = rest
             .into_iter()
-            .partition(|s| range(s) * RANGE_RATIO >= top);
+            .partition(|(_, s)| range(s) * RANGE_RATIO >= top);
         out.push(big);
         rest = small;
         if out.len() == 3 && !rest.is_empty() {
             out.push(std::mem::take(&mut rest));
         }
     }
-    if out.len() <= 1 {
-        return vec![Plot {
-            series: out.pop().unwrap_or_default(),
-            ..plot
-        }];
-    }
+    out.sort_by_key(|part| part.first().map_or(0, |(i, _)| *i));
+    let split = out.len() > 1;
     out.into_iter()
-        .map(|series| {
-            let names: Vec<&str> = series.iter().map(|s| s.name.as_str()).collect();
+        .map(|part| {
+            let series: Vec<Series> = part.into_iter().map(|(_, s)| s).collect();
+            let title = if split {
+                let names: Vec<&str> = series.iter().map(|s| s.name.as_str()).collect();
+                format!("{}: {}", plot.title, names.join(", "))
+            } else {
+                plot.title.clone()
+            };
             Plot {
-                title: format!("{}: {}", plot.title, names.join(", ")),
+                title,
                 unit: plot.unit.clone(),
                 series,
-                note: None,
+                note: plot.note.clone(),
             }
         })
         .collect()
