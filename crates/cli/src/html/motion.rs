@@ -3,12 +3,15 @@
 //! screen resolution from its closed form), the series each plot draws,
 //! and the attitude of every drawn frame at every sample.
 
-use hdot_sim::models::free::{FreeBody, Gravity};
 use hdot_sim::nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
-use hdot_sim::run::{self, Model, Report};
+use hdot_sim::run::{self, Report};
 use hdot_sim::scene::{Scene, SceneKind};
+use hdot_sim::systems::free::{FreeBody, Gravity};
 
 use super::PageError;
+
+/// The model whose rows hold Eulerian angles instead of a quaternion.
+const EULER_ANGLES: &str = "euler-angles";
 
 /// Samples of a closed-form run (it records only its end state).
 const CLOSED_FORM_SAMPLES: usize = 2000;
@@ -279,7 +282,7 @@ impl Motion {
         let quaternion = !matches!(
             scene.kind,
             SceneKind::Derived(_) | SceneKind::FixedAxis { .. }
-        ) && report.plan.model != Model::EulerAngles;
+        ) && report.plan.model.name() != EULER_ANGLES;
         let anim = resample(&rows, FRAMES, quaternion);
         let mut m = match &scene.kind {
             SceneKind::Free { moments, .. } | SceneKind::HeavyTop { moments, .. } => {
@@ -358,7 +361,7 @@ fn body_motion(
     anim: &[Vec<f64>],
 ) -> Motion {
     let state = |r: &Vec<f64>| -> [f64; 7] {
-        if report.plan.model == Model::EulerAngles {
+        if report.plan.model.name() == EULER_ANGLES {
             let q = hdot_num::body::eulerian_rotation(r[1], r[2], r[3]).into_inner();
             [q.w, q.i, q.j, q.k, r[4], r[5], r[6]]
         } else {
@@ -368,11 +371,11 @@ fn body_motion(
     let states: Vec<[f64; 7]> = rows.iter().map(state).collect();
     let attitudes: Vec<UnitQuaternion<f64>> = states
         .iter()
-        .map(hdot_sim::models::free::attitude)
+        .map(hdot_sim::systems::free::attitude)
         .collect();
     let mut angles = [vec![], vec![], vec![]];
     for q in &attitudes {
-        let (phi, theta, psi) = hdot_sim::models::euler_angles::angles_from_quaternion(q);
+        let (phi, theta, psi) = hdot_sim::systems::euler_angles::angles_from_quaternion(q);
         angles[0].push(phi);
         angles[1].push(theta);
         angles[2].push(psi);
@@ -392,7 +395,7 @@ fn body_motion(
     let rotations = anim
         .iter()
         .map(|r| {
-            hdot_sim::models::free::attitude(&state(r))
+            hdot_sim::systems::free::attitude(&state(r))
                 .to_rotation_matrix()
                 .matrix()
                 * axes_t.matrix()
