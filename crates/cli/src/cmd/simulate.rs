@@ -101,7 +101,7 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<ExitCode> {
         if let hdot_sim::scene::SceneKind::Derived(ds) = &scene.kind {
             inputs.push(ds.derivation.as_path());
         }
-        output::refuse_overwriting_inputs(page, &inputs)?;
+        hdot_num::fsio::refuse_overwriting_inputs(page, &inputs)?;
         if args.output.as_deref() == Some(page.as_path()) {
             anyhow::bail!(
                 "--html and --output name the same file {}; choose another path",
