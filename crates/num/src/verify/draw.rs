@@ -20,7 +20,7 @@ use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 
 use super::bodies::{axisymmetric, map_particles, mirrored, random_body, random_rotation};
-use super::world::{ORDERS, PointJet};
+use super::jet::{ORDERS, PointJet};
 use super::{VerifyError, declaration};
 use crate::bind::{MeasuredBody, Values, bind_all, declared_equations, nth};
 use crate::cloud::ParticleCloud;

@@ -31,6 +31,7 @@
 mod bodies;
 mod declared;
 mod draw;
+pub mod jet;
 mod linear;
 pub mod means;
 pub mod motion;

@@ -82,12 +82,14 @@ pub(super) fn body_of(
     })
 }
 
+/// The name of the `rigid-body` model (`models/rigid_body.rs`), kept here so
+/// that the reference state's refusal can name it without importing the entry.
+pub const RIGID_BODY_NAME: &str = "rigid-body";
+
 /// The exact or reference state at `t` of a free body or heavy top, and its name.
 pub fn reference_state(scene: &Scene, t: f64) -> Result<([f64; 7], String), SimError> {
     let refuse = |reason: &str| SimError::ModelNotApplicable {
-        model: crate::model::Model(&super::rigid_body::RIGID_BODY)
-            .name()
-            .into(),
+        model: RIGID_BODY_NAME.into(),
         scene: scene.name.clone(),
         reason: reason.into(),
     };

@@ -3,8 +3,8 @@
 //! are measured on the scene by pilot runs ([`pilot_choice`]).
 
 use super::body::{
-    QUATERNION_HEADER, body_of, finish_free, free_body, free_drifts, reference_state,
-    refuse_non_body,
+    QUATERNION_HEADER, RIGID_BODY_NAME, body_of, finish_free, free_body, free_drifts,
+    reference_state, refuse_non_body,
 };
 use crate::model::{
     DEFAULT_TOL, DriftColumns, Integration, Measured, Model, ModelEntry, Outcome, Plan,
@@ -23,7 +23,7 @@ pub static RIGID_BODY: RigidBody = RigidBody;
 
 impl ModelEntry for RigidBody {
     fn name(&self) -> &'static str {
-        "rigid-body"
+        RIGID_BODY_NAME
     }
     fn applies_to(&self) -> &'static str {
         "a free body or a heavy top"
