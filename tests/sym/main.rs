@@ -19,5 +19,6 @@ mod laurent;
 mod notes;
 mod presentation;
 mod snapshots;
+mod speeds;
 mod strategies;
 mod work_budget;

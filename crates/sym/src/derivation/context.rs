@@ -34,6 +34,11 @@ pub(crate) struct Context<'a> {
     pub positive: Vec<Atom>,
     /// Abbreviations declared so far, in order.
     pub abbrevs: Vec<Abbreviation>,
+    /// Generalized speeds and kinematic equations (`speeds.rs`).
+    pub speeds: super::speeds::Speeds,
+    /// The declared bodies, points, gravity and loads, once read (for
+    /// operations such as `kane`).
+    pub physics: super::physics::Physics,
 }
 
 /// A result whose error is located in the file.
@@ -53,6 +58,8 @@ impl<'a> Context<'a> {
             constant_order: Vec::new(),
             positive: Vec::new(),
             abbrevs: Vec::new(),
+            speeds: Default::default(),
+            physics: Default::default(),
         }
     }
 }
@@ -111,6 +118,7 @@ impl Context<'_> {
             (&s.constants, Decl::Constant),
             (&s.time, Decl::Time),
             (&s.small, Decl::Time),
+            (&s.speeds, Decl::Time),
         ] {
             for name in list {
                 self.declare(name, decl.clone())?;

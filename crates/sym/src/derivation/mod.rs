@@ -38,12 +38,14 @@ pub mod ops;
 pub mod physics;
 mod presentation;
 mod raw;
+mod speeds;
 mod value;
 
 use std::collections::HashMap;
 use std::path::Path;
 
 pub use error::Diagnostic;
+pub use speeds::Speeds;
 pub use value::Value;
 
 use crate::atom::Atom;
@@ -79,6 +81,9 @@ pub struct Derivation {
     pub steps: Vec<Step>,
     /// The physical model the file declares (empty without declarations).
     pub physics: physics::Physics,
+    /// The generalized speeds and kinematic equations (empty without
+    /// `[symbols] speeds`).
+    pub speeds: Speeds,
 }
 
 /// A named abbreviation such as ω_z := ψ̇ + φ̇ cos θ.
@@ -247,6 +252,24 @@ impl Derivation {
     pub fn unfold(&self, p: &Poly) -> Poly {
         unfold(&self.abbreviations, p)
     }
+
+    /// The generalized speeds u, in declaration order.
+    pub fn speeds(&self) -> &[Atom] {
+        &self.speeds.speeds
+    }
+
+    /// The kinematic equations q̇ = f(q, u): each coordinate with its rate,
+    /// in the file's order.
+    pub fn kinematic_equations(&self) -> &[(Atom, Poly)] {
+        &self.speeds.kinematics
+    }
+
+    /// The values of step `step`, solved for the speeds' rates, in the
+    /// order of [`Derivation::speeds`] (abbreviations unfolded); an error
+    /// message when the step is not such a list.
+    pub fn speed_rates(&self, step: &str) -> Result<Vec<Poly>, String> {
+        speeds::speed_rates(self, step)
+    }
 }
 
 pub(crate) fn unfold(abbrevs: &[Abbreviation], p: &Poly) -> Poly {
@@ -327,8 +350,10 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
         })?;
         cx.push_frame(cx_frame.expect("built"));
     }
+    speeds::declare(&mut cx, &raw)?;
     // Bodies, points, gravity, knowns, conditions.
     let physics = physics::declarations(&cx, &raw)?;
+    cx.physics = physics.clone();
     // Steps.
     let mut steps = Vec::new();
     let mut seen: HashMap<String, ()> = HashMap::new();
@@ -420,5 +445,6 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
         frames: cx.frames.clone(),
         steps,
         physics,
+        speeds: cx.speeds.clone(),
     })
 }

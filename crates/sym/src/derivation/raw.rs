@@ -34,6 +34,9 @@ pub(crate) struct RawFile {
     #[serde(default, rename = "known")]
     pub knowns: Vec<RawKnown>,
     pub motion: Option<RawMotion>,
+    /// `[kinematics]`: each coordinate's rate in the coordinates and the
+    /// speeds (`speeds.rs`).
+    pub kinematics: Option<std::collections::BTreeMap<Spanned<String>, Spanned<String>>>,
 }
 
 /// `[[point]]` (`physics/bodies.rs`).
@@ -123,6 +126,9 @@ pub(crate) struct RawSymbols {
     /// The order constant factors are written in a product (present.rs).
     #[serde(default)]
     pub order: Vec<Spanned<String>>,
+    /// Generalized speeds, functions of time, in order (`speeds.rs`).
+    #[serde(default)]
+    pub speeds: Vec<Spanned<String>>,
 }
 
 #[derive(Debug, Deserialize)]

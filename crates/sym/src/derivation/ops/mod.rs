@@ -12,6 +12,7 @@ mod angvel;
 mod coeff;
 mod dt;
 mod express;
+mod in_speeds;
 mod lagrange;
 mod linearize;
 mod list;
@@ -63,6 +64,7 @@ pub(crate) static OPS: &[&Op] = &[
     &coeff::JACOBIAN,
     &partial::PARTIAL,
     &lagrange::LAGRANGE,
+    &in_speeds::IN_SPEEDS,
     &list::LIST,
     &solve::SOLVE,
     &mass_matrix::MASS_MATRIX,
