@@ -15,6 +15,7 @@ mod chain;
 mod equations_of_motion;
 mod identities;
 mod injection;
+mod kane;
 mod laurent;
 mod notes;
 mod presentation;

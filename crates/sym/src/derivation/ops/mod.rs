@@ -13,6 +13,7 @@ mod coeff;
 mod dt;
 mod express;
 mod in_speeds;
+mod kane;
 mod lagrange;
 mod linearize;
 mod list;
@@ -65,6 +66,7 @@ pub(crate) static OPS: &[&Op] = &[
     &partial::PARTIAL,
     &lagrange::LAGRANGE,
     &in_speeds::IN_SPEEDS,
+    &kane::KANE,
     &list::LIST,
     &solve::SOLVE,
     &mass_matrix::MASS_MATRIX,

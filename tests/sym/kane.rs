@@ -1,0 +1,181 @@
+//! Kane's method (`kane`): the heavy top three ways — Newton–Euler,
+//! Lagrange and Kane with the angle rates as speeds, and Kane with the
+//! body rates as speeds — equal by canonical equality; and the located
+//! errors of what Kane's method cannot take.
+
+use hdot_sym::derivation::{Value, load_str};
+
+/// The heavy top with fixed tip O, G at l on the axis, inertia about O;
+/// `SPEEDS` and `KINEMATICS` are spliced in.
+const TOP: &str = r#"
+title = "heavy top"
+source = "test"
+gravity = "[0, 0, -g] in N"
+[symbols]
+constants = ["I", "Ip", "m", "g", "l"]
+time = ["phi", "theta", "psi"]
+SPEEDS
+[kinematics]
+KINEMATICS
+[[frame]]
+name = "P"
+parent = "N"
+rotation = "z(phi)"
+[[frame]]
+name = "F"
+parent = "P"
+rotation = "y(theta)"
+[[frame]]
+name = "R"
+parent = "F"
+rotation = "z(psi)"
+[[point]]
+name = "O"
+fixed = true
+[[body]]
+name = "top"
+frame = "R"
+point = "O"
+mass = "m"
+mass_centre = "[0, 0, l] in R"
+inertia = "principal(Ip, Ip, I)"
+[[step]]
+name = "H"
+value = "express(principal(Ip, Ip, I) * angvel(R), F)"
+[[step]]
+name = "newton_euler"
+value = "solve(dt(H) - cross([0, 0, l] in F, m*express([0, 0, -g] in N, F)), [phi'', theta'', psi''])"
+[[step]]
+name = "T"
+value = "dot(angvel(R), principal(Ip, Ip, I) * angvel(R))/2"
+[[step]]
+name = "L"
+value = "lagrange(T, m*g*l*cos(theta), [phi, theta, psi])"
+"#;
+
+fn top(speeds: &str, kinematics: &str, steps: &str) -> hdot_sym::derivation::Derivation {
+    let text = TOP
+        .replace("SPEEDS", speeds)
+        .replace("KINEMATICS", kinematics)
+        + steps;
+    load_str("top.toml", &text).unwrap_or_else(|e| panic!("{e}"))
+}
+
+#[test]
+fn kane_with_the_angle_rates_as_speeds_is_lagrange() {
+    let d = top(
+        "speeds = [\"u1\", \"u2\", \"u3\"]",
+        "phi = \"u1\"\ntheta = \"u2\"\npsi = \"u3\"",
+        r#"
+[[step]]
+name = "K"
+value = "kane([u1, u2, u3])"
+expect = ["in_speeds(L).1", "in_speeds(L).2", "in_speeds(L).3"]
+[[step]]
+name = "rates"
+value = "solve(K, [u1', u2', u3'])"
+expect = ["in_speeds(newton_euler).1", "in_speeds(newton_euler).2", "in_speeds(newton_euler).3"]
+"#,
+    );
+    assert!(d.all_hold(), "{:?}", d.failures());
+    assert_eq!(d.check_count(), 6);
+    let Value::List { items, .. } = &d.steps.iter().find(|s| s.name == "K").unwrap().value else {
+        panic!("a list")
+    };
+    assert!(items.iter().all(|p| !p.is_zero()));
+}
+
+#[test]
+fn kane_with_body_rates_as_speeds_gives_the_same_motion() {
+    // u = Ω of the axes F (which do not spin) plus the spin rate: u1, u2
+    // transverse, u3 = ω_z, the axial component of the top's ω.
+    let d = top(
+        "speeds = [\"u1\", \"u2\", \"u3\"]",
+        "phi = \"-u1/sin(theta)\"\ntheta = \"u2\"\npsi = \"u3 + u1*cos(theta)/sin(theta)\"",
+        r#"
+[[step]]
+name = "omega"
+value = "in_speeds(express(angvel(R), F))"
+expect = ["u1", "u2", "u3"]
+[[step]]
+name = "rates"
+value = "solve(kane([u1, u2, u3]), [u1', u2', u3'])"
+"#,
+    );
+    assert!(d.all_hold(), "{:?}", d.failures());
+    // u̇ from Kane equals the rate of u along Newton–Euler's motion: the
+    // rates of the F-components of ω with the accelerations substituted.
+    let sym = &d.symbols;
+    let get = |n: &str| d.steps.iter().find(|s| s.name == n).unwrap();
+    let Value::List {
+        items: rates,
+        labels,
+    } = &get("rates").value
+    else {
+        panic!()
+    };
+    assert_eq!(labels.len(), 3);
+    let Value::List { items: acc, .. } = &get("newton_euler").value else {
+        panic!()
+    };
+    // ω in F: (−φ̇ sin θ, θ̇, ψ̇ + φ̇ cos θ); its components' rates with
+    // φ̈, θ̈, ψ̈ from Newton–Euler, then written in the speeds.
+    let w = ["-phi'*sin(theta)", "theta'", "psi' + phi'*cos(theta)"];
+    for (k, wk) in w.iter().enumerate() {
+        let wd = sym.poly(wk).unwrap().dt();
+        let wd = wd.subst(&mut |a| match a.name() {
+            "phi" if a.order() == 2 => Some(acc[0].clone()),
+            "theta" if a.order() == 2 => Some(acc[1].clone()),
+            "psi" if a.order() == 2 => Some(acc[2].clone()),
+            _ => None,
+        });
+        let wd = d.speeds.in_speeds(&wd);
+        assert_eq!(rates[k], wd, "u{}'", k + 1);
+    }
+}
+
+fn err(speeds: &str, kinematics: &str, step: &str) -> hdot_sym::derivation::Diagnostic {
+    let text = TOP
+        .replace("SPEEDS", speeds)
+        .replace("KINEMATICS", kinematics)
+        + &format!("[[step]]\nname = \"K\"\nvalue = \"{step}\"\n");
+    load_str("top.toml", &text).unwrap_err()
+}
+
+#[test]
+fn what_kane_cannot_take_is_a_located_error() {
+    let s = "speeds = [\"u1\", \"u2\", \"u3\"]";
+    let k = "phi = \"u1\"\ntheta = \"u2\"\npsi = \"u3\"";
+    let e = err(s, "phi = \"u1\"\ntheta = \"u2\"", "kane([u1, u2, u3])");
+    assert!(e.message.contains("give `psi` a kinematic equation"), "{e}");
+    assert!(e.source_line.contains("kane("), "{e}");
+    let e = err(s, k, "kane([u1, g])");
+    assert!(e.message.contains("`g` is not a declared speed"), "{e}");
+    assert_eq!(e.column, 20, "{e}");
+    let e = err(
+        s,
+        "phi = \"u1^2\"\ntheta = \"u2\"\npsi = \"u3\"",
+        "kane([u1, u2, u3])",
+    );
+    assert!(e.message.contains("not linear in the speeds"), "{e}");
+    let text = TOP
+        .replace("SPEEDS", s)
+        .replace("KINEMATICS", k)
+        .replace("fixed = true", "")
+        + "[[step]]\nname = \"K\"\nvalue = \"kane([u1, u2, u3])\"\n";
+    let e = load_str("top.toml", &text).unwrap_err();
+    assert!(e.message.contains("point `O` moves freely"), "{e}");
+    let text = TOP
+        .replace("SPEEDS", s)
+        .replace("KINEMATICS", k)
+        .replace("mass = \"m\"\n", "")
+        + "[[step]]\nname = \"K\"\nvalue = \"kane([u1, u2, u3])\"\n";
+    let e = load_str("top.toml", &text).unwrap_err();
+    assert!(e.message.contains("body `top` has no `mass`"), "{e}");
+    let text = TOP
+        .replace("SPEEDS", "")
+        .replace("[kinematics]\nKINEMATICS", "")
+        + "[[step]]\nname = \"K\"\nvalue = \"kane([phi])\"\n";
+    let e = load_str("top.toml", &text).unwrap_err();
+    assert!(e.message.contains("needs generalized speeds"), "{e}");
+}
