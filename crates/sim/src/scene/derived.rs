@@ -39,13 +39,14 @@ use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
 use hdot_num::bind::{MeasuredBody, bind_bodies};
-use hdot_num::scene::{Bodies, Group};
+use hdot_num::scene::{Bodies, Group, bodies};
 use hdot_sym::derivation::Derivation;
 use hdot_sym::derivation::physics::{Body, Symmetry};
 use hdot_sym::symbols::Decl;
 use nalgebra::{Matrix3, Vector3};
 use serde::Deserialize;
 
+use super::raw::RawInitial;
 use crate::SimError;
 use crate::systems::derived::{DerivedModel, DerivedSpec, EquationsSpec, TimeFunction};
 
@@ -65,9 +66,9 @@ pub(super) struct RawDerivation {
 
 /// The `[initial]` values of a derived scene.
 #[derive(Debug, Default, Clone)]
-pub(super) struct RawStart {
-    pub coordinates: BTreeMap<String, f64>,
-    pub rates: BTreeMap<String, f64>,
+struct RawStart {
+    coordinates: BTreeMap<String, f64>,
+    rates: BTreeMap<String, f64>,
 }
 
 /// Finds a derivation a scene names: `Ok((shown path, text))`.
@@ -129,7 +130,73 @@ impl DerivedScene {
     }
 }
 
-pub(super) fn parse(
+/// The tables of a derived scene, and whether each table of the built-in
+/// kinds (`[top]`, `[shaft]`, `[motor]`) is given (refused here).
+pub(super) struct Tables {
+    /// `[derivation]`.
+    pub derivation: Option<RawDerivation>,
+    /// `[constants]`.
+    pub constants: BTreeMap<String, f64>,
+    /// `[inputs]`.
+    pub inputs: BTreeMap<String, String>,
+    /// The built-in kinds' tables, and whether each is given.
+    pub builtin: [(&'static str, bool); 3],
+}
+
+/// A derived scene from its tables, its `[initial]` table, and the shared
+/// `[[body]]` tables of `text`.
+pub(super) fn read(
+    tables: Tables,
+    initial: RawInitial,
+    file: &Path,
+    text: &str,
+    resolve: Resolve<'_>,
+) -> Result<DerivedScene, SimError> {
+    let builtin = [
+        ("initial.attitude", initial.attitude.is_some()),
+        ("initial.euler_angles", initial.euler_angles.is_some()),
+        (
+            "initial.angular_momentum",
+            initial.angular_momentum.is_some(),
+        ),
+        (
+            "initial.angular_velocity",
+            initial.angular_velocity.is_some(),
+        ),
+        (
+            "initial.steady_precession",
+            initial.steady_precession.is_some(),
+        ),
+        ("initial.angle", initial.angle.is_some()),
+        ("initial.rate", initial.rate.is_some()),
+    ];
+    if let Some((field, _)) = tables.builtin.iter().chain(&builtin).find(|(_, set)| *set) {
+        return Err(SimError::BadField {
+            file: file.to_path_buf(),
+            field: field.to_string(),
+            message:
+                "a derived scene gives its state as `initial.coordinates` and `initial.rates`, \
+                      its bodies as `[[body]]` tables (or their masses and moments under \
+                      `[constants]`) and g under `[constants]`"
+                    .into(),
+        });
+    }
+    let start = RawStart {
+        coordinates: initial.coordinates.unwrap_or_default(),
+        rates: initial.rates.unwrap_or_default(),
+    };
+    parse(
+        tables.derivation,
+        tables.constants,
+        bodies(file, text)?,
+        tables.inputs,
+        start,
+        file,
+        resolve,
+    )
+}
+
+fn parse(
     raw: Option<RawDerivation>,
     mut constants: BTreeMap<String, f64>,
     bodies: Bodies,
@@ -265,8 +332,21 @@ pub(super) fn parse(
             format!("the equations break down at the initial state: {why}"),
         ));
     }
-    let body_frames = d
-        .physics
+    let body_frames = body_frames(&d);
+    Ok(DerivedScene {
+        derivation: path,
+        model: Rc::new(model),
+        spec,
+        y0,
+        frame: raw.frame,
+        body_frames,
+    })
+}
+
+/// The derivation's declared bodies, each with the frame fixed in it
+/// followed by that frame's ancestors.
+fn body_frames(d: &Derivation) -> Vec<(String, Vec<String>)> {
+    d.physics
         .bodies
         .iter()
         .map(|b| {
@@ -282,15 +362,7 @@ pub(super) fn parse(
             }
             (b.name.clone(), chain)
         })
-        .collect();
-    Ok(DerivedScene {
-        derivation: path,
-        model: Rc::new(model),
-        spec,
-        y0,
-        frame: raw.frame,
-        body_frames,
-    })
+        .collect()
 }
 
 /// The mass-matrix form's coordinates: those the step lists

@@ -1,0 +1,35 @@
+//! Where a key is written in a scene's text: its line, for messages that
+//! name the line of a field the table reader does not locate.
+
+/// The 1-based line of the first `key = …` in `text` (at a line's start or
+/// inside an inline table), if any.
+pub(super) fn line_of(text: &str, key: &str) -> Option<usize> {
+    line_of_after(text, key, "")
+}
+
+/// [`line_of`] among the lines that also contain `context`.
+pub(super) fn line_of_after(text: &str, key: &str, context: &str) -> Option<usize> {
+    text.lines()
+        .position(|l| {
+            l.contains(context)
+                && l.match_indices(key).any(|(i, _)| {
+                    let before = l[..i].chars().next_back();
+                    let after = l[i + key.len()..].trim_start();
+                    before.is_none_or(|c| c.is_whitespace() || c == '{' || c == ',')
+                        && after.starts_with('=')
+                })
+        })
+        .map(|k| k + 1)
+}
+
+/// `line N: ` for the line of `key`, or nothing when it is not found.
+pub(super) fn at_line(text: &str, key: &str) -> String {
+    at_line_after(text, key, "")
+}
+
+/// [`at_line`] among the lines that also contain `context`.
+pub(super) fn at_line_after(text: &str, key: &str, context: &str) -> String {
+    line_of_after(text, key, context)
+        .or_else(|| line_of(text, key))
+        .map_or(String::new(), |n| format!("line {n}: "))
+}

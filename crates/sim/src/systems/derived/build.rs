@@ -1,0 +1,324 @@
+//! Building a [`DerivedModel`] from a derivation and a scene's spec: the
+//! steps that hold the equations, the divisors that can vanish, the
+//! conserved steps and the frames whose attitude can be evaluated.
+
+use std::cell::RefCell;
+
+use hdot_sym::atom::{Atom, AtomKind};
+use hdot_sym::derivation::{Derivation, Step, Value};
+use hdot_sym::poly::Poly;
+use hdot_sym::vector::Mat3;
+use nalgebra::Vector3;
+
+use super::compile::{Resolver, Source};
+use super::{
+    Conserved, DIVISOR_BOUND, DerivedModel, DerivedSpec, Divisor, EquationsSpec, Form,
+    FrameAttitude, FrameChain, MAX_DOF, TimeFunction, energy_reason, err,
+};
+use crate::SimError;
+
+/// # Construction
+impl DerivedModel {
+    /// Compiles the equations `spec` names in `d`.
+    pub fn new(d: &Derivation, spec: &DerivedSpec) -> Result<DerivedModel, SimError> {
+        let (coordinates, outputs) = equations(d, &spec.equations)?;
+        let n = coordinates.len();
+        if n == 0 || n > MAX_DOF {
+            return Err(err(format!(
+                "{}: {n} coordinates; a derived model has 1 to {MAX_DOF}",
+                d.path
+            )));
+        }
+        let inputs: Vec<(String, TimeFunction)> = spec
+            .inputs
+            .iter()
+            .map(|(k, v)| (k.clone(), v.clone()))
+            .collect();
+        let cx = Resolver {
+            d,
+            spec,
+            coordinates: &coordinates,
+            inputs: &inputs,
+        };
+        let polys = unfold(d, &outputs);
+        let (divisors, singular) = divisors(&polys, spec, &coordinates);
+        let compiled = cx.compile(&polys)?;
+        let form = match &spec.equations {
+            EquationsSpec::Explicit { .. } => Form::Explicit(compiled),
+            EquationsSpec::MassMatrix { .. } => Form::MassMatrix(compiled),
+        };
+        let conserved = conserved(d, spec, &cx)?;
+        let frames = frames(d, &cx);
+        Ok(DerivedModel {
+            coordinates,
+            form,
+            inputs,
+            divisors,
+            singular,
+            conserved,
+            frames,
+            scratch: RefCell::new(Vec::new()),
+        })
+    }
+}
+
+/// The polynomials with the derivation's abbreviations expanded.
+fn unfold(d: &Derivation, v: &[Poly]) -> Vec<Poly> {
+    v.iter().map(|p| d.unfold(p)).collect()
+}
+
+/// The step called `name`, or an error listing the steps.
+fn step<'d>(d: &'d Derivation, name: &str) -> Result<&'d Step, SimError> {
+    d.steps.iter().find(|s| s.name == name).ok_or_else(|| {
+        err(format!(
+            "{}: no step named `{name}` (steps: {})",
+            d.path,
+            d.steps
+                .iter()
+                .map(|s| s.name.as_str())
+                .collect::<Vec<_>>()
+                .join(", ")
+        ))
+    })
+}
+
+/// The coordinates and the outputs of one tape: q̈, or M (row-major) then
+/// f (one tape, so that the two share their inputs, sines and products).
+fn equations(d: &Derivation, spec: &EquationsSpec) -> Result<(Vec<Atom>, Vec<Poly>), SimError> {
+    let step = |name: &str| step(d, name);
+    Ok(match spec {
+        EquationsSpec::Explicit { step: name } => {
+            let s = step(name)?;
+            let Value::List { items, labels } = &s.value else {
+                return Err(err(format!(
+                    "{}: step `{name}` is {}, not accelerations solved for (write it as solve(eqs, [q1'', q2'', …]), \
+                         or name a mass_matrix and forcing step)",
+                    d.path,
+                    s.value.describe()
+                )));
+            };
+            if labels.len() != items.len()
+                || labels
+                    .iter()
+                    .any(|a| a.order() != 2 || !a.is_time_dependent())
+            {
+                return Err(err(format!(
+                    "{}: step `{name}` must be solved for second derivatives of time symbols ([q1'', q2'', …])",
+                    d.path
+                )));
+            }
+            (labels.iter().map(|a| a.base()).collect(), items.clone())
+        }
+        EquationsSpec::MassMatrix {
+            mass_matrix,
+            forcing,
+            coordinates,
+        } => {
+            let (sm, sf) = (step(mass_matrix)?, step(forcing)?);
+            let n = coordinates.len();
+            let m = match &sm.value {
+                Value::Array(rows) if rows.len() == n && rows.iter().all(|r| r.len() == n) => {
+                    rows.iter().flatten().cloned().collect::<Vec<_>>()
+                }
+                Value::Matrix(m) if n == 3 => m.0.iter().flatten().cloned().collect(),
+                v => {
+                    return Err(err(format!(
+                        "{}: step `{mass_matrix}` is {}, not an {n}×{n} mass matrix",
+                        d.path,
+                        v.describe()
+                    )));
+                }
+            };
+            let f = match &sf.value {
+                Value::List { items, .. } if items.len() == n => items.clone(),
+                Value::Vector(v, _) if n == 3 => v.0.to_vec(),
+                v => {
+                    return Err(err(format!(
+                        "{}: step `{forcing}` is {}, not a forcing list of {n}",
+                        d.path,
+                        v.describe()
+                    )));
+                }
+            };
+            let coords = coordinates
+                .iter()
+                .map(|c| match d.symbols.get(c) {
+                    Some(hdot_sym::Decl::Time) => Ok(Atom::time(c, 0)),
+                    _ => Err(err(format!(
+                        "{}: `{c}` is not a time symbol of the derivation",
+                        d.path
+                    ))),
+                })
+                .collect::<Result<Vec<_>, _>>()?;
+            (coords, m.into_iter().chain(f).collect())
+        }
+    })
+}
+
+/// The sines and cosines of coordinates the equations divide by, and the
+/// constants whose value makes them singular whatever the state.
+fn divisors(
+    polys: &[Poly],
+    spec: &DerivedSpec,
+    coordinates: &[Atom],
+) -> (Vec<Divisor>, Vec<(String, String)>) {
+    let mut divisors = Vec::new();
+    let mut singular = Vec::new();
+    for p in polys {
+        for (m, _) in p.terms() {
+            for &(a, e) in m.factors() {
+                if e >= 0 {
+                    continue;
+                }
+                // A constant the equations divide by: zero (or an
+                // angle whose sine or cosine is below the divisor
+                // bound) makes them singular whatever the state.
+                if let AtomKind::Var { time: false, .. } = a.kind()
+                    && spec.constants.get(a.name()) == Some(&0.0)
+                    && !singular.iter().any(|(n, _)| n == a.name())
+                {
+                    singular.push((
+                        a.name().to_string(),
+                        format!("the equations divide by the constant `{a}`, and it is 0"),
+                    ));
+                }
+                let (q, sin) = match a.kind() {
+                    AtomKind::Sin(q) => (q, true),
+                    AtomKind::Cos(q) => (q, false),
+                    _ => continue,
+                };
+                if !q.is_time_dependent()
+                    && let Some(&v) = spec.constants.get(q.name())
+                    && !singular.iter().any(|(n, _)| n == q.name())
+                {
+                    let (f, value) = if sin {
+                        ("sin", v.sin())
+                    } else {
+                        ("cos", v.cos())
+                    };
+                    if value.abs() < DIVISOR_BOUND {
+                        singular.push((
+                                q.name().to_string(),
+                                format!(
+                                    "the equations divide by {f}({q}), and with the constant `{q}` = {v} it is {value:.3e}: \
+                                     they are singular for every state (choose another value of `{q}`, or derive the \
+                                     equations for this case)"
+                                ),
+                            ));
+                    }
+                }
+                if let Some(i) = coordinates.iter().position(|&c| c == q) {
+                    let dv = Divisor { coordinate: i, sin };
+                    if !divisors.contains(&dv) {
+                        divisors.push(dv);
+                    }
+                }
+            }
+        }
+    }
+    (divisors, singular)
+}
+
+/// The steps whose values are reported as drifts: those the derivation
+/// marks `conserved = true`, then those the scene adds.
+fn conserved(
+    d: &Derivation,
+    spec: &DerivedSpec,
+    cx: &Resolver<'_>,
+) -> Result<Vec<Conserved>, SimError> {
+    let mut conserved = Vec::new();
+    let mut names: Vec<&String> = d
+        .steps
+        .iter()
+        .filter(|s| s.conserved)
+        .map(|s| &s.name)
+        .collect();
+    for name in &spec.conserved {
+        if !names.contains(&name) {
+            names.push(name);
+        }
+    }
+    for name in names {
+        let s = step(d, name)?;
+        let polys = unfold(d, &s.values().into_iter().cloned().collect::<Vec<_>>());
+        conserved.push(Conserved {
+            name: name.clone(),
+            energy: energy_reason(s),
+            compiled: cx.compile(&polys)?,
+        });
+    }
+    Ok(conserved)
+}
+
+/// The derivation's frames, each with its motion or why its attitude
+/// cannot be evaluated. A frame's attitude is evaluated when it is a
+/// function of the coordinates and inputs (a chain of rotations), or when
+/// the frame is given by a constant angular velocity (turned by
+/// exp(t [ω]×) from N, with which it coincides at t = 0).
+fn frames(d: &Derivation, cx: &Resolver<'_>) -> Vec<(String, Result<FrameChain, String>)> {
+    d
+            .frames
+            .iter()
+            .map(|f| {
+                let omega: Vec<Poly> = f.omega.0.iter().map(|p| d.unfold(p)).collect();
+                let chain = (|| {
+                    let omega = cx.compile(&omega).map_err(|e| e.to_string())?;
+                    let attitude = match &f.parent {
+                        Some((p, r)) => FrameAttitude::Rotation {
+                            parent: d.frames.iter().position(|g| &g.name == p),
+                            rotation: cx
+                                .compile(&r.0.iter().flatten().cloned().collect::<Vec<_>>())
+                                .map_err(|e| e.to_string())?,
+                        },
+                        None if f.omega.0.iter().all(|p| p.is_zero()) => FrameAttitude::Rotation {
+                            parent: None,
+                            rotation: cx
+                                .compile(&Mat3::identity().0.iter().flatten().cloned().collect::<Vec<_>>())
+                                .map_err(|e| e.to_string())?,
+                        },
+                        None if omega.sources.iter().all(|s| matches!(s, Source::Value(_))) => {
+                            let mut w = [0.0; 3];
+                            let mut buf = vec![0.0; omega.tape.slots()];
+                            omega.tape.eval_slots(&mut buf, &mut w, false);
+                            FrameAttitude::Spin(Vector3::from(w))
+                        }
+                        None => {
+                            return Err(format!(
+                                "it is given by its angular velocity, which is not constant ({}), not by a rotation: \
+                                 its attitude is not a function of the coordinates",
+                                f.omega.0.iter().map(|p| p.to_string()).collect::<Vec<_>>().join(", ")
+                            ));
+                        }
+                    };
+                    Ok(FrameChain { attitude, omega })
+                })();
+                (f.name.clone(), chain)
+            })
+            .collect()
+}
+
+/// The coordinates a step `mass_matrix(eqs, [q1'', q2'', …])` (or
+/// `forcing(…)`) was written for, in the order of its columns: `None`
+/// when the step's formula is not such a call with its unknowns in
+/// brackets.
+pub fn step_coordinates(d: &Derivation, step: &str) -> Option<Vec<String>> {
+    use hdot_sym::parse::{AstKind, parse};
+    let s = d.steps.iter().find(|s| s.name == step)?;
+    let ast = parse(&s.formula).ok()?;
+    let AstKind::Call { func, args } = &ast.kind else {
+        return None;
+    };
+    if !matches!(func.as_str(), "mass_matrix" | "forcing") || args.len() != 2 {
+        return None;
+    }
+    let AstKind::Vector { items, frame: None } = &args[1].kind else {
+        return None;
+    };
+    items
+        .iter()
+        .map(|a| match &a.kind {
+            AstKind::Name { name, primes: 2 } => Some(name.clone()),
+            _ => None,
+        })
+        .collect()
+}

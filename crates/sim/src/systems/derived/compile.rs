@@ -1,0 +1,178 @@
+//! Compiling the polynomials of derived equations to a [`Tape`]: where
+//! each atom's value comes from (a coordinate, its rate, sin or cos of
+//! one, a constant folded in, or an applied input), and how the tape's
+//! inputs are gathered from `(t, y)` once planned.
+
+use hdot_num::eval::Tape;
+use hdot_sym::atom::{Atom, AtomKind};
+use hdot_sym::derivation::Derivation;
+use hdot_sym::poly::Poly;
+
+use super::{DerivedSpec, TimeFunction, err};
+use crate::SimError;
+
+/// Where the value of one atom of the compiled equations comes from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Source {
+    /// `y[i]`: coordinate i.
+    Coordinate(usize),
+    /// `y[n + i]`: the rate of coordinate i.
+    Rate(usize),
+    /// sin of coordinate i.
+    SinOf(usize),
+    /// cos of coordinate i.
+    CosOf(usize),
+    /// A constant (or sin/cos of a constant angle).
+    Value(f64),
+    /// Applied input k at time t.
+    Input(usize),
+    /// sin of applied input k.
+    SinInput(usize),
+    /// cos of applied input k.
+    CosInput(usize),
+}
+
+/// A compiled set of polynomials and the source of each of its inputs.
+#[derive(Debug, Clone)]
+pub(super) struct Compiled {
+    pub(super) tape: Tape,
+    pub(super) sources: Vec<Source>,
+    pub(super) gather: Gather,
+}
+
+/// How the inputs of a tape are filled from `(t, y)`, planned once from
+/// the sources: slots copied from the state, one `sin_cos` per angle
+/// whose sine and cosine are both read (one libm call instead of two),
+/// and the rest (applied inputs, unfolded values) one by one: no match on
+/// each atom's source per evaluation.
+#[derive(Debug, Clone, Default)]
+pub(super) struct Gather {
+    /// `slot ← y[index]`.
+    pub(super) copies: Vec<(usize, usize)>,
+    /// `slot ← sin y[i]`, `slot ← cos y[i]`: `(i, sin slot, cos slot)`.
+    pub(super) trig: Vec<(usize, Option<usize>, Option<usize>)>,
+    /// `slot ← source`, evaluated per source.
+    pub(super) other: Vec<(usize, Source)>,
+}
+
+impl Gather {
+    fn plan(sources: &[Source], n: usize) -> Gather {
+        let mut g = Gather::default();
+        for (slot, &s) in sources.iter().enumerate() {
+            match s {
+                Source::Coordinate(i) => g.copies.push((slot, i)),
+                Source::Rate(i) => g.copies.push((slot, n + i)),
+                Source::SinOf(i) | Source::CosOf(i) => {
+                    let k = match g.trig.iter().position(|t| t.0 == i) {
+                        Some(k) => k,
+                        None => {
+                            g.trig.push((i, None, None));
+                            g.trig.len() - 1
+                        }
+                    };
+                    if matches!(s, Source::SinOf(_)) {
+                        g.trig[k].1 = Some(slot);
+                    } else {
+                        g.trig[k].2 = Some(slot);
+                    }
+                }
+                _ => g.other.push((slot, s)),
+            }
+        }
+        g
+    }
+}
+
+pub(super) struct Resolver<'a> {
+    pub(super) d: &'a Derivation,
+    pub(super) spec: &'a DerivedSpec,
+    pub(super) coordinates: &'a [Atom],
+    pub(super) inputs: &'a [(String, TimeFunction)],
+}
+
+impl Resolver<'_> {
+    pub(super) fn compile(&self, polys: &[Poly]) -> Result<Compiled, SimError> {
+        // Constants (and sin, cos of constant angles) are folded into the
+        // coefficients: only the state and the inputs are read per
+        // evaluation. A constant without a value stays an input, and its
+        // source is the error below.
+        let tape = Tape::compile_with(polys, &mut |a| match self.source(a) {
+            Ok(Source::Value(v)) => Some(v),
+            _ => None,
+        });
+        let sources = tape
+            .atoms()
+            .iter()
+            .map(|&a| self.source(a))
+            .collect::<Result<Vec<_>, _>>()?;
+        let gather = Gather::plan(&sources, self.coordinates.len());
+        Ok(Compiled {
+            tape,
+            sources,
+            gather,
+        })
+    }
+
+    pub(super) fn source(&self, a: Atom) -> Result<Source, SimError> {
+        let coord = |q: Atom| self.coordinates.iter().position(|&c| c == q);
+        let input = |q: Atom| self.inputs.iter().position(|(n, _)| n == q.name());
+        let constant = |q: Atom| -> Result<f64, SimError> {
+            self.spec.constants.get(q.name()).copied().ok_or_else(|| {
+                err(format!(
+                    "{}: the constant `{}` has no value: give it under the scene's `[constants]`, or bind it by a `[[body]]` table or the gravity vector `g`",
+                    self.d.path,
+                    q.name()
+                ))
+            })
+        };
+        Ok(match a.kind() {
+            AtomKind::Var { time: false, .. } => Source::Value(constant(a)?),
+            AtomKind::Var { order: 0, .. } if coord(a).is_some() => {
+                Source::Coordinate(coord(a).expect("checked"))
+            }
+            AtomKind::Var { order: 1, .. } if coord(a.base()).is_some() => {
+                Source::Rate(coord(a.base()).expect("checked"))
+            }
+            AtomKind::Var { order: 0, .. } if input(a).is_some() => {
+                Source::Input(input(a).expect("checked"))
+            }
+            AtomKind::Var { .. } => {
+                return Err(err(format!(
+                    "{}: `{a}` is neither a coordinate, its rate, nor an input given as a function of t: \
+                     the equations of motion must be in q and q̇ (coordinates: {})",
+                    self.d.path,
+                    self.coordinates
+                        .iter()
+                        .map(|c| c.name())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                )));
+            }
+            AtomKind::Sin(q) | AtomKind::Cos(q) => {
+                let sin = matches!(a.kind(), AtomKind::Sin(_));
+                if let Some(i) = coord(q) {
+                    if sin {
+                        Source::SinOf(i)
+                    } else {
+                        Source::CosOf(i)
+                    }
+                } else if let Some(k) = input(q) {
+                    if sin {
+                        Source::SinInput(k)
+                    } else {
+                        Source::CosInput(k)
+                    }
+                } else if !q.is_time_dependent() {
+                    let v = constant(q)?;
+                    Source::Value(if sin { v.sin() } else { v.cos() })
+                } else {
+                    return Err(err(format!(
+                        "{}: `{a}` depends on `{}`, which is neither a coordinate nor an input",
+                        self.d.path,
+                        q.name()
+                    )));
+                }
+            }
+        })
+    }
+}
