@@ -254,3 +254,191 @@ fn compiles(h: &str, tex: &str) {
         String::from_utf8_lossy(&out.stdout)
     );
 }
+
+// ------------------------------------------------------ SymPy export --
+
+/// Strings that would end a Python comment or string literal early.
+const PY_HOSTILE: &[&str] = &[
+    "x\nimport os; os.system('id')",
+    "it's \"quoted\" ''' \"\"\" \\",
+    "back\\slash\\\nnew line\\",
+    "\r\n# carriage\u{2028}separator\u{85}next\u{b}\u{c}",
+    "\u{0}nul and \u{1b}[31m escape",
+];
+
+/// A TOML basic string holding `s`: control characters as `\uXXXX`.
+fn toml_str(s: &str) -> String {
+    let mut o = String::from('"');
+    for c in s.chars() {
+        match c {
+            '"' => o.push_str("\\\""),
+            '\\' => o.push_str("\\\\"),
+            c if c.is_control() => o.push_str(&format!("\\u{:04X}", c as u32)),
+            c => o.push(c),
+        }
+    }
+    o.push('"');
+    o
+}
+
+/// A derivation with `h` in every text field, symbols whose names are not
+/// Python identifiers or are Python's own (`x²`, `é`, `ω`, `日本`,
+/// `lambda`, `equations`, `Symbol`, `t_`), and solved steps kept as variables.
+fn python_file(h: &str) -> String {
+    let t = toml_str(h);
+    let label = toml_str(&h.replace(['*', '/', '^'], ""));
+    format!(
+        r#"
+title = {t}
+source = {t}
+summary = {t}
+assumptions = [{t}]
+[symbols]
+constants = ["m", "é", "lambda", "t_", "Symbol", "日本"]
+time = ["x²", "ω", "equations"]
+[[abbreviation]]
+name = "s"
+value = "x² + ω"
+doc = {t}
+[[frame]]
+name = "B"
+doc = {t}
+angular_velocity = "[ω, equations, x²]"
+[[step]]
+name = "H"
+label = {label}
+doc = {t}
+value = "m*é*angvel(B)"
+expect = ["m*é*ω", "m*é*equations", "m*é*x²"]
+[[step]]
+name = {t}
+doc = {t}
+value = "solve(lambda*x²'' - Symbol*t_ + 日本*equations', x²'')"
+[[step]]
+name = "lambda_"
+label = {label}
+value = "mass_matrix(list(lambda*x²'' - Symbol*t_ + m*ω'', é*ω'' + x²), [x²'', ω''])"
+"#
+    )
+}
+
+/// Whether a command runs; when it does not, the test says so and goes on
+/// (unless `CI=true`, where a missing tool fails).
+fn have(cmd: &str, args: &[&str], why: &str) -> bool {
+    let ok = std::process::Command::new(cmd)
+        .args(args)
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if !ok {
+        assert!(
+            std::env::var("CI").as_deref() != Ok("true"),
+            "{cmd} is needed on CI: {why}"
+        );
+        eprintln!("{cmd} not usable: {why} skipped");
+    }
+    ok
+}
+
+#[test]
+fn hostile_strings_and_names_reach_python_as_one_valid_program() {
+    let python = have("python3", &["-c", "import ast"], "the SymPy export's parse");
+    let sympy = python && have("python3", &["-c", "import sympy"], "the SymPy export's run");
+    for h in PY_HOSTILE.iter().chain(HOSTILE) {
+        let d = load_str(h, &python_file(h)).unwrap_or_else(|e| panic!("{h:?}: {e}"));
+        let py = render(&d, Format::Sympy);
+        // Outside string literals no line of the input appears: every line
+        // of the program is one hdot wrote.
+        for line in py.lines() {
+            assert!(
+                !line.trim_start().starts_with("import os"),
+                "{h:?}: the input wrote a line of Python:\n{py}"
+            );
+        }
+        if !python {
+            continue;
+        }
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("d.py");
+        std::fs::write(&path, &py).unwrap();
+        // Parsed as one program whose top level is the statements hdot
+        // writes: the import, and assignments.
+        let check = r#"
+import ast, sys
+tree = ast.parse(open(sys.argv[1], encoding='utf-8').read())
+kinds = {type(s).__name__ for s in tree.body}
+assert kinds <= {'ImportFrom', 'Assign'}, kinds
+"#;
+        let run = |code: &str| {
+            std::process::Command::new("python3")
+                .args(["-c", code])
+                .arg(&path)
+                .output()
+                .unwrap()
+        };
+        let out = run(check);
+        assert!(
+            out.status.success(),
+            "{h:?}: the SymPy export does not parse:\n{}\n{py}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        if sympy {
+            // Run, it builds one equation per component, every symbol by
+            // its own name, and the labels name the steps as written.
+            let exec = r#"
+import sys
+ns = {}
+exec(open(sys.argv[1], encoding='utf-8').read(), ns)
+print(len(ns['equations']), len(ns['labels']))
+from sympy.core.function import AppliedUndef
+eqs = ns['equations']
+names = {s.name for e in eqs for s in e.free_symbols}
+names |= {f.func.__name__ for e in eqs for f in e.atoms(AppliedUndef)}
+names = sorted(names)
+print('|'.join(names))
+"#;
+            let out = run(exec);
+            assert!(
+                out.status.success(),
+                "{h:?}: the SymPy export does not run:\n{}\n{py}",
+                String::from_utf8_lossy(&out.stderr)
+            );
+            let text = String::from_utf8_lossy(&out.stdout);
+            let mut lines = text.lines();
+            let counts = lines.next().unwrap();
+            let shown: usize = d
+                .steps
+                .iter()
+                .filter(|s| s.show)
+                .map(|s| s.components().len())
+                .sum();
+            assert_eq!(counts, format!("{shown} {shown}"), "{h:?}:\n{py}");
+            let names: Vec<&str> = lines.next().unwrap().split('|').collect();
+            for n in ["m", "é", "lambda", "t_", "Symbol", "日本", "equations"] {
+                assert!(
+                    names.contains(&n),
+                    "{h:?}: {n} missing from {names:?}\n{py}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn symbol_names_outside_ascii_typeset_with_pdflatex() {
+    let d = load_str("names", &python_file("names")).unwrap();
+    let fragment = render(&d, Format::Latex);
+    // Only ASCII and Latin-1 letters reach pdflatex (a comment aside).
+    for l in fragment
+        .lines()
+        .filter(|l| !l.trim_start().starts_with('%'))
+    {
+        assert!(
+            l.chars().all(|c| c.is_ascii() || matches!(c, 'À'..='ÿ')),
+            "a character pdflatex cannot set, written raw:\n{l}"
+        );
+    }
+    assert!(fragment.contains(r"\mathrm{\text{[U+65E5]}\text{[U+672C]}}"));
+    let course = Course::plain(std::slice::from_ref(&d));
+    let doc = course.document(std::slice::from_ref(&d));
+    compiles("non-ASCII names", &notes::latex_document(&doc));
+}

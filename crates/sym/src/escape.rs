@@ -1,9 +1,11 @@
 //! Escaping: how any string of a file is written in each output language,
 //! in one place. [`latex`] for LaTeX (text, typewriter code, math, a
-//! comment line), [`markdown`] and [`markdown_code`] for Markdown; every
-//! field of every backend that is not built from expression trees goes
-//! through one of them, so no string a user wrote reaches an output as
-//! commands (`\input`, `\write18`, `\def`, unbalanced braces, HTML).
+//! comment line), [`markdown`] and [`markdown_code`] for Markdown,
+//! [`python_str`], [`python_comment`] and [`python_name`] for the SymPy
+//! export; every field of every backend that is not built from expression
+//! trees goes through one of them, so no string a user wrote reaches an
+//! output as commands (`\input`, `\write18`, `\def`, unbalanced braces,
+//! HTML, a line of Python).
 //!
 //! The tables of how a Unicode character is written in LaTeX (Greek
 //! letters are in [`crate::symbols`]) live here too: operators and arrows
@@ -19,7 +21,13 @@
 //! assert_eq!(latex(r"\def\x{\x}", Latex::Math), r"\backslash def\backslash x\{\backslash x\}");
 //! assert_eq!(latex("a'b, c", Latex::Code), r"a\textquotesingle{}b,\allowbreak{} c");
 //! assert_eq!(markdown_code("a `b`"), "`` a `b` ``");
+//! use hdot_sym::escape::{python_comment, python_name, python_str};
+//! assert_eq!(python_str("it's\n"), r"'it\'s\n'");
+//! assert_eq!(python_comment("a\nimport os"), "a import os");
+//! assert_eq!(python_name("ωx"), "_u3c9_x");
 //! ```
+
+use std::fmt::Write as _;
 
 use crate::symbols;
 
@@ -183,6 +191,63 @@ pub fn markdown_code(s: &str) -> String {
         let fence = "`".repeat(longest + 1);
         format!("{fence} {s} {fence}")
     }
+}
+
+/// A Python string literal holding `s`: single-quoted, with `\\`, `'`
+/// and every control or line-separator character as an escape, so that
+/// the literal ends where it should whatever `s` holds.
+pub fn python_str(s: &str) -> String {
+    let mut o = String::with_capacity(s.len() + 2);
+    o.push('\'');
+    for c in s.chars() {
+        match c {
+            '\\' => o.push_str(r"\\"),
+            '\'' => o.push_str(r"\'"),
+            '\n' => o.push_str(r"\n"),
+            '\r' => o.push_str(r"\r"),
+            '\t' => o.push_str(r"\t"),
+            c if c.is_control() || matches!(c, '\u{2028}' | '\u{2029}') => {
+                let _ = write!(o, "\\u{:04x}", c as u32);
+            }
+            c => o.push(c),
+        }
+    }
+    o.push('\'');
+    o
+}
+
+/// The text of a Python comment line: control and line-separator
+/// characters (which could end the comment) as spaces.
+pub fn python_comment(s: &str) -> String {
+    s.chars()
+        .map(|c| {
+            if c.is_control() || matches!(c, '\u{2028}' | '\u{2029}') {
+                ' '
+            } else {
+                c
+            }
+        })
+        .collect()
+}
+
+/// An ASCII Python identifier spelling `s`: ASCII letters, digits and `_`
+/// as themselves, any other character as `_u<hex>_`, and a leading digit
+/// (or an empty name) after a `_`. Distinct names without `_u` give
+/// distinct identifiers; callers that must avoid every clash (keywords,
+/// their own names) still check what they give out.
+pub fn python_name(s: &str) -> String {
+    let mut o = String::with_capacity(s.len());
+    if s.chars().next().is_none_or(|c| c.is_ascii_digit()) {
+        o.push('_');
+    }
+    for c in s.chars() {
+        if c.is_ascii_alphanumeric() || c == '_' {
+            o.push(c);
+        } else {
+            let _ = write!(o, "_u{:x}_", c as u32);
+        }
+    }
+    o
 }
 
 // ------------------------------------------------------------- tables --

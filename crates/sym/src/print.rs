@@ -479,10 +479,13 @@ fn latex_base(base: &str) -> String {
     if let Some(c) = primed_base(base) {
         return format!("{c}'");
     }
-    if base.chars().count() == 1 {
-        base.to_owned()
-    } else {
-        format!(r"\mathrm{{{base}}}")
+    // A name is letters and digits; one outside ASCII is written by the
+    // table of Unicode in LaTeX (a Greek letter, an accented Latin letter),
+    // never raw, so that pdflatex can typeset it.
+    let mut cs = base.chars();
+    match (cs.next(), cs.next()) {
+        (Some(c), None) => crate::escape::latex_math_char(c),
+        _ => format!(r"\mathrm{{{}}}", crate::escape::latex_math(base)),
     }
 }
 
@@ -502,7 +505,10 @@ fn unicode_base(base: &str) -> String {
 fn latex_sub(sub: &str) -> String {
     let parts: Vec<String> = sub
         .split('_')
-        .map(|p| crate::symbols::greek(p).map_or(p.to_owned(), |g| g.0.to_owned()))
+        .map(|p| {
+            crate::symbols::greek(p)
+                .map_or_else(|| crate::escape::latex_math(p), |g| g.0.to_owned())
+        })
         .collect();
     let s = parts.join(",");
     if s.chars().count() == 1 {
