@@ -179,3 +179,176 @@ fn what_kane_cannot_take_is_a_located_error() {
     let e = load_str("top.toml", &text).unwrap_err();
     assert!(e.message.contains("needs generalized speeds"), "{e}");
 }
+
+/// A uniform disk rolling without slipping on a plane: yaw ψ, lean θ,
+/// spin φ and the contact point (x, y); speeds u1–u3 the disk's angular
+/// velocity in the lean frame L, u4, u5 the contact point's rates,
+/// dependent through the no-slip constraint.
+const DISK: &str = r#"
+title = "A disk rolling on a plane: Kane's equations"
+source = "test"
+gravity = "[0, 0, -g] in N"
+
+[symbols]
+constants = ["m", "g", "r"]
+time = ["x", "y", "psi", "theta", "phi"]
+speeds = ["u1", "u2", "u3", "u4", "u5"]
+
+[kinematics]
+x = "u4"
+y = "u5"
+theta = "u1"
+psi = "u3/cos(theta)"
+phi = "u2 - u3*sin(theta)/cos(theta)"
+
+[[frame]]
+name = "A"
+parent = "N"
+rotation = "z(psi)"
+
+[[frame]]
+name = "L"
+parent = "A"
+rotation = "x(theta)"
+
+[[frame]]
+name = "D"
+parent = "L"
+rotation = "y(phi)"
+
+[[point]]
+name = "O"
+fixed = true
+
+[[point]]
+name = "C"
+from = "O"
+at = "[x, y, 0] in N"
+
+[[point]]
+name = "G"
+from = "C"
+at = "[0, 0, r] in L"
+
+[[body]]
+name = "disk"
+frame = "D"
+point = "G"
+mass = "m"
+mass_centre = "[0, 0, 0] in D"
+inertia = "principal(m*r^2/4, m*r^2/2, m*r^2/4)"
+
+[[step]]
+name = "omega"
+value = "in_speeds(express(angvel(D), L))"
+expect = ["u1", "u2", "u3"]
+
+[[step]]
+name = "contact"
+value = "express(rolling(disk, C), A)"
+
+[[step]]
+name = "contact_z"
+value = "contact.z"
+expect = "0"
+
+[[step]]
+name = "no_slip"
+value = "list(contact.x, contact.y)"
+
+[[step]]
+name = "dependent"
+value = "solve(no_slip, [u4, u5])"
+
+[[step]]
+name = "K"
+value = "kane([u1, u2, u3], no_slip, [u4, u5])"
+
+[[step]]
+name = "rates"
+value = "solve(K, [u1', u2', u3'])"
+
+[[step]]
+name = "v_G"
+value = "subst(velocity(G), u4 = dependent.1, u5 = dependent.2)"
+
+[[step]]
+name = "E"
+value = "m*dot(v_G, v_G)/2 + dot(omega, principal(m*r^2/4, m*r^2/2, m*r^2/4)*omega)/2 + m*g*r*cos(theta)"
+
+[[step]]
+name = "dE"
+value = "subst(in_speeds(dt(E)), u1' = rates.1, u2' = rates.2, u3' = rates.3)"
+expect = "0"
+"#;
+
+#[test]
+fn the_rolling_disk_eliminates_its_dependent_speeds_and_conserves_energy() {
+    let d = load_str("disk.toml", DISK).unwrap_or_else(|e| panic!("{e}"));
+    // The contact's vertical velocity vanishes identically, and the energy
+    // is constant along the motion Kane's equations give (dE = 0).
+    assert!(d.all_hold(), "{:?}", d.failures());
+    assert_eq!(d.check_count(), 5);
+    let step = |n: &str| &d.steps.iter().find(|s| s.name == n).unwrap().value;
+    let Value::List { items, labels } = step("rates") else {
+        panic!()
+    };
+    assert_eq!(labels.len(), 3);
+    // Eliminated: no dependent speed is left in the rates.
+    for p in items {
+        assert!(
+            p.atoms().iter().all(|a| !["u4", "u5"].contains(&a.name())),
+            "{p:?}"
+        );
+    }
+    // A wrong inertia breaks the energy balance: the check can fail.
+    let wrong = DISK.replace(
+        "principal(m*r^2/4, m*r^2/2, m*r^2/4)\"\n\n[[step]]",
+        "principal(m*r^2/4, m*r^2/3, m*r^2/4)\"\n\n[[step]]",
+    );
+    assert_ne!(wrong, DISK);
+    let d = load_str("disk.toml", &wrong).unwrap();
+    assert_eq!(d.failures().len(), 1, "{:?}", d.failures());
+    assert_eq!(d.failures()[0].0, "dE");
+}
+
+fn disk_err(call: &str) -> hdot_sym::derivation::Diagnostic {
+    let text = DISK.replace("kane([u1, u2, u3], no_slip, [u4, u5])", call);
+    assert_ne!(text, DISK);
+    load_str("disk.toml", &text).unwrap_err()
+}
+
+#[test]
+fn bad_constraints_are_located_errors() {
+    let e = disk_err("kane([u1, u2, u3], list(no_slip.1*u4, no_slip.2), [u4, u5])");
+    assert!(
+        e.message
+            .contains("a constraint is not linear in the speeds"),
+        "{e}"
+    );
+    assert!(e.source_line.contains("list(no_slip.1*u4"), "{e}");
+    let e = disk_err("kane([u1, u2, u3], list(u1 + u2, u1 - u2), [u4, u5])");
+    assert!(e.message.contains("cannot be eliminated"), "{e}");
+    let e = disk_err("kane([u1, u2, u3], no_slip, [u4])");
+    assert!(
+        e.message
+            .contains("2 independent constraint equations for 1 dependent speed"),
+        "{e}"
+    );
+    let e = disk_err("kane([u1, u2, u3], no_slip, [u3, u4])");
+    assert!(
+        e.message
+            .contains("`u3` is listed as independent and as dependent"),
+        "{e}"
+    );
+    let e = disk_err("kane([u1, u2, u3])");
+    assert!(
+        e.message
+            .contains("`u4` occurs in the velocities of disk but is not listed"),
+        "{e}"
+    );
+    let e = disk_err("kane([u1, u2, u3], omega, [u4, u5, x])");
+    assert!(e.message.contains("`x` is not a declared speed"), "{e}");
+    let e = disk_err("kane([u1, u2, u3], rolling(G, C), [u4, u5])");
+    assert!(e.message.contains("expected a declared body"), "{e}");
+}

@@ -1,51 +1,57 @@
-//! `kane([u1, u2, …])`: Kane's equations of the declared bodies in the
-//! generalized speeds — partial velocities of the mass centres and partial
-//! angular velocities of the body frames, the generalized active forces
-//! of gravity and the generalized inertia forces, written as
-//! −(F_r + F_r*) = 0 for each speed.
+//! `kane([u1, …])` and `kane([u1, …], constraints, [u4, …])`: Kane's
+//! equations of the declared bodies in the generalized speeds — partial
+//! velocities of the mass centres and partial angular velocities of the
+//! body frames (with dependent speeds eliminated through constraints
+//! linear in the speeds), the generalized active forces of gravity and the
+//! generalized inertia forces, written as −(F_r + F_r*) = 0 for each
+//! independent speed.
 
-use super::express::express_in;
+use super::mass_matrix::linear_system;
+use super::solve::solve_system;
+use super::velocity::{Speedmap, linear_in_speeds};
 use super::{Call, Op, coefficient};
 use crate::atom::Atom;
 use crate::derivation::context::R;
-use crate::derivation::physics::{Body, PointKind};
+use crate::derivation::physics::Body;
 use crate::derivation::value::Value;
+use crate::parse::AstKind;
 use crate::poly::Poly;
 use crate::vector::{Mat3, Vec3};
 
 pub(crate) const KANE: Op = Op {
     names: &["kane"],
-    signature: "kane([u1, u2, …])",
-    doc: "Kane's equations of the declared bodies for the listed generalized speeds: for each u_r, \
-          Σ (v_G,r · m a_G + ω_r · (I_G α + ω × I_G ω)) − F_r, where v_G,r and ω_r are the partial velocities \
-          of each mass centre and body frame and F_r the generalized active force of gravity (= −(F_r + F_r*), \
-          zero along the motion); velocities are written in the speeds through `[kinematics]`. A list, one \
-          equation per speed, linear in the speeds' rates",
+    signature: "kane([u1, u2, …]), kane([u1, …], constraints, [u4, …])",
+    doc: "Kane's equations of the declared bodies for the listed (independent) generalized speeds: for each u_r, \
+          Σ (v_G,r · (m a_G − m g) + ω_r · (I_G α + ω × I_G ω)), where v_G,r and ω_r are the partial velocities \
+          of each mass centre and body frame and g is `gravity` (= −(F_r + F_r*), zero along the motion); \
+          velocities are written in the speeds through `[kinematics]`. With constraints (a vector or `list` \
+          that vanishes, linear in the speeds, such as `rolling(B, P)`) the dependent speeds listed last are \
+          solved for and eliminated. A list, one equation per independent speed, linear in their rates",
     eval,
 };
 
 fn eval(c: &Call<'_, '_>) -> R<Value> {
-    c.arity(1)?;
+    if c.args.len() != 1 {
+        c.arity(3)?;
+    }
     let cx = c.cx;
-    let (us, _) = c.symbols(0)?;
     if cx.speeds.is_empty() {
         return c.err(
             c.span,
             "Kane's method needs generalized speeds: declare [symbols] speeds and a [kinematics] table",
         );
     }
-    for (k, &u) in us.iter().enumerate() {
-        if !cx.speeds.speeds.contains(&u) {
-            let span = match &c.args[0].kind {
-                crate::parse::AstKind::Vector { items, .. } => items[k].span,
-                _ => c.args[0].span,
-            };
-            return c.err(
-                span,
-                format!("`{u}` is not a declared speed ([symbols] speeds)"),
-            );
+    let us = speeds_arg(c, 0, &[])?;
+    let sp = match c.args.len() {
+        3 => {
+            let deps = speeds_arg(c, 2, &us)?;
+            Speedmap {
+                c,
+                dependent: dependent_speeds(c, &deps)?,
+            }
         }
-    }
+        _ => Speedmap::plain(c),
+    };
     if cx.physics.bodies.is_empty() {
         return c.err(
             c.span,
@@ -54,7 +60,7 @@ fn eval(c: &Call<'_, '_>) -> R<Value> {
     }
     let mut eqs = vec![Poly::zero(); us.len()];
     for b in &cx.physics.bodies {
-        let terms = body_terms(c, b, &us)?;
+        let terms = body_terms(&sp, b, &us)?;
         for (e, t) in eqs.iter_mut().zip(terms) {
             *e = &*e + &t;
         }
@@ -62,9 +68,79 @@ fn eval(c: &Call<'_, '_>) -> R<Value> {
     Ok(Value::list(eqs))
 }
 
+/// Argument `i`: declared speeds in brackets, none of them in `taken`.
+fn speeds_arg(c: &Call<'_, '_>, i: usize, taken: &[Atom]) -> R<Vec<Atom>> {
+    let (us, _) = c.symbols(i)?;
+    for (k, &u) in us.iter().enumerate() {
+        let span = match &c.args[i].kind {
+            AstKind::Vector { items, .. } => items[k].span,
+            _ => c.args[i].span,
+        };
+        if !c.cx.speeds.speeds.contains(&u) {
+            return c.err(
+                span,
+                format!("`{u}` is not a declared speed ([symbols] speeds)"),
+            );
+        }
+        if taken.contains(&u) {
+            return c.err(
+                span,
+                format!("`{u}` is listed as independent and as dependent"),
+            );
+        }
+    }
+    Ok(us)
+}
+
+/// The constraints (argument 1) solved for the dependent speeds `deps`.
+fn dependent_speeds(c: &Call<'_, '_>, deps: &[Atom]) -> R<Vec<(Atom, Poly)>> {
+    let span = c.args[1].span;
+    let v = c.value(1)?;
+    let Some(eqs) = v.equations() else {
+        return c.err(
+            span,
+            format!(
+                "the constraints are a vector or a list that vanishes, found {}",
+                v.describe()
+            ),
+        );
+    };
+    let plain = Speedmap::plain(c);
+    let eqs: Vec<Poly> = eqs
+        .iter()
+        .map(|p| plain.poly(p))
+        .filter(|p| !p.is_zero())
+        .collect();
+    if let Some(a) = eqs.iter().flat_map(Poly::atoms).find(|a| a.order() > 0) {
+        return c.err(
+            span,
+            format!(
+                "`{a}` occurs in the constraints: they are written in the coordinates and the speeds (give `{}` a kinematic equation)",
+                a.base()
+            ),
+        );
+    }
+    let at = |msg: String| c.cx.at(c.base, span, msg);
+    linear_in_speeds(c, &eqs, "a constraint").map_err(|e| at(e.message))?;
+    if eqs.len() != deps.len() {
+        return Err(at(format!(
+            "{} independent constraint equation{} for {} dependent speed{}: give one dependent speed per constraint",
+            eqs.len(),
+            if eqs.len() == 1 { "" } else { "s" },
+            deps.len(),
+            if deps.len() == 1 { "" } else { "s" },
+        )));
+    }
+    let (m, f) = linear_system(&eqs, deps).map_err(at)?;
+    let x = solve_system(&m, &f)
+        .map_err(|e| at(format!("the dependent speeds cannot be eliminated: {e}")))?;
+    Ok(deps.iter().copied().zip(x).collect())
+}
+
 /// Body `b`'s share of each speed's equation: v_G,r · (m a_G − m g) +
 /// ω_r · (I_G α + ω × I_G ω).
-fn body_terms(c: &Call<'_, '_>, b: &Body, us: &[Atom]) -> R<Vec<Poly>> {
+fn body_terms(sp: &Speedmap<'_, '_, '_>, b: &Body, us: &[Atom]) -> R<Vec<Poly>> {
+    let c = sp.c;
     let cx = c.cx;
     let name = &b.name;
     let Some(m) = b.mass.clone() else {
@@ -80,30 +156,32 @@ fn body_terms(c: &Call<'_, '_>, b: &Body, us: &[Atom]) -> R<Vec<Poly>> {
         );
     };
     let bi = b.frame;
-    let speeds = |v: &Vec3, what: &str| in_speeds(c, v, what);
-    let w = speeds(
+    let w = sp.vec(
         &cx.frames[bi].omega,
         &format!("the angular velocity of {name}"),
     )?;
-    let (vp, fp) = point_velocity(c, &b.point, 0)?;
-    let vp = express_in(cx, vp, fp, bi).ok_or_else(|| {
-        cx.at(
-            c.base,
+    let (vp, fp) = sp.point_velocity(&b.point, 0)?;
+    let vp = sp.express(vp, fp, bi)?;
+    let what = format!("the velocity of {name}'s mass centre");
+    let vg = sp.vec(&vp.add(&w.cross(&r)), &what)?;
+    linear_in_speeds(c, &vg.0, &what)?;
+    linear_in_speeds(c, &w.0, &format!("the angular velocity of {name}"))?;
+    let left =
+        vg.0.iter()
+            .chain(&w.0)
+            .flat_map(Poly::atoms)
+            .find(|a| cx.speeds.speeds.contains(a) && !us.contains(a));
+    if let Some(u) = left {
+        return c.err(
             c.span,
             format!(
-                "no chain of rotations relates the frame of point `{}` to body `{name}`'s",
-                b.point
+                "`{u}` occurs in the velocities of {name} but is not listed: list it with the speeds, or as a \
+                 dependent speed with the constraints that determine it"
             ),
-        )
-    })?;
-    let vg = speeds(
-        &vp.add(&w.cross(&r)),
-        &format!("the velocity of {name}'s mass centre"),
-    )?;
-    linear(c, &vg, &format!("the velocity of {name}'s mass centre"))?;
-    linear(c, &w, &format!("the angular velocity of {name}"))?;
-    let ag = speeds(&vg.dt().add(&w.cross(&vg)), "")?;
-    let alpha = speeds(&w.dt(), "")?;
+        );
+    }
+    let ag = sp.vec(&vg.dt().add(&w.cross(&vg)), "")?;
+    let alpha = sp.vec(&w.dt(), "")?;
     let ig = if b.inertia_about_centre || r.is_zero() {
         b.inertia.clone()
     } else {
@@ -122,114 +200,14 @@ fn body_terms(c: &Call<'_, '_>, b: &Body, us: &[Atom]) -> R<Vec<Poly>> {
     let mut force = ag.scale(&m);
     if let Some((g, gf)) = &cx.physics.gravity {
         let gi = cx.frame_index(gf).expect("gravity's frame exists");
-        let g = express_in(cx, g.clone(), gi, bi).ok_or_else(|| {
-            cx.at(
-                c.base,
-                c.span,
-                format!("no chain of rotations relates gravity's frame {gf} to body `{name}`'s"),
-            )
-        })?;
-        force = force.sub(&g.scale(&m));
+        force = force.sub(&sp.express(g.clone(), gi, bi)?.scale(&m));
     }
     Ok(us
         .iter()
         .map(|&u| {
-            let vr = vg.map(|p| coefficient(p, u));
-            let wr = w.map(|p| coefficient(p, u));
+            let vr: Vec3 = vg.map(|p| coefficient(p, u));
+            let wr: Vec3 = w.map(|p| coefficient(p, u));
             &vr.dot(&force) + &wr.dot(&hdot)
         })
         .collect())
-}
-
-/// The velocity in N of the declared point `name` and the frame of its
-/// components: zero for a fixed point, the velocity of the point it is
-/// measured from plus the rate in N of the vector from it.
-fn point_velocity(c: &Call<'_, '_>, name: &str, depth: usize) -> R<(Vec3, usize)> {
-    let cx = c.cx;
-    let Some(p) = cx.physics.points.iter().find(|p| p.name == name) else {
-        return c.err(
-            c.span,
-            format!(
-                "point `{name}` is a body's centre whose motion is not declared: place the body at a declared \
-                 [[point]] (`point = …` with `from` and `at`) and give `mass_centre`"
-            ),
-        );
-    };
-    match &p.kind {
-        PointKind::Fixed(..) => Ok((Vec3::zero(), 0)),
-        PointKind::Free => c.err(
-            c.span,
-            format!(
-                "point `{name}` moves freely: Kane's method needs its velocity; place it with `from` and `at`"
-            ),
-        ),
-        PointKind::From { from, at, frame } => {
-            // Declarations forbid cycles; the depth is a guard only.
-            if depth > cx.physics.points.len() {
-                return c.err(c.span, format!("point `{name}` leads back to itself"));
-            }
-            let (vf, ff) = point_velocity(c, from, depth + 1)?;
-            let fi = cx.frame_index(frame).expect("the point's frame exists");
-            let at = at.map(|p| cx.unfold(p));
-            let w = in_speeds(c, &cx.frames[fi].omega, "")?;
-            let rel = at.dt().add(&w.cross(&at));
-            let vf = express_in(cx, vf, ff, fi).ok_or_else(|| {
-                cx.at(
-                    c.base,
-                    c.span,
-                    format!("no chain of rotations relates the frames of points `{from}` and `{name}`"),
-                )
-            })?;
-            Ok((in_speeds(c, &vf.add(&rel), "")?, fi))
-        }
-    }
-}
-
-/// `v` in the speeds (`[kinematics]`); an error naming `what` when a rate
-/// of a coordinate without a kinematic equation is left.
-fn in_speeds(c: &Call<'_, '_>, v: &Vec3, what: &str) -> R<Vec3> {
-    let cx = c.cx;
-    let v = v.map(|p| cx.speeds.in_speeds(&cx.unfold(p)));
-    let left =
-        v.0.iter()
-            .flat_map(Poly::atoms)
-            .find(|a| a.order() > 0 && !cx.speeds.speeds.contains(&a.base()));
-    match left {
-        Some(a) => c.err(
-            c.span,
-            format!(
-                "`{a}` occurs in {}: give `{}` a kinematic equation in [kinematics]",
-                if what.is_empty() { "a velocity" } else { what },
-                a.base()
-            ),
-        ),
-        None => Ok(v),
-    }
-}
-
-/// Checks that `v` is linear in the declared speeds (each term holds at
-/// most one speed, to the first power).
-fn linear(c: &Call<'_, '_>, v: &Vec3, what: &str) -> R<()> {
-    let speeds = &c.cx.speeds.speeds;
-    for p in &v.0 {
-        for (m, _) in p.terms() {
-            let degree: i32 = m
-                .factors()
-                .iter()
-                .filter(|(a, _)| speeds.contains(a))
-                .map(|f| f.1)
-                .sum();
-            if degree > 1
-                || m.factors()
-                    .iter()
-                    .any(|(a, e)| speeds.contains(a) && *e < 0)
-            {
-                return c.err(
-                    c.span,
-                    format!("{what} is not linear in the speeds: the kinematic equations must be linear in them"),
-                );
-            }
-        }
-    }
-    Ok(())
 }

@@ -25,6 +25,7 @@ mod solve;
 mod subst;
 mod trig;
 mod vector;
+mod velocity;
 
 pub(crate) use subst::quarter_turns;
 
@@ -66,6 +67,8 @@ pub(crate) static OPS: &[&Op] = &[
     &partial::PARTIAL,
     &lagrange::LAGRANGE,
     &in_speeds::IN_SPEEDS,
+    &velocity::VELOCITY,
+    &velocity::ROLLING,
     &kane::KANE,
     &list::LIST,
     &solve::SOLVE,
