@@ -31,6 +31,7 @@
 //! ```
 
 use std::collections::BTreeMap;
+use std::sync::Arc;
 
 use crate::derivation::{Check, Derivation, Step, Value};
 use crate::escape;
@@ -159,8 +160,9 @@ impl Lhs {
 pub struct Equation {
     /// Left side.
     pub lhs: Lhs,
-    /// Right side.
-    pub rhs: Expr,
+    /// Right side, shared with the step it shows (a large result is not
+    /// copied into the document).
+    pub rhs: Arc<Expr>,
 }
 
 /// Whether a step's result equals its expectation.
@@ -253,11 +255,11 @@ impl StepBlock {
                         (
                             Equation {
                                 lhs: step_lhs(s, &c.component),
-                                rhs: c.expected.clone(),
+                                rhs: Arc::new(c.expected.clone()),
                             },
                             Equation {
                                 lhs: step_lhs(s, &c.component),
-                                rhs: Expr::from_poly(&c.difference),
+                                rhs: Arc::new(Expr::from_poly(&c.difference)),
                             },
                         )
                     })
@@ -315,7 +317,7 @@ impl Section {
                     .zip(&f.omega.0)
                     .map(|(a, p)| Equation {
                         lhs: Lhs::Label("Omega".into(), a.clone()),
-                        rhs: Expr::from_poly(p),
+                        rhs: Arc::new(Expr::from_poly(p)),
                     })
                     .collect(),
                 doc: f.doc.clone(),

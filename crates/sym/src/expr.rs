@@ -64,6 +64,11 @@ impl Expr {
         Id(self.nodes.len() as u32 - 1)
     }
 
+    /// Gives back the store's spare capacity (a large tree, once built).
+    pub(crate) fn shrink_to_fit(&mut self) {
+        self.nodes.shrink_to_fit();
+    }
+
     /// A number node; negative values become `Neg(Num)`.
     pub fn num(&mut self, r: &Rational) -> Id {
         if r.is_negative() {

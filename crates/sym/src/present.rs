@@ -41,6 +41,7 @@
 //! assert_eq!(e.to_poly(), p);
 //! ```
 
+use std::borrow::Cow;
 use std::cmp::Reverse;
 use std::collections::BTreeMap;
 
@@ -211,6 +212,7 @@ pub fn present(p: &Poly, pres: &Presentation) -> Expr {
         ids = splice_sums(&mut e, ids);
     }
     e.add(ids);
+    e.shrink_to_fit();
     crate::work::presented(e.len());
     e
 }
@@ -447,58 +449,71 @@ fn group_node(
         // Terms that share their time-dependent part (the same rates, sin
         // and cos) and differ in constants are one term of that part with
         // a bracket of constants: ((I_2 − A_3) ω_3 − h) ω_2/I_1.
-        let parts: Vec<(Monomial, Rational)> = terms
+        // (A large bracket is plain, see PLAIN_ABOVE: no shared parts,
+        // and its atom powers are stored once in the tree.)
+        let big = terms.len() > PLAIN_ABOVE;
+        let parts: Vec<(Cow<'_, Monomial>, Rational)> = terms
             .iter()
             .map(|(_, m, c)| {
                 if plain {
-                    ((*m).clone(), (*c).clone())
+                    (Cow::Borrowed(*m), (*c).clone())
                 } else {
-                    (m.div(&common), *c * &inv)
+                    (Cow::Owned(m.div(&common)), *c * &inv)
                 }
             })
             .collect();
         // The part that follows a bracket (rates, sin and cos, constant
         // rates named by Greek letters: J s + (C − A) Ω).
-        let timed: Vec<Monomial> = parts
-            .iter()
-            .map(|(m, _)| m.split(|a| !leading_constant(a)).0)
-            .collect();
-        // (Not in a plain bracket: see PLAIN_ABOVE.)
+        let timed: Vec<Monomial> = if big {
+            Vec::new()
+        } else {
+            parts
+                .iter()
+                .map(|(m, _)| m.split(|a| !leading_constant(a)).0)
+                .collect()
+        };
         let mut shared: FxHashMap<&Monomial, Vec<(Monomial, Rational)>> = FxHashMap::default();
-        if terms.len() <= PLAIN_ABOVE {
-            for ((m, c), t) in parts.iter().zip(&timed) {
-                if !t.is_one() {
-                    shared.entry(t).or_default().push((m.div(t), c.clone()));
-                }
+        for ((m, c), t) in parts.iter().zip(&timed) {
+            if !t.is_one() {
+                shared.entry(t).or_default().push((m.div(t), c.clone()));
             }
-            shared.retain(|_, v| v.len() > 1);
         }
+        shared.retain(|_, v| v.len() > 1);
+        let mut atoms: FxHashMap<(Atom, i32), Id> = FxHashMap::default();
         // (node, negative, highest derivative order, has a part that
         // follows a bracket)
         let mut nodes: Vec<(Id, bool, u32, bool)> = Vec::with_capacity(terms.len());
-        for (((sorted, _, _), (m, c)), t) in terms.iter().zip(&parts).zip(&timed) {
+        for (k, ((sorted, _, _), (m, c))) in terms.iter().zip(&parts).enumerate() {
             let top = m.factors().iter().map(|f| f.0.order()).max().unwrap_or(0);
-            if let Some(sub) = shared.get_mut(t) {
-                // The first term of the shared part stands for all of them.
-                if !sub.is_empty() {
-                    let sub = std::mem::take(sub);
-                    let id = group_node(e, t, &sub, pres);
-                    nodes.push((id, matches!(e.node(id), Node::Neg(_)), top, true));
+            let follows = match timed.get(k) {
+                None => m.factors().iter().any(|&(a, _)| !leading_constant(a)),
+                Some(t) => {
+                    if let Some(sub) = shared.get_mut(t) {
+                        // The first term of the shared part stands for all of them.
+                        if !sub.is_empty() {
+                            let sub = std::mem::take(sub);
+                            let id = group_node(e, t, &sub, pres);
+                            nodes.push((id, matches!(e.node(id), Node::Neg(_)), top, true));
+                        }
+                        continue;
+                    }
+                    !t.is_one()
                 }
-                continue;
-            }
-            let mut f = if plain {
-                sorted.to_vec()
+            };
+            let mut f: SmallVec<[(Atom, i32); 16]> = if plain {
+                sorted.iter().copied().collect()
             } else {
-                m.sorted_for_print()
+                m.sorted_for_print().into_iter().collect()
             };
             conventional(&mut f, order);
             let id = if distribute {
                 ratio_term(e, &f, c)
+            } else if big {
+                shared_term_node(e, &f, c, &mut atoms)
             } else {
                 e.term_node(&f, c)
             };
-            nodes.push((id, c.is_negative(), top, !t.is_one()));
+            nodes.push((id, c.is_negative(), top, follows));
         }
         // Grouping may leave every term negative (−J s − (C − A) Ω): the
         // sign goes in front of the bracket, −(J s + (C − A) Ω) (rule 4),
@@ -556,9 +571,18 @@ fn group_node(
 /// sin or cos, or a constant named by a Greek letter (a constant rate Ω),
 /// which follow the bracket.
 fn leading_constant(a: Atom) -> bool {
-    !a.is_time_dependent()
-        && matches!(a.kind(), AtomKind::Var { .. })
-        && crate::symbols::greek(a.name().split('_').next().unwrap_or("")).is_none()
+    // Asked for every factor of every term: each atom's answer (a name
+    // looked up in the Greek table) is found once.
+    thread_local! {
+        static KNOWN: std::cell::RefCell<FxHashMap<Atom, bool>> = Default::default();
+    }
+    KNOWN.with(|k| {
+        *k.borrow_mut().entry(a).or_insert_with(|| {
+            !a.is_time_dependent()
+                && matches!(a.kind(), AtomKind::Var { .. })
+                && crate::symbols::greek(a.name().split('_').next().unwrap_or("")).is_none()
+        })
+    })
 }
 
 /// Two terms, each a single constant of one cyclic family (I_x and I_z,
@@ -692,6 +716,33 @@ fn ratio_term(e: &mut Expr, factors: &[(Atom, i32)], c: &Rational) -> Id {
     }
 }
 
+/// `c · factors` as [`Expr::term_node`] writes it, with each atom power
+/// stored once in the tree and shared by the terms that have it (`atoms`
+/// remembers their nodes): a plain bracket of 40,000 terms costs three
+/// nodes a term, not fifteen. Printing and expanding read a shared node as
+/// they read a copy.
+fn shared_term_node(
+    e: &mut Expr,
+    factors: &[(Atom, i32)],
+    c: &Rational,
+    atoms: &mut FxHashMap<(Atom, i32), Id>,
+) -> Id {
+    let mut ids = Vec::with_capacity(factors.len() + 1);
+    let mag = c.abs();
+    if !mag.is_one() || factors.is_empty() {
+        ids.push(e.push(Node::Num(mag)));
+    }
+    for &(a, x) in factors {
+        ids.push(*atoms.entry((a, x)).or_insert_with(|| e.atom_pow(a, x)));
+    }
+    let m = e.mul(ids);
+    if c.is_negative() {
+        e.push(Node::Neg(m))
+    } else {
+        m
+    }
+}
+
 /// The place of a constant factor: the names of the file's own order
 /// (`[symbols] order`) first, in that order; then the conventional one —
 /// mass first, then inertia, then gravity, then the others (lengths),
@@ -717,6 +768,14 @@ type Place = (&'static str, usize, u8);
 /// the family (the name without the subscript, or the letters' common
 /// subscript), and which of the three orders it is in.
 fn cyclic_place(a: Atom) -> Option<Place> {
+    // Each atom's place is found once (names compared as strings).
+    thread_local! {
+        static KNOWN: std::cell::RefCell<FxHashMap<Atom, Option<Place>>> = Default::default();
+    }
+    KNOWN.with(|k| *k.borrow_mut().entry(a).or_insert_with(|| place_of(a)))
+}
+
+fn place_of(a: Atom) -> Option<Place> {
     let name = a.name();
     if let Some((base, sub)) = name.rsplit_once('_') {
         if let Some(k) = ["x", "y", "z"].iter().position(|c| *c == sub) {

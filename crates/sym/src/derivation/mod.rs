@@ -43,6 +43,7 @@ mod value;
 
 use std::collections::HashMap;
 use std::path::Path;
+use std::sync::Arc;
 
 pub use error::Diagnostic;
 pub use speeds::Speeds;
@@ -125,7 +126,7 @@ pub struct Step {
     /// The presented components, computed on first use (see
     /// [`Step::components`]): a derivation that fails at a later step, or
     /// whose output is never printed, pays nothing for presenting it.
-    presented: std::sync::OnceLock<Vec<(String, Expr)>>,
+    presented: std::sync::OnceLock<Vec<(String, Arc<Expr>)>>,
     /// Expectation checks, one per component, when the file states one.
     pub checks: Vec<Check>,
     /// What the step means physically (`means`), when the file says.
@@ -146,16 +147,19 @@ impl Step {
     /// The presented components of a shown step: (component label,
     /// textbook-form tree); empty for hidden steps (see
     /// [`Step::presented`]).
-    pub fn components(&self) -> &[(String, Expr)] {
+    pub fn components(&self) -> &[(String, Arc<Expr>)] {
         if self.show { self.presented_ref() } else { &[] }
     }
 
     /// The presented components, hidden steps included.
     pub fn presented(&self) -> Vec<(String, Expr)> {
-        self.presented_ref().to_vec()
+        self.presented_ref()
+            .iter()
+            .map(|(c, e)| (c.clone(), Expr::clone(e)))
+            .collect()
     }
 
-    fn presented_ref(&self) -> &[(String, Expr)] {
+    fn presented_ref(&self) -> &[(String, Arc<Expr>)] {
         self.presented
             .get_or_init(|| present_components(&self.value, &self.axes, &self.presentation))
     }
@@ -190,11 +194,11 @@ fn present_components(
     value: &Value,
     axes: &[String; 3],
     presentation: &Presentation,
-) -> Vec<(String, Expr)> {
+) -> Vec<(String, Arc<Expr>)> {
     component_labels(value, axes)
         .into_iter()
         .zip(value.components())
-        .map(|(l, p)| (l, present(p, presentation)))
+        .map(|(l, p)| (l, Arc::new(present(p, presentation))))
         .collect()
 }
 

@@ -6,7 +6,7 @@
 use std::fmt::Write;
 
 use super::layout::{
-    equations_lines, failure_lines, math_width, omega_inline, step_lines, symbol_list,
+    equations_lines, failure_lines, math_width, omega_inline, symbol_list, write_step_lines,
 };
 use super::words::{label_key, latex_code, sentence, step_title, vanishes_text};
 use super::{LINE_BUDGET, REFRESH_COMMAND, has_chapters};
@@ -229,11 +229,9 @@ pub(super) fn latex_section(o: &mut String, s: &Section, level: usize, target: T
         if st.vanishes() {
             let _ = writeln!(o, "{}\n", vanishes_text(false));
         } else {
-            let _ = writeln!(
-                o,
-                "\\begin{{align*}}\n{}\n\\end{{align*}}",
-                step_lines(st, LINE_BUDGET)
-            );
+            o.push_str("\\begin{align*}\n");
+            write_step_lines(o, st, LINE_BUDGET);
+            o.push_str("\n\\end{align*}\n");
         }
         match &st.verdict {
             Verdict::NoExpectation => {

@@ -14,64 +14,91 @@ use crate::print;
 /// A rough width of LaTeX math in characters: commands that only decorate
 /// count nothing, a Greek letter or a digit counts one, scripts count less.
 pub(super) fn math_width(s: &str) -> f32 {
-    let mut w = 0.0;
+    width_units(s) as f32 / 100.0
+}
+
+/// [`math_width`] in hundredths of a character, an integer: widths of
+/// pieces add exactly, so a line's width is the sum of its pieces' (every
+/// piece is balanced: no brace or script is open at its end, and the
+/// pieces of a line are joined by spaces, which count nothing). One pass
+/// over the bytes, no allocation.
+fn width_units(s: &str) -> u32 {
+    let b = s.as_bytes();
+    let mut w = 0u32;
     let mut script = 0usize; // brace depth inside ^{…} / _{…}
-    let mut depth = 0usize;
-    let mut chars = s.chars().peekable();
     let mut pending_script = false;
-    let scale = |script: usize| if script > 0 { 0.7 } else { 1.0 };
-    while let Some(c) = chars.next() {
+    let scaled = |script: usize, units: u32| if script > 0 { units * 7 / 10 } else { units };
+    let mut i = 0;
+    while i < b.len() {
+        let c = b[i];
+        i += 1;
         match c {
-            '\\' => {
-                // The command's name, without allocating (the names that
-                // matter are short; a longer one counts as any other).
-                let (mut name, mut len) = ([0u8; 8], 0);
-                while let Some(&n) = chars.peek().filter(|n| n.is_ascii_alphabetic()) {
-                    name[len.min(7)] = n as u8;
-                    len += 1;
-                    chars.next();
+            b'\\' => {
+                let start = i;
+                while i < b.len() && b[i].is_ascii_alphabetic() {
+                    i += 1;
                 }
-                let name = if len <= 7 {
-                    std::str::from_utf8(&name[..len]).unwrap_or("")
-                } else {
-                    "long"
-                };
+                let name = &b[start..i];
                 if name.is_empty() {
-                    chars.next(); // `\,` and friends
-                    w += 0.3;
+                    // `\,` and friends: the next character is part of it.
+                    if i < b.len() {
+                        i += 1;
+                        while i < b.len() && b[i] & 0xC0 == 0x80 {
+                            i += 1;
+                        }
+                    }
+                    w += 30;
                     continue;
                 }
-                w += scale(script)
-                    * match name {
-                        "left" | "right" => 0.0,
-                        "dot" | "ddot" | "dddot" | "ddddot" | "mathrm" | "frac" => 0.0,
-                        "sin" | "cos" => 3.0,
-                        _ => 1.0,
-                    };
+                let units = match name {
+                    b"left" | b"right" => 0,
+                    b"dot" | b"ddot" | b"dddot" | b"ddddot" | b"mathrm" | b"frac" => 0,
+                    b"sin" | b"cos" => 300,
+                    _ => 100,
+                };
+                w += scaled(script, units);
             }
-            '^' | '_' => pending_script = true,
-            '{' => {
-                depth += 1;
+            b'^' | b'_' => pending_script = true,
+            b'{' => {
                 if pending_script || script > 0 {
                     script += 1;
                 }
                 pending_script = false;
             }
-            '}' => {
-                depth = depth.saturating_sub(1);
-                script = script.saturating_sub(1);
-            }
-            ' ' => {}
-            '+' | '-' | '=' => w += 2.0,
-            '(' | ')' | ',' => w += 0.6 * scale(script),
+            b'}' => script = script.saturating_sub(1),
+            b' ' => {}
+            b'+' | b'-' | b'=' => w += 200,
+            b'(' | b')' | b',' => w += scaled(script, 60),
+            // The continuation bytes of a character in UTF-8: it counted
+            // once, at its first byte.
+            _ if c & 0xC0 == 0x80 => {}
             _ => {
-                w += if pending_script { 0.7 } else { scale(script) };
+                w += if pending_script {
+                    70
+                } else {
+                    scaled(script, 100)
+                };
                 pending_script = false;
             }
         }
     }
-    let _ = depth;
     w
+}
+
+/// `rhs` printed whole when it fits in `budget` (estimated characters of
+/// math). A sum of n terms prints n − 1 signs of width 2 between them, so
+/// one of more terms than that allows is known not to fit without being
+/// printed.
+fn printed_if_fits(rhs: &Expr, budget: f32) -> Option<String> {
+    let terms = match rhs.node(rhs.root()) {
+        crate::expr::Node::Add(ts) if !rhs.is_empty() => ts.len(),
+        _ => 1,
+    };
+    if 2.0 * (terms as f32 - 1.0) > budget {
+        return None;
+    }
+    let printed = print::latex(rhs);
+    (math_width(&printed) <= budget).then_some(printed)
 }
 
 /// The lines of one equation `lhs = rhs` for an `align*`/`aligned` block
@@ -85,19 +112,26 @@ pub(super) fn math_width(s: &str) -> f32 {
 /// balanced.
 pub(super) fn equation_lines(lhs: &str, rhs: &Expr, width: f32) -> Vec<String> {
     let budget = (width - math_width(lhs)).max(24.0);
-    let printed = print::latex(rhs);
-    if math_width(&printed) <= budget {
+    if let Some(printed) = printed_if_fits(rhs, budget) {
         return vec![format!("{lhs} &= {printed}")];
     }
+    // Each piece is measured once; a line's width is the running sum of
+    // its pieces' (see [`width_units`]), never re-measured.
+    let budget_units = budget * 100.0;
+    const REOPEN: &str = r"\left. {} ";
     let mut lines: Vec<String> = Vec::new();
     let mut current = String::new();
+    let mut current_units = 0u32;
     for (piece, inside) in print::break_pieces(rhs, &print::Latex, &|t| math_width(t) > budget) {
-        if !current.is_empty() && math_width(&current) + math_width(&piece) > budget {
+        let units = width_units(&piece);
+        if !current.is_empty() && (current_units + units) as f32 > budget_units {
             let mut line = std::mem::take(&mut current);
+            current_units = 0;
             if inside {
                 line.push_str(r" \right.");
                 // `{}` keeps the sign that follows binary.
-                current.push_str(r"\left. {} ");
+                current.push_str(REOPEN);
+                current_units = width_units(REOPEN);
             }
             lines.push(line);
         }
@@ -105,6 +139,7 @@ pub(super) fn equation_lines(lhs: &str, rhs: &Expr, width: f32) -> Vec<String> {
             current.push(' ');
         }
         current.push_str(&piece);
+        current_units += units;
     }
     lines.push(current);
     lines
@@ -145,7 +180,7 @@ pub(super) fn symbol_list(names: &[String]) -> String {
 /// continuation lines indented under it), so that a long equation never
 /// turns into `0 = …` beside a short one that reads `… = 0`.
 pub(super) fn equations_groups(eqs: &[Equation], width: f32) -> Vec<Vec<String>> {
-    let zero_fits = |e: &Equation| math_width(&print::latex(&e.rhs)) + 4.0 <= width;
+    let zero_fits = |e: &Equation| printed_if_fits(&e.rhs, width - 4.0).is_some();
     let aligned_at_equals = eqs.iter().filter(|e| e.lhs.is_zero()).all(zero_fits);
     eqs.iter()
         .map(|e| {
@@ -251,7 +286,22 @@ pub(super) fn zero_lines(rhs: &Expr, width: f32) -> Vec<String> {
 
 /// The body of an `align*` (or `aligned`) block for one step.
 pub(super) fn step_lines(s: &StepBlock, width: f32) -> String {
-    step_groups(s, width).concat().join(" \\\\\n")
+    let mut o = String::new();
+    write_step_lines(&mut o, s, width);
+    o
+}
+
+/// [`step_lines`] appended to `o`, each line moved there once (a large
+/// result's lines are not copied again into a joined string).
+pub(super) fn write_step_lines(o: &mut String, s: &StepBlock, width: f32) {
+    let groups = step_groups(s, width);
+    o.reserve(groups.iter().flatten().map(|l| l.len() + 4).sum());
+    for (k, line) in groups.into_iter().flatten().enumerate() {
+        if k > 0 {
+            o.push_str(" \\\\\n");
+        }
+        o.push_str(&line);
+    }
 }
 
 pub(super) fn failure_lines(fails: &[(Equation, Equation)], width: f32) -> String {
