@@ -4,6 +4,7 @@ use std::process::Command;
 
 use hdot_tests::{hdot_bin, repo_root};
 
+mod budgets;
 mod html;
 mod reliability;
 mod review;

@@ -138,8 +138,12 @@ pub enum SimError {
         /// The step size.
         h: f64,
     },
-    /// An adaptive run needed more steps than allowed.
-    #[error("more than {max_steps} steps needed before t = {t}")]
+    /// A run needed more steps than the run budget allows: stopped there.
+    #[error(
+        "stopped on the run budget: more than {max_steps} steps needed before t = {t:e}; the \
+         motion needs smaller steps than the budget allows up to the end time (shorten --t-end, \
+         loosen --tol or --dt, or raise the budget with --max-steps)"
+    )]
     TooManySteps {
         /// The step limit.
         max_steps: u64,
@@ -189,6 +193,21 @@ pub enum SimError {
         t_end: f64,
         /// `|ω| T`.
         phase: f64,
+    },
+    /// A run refused before it starts: its estimated steps exceed the
+    /// run budget.
+    #[error(
+        "refused: a run to T = {t_end:e} needs at least {estimated:e} steps, more than the run \
+         budget of {budget} steps (shorten --t-end, use a larger --dt, or raise the budget with \
+         --max-steps)"
+    )]
+    OverBudget {
+        /// The estimated steps (a lower bound).
+        estimated: f64,
+        /// The budget.
+        budget: u64,
+        /// The end time asked for.
+        t_end: f64,
     },
     /// Writing streamed output failed.
     #[error("writing output: {0}")]

@@ -1,7 +1,88 @@
-//! The error estimate of a closed-form run, not assuming the closed form is
-//! right: its defect against the equations of motion it claims to solve.
+//! Estimates of a run before it is made: the error of a closed-form run,
+//! not assuming the closed form is right (its defect against the equations
+//! of motion it claims to solve), and the run budget — the steps one
+//! integration may take, checked against an estimate of the steps a run
+//! needs before it starts and enforced while it runs.
+
+use std::sync::atomic::{AtomicU64, Ordering};
 
 use crate::{Limits, Method, SimError, Step, integrate};
+
+/// The default run budget: steps (accepted and rejected) one integration
+/// may take — 2^22, twice the finest fixed step of the work–precision
+/// sweep. Documented in docs/cli.md; `--max-steps` raises it.
+pub const DEFAULT_MAX_STEPS: u64 = 1 << 22;
+
+/// The most phase `|ω| h` (radians of the scene's rate scale) one step of
+/// any method is taken to cover when the steps of an adaptive run are
+/// estimated: a generous bound (an eighth-order step at the loosest
+/// tolerance swept covers about one radian), so the estimate is a lower
+/// bound and a run it refuses could not finish within the budget.
+pub const MAX_PHASE_PER_STEP: f64 = 4.0;
+
+static MAX_STEPS: AtomicU64 = AtomicU64::new(DEFAULT_MAX_STEPS);
+
+/// The run budget in force: the steps one integration may take
+/// ([`DEFAULT_MAX_STEPS`] unless [`set_max_steps`] changed it).
+pub fn max_steps() -> u64 {
+    MAX_STEPS.load(Ordering::Relaxed)
+}
+
+/// Sets the run budget for the rest of the process (the command line's
+/// `--max-steps`); every integration's [`Limits::default`] takes it.
+pub fn set_max_steps(steps: u64) {
+    MAX_STEPS.store(steps.max(1), Ordering::Relaxed);
+}
+
+/// The budget of the work–precision study's timing: `--min-time` (the
+/// least wall time spent repeating one run) times the number of runs of
+/// the sweep may not exceed this many seconds.
+pub const MAX_TIMING_SECONDS: f64 = 600.0;
+
+/// Refuses a `min_time` per run that, over `runs` runs, exceeds
+/// [`MAX_TIMING_SECONDS`] (or is negative or not finite).
+pub fn check_timing_budget(runs: usize, min_time: f64) -> Result<(), String> {
+    if !(min_time.is_finite() && min_time >= 0.0) {
+        return Err(format!(
+            "--min-time must be non-negative and finite, got {min_time}"
+        ));
+    }
+    let total = runs as f64 * min_time;
+    if total > MAX_TIMING_SECONDS {
+        return Err(format!(
+            "refused: --min-time {min_time:e} s for each of the {runs} runs of the sweep would \
+             take at least {total:e} s, more than the timing budget of {MAX_TIMING_SECONDS} s; \
+             choose --min-time {:.3} or less",
+            MAX_TIMING_SECONDS / runs.max(1) as f64
+        ));
+    }
+    Ok(())
+}
+
+/// A lower estimate of the steps a run over `[0, t_end]` takes: `t_end/h`
+/// for a fixed step; for an adaptive one (or a step still to be chosen),
+/// the phase `rate_scale · t_end` over [`MAX_PHASE_PER_STEP`].
+pub fn estimated_steps(rate_scale: f64, t_end: f64, step: Option<Step>) -> f64 {
+    match step {
+        Some(Step::Fixed(h)) => (t_end / h).ceil(),
+        _ => (rate_scale * t_end / MAX_PHASE_PER_STEP).ceil(),
+    }
+}
+
+/// Refuses, before any work, a run whose estimated steps
+/// ([`estimated_steps`]) exceed the run budget ([`max_steps`]).
+pub fn check_run_budget(rate_scale: f64, t_end: f64, step: Option<Step>) -> Result<(), SimError> {
+    let estimated = estimated_steps(rate_scale, t_end, step);
+    let budget = max_steps();
+    if estimated.is_nan() || estimated > budget as f64 {
+        return Err(SimError::OverBudget {
+            estimated,
+            budget,
+            t_end,
+        });
+    }
+    Ok(())
+}
 
 /// The error a closed form must stay within, per unit of phase `|ω| T`
 /// (the bound the exact torque-free solution is tested to).

@@ -145,8 +145,9 @@ pub struct Limits {
 
 impl Default for Limits {
     fn default() -> Self {
+        // The run budget in force (docs/cli.md, `--max-steps`).
         Limits {
-            max_steps: 100_000_000,
+            max_steps: crate::estimate::max_steps(),
         }
     }
 }

@@ -89,6 +89,11 @@ pub fn plan(scene: &Scene, req: &Request) -> Result<Plan, SimError> {
     };
     let applies =
         |e: &dyn ModelEntry| -> Result<bool, SimError> { Ok(e.refusal(scene)?.is_none()) };
+    // The run budget, before any pilot or reference run: a request's own
+    // step, or (for a step still to be chosen) the scene's phase.
+    let budget = |step: Option<crate::Step>| {
+        crate::estimate::check_run_budget(scene.rate_scale(), t_end, step)
+    };
     if let Some(m) = req.model {
         // Whether a requested model applies is its registry entry's to say.
         check_applies(m, scene)?;
@@ -100,6 +105,7 @@ pub fn plan(scene: &Scene, req: &Request) -> Result<Plan, SimError> {
                 format!("{} as requested: {}", e.name(), e.why()),
             ));
         }
+        budget(req.method.map(|m| requested_step(req, m)).or(req.step))?;
         return Ok(match req.method {
             Some(method) => make(
                 e,
@@ -118,6 +124,7 @@ pub fn plan(scene: &Scene, req: &Request) -> Result<Plan, SimError> {
         });
     }
     if let Some(method) = req.method {
+        budget(Some(requested_step(req, method)))?;
         for &e in MODELS {
             if e.can_integrate() && e.takes(method) && applies(e)? {
                 return Ok(make(
@@ -181,6 +188,7 @@ pub fn plan(scene: &Scene, req: &Request) -> Result<Plan, SimError> {
         if !e.can_integrate() || !e.default_choice() || !applies(e)? {
             continue;
         }
+        budget(req.step)?;
         let how = e.integration(scene, req, t_end, true)?;
         let reason = format!(
             "{why_not}; nothing less will do, so the `{}` model is integrated: {}; {}",

@@ -53,6 +53,10 @@ pub struct SimulateArgs {
     /// memory, bounded by --memory-budget).
     #[arg(long, value_name = "FILE")]
     pub html: Option<PathBuf>,
+    /// Run budget: steps one integration may take (see docs/cli.md); a
+    /// run estimated to need more is refused, one that needs more stops.
+    #[arg(long, default_value_t = hdot_sim::estimate::DEFAULT_MAX_STEPS)]
+    pub max_steps: u64,
 }
 
 /// Errors of the input (exit 2) as opposed to failures of a run (exit 1).
@@ -72,6 +76,7 @@ fn is_input_error(e: &SimError) -> bool {
 
 /// Runs `hdot simulate`.
 pub fn run(args: SimulateArgs) -> anyhow::Result<ExitCode> {
+    hdot_sim::estimate::set_max_steps(args.max_steps);
     let scene = crate::catalog::scene(&args.scene)?;
     let method = args
         .method
@@ -123,23 +128,24 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<ExitCode> {
         }
         None => None,
     };
-    // A progress bar only on a terminal, and only for runs long enough to need one.
-    let long = match plan.step {
-        Some(Step::Fixed(h)) => plan.t_end / h > 2e5,
-        Some(Step::Tolerance(t)) => t < 1e-10 && plan.t_end > 1e3,
-        None => false,
-    };
-    let bar = (long && std::io::stderr().is_terminal()).then(|| {
-        let bar = indicatif::ProgressBar::new(1000);
-        bar.set_style(
-            indicatif::ProgressStyle::with_template("{bar:40} {percent}% t={msg} eta {eta}")
-                .expect("valid template"),
-        );
-        bar
-    });
+    // A progress bar on a terminal for any run that lasts over a second:
+    // made when the first second has passed, moved as the run advances.
     let t_end = plan.t_end;
+    let started = std::time::Instant::now();
+    let terminal = std::io::stderr().is_terminal();
+    let mut bar: Option<indicatif::ProgressBar> = None;
+    let mut calls = 0u64;
     let mut last_tick = 0u64;
     let mut tick = |t: f64| {
+        calls += 1;
+        if bar.is_none() && calls % 256 == 0 && started.elapsed().as_secs_f64() > 1.0 {
+            let b = indicatif::ProgressBar::new(1000);
+            b.set_style(
+                indicatif::ProgressStyle::with_template("{bar:40} {percent}% t={msg} eta {eta}")
+                    .expect("valid template"),
+            );
+            bar = Some(b);
+        }
         if let Some(b) = &bar {
             let pos = if t_end > 0.0 {
                 (1000.0 * t / t_end) as u64
@@ -157,9 +163,10 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<ExitCode> {
         stream: file.as_mut().map(|w| w as &mut dyn Write),
         store: args.trajectory || args.html.is_some(),
         memory_budget: args.memory_budget,
-        progress: bar.as_ref().map(|_| &mut tick as &mut dyn FnMut(f64)),
+        progress: terminal.then_some(&mut tick as &mut dyn FnMut(f64)),
     };
     let result = run::run(&scene, &plan, &mut out);
+    drop(out);
     if let Some(b) = &bar {
         b.finish_and_clear();
     }

@@ -21,8 +21,11 @@ pub struct WorkPrecisionArgs {
     #[arg(long, allow_negative_numbers = true)]
     pub t_end: Option<f64>,
     /// Least wall time spent repeating one run to time it, seconds.
-    #[arg(long, default_value_t = 0.02)]
+    #[arg(long, default_value_t = 0.02, allow_negative_numbers = true)]
     pub min_time: f64,
+    /// Run budget: steps one integration may take (see docs/cli.md).
+    #[arg(long, default_value_t = hdot_sim::estimate::DEFAULT_MAX_STEPS)]
+    pub max_steps: u64,
 }
 
 /// Runs `hdot work-precision`.
@@ -33,12 +36,15 @@ pub fn run(args: WorkPrecisionArgs) -> anyhow::Result<ExitCode> {
         anyhow::bail!("--t-end must be positive and finite, got {t_end}");
     }
     run::check_end_time(&scene, t_end)?;
-    if !(args.min_time.is_finite() && args.min_time >= 0.0) {
-        anyhow::bail!(
-            "--min-time must be non-negative and finite, got {}",
-            args.min_time
-        );
-    }
+    // The budgets, before any run: the steps of the adaptive runs (the
+    // fixed steps of the sweep stay within it), and the time spent timing.
+    hdot_sim::estimate::set_max_steps(args.max_steps);
+    hdot_sim::estimate::check_run_budget(scene.rate_scale(), t_end, None)?;
+    let runs: usize = hdot_sim::Method::ALL
+        .into_iter()
+        .map(|m| run::sweep_steps(m, t_end).len())
+        .sum();
+    hdot_sim::estimate::check_timing_budget(runs, args.min_time).map_err(anyhow::Error::msg)?;
     std::fs::create_dir_all(&args.out)
         .map_err(|e| OutputError::new(format!("cannot create {}", args.out.display()), e))?;
     let stem_name = format!(
