@@ -138,7 +138,7 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<ExitCode> {
     let mut last_tick = 0u64;
     let mut tick = |t: f64| {
         calls += 1;
-        if bar.is_none() && calls % 256 == 0 && started.elapsed().as_secs_f64() > 1.0 {
+        if bar.is_none() && calls.is_multiple_of(256) && started.elapsed().as_secs_f64() > 1.0 {
             let b = indicatif::ProgressBar::new(1000);
             b.set_style(
                 indicatif::ProgressStyle::with_template("{bar:40} {percent}% t={msg} eta {eta}")
@@ -166,7 +166,6 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<ExitCode> {
         progress: terminal.then_some(&mut tick as &mut dyn FnMut(f64)),
     };
     let result = run::run(&scene, &plan, &mut out);
-    drop(out);
     if let Some(b) = &bar {
         b.finish_and_clear();
     }
