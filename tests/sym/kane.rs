@@ -352,3 +352,34 @@ fn bad_constraints_are_located_errors() {
     let e = disk_err("kane([u1, u2, u3], rolling(G, C), [u4, u5])");
     assert!(e.message.contains("expected a declared body"), "{e}");
 }
+
+/// The worked example of docs/multibody.md, its TOML blocks in order, is
+/// a derivation whose expectations hold and whose Kane's equations equal
+/// the bundled file's.
+#[test]
+fn the_worked_example_in_the_docs_derives() {
+    let root = hdot_tests::repo_root();
+    let doc = std::fs::read_to_string(root.join("docs/multibody.md")).unwrap();
+    let mut text = String::from("title = \"worked example\"\nsource = \"docs/multibody.md\"\n");
+    for block in doc.split("```toml\n").skip(1) {
+        text.push_str(block.split("```").next().unwrap());
+    }
+    let d = load_str("multibody.toml", &text).unwrap_or_else(|e| panic!("{e}"));
+    assert!(d.all_hold(), "{:?}", d.failures());
+    assert_eq!(d.check_count(), 5);
+    let path = root.join("derivations/disk-rolling-on-plane.toml");
+    let bundled = load_str(
+        "disk-rolling-on-plane.toml",
+        &std::fs::read_to_string(path).unwrap(),
+    )
+    .unwrap();
+    let k = |d: &hdot_sym::derivation::Derivation| {
+        d.steps
+            .iter()
+            .find(|s| s.name == "K")
+            .unwrap()
+            .value
+            .clone()
+    };
+    assert_eq!(k(&d), k(&bundled));
+}
