@@ -5,6 +5,7 @@ use std::process::Command;
 use hdot_tests::{hdot_bin, repo_root};
 
 mod budgets;
+mod derived_errors;
 mod html;
 mod reliability;
 mod review;

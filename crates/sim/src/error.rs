@@ -167,6 +167,16 @@ pub enum SimError {
         /// What is wrong, naming the file, step or field.
         message: String,
     },
+    /// A derived model cannot be built because of what one field of the
+    /// scene says (the scene reader turns it into a [`SimError::BadField`]
+    /// at that field's line).
+    #[error("derived model: {field}: {message}")]
+    DerivedField {
+        /// The scene's field, e.g. `derivation.accelerations`, `constants`.
+        field: String,
+        /// What is wrong, naming the derivation and its step.
+        message: String,
+    },
     /// The coordinates of a derived model break down.
     #[error("coordinate singularity at t = {t}: {why}")]
     CoordinateSingularity {

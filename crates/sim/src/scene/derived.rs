@@ -47,6 +47,7 @@ use nalgebra::{Matrix3, Vector3};
 use serde::Deserialize;
 
 use super::raw::RawInitial;
+use super::text::line_of_field;
 use crate::SimError;
 use crate::systems::derived::{DerivedModel, DerivedSpec, EquationsSpec, TimeFunction};
 
@@ -191,9 +192,35 @@ pub(super) fn read(
         bodies(file, text)?,
         tables.inputs,
         start,
-        file,
+        (file, text),
         resolve,
     )
+}
+
+/// A derived model's error traced to a field of the scene, as that
+/// field's error at its line (the derivation and its step follow in the
+/// message): the scene is what the user edits.
+fn located(file: &Path, text: &str, e: SimError) -> SimError {
+    match e {
+        SimError::DerivedField { field, message } => {
+            // A constant with no value has no line of its own: the
+            // `[constants]` table, else the line naming the derivation.
+            let line = line_of_field(text, &field).or_else(|| {
+                (field == "constants")
+                    .then(|| line_of_field(text, "derivation.file"))
+                    .flatten()
+            });
+            SimError::BadField {
+                file: file.to_path_buf(),
+                field,
+                message: match line {
+                    Some(n) => format!("line {n}: {message}"),
+                    None => message,
+                },
+            }
+        }
+        e => e,
+    }
 }
 
 fn parse(
@@ -202,7 +229,7 @@ fn parse(
     bodies: Bodies,
     inputs: BTreeMap<String, String>,
     start: RawStart,
-    file: &Path,
+    (file, scene_text): (&Path, &str),
     resolve: Resolve<'_>,
 ) -> Result<DerivedScene, SimError> {
     let bad = |field: &str, message: String| SimError::BadField {
@@ -294,7 +321,8 @@ fn parse(
         inputs,
         conserved: raw.conserved,
     };
-    let model = DerivedModel::new(&d, &spec)?;
+    let model = DerivedModel::new(&d, &spec).map_err(|e| located(file, scene_text, e))?;
+    check_inputs(&d, &path, &model, &spec, file, scene_text)?;
     if let Some((name, why)) = model.constant_singularity() {
         // The field that gave the constant its value: `[constants]`, or
         // the `[[body]]` tables or gravity vector that bound it.
@@ -363,6 +391,61 @@ fn body_frames(d: &Derivation) -> Vec<(String, Vec<String>)> {
             (b.name.clone(), chain)
         })
         .collect()
+}
+
+/// Each `[inputs]` name must be a time symbol of the derivation that is
+/// not a coordinate of the equations (a coordinate's value comes from the
+/// state; a name that is no time symbol would be ignored).
+fn check_inputs(
+    d: &Derivation,
+    path: &Path,
+    model: &DerivedModel,
+    spec: &DerivedSpec,
+    file: &Path,
+    text: &str,
+) -> Result<(), SimError> {
+    let coordinates: Vec<&str> = model.coordinates().iter().map(|c| c.name()).collect();
+    let applied: Vec<&str> = d
+        .symbols
+        .names()
+        .iter()
+        .filter(|n| d.symbols.get(n) == Some(&Decl::Time) && !coordinates.contains(&n.as_str()))
+        .map(String::as_str)
+        .collect();
+    let time_symbols = if applied.is_empty() {
+        "none".to_string()
+    } else {
+        applied.join(", ")
+    };
+    for k in spec.inputs.keys() {
+        let why = if coordinates.contains(&k.as_str()) {
+            format!(
+                "`{k}` is a coordinate of the equations of {} (its value comes from the state, \
+                 `[initial]` starts it); an input gives a time symbol that is not a coordinate \
+                 as a function of t (those of this derivation: {time_symbols})",
+                path.display()
+            )
+        } else if d.symbols.get(k) != Some(&Decl::Time) {
+            format!(
+                "`{k}` is not a time symbol of {} (its time symbols that are not \
+                 coordinates: {time_symbols})",
+                path.display()
+            )
+        } else {
+            continue;
+        };
+        let field = format!("inputs.{k}");
+        let message = match line_of_field(text, &field) {
+            Some(n) => format!("line {n}: {why}"),
+            None => why,
+        };
+        return Err(SimError::BadField {
+            file: file.to_path_buf(),
+            field,
+            message,
+        });
+    }
+    Ok(())
 }
 
 /// The mass-matrix form's coordinates: those the step lists

@@ -169,6 +169,37 @@ fn err(message: impl Into<String>) -> SimError {
     }
 }
 
+/// An error traced to the scene's `field`, unless it is traced already.
+fn at(field: &str, e: SimError) -> SimError {
+    match e {
+        SimError::Derived { message } => SimError::DerivedField {
+            field: field.to_string(),
+            message,
+        },
+        e => e,
+    }
+}
+
+/// An error met while compiling the steps `steps`, said to be there.
+fn in_steps(steps: &[&str], e: SimError) -> SimError {
+    let names = steps
+        .iter()
+        .map(|s| format!("`{s}`"))
+        .collect::<Vec<_>>()
+        .join(" and ");
+    let which = if steps.len() == 1 { "step" } else { "steps" };
+    match e {
+        SimError::Derived { message } => SimError::Derived {
+            message: format!("{message} (in {which} {names})"),
+        },
+        SimError::DerivedField { field, message } => SimError::DerivedField {
+            field,
+            message: format!("{message} (in {which} {names})"),
+        },
+        e => e,
+    }
+}
+
 /// The size below which a sine or cosine the equations divide by is a
 /// singularity.
 const DIVISOR_BOUND: f64 = 1e-9;

@@ -13,7 +13,7 @@ use nalgebra::Vector3;
 use super::compile::{Resolver, Source};
 use super::{
     Conserved, DIVISOR_BOUND, DerivedModel, DerivedSpec, Divisor, EquationsSpec, Form,
-    FrameAttitude, FrameChain, MAX_DOF, TimeFunction, energy_reason, err,
+    FrameAttitude, FrameChain, MAX_DOF, TimeFunction, at, energy_reason, err, in_steps,
 };
 use crate::SimError;
 
@@ -21,13 +21,32 @@ use crate::SimError;
 impl DerivedModel {
     /// Compiles the equations `spec` names in `d`.
     pub fn new(d: &Derivation, spec: &DerivedSpec) -> Result<DerivedModel, SimError> {
-        let (coordinates, outputs) = equations(d, &spec.equations)?;
+        // The field that names the equations, and their steps.
+        let (field, steps) = match &spec.equations {
+            EquationsSpec::Explicit { step } => ("derivation.accelerations", vec![step.as_str()]),
+            EquationsSpec::MassMatrix {
+                mass_matrix,
+                forcing,
+                ..
+            } => (
+                "derivation.mass_matrix",
+                vec![mass_matrix.as_str(), forcing.as_str()],
+            ),
+        };
+        let (coordinates, outputs) = equations(d, &spec.equations).map_err(|e| at(field, e))?;
         let n = coordinates.len();
         if n == 0 || n > MAX_DOF {
-            return Err(err(format!(
-                "{}: {n} coordinates; a derived model has 1 to {MAX_DOF}",
-                d.path
-            )));
+            let field = match &spec.equations {
+                EquationsSpec::Explicit { .. } => field,
+                EquationsSpec::MassMatrix { .. } => "derivation.coordinates",
+            };
+            return Err(at(
+                field,
+                err(format!(
+                    "{}: {n} coordinates; a derived model has 1 to {MAX_DOF}",
+                    d.path
+                )),
+            ));
         }
         let inputs: Vec<(String, TimeFunction)> = spec
             .inputs
@@ -42,7 +61,7 @@ impl DerivedModel {
         };
         let polys = unfold(d, &outputs);
         let (divisors, singular) = divisors(&polys, spec, &coordinates);
-        let compiled = cx.compile(&polys)?;
+        let compiled = cx.compile(&polys).map_err(|e| in_steps(&steps, e))?;
         let form = match &spec.equations {
             EquationsSpec::Explicit { .. } => Form::Explicit(compiled),
             EquationsSpec::MassMatrix { .. } => Form::MassMatrix(compiled),
@@ -114,7 +133,8 @@ fn equations(d: &Derivation, spec: &EquationsSpec) -> Result<(Vec<Atom>, Vec<Pol
             forcing,
             coordinates,
         } => {
-            let (sm, sf) = (step(mass_matrix)?, step(forcing)?);
+            let sm = step(mass_matrix)?;
+            let sf = step(forcing).map_err(|e| at("derivation.forcing", e))?;
             let n = coordinates.len();
             let m = match &sm.value {
                 Value::Array(rows) if rows.len() == n && rows.iter().all(|r| r.len() == n) => {
@@ -133,21 +153,27 @@ fn equations(d: &Derivation, spec: &EquationsSpec) -> Result<(Vec<Atom>, Vec<Pol
                 Value::List { items, .. } if items.len() == n => items.clone(),
                 Value::Vector(v, _) if n == 3 => v.0.to_vec(),
                 v => {
-                    return Err(err(format!(
-                        "{}: step `{forcing}` is {}, not a forcing list of {n}",
-                        d.path,
-                        v.describe()
-                    )));
+                    return Err(at(
+                        "derivation.forcing",
+                        err(format!(
+                            "{}: step `{forcing}` is {}, not a forcing list of {n}",
+                            d.path,
+                            v.describe()
+                        )),
+                    ));
                 }
             };
             let coords = coordinates
                 .iter()
                 .map(|c| match d.symbols.get(c) {
                     Some(hdot_sym::Decl::Time) => Ok(Atom::time(c, 0)),
-                    _ => Err(err(format!(
-                        "{}: `{c}` is not a time symbol of the derivation",
-                        d.path
-                    ))),
+                    _ => Err(at(
+                        "derivation.coordinates",
+                        err(format!(
+                            "{}: `{c}` is not a time symbol of the derivation",
+                            d.path
+                        )),
+                    )),
                 })
                 .collect::<Result<Vec<_>, _>>()?;
             (coords, m.into_iter().chain(f).collect())
@@ -239,12 +265,12 @@ fn conserved(
         }
     }
     for name in names {
-        let s = step(d, name)?;
+        let s = step(d, name).map_err(|e| at("derivation.conserved", e))?;
         let polys = unfold(d, &s.values().into_iter().cloned().collect::<Vec<_>>());
         conserved.push(Conserved {
             name: name.clone(),
             energy: energy_reason(s),
-            compiled: cx.compile(&polys)?,
+            compiled: cx.compile(&polys).map_err(|e| in_steps(&[name], e))?,
         });
     }
     Ok(conserved)

@@ -8,7 +8,7 @@ use hdot_sym::atom::{Atom, AtomKind};
 use hdot_sym::derivation::Derivation;
 use hdot_sym::poly::Poly;
 
-use super::{DerivedSpec, TimeFunction, err};
+use super::{DerivedSpec, TimeFunction, at, err};
 use crate::SimError;
 
 /// Where the value of one atom of the compiled equations comes from.
@@ -118,11 +118,11 @@ impl Resolver<'_> {
         let input = |q: Atom| self.inputs.iter().position(|(n, _)| n == q.name());
         let constant = |q: Atom| -> Result<f64, SimError> {
             self.spec.constants.get(q.name()).copied().ok_or_else(|| {
-                err(format!(
+                at("constants", err(format!(
                     "{}: the constant `{}` has no value: give it under the scene's `[constants]`, or bind it by a `[[body]]` table or the gravity vector `g`",
                     self.d.path,
                     q.name()
-                ))
+                )))
             })
         };
         Ok(match a.kind() {
@@ -137,16 +137,19 @@ impl Resolver<'_> {
                 Source::Input(input(a).expect("checked"))
             }
             AtomKind::Var { .. } => {
-                return Err(err(format!(
-                    "{}: `{a}` is neither a coordinate, its rate, nor an input given as a function of t: \
+                return Err(at(
+                    "inputs",
+                    err(format!(
+                        "{}: `{a}` is neither a coordinate, its rate, nor an input given as a function of t: \
                      the equations of motion must be in q and q̇ (coordinates: {})",
-                    self.d.path,
-                    self.coordinates
-                        .iter()
-                        .map(|c| c.name())
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                )));
+                        self.d.path,
+                        self.coordinates
+                            .iter()
+                            .map(|c| c.name())
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    )),
+                ));
             }
             AtomKind::Sin(q) | AtomKind::Cos(q) => {
                 let sin = matches!(a.kind(), AtomKind::Sin(_));
@@ -166,11 +169,14 @@ impl Resolver<'_> {
                     let v = constant(q)?;
                     Source::Value(if sin { v.sin() } else { v.cos() })
                 } else {
-                    return Err(err(format!(
-                        "{}: `{a}` depends on `{}`, which is neither a coordinate nor an input",
-                        self.d.path,
-                        q.name()
-                    )));
+                    return Err(at(
+                        "inputs",
+                        err(format!(
+                            "{}: `{a}` depends on `{}`, which is neither a coordinate nor an input",
+                            self.d.path,
+                            q.name()
+                        )),
+                    ));
                 }
             }
         })
