@@ -25,12 +25,14 @@ use crate::systems::Shaft;
 use crate::{PrincipalMoments, SimError};
 
 mod derived;
+mod holds;
 mod raw;
 mod rigid;
 mod shaft;
 mod text;
 
 pub use derived::{DerivedScene, Resolve, resolve_near};
+pub use holds::{Pivot, Rigid};
 use raw::RawScene;
 use text::{at_line_after, line_of};
 

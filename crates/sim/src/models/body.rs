@@ -13,7 +13,7 @@ use crate::model::{
     Check, Cover, Drift, Outcome, Plan, PrecessionCheck, REFERENCE_TOL, not_applicable, relative,
 };
 use crate::record::{Recorder, time_and_state};
-use crate::scene::{Scene, SceneKind};
+use crate::scene::{Pivot, Rigid, Scene};
 use crate::systems::free::{attitude, pack, state_distance};
 use crate::systems::{FreeBody, Gravity};
 use crate::{Limits, Method, SimError, Step, integrate};
@@ -30,42 +30,29 @@ pub(super) const QUATERNION_HEADER: &str = "t,q_w,q_x,q_y,q_z,omega_1,omega_2,om
 
 /// Why a model of a rigid body (free or heavy top) does not apply.
 pub(super) fn refuse_non_body(scene: &Scene) -> Option<&'static str> {
-    match &scene.kind {
-        SceneKind::Derived(_) => Some(ONLY_DERIVED),
-        SceneKind::FixedAxis { .. } => Some(
+    if scene.rigid_body().is_some() {
+        None
+    } else if scene.derivation().is_some() {
+        Some(ONLY_DERIVED)
+    } else {
+        Some(
             "the bearings constrain the body to one degree of freedom; only `fixed-axis` describes it",
-        ),
-        SceneKind::Free { .. } | SceneKind::HeavyTop { .. } => None,
+        )
     }
 }
 
 /// The quaternion system and initial state of a free body or heavy top.
 pub(super) fn free_body(scene: &Scene) -> Option<(FreeBody, [f64; 7])> {
-    match &scene.kind {
-        SceneKind::Free { moments, q0, w0 } => Some((
-            FreeBody {
-                moments: moments.get(),
-                gravity: None,
-            },
-            pack(q0, w0),
-        )),
-        SceneKind::HeavyTop {
-            moments,
-            weight_arm,
-            q0,
-            w0,
-            ..
-        } => Some((
-            FreeBody {
-                moments: moments.get(),
-                gravity: Some(Gravity {
-                    weight_arm: *weight_arm,
-                }),
-            },
-            pack(q0, w0),
-        )),
-        SceneKind::FixedAxis { .. } | SceneKind::Derived(_) => None,
-    }
+    let b = scene.rigid_body()?;
+    Some((
+        FreeBody {
+            moments: b.moments.get(),
+            gravity: b.pivot.map(|p| Gravity {
+                weight_arm: p.weight_arm,
+            }),
+        },
+        pack(b.q0, b.w0),
+    ))
 }
 
 /// [`free_body`], or the error of running `model` on a scene that is not a body.
@@ -93,15 +80,22 @@ pub fn reference_state(scene: &Scene, t: f64) -> Result<([f64; 7], String), SimE
         scene: scene.name.clone(),
         reason: reason.into(),
     };
-    match &scene.kind {
-        SceneKind::Free { moments, q0, w0 } => {
-            let exact = TorqueFree::new(moments.get(), *q0, *w0)?;
+    let Some(b) = scene.rigid_body() else {
+        return Err(refuse(if scene.derivation().is_some() {
+            "a derived scene's state is its derivation's coordinates and rates"
+        } else {
+            "a shaft has a one-degree-of-freedom state"
+        }));
+    };
+    match b.pivot {
+        None => {
+            let exact = TorqueFree::new(b.moments.get(), *b.q0, *b.w0)?;
             Ok((exact.state(t), format!("closed form: {}", exact.form())))
         }
-        SceneKind::HeavyTop {
+        Some(Pivot {
             steady: Some(top), ..
-        } => Ok((top.state(t), "closed form: steady precession (§7)".into())),
-        SceneKind::HeavyTop { .. } => {
+        }) => Ok((top.state(t), "closed form: steady precession (§7)".into())),
+        Some(_) => {
             let (body, y0) = free_body(scene).expect("heavy top");
             let (y, _) = integrate(
                 &body,
@@ -115,10 +109,6 @@ pub fn reference_state(scene: &Scene, t: f64) -> Result<([f64; 7], String), SimE
             )?;
             Ok((y, format!("dop853 at tol={REFERENCE_TOL:e}")))
         }
-        SceneKind::FixedAxis { .. } => Err(refuse("a shaft has a one-degree-of-freedom state")),
-        SceneKind::Derived(_) => Err(refuse(
-            "a derived scene's state is its derivation's coordinates and rates",
-        )),
     }
 }
 
@@ -171,9 +161,10 @@ pub(super) fn finish_free(
     out.error = Some(state_distance(y, &reference));
     out.drifts = free_drifts(body, y0, y);
     out.final_state = y.to_vec();
-    if let SceneKind::HeavyTop {
-        steady: Some(top), ..
-    } = &scene.kind
+    if let Some(top) = scene
+        .rigid_body()
+        .and_then(|b| b.pivot)
+        .and_then(|p| p.steady)
     {
         out.precession = Some(precession_check(top, y, t_end));
     }
@@ -189,8 +180,13 @@ pub(super) fn body_closed_form_estimate(
     let (body, y0) = free_body(scene).expect("free or heavy top");
     let scale = scene.rate_scale();
     let time_scale = if scale > 0.0 { 1.0 / scale } else { t_end };
-    match &scene.kind {
-        SceneKind::Free { moments, q0, w0 } => {
+    match scene.rigid_body() {
+        Some(Rigid {
+            moments,
+            q0,
+            w0,
+            pivot: None,
+        }) => {
             let exact = TorqueFree::new(moments.get(), *q0, *w0)?;
             closed_form_estimate(
                 &body,
@@ -202,9 +198,12 @@ pub(super) fn body_closed_form_estimate(
                 state_distance,
             )
         }
-        SceneKind::HeavyTop {
-            steady: Some(top), ..
-        } => closed_form_estimate(
+        Some(Rigid {
+            pivot: Some(Pivot {
+                steady: Some(top), ..
+            }),
+            ..
+        }) => closed_form_estimate(
             &body,
             &|t| top.state(t),
             &y0,

@@ -14,7 +14,7 @@ use crate::model::{
     Outcome, Plan, REFERENCE_TOL, Request, not_a_splitting, not_applicable,
 };
 use crate::record::{Recorder, integrate_recorded, time_and_state, timed};
-use crate::scene::{DerivedScene, Scene, SceneKind};
+use crate::scene::{DerivedScene, Scene};
 use crate::systems::derived::{Conserved, DerivedModel, DerivedSystem, MAX_DOF};
 use crate::{Limits, Method, SimError, Stats, Step, integrate};
 
@@ -48,14 +48,13 @@ const NOT_DERIVED: &str =
     "only a scene of kind \"derived\" names a derivation's equations of motion";
 
 fn derived_of(scene: &Scene) -> Result<&DerivedScene, SimError> {
-    match &scene.kind {
-        SceneKind::Derived(ds) => Ok(ds),
-        _ => Err(not_applicable(
+    scene.derivation().ok_or_else(|| {
+        not_applicable(
             Model(&DERIVED),
             scene,
             "the scene is not of a kind this model describes",
-        )),
-    }
+        )
+    })
 }
 
 impl ModelEntry for Derived {
@@ -72,7 +71,7 @@ impl ModelEntry for Derived {
         true
     }
     fn refusal(&self, scene: &Scene) -> Result<Option<&'static str>, SimError> {
-        Ok((!matches!(scene.kind, SceneKind::Derived(_))).then_some(NOT_DERIVED))
+        Ok(scene.derivation().is_none().then_some(NOT_DERIVED))
     }
     fn can_integrate(&self) -> bool {
         true
@@ -106,9 +105,9 @@ impl ModelEntry for Derived {
         true
     }
     fn stream_header(&self, scene: &Scene) -> String {
-        match &scene.kind {
-            SceneKind::Derived(ds) => format!("t,{}", ds.state_names().join(",")),
-            _ => "t".into(),
+        match scene.derivation() {
+            Some(ds) => format!("t,{}", ds.state_names().join(",")),
+            None => "t".into(),
         }
     }
     fn run(
@@ -401,7 +400,7 @@ fn sweep_n<const N: usize>(
 /// first conserved step that is an energy, and the largest drift of the
 /// other conserved steps; or why there is none.
 fn drift_columns(scene: &Scene) -> DriftColumns {
-    let SceneKind::Derived(ds) = &scene.kind else {
+    let Some(ds) = scene.derivation() else {
         let none = Err("not a derived scene".to_string());
         return DriftColumns {
             energy: none.clone(),

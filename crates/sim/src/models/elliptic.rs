@@ -8,7 +8,7 @@ use super::body::{
 use crate::exact::TorqueFree;
 use crate::model::{Cover, ModelEntry, Outcome, Plan};
 use crate::record::Recorder;
-use crate::scene::{Scene, SceneKind};
+use crate::scene::{Rigid, Scene};
 use crate::{Method, SimError};
 
 /// The entry.
@@ -31,18 +31,21 @@ impl ModelEntry for Elliptic {
         false
     }
     fn refusal(&self, scene: &Scene) -> Result<Option<&'static str>, SimError> {
-        Ok(match &scene.kind {
-            SceneKind::Free { moments, q0, w0 } => {
-                match TorqueFree::new(moments.get(), *q0, *w0)? {
-                    TorqueFree::Elliptic(_) => None,
-                    _ => Some(
-                        "the elliptic form needs three distinct moments and a motion that is not a permanent rotation; \
+        Ok(match scene.rigid_body() {
+            Some(Rigid {
+                moments,
+                q0,
+                w0,
+                pivot: None,
+            }) => match TorqueFree::new(moments.get(), *q0, *w0)? {
+                TorqueFree::Elliptic(_) => None,
+                _ => Some(
+                    "the elliptic form needs three distinct moments and a motion that is not a permanent rotation; \
                      use steady-precession",
-                    ),
-                }
-            }
-            SceneKind::HeavyTop { .. } => Some(HEAVY_TOP_DOF),
-            _ => refuse_non_body(scene),
+                ),
+            },
+            Some(_) => Some(HEAVY_TOP_DOF),
+            None => refuse_non_body(scene),
         })
     }
     fn covers(&self, scene: &Scene, t_end: f64) -> Option<Result<Cover, SimError>> {

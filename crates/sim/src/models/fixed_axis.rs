@@ -11,7 +11,7 @@ use crate::model::{
     relative,
 };
 use crate::record::{Recorder, integrate_recorded, timed};
-use crate::scene::{Scene, SceneKind};
+use crate::scene::Scene;
 use crate::systems::Shaft;
 use crate::{Limits, Method, SimError, Stats, Step, integrate};
 
@@ -22,14 +22,13 @@ pub struct FixedAxis;
 pub static FIXED_AXIS: FixedAxis = FixedAxis;
 
 fn shaft_of(scene: &Scene) -> Result<(&Shaft, &[f64; 2]), SimError> {
-    match &scene.kind {
-        SceneKind::FixedAxis { shaft, y0 } => Ok((shaft, y0)),
-        _ => Err(not_applicable(
+    scene.shaft().ok_or_else(|| {
+        not_applicable(
             Model(&FIXED_AXIS),
             scene,
             "the scene is not of a kind this model describes",
-        )),
-    }
+        )
+    })
 }
 
 fn shaft_reactions(shaft: &Shaft, w: f64) -> [f64; 7] {
@@ -59,14 +58,17 @@ impl ModelEntry for FixedAxis {
         false
     }
     fn refusal(&self, scene: &Scene) -> Result<Option<&'static str>, SimError> {
-        Ok(match &scene.kind {
-            SceneKind::FixedAxis { .. } => None,
-            SceneKind::Derived(_) => Some(ONLY_DERIVED),
-            SceneKind::Free { .. } => Some(
+        Ok(if scene.shaft().is_some() {
+            None
+        } else if scene.derivation().is_some() {
+            Some(ONLY_DERIVED)
+        } else if scene.rigid_body().is_some_and(|b| b.pivot.is_some()) {
+            Some(HEAVY_TOP_DOF)
+        } else {
+            Some(
                 "the body is free: no bearing fixes its axis (a spin about a principal axis is \
                  found by the closed form as a permanent rotation)",
-            ),
-            SceneKind::HeavyTop { .. } => Some(HEAVY_TOP_DOF),
+            )
         })
     }
     fn covers(&self, _: &Scene, _: f64) -> Option<Result<Cover, SimError>> {

@@ -7,7 +7,7 @@ use crate::model::{
     Integration, Model, ModelEntry, Outcome, Plan, Request, not_a_splitting, not_applicable,
 };
 use crate::record::{Recorder, integrate_recorded, time_and_state};
-use crate::scene::{Scene, SceneKind};
+use crate::scene::{Rigid, Scene};
 use crate::systems::PrecessionAngle as System;
 use crate::{Method, SimError, Step};
 
@@ -34,13 +34,13 @@ impl ModelEntry for PrecessionAngle {
         true
     }
     fn refusal(&self, scene: &Scene) -> Result<Option<&'static str>, SimError> {
-        Ok(match &scene.kind {
-            SceneKind::Free { w0, .. } if w0.norm() == 0.0 => Some(AT_REST),
-            SceneKind::Free { .. } => None,
-            SceneKind::HeavyTop { .. } => Some(
+        Ok(match scene.rigid_body() {
+            Some(b) if b.pivot.is_some() => Some(
                 "gravity turns H in space, so the attitude is not fixed by body H and one angle about it",
             ),
-            _ => refuse_non_body(scene),
+            Some(b) if b.w0.norm() == 0.0 => Some(AT_REST),
+            Some(_) => None,
+            None => refuse_non_body(scene),
         })
     }
     fn can_integrate(&self) -> bool {
@@ -81,7 +81,13 @@ impl ModelEntry for PrecessionAngle {
         rec: &mut Recorder<'_, '_>,
     ) -> Result<Outcome, SimError> {
         let (body, y0) = body_of(scene, plan.model)?;
-        let SceneKind::Free { moments, q0, w0 } = &scene.kind else {
+        let Some(Rigid {
+            moments,
+            q0,
+            w0,
+            pivot: None,
+        }) = scene.rigid_body()
+        else {
             return Err(not_applicable(
                 plan.model,
                 scene,

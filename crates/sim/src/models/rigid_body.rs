@@ -11,7 +11,7 @@ use crate::model::{
     REFERENCE_TOL, Request, step_label,
 };
 use crate::record::{Recorder, integrate_recorded, time_and_state, timed};
-use crate::scene::{Scene, SceneKind};
+use crate::scene::Scene;
 use crate::systems::free::state_distance;
 use crate::{Limits, Method, SimError, Step, integrate};
 
@@ -49,7 +49,7 @@ impl ModelEntry for RigidBody {
         t_end: f64,
         _: bool,
     ) -> Result<Integration, SimError> {
-        if !matches!(scene.kind, SceneKind::HeavyTop { .. }) {
+        if scene.rigid_body().and_then(|b| b.pivot).is_none() {
             return Ok(Integration::dop853(req));
         }
         let tol = match req.step {

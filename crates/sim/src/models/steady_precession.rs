@@ -9,7 +9,7 @@ use super::body::{
 use crate::exact::TorqueFree;
 use crate::model::{Cover, ModelEntry, Outcome, Plan};
 use crate::record::Recorder;
-use crate::scene::{Scene, SceneKind};
+use crate::scene::{Pivot, Rigid, Scene};
 use crate::{Method, SimError};
 
 /// The entry.
@@ -32,20 +32,26 @@ impl ModelEntry for SteadyPrecession {
         false
     }
     fn refusal(&self, scene: &Scene) -> Result<Option<&'static str>, SimError> {
-        Ok(match &scene.kind {
-            SceneKind::Free { moments, q0, w0 } => {
-                match TorqueFree::new(moments.get(), *q0, *w0)? {
-                    TorqueFree::Elliptic(_) => Some(
-                        "the body is not axisymmetric (three distinct moments): its motion is not a steady precession",
-                    ),
-                    _ => None,
-                }
-            }
-            SceneKind::HeavyTop { steady: None, .. } => Some(
+        Ok(match scene.rigid_body() {
+            Some(Rigid {
+                moments,
+                q0,
+                w0,
+                pivot: None,
+            }) => match TorqueFree::new(moments.get(), *q0, *w0)? {
+                TorqueFree::Elliptic(_) => Some(
+                    "the body is not axisymmetric (three distinct moments): its motion is not a steady precession",
+                ),
+                _ => None,
+            },
+            Some(Rigid {
+                pivot: Some(Pivot { steady: None, .. }),
+                ..
+            }) => Some(
                 "the initial state does not satisfy §7's steady-precession relation (or θ̇ ≠ 0)",
             ),
-            SceneKind::HeavyTop { .. } => None,
-            _ => refuse_non_body(scene),
+            Some(_) => None,
+            None => refuse_non_body(scene),
         })
     }
     fn covers(&self, scene: &Scene, t_end: f64) -> Option<Result<Cover, SimError>> {
@@ -71,11 +77,12 @@ impl ModelEntry for SteadyPrecession {
 }
 
 fn cover(scene: &Scene, t_end: f64) -> Result<Cover, SimError> {
-    Ok(match &scene.kind {
-        SceneKind::Free { .. } if !closed_form_meets_bound(scene, t_end)? => {
-            untrusted_closed_form()
-        }
-        SceneKind::Free { moments, q0, w0 } => match TorqueFree::new(moments.get(), *q0, *w0)? {
+    let free = scene.rigid_body().filter(|b| b.pivot.is_none());
+    Ok(match free {
+        Some(_) if !closed_form_meets_bound(scene, t_end)? => untrusted_closed_form(),
+        Some(Rigid {
+            moments, q0, w0, ..
+        }) => match TorqueFree::new(moments.get(), *q0, *w0)? {
             TorqueFree::Permanent { .. } => Cover::Covered(
                 "torque-free spin about a principal axis: permanent rotation, ω constant, no integration",
             ),
