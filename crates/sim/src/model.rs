@@ -13,21 +13,31 @@ use crate::record::Recorder;
 use crate::scene::Scene;
 use crate::{Method, SimError, Stats, Step};
 
-/// One model of the motion, described by itself. Adding a model is one
+/// One model of the motion, described by itself: its [`Descriptor`] says
+/// what it is, the other methods how it behaves. Adding a model is one
 /// file in `models/` implementing this trait and one line in
 /// [`crate::models::MODELS`]: the `--model` help, the model choice, the
 /// docs table and the refusals all come from the entries.
 pub trait ModelEntry: Sync {
+    /// What it says of itself (const data, one per entry).
+    fn descriptor(&self) -> &'static Descriptor;
     /// Its command-line name (`--model`).
-    fn name(&self) -> &'static str;
+    fn name(&self) -> &'static str {
+        self.descriptor().name
+    }
     /// The scenes it applies to (for the docs and help).
-    fn applies_to(&self) -> &'static str;
+    fn applies_to(&self) -> &'static str {
+        self.descriptor().applies_to
+    }
     /// Why it is the model chosen there.
-    fn why(&self) -> &'static str;
+    fn why(&self) -> &'static str {
+        self.descriptor().why
+    }
     /// Whether it integrates equations of motion when asked for by name
-    /// (else a closed form; `fixed-axis` has both and integrates when a
-    /// method is given).
-    fn integrated(&self) -> bool;
+    /// (else a closed form).
+    fn integrated(&self) -> bool {
+        self.descriptor().integrated
+    }
     /// Why it does not apply to a scene; `None` when it does.
     fn refusal(&self, scene: &Scene) -> Result<Option<&'static str>, SimError>;
     /// A closed form's test of a scene it applies to: whether it covers it
@@ -37,7 +47,9 @@ pub trait ModelEntry: Sync {
         None
     }
     /// Whether it can integrate (with a method) at all.
-    fn can_integrate(&self) -> bool;
+    fn can_integrate(&self) -> bool {
+        self.descriptor().can_integrate
+    }
     /// How it integrates when no method is given: the scene, the request,
     /// the end time, and whether the model was chosen (not requested).
     fn integration(
@@ -92,6 +104,24 @@ pub trait ModelEntry: Sync {
             momentum: none,
         }
     }
+}
+
+/// What a model says of itself, as const data: the part of an entry that
+/// is the same kind of fact for every model (its behaviour is the trait's).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Descriptor {
+    /// Its command-line name (`--model`).
+    pub name: &'static str,
+    /// The scenes it applies to (for the docs and help).
+    pub applies_to: &'static str,
+    /// Why it is the model chosen there.
+    pub why: &'static str,
+    /// Whether it integrates equations of motion when asked for by name
+    /// (else a closed form; `fixed-axis` has both and integrates when a
+    /// method is given).
+    pub integrated: bool,
+    /// Whether it can integrate (with a method) at all.
+    pub can_integrate: bool,
 }
 
 /// A model, by its registry entry: compared, printed and serialised by

@@ -10,8 +10,8 @@
 use nalgebra::Matrix3;
 
 use crate::model::{
-    DEFAULT_TOL, Drift, DriftColumns, FrameState, Integration, Measured, Model, ModelEntry,
-    Outcome, Plan, REFERENCE_TOL, Request, not_a_splitting, not_applicable,
+    DEFAULT_TOL, Descriptor, Drift, DriftColumns, FrameState, Integration, Measured, Model,
+    ModelEntry, Outcome, Plan, REFERENCE_TOL, Request, not_a_splitting, not_applicable,
 };
 use crate::record::{Recorder, integrate_recorded, time_and_state, timed};
 use crate::scene::{DerivedScene, Scene};
@@ -43,6 +43,15 @@ pub struct Derived;
 /// The entry, as the registry lists it.
 pub static DERIVED: Derived = Derived;
 
+/// What the entry says of itself.
+const DESCRIPTOR: Descriptor = Descriptor {
+    name: "derived",
+    applies_to: "a scene of kind derived (a derivation's equations of motion)",
+    why: "exactly the equations the file derived, integrated in its coordinates",
+    integrated: true,
+    can_integrate: true,
+};
+
 /// Why `derived` runs only a derived scene.
 const NOT_DERIVED: &str =
     "only a scene of kind \"derived\" names a derivation's equations of motion";
@@ -58,23 +67,11 @@ fn derived_of(scene: &Scene) -> Result<&DerivedScene, SimError> {
 }
 
 impl ModelEntry for Derived {
-    fn name(&self) -> &'static str {
-        "derived"
-    }
-    fn applies_to(&self) -> &'static str {
-        "a scene of kind derived (a derivation's equations of motion)"
-    }
-    fn why(&self) -> &'static str {
-        "exactly the equations the file derived, integrated in its coordinates"
-    }
-    fn integrated(&self) -> bool {
-        true
+    fn descriptor(&self) -> &'static Descriptor {
+        &DESCRIPTOR
     }
     fn refusal(&self, scene: &Scene) -> Result<Option<&'static str>, SimError> {
         Ok(scene.derivation().is_none().then_some(NOT_DERIVED))
-    }
-    fn can_integrate(&self) -> bool {
-        true
     }
     /// DOP853, its tolerance fitted on the scene to the requested error
     /// unless a fixed step is asked for.

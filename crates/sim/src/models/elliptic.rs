@@ -6,7 +6,7 @@ use super::body::{
     untrusted_closed_form,
 };
 use crate::exact::TorqueFree;
-use crate::model::{Cover, ModelEntry, Outcome, Plan};
+use crate::model::{Cover, Descriptor, ModelEntry, Outcome, Plan};
 use crate::record::Recorder;
 use crate::scene::{Rigid, Scene};
 use crate::{Method, SimError};
@@ -17,18 +17,18 @@ pub struct Elliptic;
 /// The entry, as the registry lists it.
 pub static ELLIPTIC: Elliptic = Elliptic;
 
+/// What the entry says of itself.
+const DESCRIPTOR: Descriptor = Descriptor {
+    name: "elliptic",
+    applies_to: "a free body with three distinct moments",
+    why: "closed form through Jacobi elliptic functions, no integration",
+    integrated: false,
+    can_integrate: false,
+};
+
 impl ModelEntry for Elliptic {
-    fn name(&self) -> &'static str {
-        "elliptic"
-    }
-    fn applies_to(&self) -> &'static str {
-        "a free body with three distinct moments"
-    }
-    fn why(&self) -> &'static str {
-        "closed form through Jacobi elliptic functions, no integration"
-    }
-    fn integrated(&self) -> bool {
-        false
+    fn descriptor(&self) -> &'static Descriptor {
+        &DESCRIPTOR
     }
     fn refusal(&self, scene: &Scene) -> Result<Option<&'static str>, SimError> {
         Ok(match scene.rigid_body() {
@@ -58,9 +58,6 @@ impl ModelEntry for Elliptic {
                 untrusted_closed_form()
             }
         }))
-    }
-    fn can_integrate(&self) -> bool {
-        false
     }
     fn takes(&self, _: Method) -> bool {
         false

@@ -2,7 +2,7 @@
 //! comparison with the quaternion form; singular at sin θ = 0.
 
 use super::body::{body_of, finish_free, refuse_non_body};
-use crate::model::{ModelEntry, Outcome, Plan};
+use crate::model::{Descriptor, ModelEntry, Outcome, Plan};
 use crate::record::{Recorder, integrate_recorded, time_and_state};
 use crate::scene::Scene;
 use crate::systems::EulerAngleBody;
@@ -16,18 +16,18 @@ pub struct EulerAngles;
 /// The entry, as the registry lists it.
 pub static EULER_ANGLES: EulerAngles = EulerAngles;
 
+/// What the entry says of itself.
+const DESCRIPTOR: Descriptor = Descriptor {
+    name: "euler-angles",
+    applies_to: "a free body or a heavy top (away from θ = 0, π)",
+    why: "Euler's equations with Eulerian angles, for comparison: singular at sin θ = 0",
+    integrated: true,
+    can_integrate: true,
+};
+
 impl ModelEntry for EulerAngles {
-    fn name(&self) -> &'static str {
-        "euler-angles"
-    }
-    fn applies_to(&self) -> &'static str {
-        "a free body or a heavy top (away from θ = 0, π)"
-    }
-    fn why(&self) -> &'static str {
-        "Euler's equations with Eulerian angles, for comparison: singular at sin θ = 0"
-    }
-    fn integrated(&self) -> bool {
-        true
+    fn descriptor(&self) -> &'static Descriptor {
+        &DESCRIPTOR
     }
     fn refusal(&self, scene: &Scene) -> Result<Option<&'static str>, SimError> {
         if let Some(why) = refuse_non_body(scene) {
@@ -39,9 +39,6 @@ impl ModelEntry for EulerAngles {
             "the initial attitude has nutation θ = 0 or π, where Eulerian angles are singular; \
              use rigid-body (quaternion attitude)",
         ))
-    }
-    fn can_integrate(&self) -> bool {
-        true
     }
     fn takes(&self, _: Method) -> bool {
         false

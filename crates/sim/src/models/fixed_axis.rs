@@ -7,8 +7,8 @@ use std::time::Instant;
 use super::body::{HEAVY_TOP_DOF, ONLY_DERIVED};
 use crate::estimate::{CHECK_TOL, ESTIMATE_BASIS, ESTIMATE_SAMPLES, closed_form_estimate, euclid};
 use crate::model::{
-    Check, Cover, DriftColumns, Measured, Model, ModelEntry, Outcome, Plan, not_applicable,
-    relative,
+    Check, Cover, Descriptor, DriftColumns, Measured, Model, ModelEntry, Outcome, Plan,
+    not_applicable, relative,
 };
 use crate::record::{Recorder, integrate_recorded, timed};
 use crate::scene::Scene;
@@ -20,6 +20,15 @@ pub struct FixedAxis;
 
 /// The entry, as the registry lists it.
 pub static FIXED_AXIS: FixedAxis = FixedAxis;
+
+/// What the entry says of itself.
+const DESCRIPTOR: Descriptor = Descriptor {
+    name: "fixed-axis",
+    applies_to: "a shaft in two bearings (kind fixed-axis)",
+    why: "one degree of freedom, linear motor law: a closed form, or integrated with --method; bearing reactions from §6",
+    integrated: false,
+    can_integrate: true,
+};
 
 fn shaft_of(scene: &Scene) -> Result<(&Shaft, &[f64; 2]), SimError> {
     scene.shaft().ok_or_else(|| {
@@ -45,17 +54,8 @@ fn shaft_reactions(shaft: &Shaft, w: f64) -> [f64; 7] {
 }
 
 impl ModelEntry for FixedAxis {
-    fn name(&self) -> &'static str {
-        "fixed-axis"
-    }
-    fn applies_to(&self) -> &'static str {
-        "a shaft in two bearings (kind fixed-axis)"
-    }
-    fn why(&self) -> &'static str {
-        "one degree of freedom, linear motor law: a closed form, or integrated with --method; bearing reactions from §6"
-    }
-    fn integrated(&self) -> bool {
-        false
+    fn descriptor(&self) -> &'static Descriptor {
+        &DESCRIPTOR
     }
     fn refusal(&self, scene: &Scene) -> Result<Option<&'static str>, SimError> {
         Ok(if scene.shaft().is_some() {
@@ -76,9 +76,6 @@ impl ModelEntry for FixedAxis {
             "the bearings fix the axis: one degree of freedom, I_z α = T_0 (1 − ω/ω_0) − c ω, \
              linear in ω, so its closed form needs no integration; bearing reactions from §6",
         )))
-    }
-    fn can_integrate(&self) -> bool {
-        true
     }
     fn takes(&self, _: Method) -> bool {
         true

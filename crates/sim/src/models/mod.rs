@@ -2,8 +2,10 @@
 //! [`ModelEntry`]), and the one registry [`MODELS`] the model choice, the
 //! `--model` help, the docs table and the refusals are all made from.
 //!
-//! Adding a model is one new file here implementing [`ModelEntry`] and
-//! one line in [`MODELS`] (least exact first: the choice takes the first
+//! Adding a model is one new file here — a const [`Descriptor`] (name,
+//! what it applies to and why, closed form or integrated) and an
+//! implementation of [`ModelEntry`] for its behaviour — and one line in
+//! [`MODELS`] (least exact first: the choice takes the first
 //! closed form that covers a scene, else the first entry chosen to
 //! integrate it).
 
@@ -21,7 +23,7 @@ use std::str::FromStr;
 pub use body::reference_state;
 
 use crate::SimError;
-pub use crate::model::{Model, ModelEntry};
+pub use crate::model::{Descriptor, Model, ModelEntry};
 
 /// Every model, least exact first: the one list of them.
 pub static MODELS: &[&dyn ModelEntry] = &[

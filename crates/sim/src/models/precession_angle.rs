@@ -4,7 +4,8 @@
 
 use super::body::{QUATERNION_HEADER, body_of, finish_free, refuse_non_body};
 use crate::model::{
-    Integration, Model, ModelEntry, Outcome, Plan, Request, not_a_splitting, not_applicable,
+    Descriptor, Integration, Model, ModelEntry, Outcome, Plan, Request, not_a_splitting,
+    not_applicable,
 };
 use crate::record::{Recorder, integrate_recorded, time_and_state};
 use crate::scene::{Rigid, Scene};
@@ -17,21 +18,21 @@ pub struct PrecessionAngle;
 /// The entry, as the registry lists it.
 pub static PRECESSION_ANGLE: PrecessionAngle = PrecessionAngle;
 
+/// What the entry says of itself.
+const DESCRIPTOR: Descriptor = Descriptor {
+    name: "precession-angle",
+    applies_to: "a free body that turns (H ≠ 0)",
+    why: "torque-free, H is fixed in space: the attitude is fixed by body H and one angle φ about H, so [ω, φ] is integrated (4 components, ω projected back onto the conserved energy and |H| after every step) instead of the quaternion form",
+    integrated: true,
+    can_integrate: true,
+};
+
 /// Why the model does not apply to a body at rest.
 const AT_REST: &str = "the body is at rest: H = 0 defines no invariable axis";
 
 impl ModelEntry for PrecessionAngle {
-    fn name(&self) -> &'static str {
-        "precession-angle"
-    }
-    fn applies_to(&self) -> &'static str {
-        "a free body that turns (H ≠ 0)"
-    }
-    fn why(&self) -> &'static str {
-        "torque-free, H is fixed in space: the attitude is fixed by body H and one angle φ about H, so [ω, φ] is integrated (4 components, ω projected back onto the conserved energy and |H| after every step) instead of the quaternion form"
-    }
-    fn integrated(&self) -> bool {
-        true
+    fn descriptor(&self) -> &'static Descriptor {
+        &DESCRIPTOR
     }
     fn refusal(&self, scene: &Scene) -> Result<Option<&'static str>, SimError> {
         Ok(match scene.rigid_body() {
@@ -42,9 +43,6 @@ impl ModelEntry for PrecessionAngle {
             Some(_) => None,
             None => refuse_non_body(scene),
         })
-    }
-    fn can_integrate(&self) -> bool {
-        true
     }
     /// Chosen over a closed form that is not trusted: DOP853 at tol 1e-13.
     fn integration(

@@ -7,7 +7,7 @@ use super::body::{
     reference_state, refuse_non_body,
 };
 use crate::model::{
-    DEFAULT_TOL, DriftColumns, Integration, Measured, Model, ModelEntry, Outcome, Plan,
+    DEFAULT_TOL, Descriptor, DriftColumns, Integration, Measured, Model, ModelEntry, Outcome, Plan,
     REFERENCE_TOL, Request, step_label,
 };
 use crate::record::{Recorder, integrate_recorded, time_and_state, timed};
@@ -21,24 +21,21 @@ pub struct RigidBody;
 /// The entry, as the registry lists it.
 pub static RIGID_BODY: RigidBody = RigidBody;
 
+/// What the entry says of itself.
+const DESCRIPTOR: Descriptor = Descriptor {
+    name: RIGID_BODY_NAME,
+    applies_to: "a free body or a heavy top",
+    why: "Euler's equations with a unit-quaternion attitude (no singular attitude)",
+    integrated: true,
+    can_integrate: true,
+};
+
 impl ModelEntry for RigidBody {
-    fn name(&self) -> &'static str {
-        RIGID_BODY_NAME
-    }
-    fn applies_to(&self) -> &'static str {
-        "a free body or a heavy top"
-    }
-    fn why(&self) -> &'static str {
-        "Euler's equations with a unit-quaternion attitude (no singular attitude)"
-    }
-    fn integrated(&self) -> bool {
-        true
+    fn descriptor(&self) -> &'static Descriptor {
+        &DESCRIPTOR
     }
     fn refusal(&self, scene: &Scene) -> Result<Option<&'static str>, SimError> {
         Ok(refuse_non_body(scene))
-    }
-    fn can_integrate(&self) -> bool {
-        true
     }
     /// A heavy top: method and step measured on the scene
     /// ([`pilot_choice`]); a free body: DOP853.

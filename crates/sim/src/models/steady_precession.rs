@@ -7,7 +7,7 @@ use super::body::{
     untrusted_closed_form,
 };
 use crate::exact::TorqueFree;
-use crate::model::{Cover, ModelEntry, Outcome, Plan};
+use crate::model::{Cover, Descriptor, ModelEntry, Outcome, Plan};
 use crate::record::Recorder;
 use crate::scene::{Pivot, Rigid, Scene};
 use crate::{Method, SimError};
@@ -18,18 +18,18 @@ pub struct SteadyPrecession;
 /// The entry, as the registry lists it.
 pub static STEADY_PRECESSION: SteadyPrecession = SteadyPrecession;
 
+/// What the entry says of itself.
+const DESCRIPTOR: Descriptor = Descriptor {
+    name: "steady-precession",
+    applies_to: "a free axisymmetric body or a permanent rotation; a heavy top started in steady precession",
+    why: "closed form (§7, §9): θ, φ̇, ψ̇ constant, no integration",
+    integrated: false,
+    can_integrate: false,
+};
+
 impl ModelEntry for SteadyPrecession {
-    fn name(&self) -> &'static str {
-        "steady-precession"
-    }
-    fn applies_to(&self) -> &'static str {
-        "a free axisymmetric body or a permanent rotation; a heavy top started in steady precession"
-    }
-    fn why(&self) -> &'static str {
-        "closed form (§7, §9): θ, φ̇, ψ̇ constant, no integration"
-    }
-    fn integrated(&self) -> bool {
-        false
+    fn descriptor(&self) -> &'static Descriptor {
+        &DESCRIPTOR
     }
     fn refusal(&self, scene: &Scene) -> Result<Option<&'static str>, SimError> {
         Ok(match scene.rigid_body() {
@@ -56,9 +56,6 @@ impl ModelEntry for SteadyPrecession {
     }
     fn covers(&self, scene: &Scene, t_end: f64) -> Option<Result<Cover, SimError>> {
         Some(cover(scene, t_end))
-    }
-    fn can_integrate(&self) -> bool {
-        false
     }
     fn takes(&self, _: Method) -> bool {
         false
