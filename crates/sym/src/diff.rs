@@ -56,10 +56,10 @@ impl Poly {
                 if !a.is_time_dependent() {
                     continue;
                 }
-                let rest = m.without(a, 1);
                 let k = c * &Rational::int(i64::from(e));
                 for (dm, dc) in cache.entry(a).or_insert_with(|| atom_dt(a)).iter() {
-                    acc.push(rest.mul(dm), &k * dc);
+                    // (m / a) · d/dt a, one product.
+                    acc.push(m.mul_without(a, dm), &k * dc);
                 }
             }
         }

@@ -1,0 +1,453 @@
+//! One group of a presented result as `[number] [constants] (bracket)
+//! [rates, sin, cos]`: its terms in bracket order, the rational content and
+//! the sign pulled out or not, the common monomial, a bracket that is a
+//! known factor or a cyclic difference, terms that share their rates
+//! gathered over a bracket of constants, and a solved form's ratios.
+
+use std::borrow::Cow;
+use std::cmp::Reverse;
+use std::collections::BTreeMap;
+
+use rustc_hash::FxHashMap;
+use smallvec::SmallVec;
+
+use super::known::{factor_by, known_factor_node};
+use super::order::{
+    constant_class, constant_next, constants_of_one_family, conventional, cyclic_pair,
+    leading_constant,
+};
+use super::{PLAIN_ABOVE, Presentation};
+use crate::atom::{Atom, AtomKind};
+use crate::expr::{Expr, Id, Node, PrintTerm, print_sorted};
+use crate::poly::{Monomial, Poly};
+use crate::rational::Rational;
+
+/// `key · Σ terms` with the sum factored.
+pub(super) fn group_node(
+    e: &mut Expr,
+    key: &Monomial,
+    terms: &[(Monomial, Rational)],
+    pres: &Presentation,
+) -> Id {
+    let known = &pres.factors[..];
+    let order = &pres.constant_order[..];
+    let mut terms = print_sorted(terms, true);
+    let distribute = distributes(&terms);
+    // Highest derivative first; then terms of constants only (J + I′ sin² θ);
+    // in a distributed bracket the terms that were not divided before the
+    // divided ones (θ̈ = φ̇² sin θ cos θ − (I/I′) …); then by name.
+    // (What every term has, as x in (J s + (C − A) Ω) x, does not count.)
+    let mut all = terms
+        .first()
+        .map(|t| t.1.clone())
+        .unwrap_or_else(Monomial::one);
+    for t in &terms {
+        if all.is_one() {
+            break;
+        }
+        all = all.gcd(t.1);
+    }
+    terms.sort_by_cached_key(|t| {
+        let top = t.1.factors().iter().map(|f| f.0.order()).max();
+        // Some factor of t / all that is not a leading constant (t / all
+        // is not built: the exponents are compared).
+        let timed =
+            t.1.factors()
+                .iter()
+                .any(|&(a, e)| e != all.exponent(a) && !leading_constant(a))
+                || all
+                    .factors()
+                    .iter()
+                    .any(|&(a, _)| t.1.exponent(a) == 0 && !leading_constant(a));
+        (
+            Reverse(top.unwrap_or(0)),
+            timed,
+            distribute && has_divisor(t.1),
+        )
+    });
+    // Content: rational gcd, with the minus sign pulled out only when that
+    // leaves fewer negative terms inside the bracket and the bracket does
+    // not mix kinds of terms of opposite signs; otherwise the bracket leads
+    // with a positive term.
+    let mut content = terms.iter().fold(Rational::ZERO, |g, t| g.gcd(t.2));
+    if cyclic_pair_of_constants(&terms) {
+        // Rule 3 decides the sign of a difference of one cyclic family:
+        // −(A − C) ω_2 ω_3, as Euler's equations are written. Constants
+        // with subscripts are put positive first, so that
+        // `cyclic_difference` orders them by their subscripts or letters
+        // whatever the sign (I_2 ω_3 − A_3 ω_3 is (I_2 − A_3) ω_3, and
+        // C Ω − A Ω is (C − A) Ω, never −(A − C) Ω).
+        if terms[0].2.is_negative() {
+            terms.swap(0, 1);
+        }
+    } else if pull_sign(&terms) && lead_positive_inside(&mut terms) {
+        content = -content;
+    } else if terms[0].2.is_negative()
+        && let Some(k) = terms.iter().position(|t| !t.2.is_negative())
+    {
+        let t = terms.remove(k);
+        terms.insert(0, t);
+    }
+    let mut common = terms[0].1.clone();
+    for t in &terms[1..] {
+        if common.is_one() {
+            break;
+        }
+        common = common.gcd(t.1);
+    }
+    if distribute {
+        // Only common rates leave the bracket (½ (I′ + m L² + I L²/r²) φ̇²);
+        // constants, sin and cos stay with each term.
+        common = common
+            .split(|a| a.is_time_dependent() && matches!(a.kind(), AtomKind::Var { .. }))
+            .0;
+    }
+    let inv = content.recip().expect("non-zero content");
+
+    let mut outer = key.mul(&common);
+    let mut number = content.abs();
+    let mut negative = content.is_negative();
+    let rest = || Poly::from_terms(terms.iter().map(|(_, m, c)| (m.div(&common), *c * &inv)));
+    let factored = if terms.len() > 1 && !known.is_empty() {
+        factor_by(&rest(), known)
+    } else {
+        None
+    };
+    let bracket: Vec<Id> = if terms.len() == 1 {
+        outer = outer.mul(&terms[0].1.div(&common));
+        Vec::new()
+    } else if let Some((a, b)) = cyclic_difference(&terms, &common) {
+        // (a − b) with b before a in cyclic order: written −(b − a), as
+        // Euler's equations are (− (I_z − I_x) ω_z ω_x).
+        negative = !negative;
+        let ta = e.term_node(&[(b, 1)], &Rational::ONE);
+        let tb = e.term_node(&[(a, 1)], &-Rational::ONE);
+        vec![e.add(vec![ta, tb])]
+    } else if let Some((fs, m, c)) = factored {
+        // rest = c · m · Π fs
+        outer = outer.mul(&m);
+        number = &number * &c.abs();
+        negative ^= c.is_negative();
+        fs.iter().map(|f| known_factor_node(e, f, pres)).collect()
+    } else {
+        let (sum, flip) = bracket_sum(e, &terms, &common, &inv, distribute, pres);
+        negative ^= flip;
+        vec![sum]
+    };
+    if terms.len() == 1 {
+        number = terms[0].2.abs();
+    }
+
+    let factors = outer.sorted_for_print();
+    let mut ids = Vec::new();
+    if !number.is_one() || (factors.is_empty() && bracket.is_empty()) {
+        ids.push(e.push(Node::Num(number)));
+    }
+    // Constant symbols lead, in conventional order (mass, inertia,
+    // gravity, then by name: m g l, I′ θ̇); constants named by a Greek
+    // letter (a constant rate Ω) and sin/cos (even of a constant angle)
+    // follow the bracket with the rates.
+    let leading = leading_constant;
+    let mut lead: Vec<(Atom, i32)> = factors.iter().copied().filter(|f| leading(f.0)).collect();
+    lead.sort_by_key(|f| constant_class(f.0, order));
+    for (a, x) in lead {
+        ids.push(e.atom_pow(a, x));
+    }
+    ids.extend(bracket);
+    let mut trailing: Vec<(Atom, i32)> =
+        factors.iter().copied().filter(|f| !leading(f.0)).collect();
+    cyclic_pair(&mut trailing);
+    for (a, x) in trailing {
+        ids.push(e.atom_pow(a, x));
+    }
+    let m = e.mul(ids);
+    if negative { e.push(Node::Neg(m)) } else { m }
+}
+
+/// The bracket of a group with more than one term (`terms` divided by
+/// `common` and times `inv`, the reciprocal of the content): terms that
+/// share their time-dependent part (the same rates, sin and cos) and
+/// differ in constants are one term of that part with a bracket of
+/// constants, ((I_2 − A_3) ω_3 − h) ω_2/I_1; the others each a term. The
+/// node of the sum, and whether its sign went in front of the bracket.
+fn bracket_sum(
+    e: &mut Expr,
+    terms: &[PrintTerm<'_>],
+    common: &Monomial,
+    inv: &Rational,
+    distribute: bool,
+    pres: &Presentation,
+) -> (Id, bool) {
+    let order = &pres.constant_order[..];
+    let plain = common.is_one() && inv.is_one();
+    let mut negative = false;
+    // Terms that share their time-dependent part (the same rates, sin
+    // and cos) and differ in constants are one term of that part with
+    // a bracket of constants: ((I_2 − A_3) ω_3 − h) ω_2/I_1.
+    // (A large bracket is plain, see PLAIN_ABOVE: no shared parts,
+    // and its atom powers are stored once in the tree.)
+    let big = terms.len() > PLAIN_ABOVE;
+    let parts: Vec<(Cow<'_, Monomial>, Rational)> = terms
+        .iter()
+        .map(|(_, m, c)| {
+            if plain {
+                (Cow::Borrowed(*m), (*c).clone())
+            } else {
+                (Cow::Owned(m.div(common)), *c * inv)
+            }
+        })
+        .collect();
+    // The part that follows a bracket (rates, sin and cos, constant
+    // rates named by Greek letters: J s + (C − A) Ω).
+    let timed: Vec<Monomial> = if big {
+        Vec::new()
+    } else {
+        parts
+            .iter()
+            .map(|(m, _)| m.split(|a| !leading_constant(a)).0)
+            .collect()
+    };
+    let mut shared: FxHashMap<&Monomial, Vec<(Monomial, Rational)>> = FxHashMap::default();
+    for ((m, c), t) in parts.iter().zip(&timed) {
+        if !t.is_one() {
+            shared.entry(t).or_default().push((m.div(t), c.clone()));
+        }
+    }
+    shared.retain(|_, v| v.len() > 1);
+    let mut atoms: FxHashMap<(Atom, i32), Id> = FxHashMap::default();
+    // (node, negative, highest derivative order, has a part that
+    // follows a bracket)
+    let mut nodes: Vec<(Id, bool, u32, bool)> = Vec::with_capacity(terms.len());
+    for (k, ((sorted, _, _), (m, c))) in terms.iter().zip(&parts).enumerate() {
+        let top = m.factors().iter().map(|f| f.0.order()).max().unwrap_or(0);
+        let follows = match timed.get(k) {
+            None => m.factors().iter().any(|&(a, _)| !leading_constant(a)),
+            Some(t) => {
+                if let Some(sub) = shared.get_mut(t) {
+                    // The first term of the shared part stands for all of them.
+                    if !sub.is_empty() {
+                        let sub = std::mem::take(sub);
+                        let id = group_node(e, t, &sub, pres);
+                        nodes.push((id, matches!(e.node(id), Node::Neg(_)), top, true));
+                    }
+                    continue;
+                }
+                !t.is_one()
+            }
+        };
+        let mut f: SmallVec<[(Atom, i32); 16]> = if plain {
+            sorted.iter().copied().collect()
+        } else {
+            m.sorted_for_print().into_iter().collect()
+        };
+        conventional(&mut f, order);
+        let id = if distribute {
+            ratio_term(e, &f, c)
+        } else if big {
+            shared_term_node(e, &f, c, &mut atoms)
+        } else {
+            e.term_node(&f, c)
+        };
+        nodes.push((id, c.is_negative(), top, follows));
+    }
+    // Grouping may leave every term negative (−J s − (C − A) Ω): the
+    // sign goes in front of the bracket, −(J s + (C − A) Ω) (rule 4),
+    // the terms in bracket order.
+    if nodes.iter().all(|n| n.1) {
+        for n in &mut nodes {
+            if let Node::Neg(x) = e.node(n.0) {
+                n.0 = *x;
+                n.1 = false;
+            }
+        }
+        negative = true;
+        nodes.sort_by_key(|n| (Reverse(n.2), n.3));
+    }
+    // The bracket leads with a positive term of its leading order.
+    if nodes[0].1
+        && let Some(k) = nodes.iter().position(|n| !n.1 && n.2 == nodes[0].2)
+    {
+        let n = nodes.remove(k);
+        nodes.insert(0, n);
+    }
+    (e.add(nodes.into_iter().map(|n| n.0).collect()), negative)
+}
+
+/// Two terms, each a single constant of one cyclic family (I_x and I_z,
+/// A and C), times a common factor.
+pub(super) fn cyclic_pair_of_constants(terms: &[PrintTerm<'_>]) -> bool {
+    let [t0, t1] = terms else { return false };
+    let common = t0.1.gcd(t1.1);
+    let single = |m: &Monomial| match m.div(&common).factors() {
+        [(a, 1)] if !a.is_time_dependent() => Some(*a),
+        _ => None,
+    };
+    matches!((single(t0.1), single(t1.1)), (Some(a), Some(b)) if constants_of_one_family(a, b))
+}
+
+/// Whether a group's minus sign goes in front of its bracket: for a single
+/// term, when it is negative; for a sum, when more of its terms are
+/// negative than positive and it does not mix kinds of opposite signs —
+/// terms of one kind (the same constant factors: `m` terms, `I′` terms, the
+/// terms without constants) all positive and those of another all
+/// negative. So −I′ (φ̈ sin θ + 2 φ̇ θ̇ cos θ), but m z ẍ − m x z̈ + ḣ_y
+/// rather than −(m x z̈ − m z ẍ − ḣ_y), and I ω_z cos θ − I′ φ̇ − I′ φ̇ cos² θ
+/// rather than −(I′ φ̇ + I′ φ̇ cos² θ − I ω_z cos θ).
+pub(super) fn pull_sign(terms: &[PrintTerm<'_>]) -> bool {
+    let negative = terms.iter().filter(|t| t.2.is_negative()).count();
+    if terms.len() == 1 {
+        return negative == 1;
+    }
+    if 2 * negative <= terms.len() {
+        return false;
+    }
+    // Per kind: (any positive, any negative).
+    let mut kinds: BTreeMap<Monomial, (bool, bool)> = BTreeMap::new();
+    for t in terms {
+        let kind = t.1.split(leading_constant).0;
+        let e = kinds.entry(kind).or_default();
+        if t.2.is_negative() {
+            e.1 = true;
+        } else {
+            e.0 = true;
+        }
+    }
+    let all_positive = kinds.values().any(|&(p, n)| p && !n);
+    let all_negative = kinds.values().any(|&(p, n)| n && !p);
+    !(all_positive && all_negative)
+}
+
+/// With the sign pulled out, the bracket leads with a positive term: a
+/// term of the leading one's derivative order that is negative (positive
+/// once the sign is out) is moved to the front. When there is none —
+/// the highest derivative would lead negative, −(−r θ̈ cos θ + b φ̇² + …) —
+/// the sign is not pulled (false): r θ̈ cos θ − b φ̇² − ….
+pub(super) fn lead_positive_inside(terms: &mut Vec<PrintTerm<'_>>) -> bool {
+    if terms[0].2.is_negative() {
+        return true;
+    }
+    let top = |t: &PrintTerm<'_>| t.1.factors().iter().map(|f| f.0.order()).max();
+    let first = top(&terms[0]);
+    let Some(k) = terms
+        .iter()
+        .position(|t| top(t) == first && t.2.is_negative())
+    else {
+        return false;
+    };
+    let t = terms.remove(k);
+    terms.insert(0, t);
+    true
+}
+
+/// True when the monomial divides by something (a negative power).
+pub(super) fn has_divisor(m: &Monomial) -> bool {
+    m.factors().iter().any(|f| f.1 < 0)
+}
+
+/// Whether a bracket's constant divisor is distributed over its terms
+/// rather than written once under the whole bracket: when some terms are
+/// divided by a constant and others not at all, as a solved form is after
+/// the divisor cancelled in some terms, and nothing time-dependent divides
+/// (a divisor such as sin θ keeps the bracket one fraction:
+/// φ̈ = (I ω_z − 2 I′ φ̇ cos θ) θ̇/(I′ sin θ)). Terms that all share their
+/// divisor keep it under the bracket, (F_z y_P − F_y z_P)/I_x, and terms
+/// all divided by different constants go over their common denominator,
+/// H_G (I′ − I) cos θ/(I I′).
+pub(super) fn distributes(terms: &[PrintTerm<'_>]) -> bool {
+    if terms.len() < 2 {
+        return false;
+    }
+    let divisor = |m: &Monomial| -> Option<Vec<(Atom, i32)>> {
+        let d: Vec<(Atom, i32)> = m.factors().iter().copied().filter(|f| f.1 < 0).collect();
+        d.iter().all(|f| leading_constant(f.0)).then_some(d)
+    };
+    let Some(first) = divisor(terms[0].1) else {
+        return false;
+    };
+    let (mut differ, mut undivided) = (false, first.is_empty());
+    for t in &terms[1..] {
+        let Some(d) = divisor(t.1) else { return false };
+        differ |= d != first;
+        undivided |= d.is_empty();
+    }
+    differ && undivided
+}
+
+/// `c · factors` for a term of a distributed bracket: constant factors
+/// over a constant divisor, followed by rates, sin and cos, are written
+/// as a ratio in front, `(m g l/I′) sin θ`, as a textbook writes a solved
+/// form; a term of constants only is one fraction (`I L²/r²`).
+pub(super) fn ratio_term(e: &mut Expr, factors: &[(Atom, i32)], c: &Rational) -> Id {
+    type Factors = Vec<(Atom, i32)>;
+    let (constants, rest): (Factors, Factors) =
+        factors.iter().copied().partition(|f| leading_constant(f.0));
+    let numerator = constants.iter().any(|f| f.1 > 0);
+    let denominator = constants.iter().any(|f| f.1 < 0);
+    if rest.is_empty() || !numerator || !denominator {
+        return e.term_node(factors, c);
+    }
+    let mut ids = Vec::new();
+    let mag = c.abs();
+    if !mag.is_one() {
+        ids.push(e.push(Node::Num(mag)));
+    }
+    let ratio: Vec<Id> = constants.iter().map(|&(a, x)| e.atom_pow(a, x)).collect();
+    ids.push(e.mul(ratio));
+    for &(a, x) in &rest {
+        ids.push(e.atom_pow(a, x));
+    }
+    let m = e.mul(ids);
+    if c.is_negative() {
+        e.push(Node::Neg(m))
+    } else {
+        m
+    }
+}
+
+/// `c · factors` as [`Expr::term_node`] writes it, with each atom power
+/// stored once in the tree and shared by the terms that have it (`atoms`
+/// remembers their nodes): a plain bracket of 40,000 terms costs three
+/// nodes a term, not fifteen. Printing and expanding read a shared node as
+/// they read a copy.
+pub(super) fn shared_term_node(
+    e: &mut Expr,
+    factors: &[(Atom, i32)],
+    c: &Rational,
+    atoms: &mut FxHashMap<(Atom, i32), Id>,
+) -> Id {
+    let mut ids = Vec::with_capacity(factors.len() + 1);
+    let mag = c.abs();
+    if !mag.is_one() || factors.is_empty() {
+        ids.push(e.push(Node::Num(mag)));
+    }
+    for &(a, x) in factors {
+        ids.push(*atoms.entry((a, x)).or_insert_with(|| e.atom_pow(a, x)));
+    }
+    let m = e.mul(ids);
+    if c.is_negative() {
+        e.push(Node::Neg(m))
+    } else {
+        m
+    }
+}
+
+/// A bracket of two terms `a − b` (single constants of one cyclic family,
+/// coefficients +1 and −1 after the common factor) in which `a` follows
+/// `b` in cyclic order, so that it reads better as `−(b − a)`:
+/// (I_x − I_z) → −(I_z − I_x), (A − C) → −(C − A).
+pub(super) fn cyclic_difference(
+    terms: &[PrintTerm<'_>],
+    common: &Monomial,
+) -> Option<(Atom, Atom)> {
+    let [t0, t1] = terms else { return None };
+    let single = |m: &Monomial| match m.div(common).factors() {
+        [(a, 1)] if !a.is_time_dependent() => Some(*a),
+        _ => None,
+    };
+    let (a, b) = (single(t0.1)?, single(t1.1)?);
+    if t0.2.is_negative() || !(t0.2 + t1.2).is_zero() {
+        return None;
+    }
+    // a − b: reads cyclically when b follows a.
+    (constant_next(b, a) && !constant_next(a, b)).then_some((a, b))
+}

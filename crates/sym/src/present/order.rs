@@ -1,0 +1,148 @@
+//! The order of factors in a presented term: constant symbols first in
+//! the file's or the conventional order (m g l, I′ θ̇), and two members of
+//! one cyclic family (x → y → z, 1 → 2 → 3, A → B → C) in cyclic order.
+
+use rustc_hash::FxHashMap;
+use smallvec::SmallVec;
+
+use crate::atom::{Atom, AtomKind};
+
+/// A constant symbol that leads a product (`m g l`), as opposed to a rate,
+/// sin or cos, or a constant named by a Greek letter (a constant rate Ω),
+/// which follow the bracket.
+pub(super) fn leading_constant(a: Atom) -> bool {
+    // Asked for every factor of every term: each atom's answer (a name
+    // looked up in the Greek table) is found once.
+    thread_local! {
+        static KNOWN: std::cell::RefCell<FxHashMap<Atom, bool>> = Default::default();
+    }
+    KNOWN.with(|k| {
+        *k.borrow_mut().entry(a).or_insert_with(|| {
+            !a.is_time_dependent()
+                && matches!(a.kind(), AtomKind::Var { .. })
+                && crate::symbols::greek(a.name().split('_').next().unwrap_or("")).is_none()
+        })
+    })
+}
+
+/// The place of a constant factor: the names of the file's own order
+/// (`[symbols] order`) first, in that order; then the conventional one —
+/// mass first, then inertia, then gravity, then the others (lengths),
+/// `m g l`, `I′ θ̇` — each class by name.
+pub(super) fn constant_class(a: Atom, order: &[String]) -> (usize, u8, &'static str) {
+    let name = a.name();
+    let own = order.iter().position(|n| n == name).unwrap_or(order.len());
+    let base = name.split('_').next().unwrap_or(name);
+    let class = match base {
+        "m" | "M" | "mass" => 0,
+        "I" | "Ip" | "J" | "Jp" => 1,
+        "g" => 2,
+        _ => 3,
+    };
+    (own, class, name)
+}
+
+/// A place in a cyclic order: (family, position, which order).
+pub(super) type Place = (&'static str, usize, u8);
+
+/// The position of a subscript or letter in a cyclic order (x → y → z,
+/// 1 → 2 → 3, A → B → C, also with a common subscript: A_p → B_p → C_p),
+/// the family (the name without the subscript, or the letters' common
+/// subscript), and which of the three orders it is in.
+pub(super) fn cyclic_place(a: Atom) -> Option<Place> {
+    // Each atom's place is found once (names compared as strings).
+    thread_local! {
+        static KNOWN: std::cell::RefCell<FxHashMap<Atom, Option<Place>>> = Default::default();
+    }
+    KNOWN.with(|k| *k.borrow_mut().entry(a).or_insert_with(|| place_of(a)))
+}
+
+pub(super) fn place_of(a: Atom) -> Option<Place> {
+    let name = a.name();
+    if let Some((base, sub)) = name.rsplit_once('_') {
+        if let Some(k) = ["x", "y", "z"].iter().position(|c| *c == sub) {
+            return Some((base, k, 0));
+        }
+        if let Some(k) = ["1", "2", "3"].iter().position(|c| *c == sub) {
+            return Some((base, k, 1));
+        }
+        // The letters A, B, C with one other subscript (a platform's A_p,
+        // B_p, C_p): the family is the subscript.
+        let k = ["A", "B", "C"].iter().position(|c| *c == base)?;
+        return Some((sub, k, 2));
+    }
+    ["A", "B", "C"]
+        .iter()
+        .position(|c| *c == name)
+        .map(|k| ("", k, 2))
+}
+
+/// Whether two constants are of one cyclic family as moments of inertia
+/// about the three axes are: the same name with subscripts in one order,
+/// or different names with subscripts in one order (a gyrostat's I_1, I_2
+/// and A_3), or the letters A, B, C.
+pub(super) fn constants_of_one_family(a: Atom, b: Atom) -> bool {
+    match (cyclic_place(a), cyclic_place(b)) {
+        (Some((fa, _, oa)), Some((fb, _, ob))) => oa == ob && (fa == fb || oa != 2),
+        _ => false,
+    }
+}
+
+/// Whether constant `b` follows constant `a` in the cyclic order of their
+/// subscripts ([`constants_of_one_family`]).
+pub(super) fn constant_next(a: Atom, b: Atom) -> bool {
+    match (cyclic_place(a), cyclic_place(b)) {
+        (Some((_, ka, _)), Some((_, kb, _))) => constants_of_one_family(a, b) && (ka + 1) % 3 == kb,
+        _ => false,
+    }
+}
+
+/// The factors of a term inside a bracket in conventional order: constants
+/// first as [`constant_class`] orders them (`2 m g l cos θ`), the rest as
+/// they were, two rates of one cyclic family in cyclic order.
+pub(super) fn conventional(fs: &mut [(Atom, i32)], order: &[String]) {
+    let constant = leading_constant;
+    let constants = fs.iter().filter(|f| constant(f.0)).count();
+    if constants <= 1 {
+        // The sort below would only move the one constant to the front.
+        if let Some(k) = fs.iter().position(|f| constant(f.0)) {
+            fs[..=k].rotate_right(1);
+        }
+        cyclic_pair(fs);
+        return;
+    }
+    fs.sort_by_cached_key(|&(a, _)| {
+        if constant(a) {
+            (0, constant_class(a, order))
+        } else {
+            (1, (0, 0, ""))
+        }
+    });
+    cyclic_pair(fs);
+}
+
+/// Two rates of one cyclic family in cyclic order: ω_x ω_z → ω_z ω_x
+/// (the order Euler's equations write them in).
+pub(super) fn cyclic_pair(fs: &mut [(Atom, i32)]) {
+    // Each factor's place is looked up once (names are compared as
+    // strings), and a swap moves two factors of one family, so the places
+    // move with them.
+    let mut places: SmallVec<[Option<Place>; 8]> = fs.iter().map(|f| cyclic_place(f.0)).collect();
+    let next = |a: Place, b: Place| a.0 == b.0 && a.2 == b.2 && (a.1 + 1) % 3 == b.1;
+    for i in 0..fs.len() {
+        let Some((family, _, _)) = places[i] else {
+            continue;
+        };
+        let mut same = (0..fs.len()).filter(|&k| places[k].is_some_and(|(f, _, _)| f == family));
+        let (Some(p), Some(q), None) = (same.next(), same.next(), same.next()) else {
+            continue;
+        };
+        let (Some(pp), Some(pq)) = (places[p], places[q]) else {
+            continue;
+        };
+        if p == i && fs[p].1 == 1 && fs[q].1 == 1 && next(pq, pp) && !next(pp, pq) {
+            fs.swap(p, q);
+            places.swap(p, q);
+        }
+    }
+}
