@@ -9,6 +9,7 @@ mod derived_errors;
 mod html;
 mod reliability;
 mod review;
+mod stability;
 
 fn hdot(args: &[&str]) -> std::process::Output {
     Command::new(hdot_bin())

@@ -12,6 +12,8 @@ mod derived_model;
 mod derived_scene;
 // scene/derived.rs: a derived scene's `[[body]]` tables bind the derivation's symbols.
 mod derived_bodies;
+// stability/: eigenvalue sweeps of linearised equations (hdot stability).
+mod eigen_sweep;
 // elliptic.rs: identities, special values, series of K.
 mod elliptic;
 // exact.rs: closed forms against the ODE and against each other.

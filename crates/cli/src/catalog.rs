@@ -279,12 +279,11 @@ pub fn bundled_scene(arg: &Path) -> Option<(String, &'static str)> {
     Some((format!("docs/examples/{n}.toml"), t))
 }
 
-/// Reads a simulation scene: a file, or a bundled example named as in
-/// [`bundled_scene`]. A derived scene's `derivation.file` is looked up
+/// The finder of a scene's derivation (`derivation.file`): looked up
 /// next to the scene first, then among the derivations of
 /// [`derivations_dir`] (the bundled ones when there is no folder).
-pub fn scene(path: &Path) -> anyhow::Result<hdot_sim::scene::Scene> {
-    let find = |name: &str| {
+pub fn derivation_finder(path: &Path) -> impl Fn(&str) -> Result<(PathBuf, String), String> + '_ {
+    move |name: &str| {
         hdot_sim::scene::resolve_near(path, name).or_else(|near| {
             let Ok(entry) = resolve(&derivations_dir(None), name) else {
                 return Err(near);
@@ -302,9 +301,43 @@ pub fn scene(path: &Path) -> anyhow::Result<hdot_sim::scene::Scene> {
                 Entry::Chain(_) => Err(near),
             }
         })
+    }
+}
+
+/// Reads a simulation scene: a file, or a bundled example named as in
+/// [`bundled_scene`]; its derivation is found by [`derivation_finder`].
+pub fn scene(path: &Path) -> anyhow::Result<hdot_sim::scene::Scene> {
+    let find = derivation_finder(path);
+    let text = match bundled_scene(path) {
+        Some((_, text)) => Some(text.to_owned()),
+        None => std::fs::read_to_string(path).ok(),
     };
+    if let Some(table) = text.and_then(|t| t.parse::<toml::Table>().ok())
+        && table.get("kind").and_then(|k| k.as_str()) == Some("stability")
+    {
+        bail!(
+            "{}: a stability scene (kind = \"stability\"): run `hdot stability {}`",
+            path.display(),
+            path.display()
+        );
+    }
     Ok(match bundled_scene(path) {
         Some((name, text)) => hdot_sim::scene::Scene::parse_with(text, Path::new(&name), &find)?,
         None => hdot_sim::scene::Scene::from_file_with(path, &find)?,
+    })
+}
+
+/// Reads a stability scene (`hdot stability`): a file, or a bundled
+/// example named as in [`bundled_scene`]; its derivation is found by
+/// [`derivation_finder`].
+pub fn stability_scene(path: &Path) -> anyhow::Result<hdot_sim::stability::StabilityScene> {
+    use hdot_sim::stability::StabilityScene;
+    let find = derivation_finder(path);
+    Ok(match bundled_scene(path) {
+        Some((name, text)) => StabilityScene::parse_with(text, Path::new(&name), &find)?,
+        None => {
+            let text = hdot_sym::textfile::read(path)?;
+            StabilityScene::parse_with(&text, path, &find)?
+        }
     })
 }

@@ -49,6 +49,8 @@ enum Command {
     Simulate(cmd::simulate::SimulateArgs),
     /// One review file per derivation; --check fails when one would change.
     Snapshot(cmd::snapshot::SnapshotArgs),
+    /// Eigenvalues of linearised equations over a parameter; where they are stable.
+    Stability(cmd::stability::StabilityArgs),
     /// Derived equations against particle sums on random bodies and states.
     Verify(cmd::verify::VerifyArgs),
     /// Sweep every method over steps and tolerances; write CSV and chart.
@@ -90,6 +92,7 @@ fn dispatch(cli: Cli) -> ExitCode {
         Command::Notes(a) => cmd::notes::run(a),
         Command::Simulate(a) => cmd::simulate::run(a),
         Command::Snapshot(a) => cmd::snapshot::run(a),
+        Command::Stability(a) => cmd::stability::run(a),
         Command::Verify(a) => cmd::verify::run(a),
         Command::WorkPrecision(a) => cmd::work_precision::run(a),
     };

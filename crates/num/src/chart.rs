@@ -1,9 +1,11 @@
-//! Log–log line charts written as SVG and PNG (shared by the numeric and
-//! simulation crates).
+//! Line charts written as SVG and PNG (shared by the numeric and
+//! simulation crates and the command line).
 //!
-//! One entry point, [`loglog_chart`], draws one line with markers per
-//! [`Series`], a legend and logarithmic axes, and writes `<stem>.svg` and
-//! `<stem>.png`. Text in the PNG is drawn with DejaVu Sans, vendored in
+//! [`loglog_chart`] draws one line with markers per [`Series`], a legend
+//! and logarithmic axes (convergence, work–precision);
+//! [`panels_chart_into`] draws lines on linear axes in panels stacked
+//! over one x axis (eigenvalues against a parameter). Both write
+//! `<stem>.svg` and `<stem>.png`. Text in the PNG is drawn with DejaVu Sans, vendored in
 //! `crates/num/assets/fonts/` (licence next to it), through plotters'
 //! `ab_glyph` feature, so the build needs no system font library.
 //!
@@ -206,30 +208,43 @@ pub fn loglog_chart_into(
 
     // PNG
     let png_path = path_stem.with_extension("png");
+    let rgb = render_rgb(|root| draw(root, title, x_label, y_label, &clean, ranges.clone()))
+        .map_err(|message| ChartError::Draw {
+            path: png_path.clone(),
+            message,
+        })?;
+    stage_png(batch, &png_path, &rgb)
+}
+
+/// Draws a chart of [`CHART_SIZE`] into an RGB buffer with `draw`.
+fn render_rgb(
+    draw: impl FnOnce(&DrawingArea<BitMapBackend<'_>, Shift>) -> Result<(), String>,
+) -> Result<Vec<u8>, String> {
     let (w, h) = CHART_SIZE;
     let mut rgb = vec![0u8; (w * h * 3) as usize];
     {
         let root = BitMapBackend::with_buffer(&mut rgb, CHART_SIZE).into_drawing_area();
-        draw(&root, title, x_label, y_label, &clean, ranges).map_err(|message| {
-            ChartError::Draw {
-                path: png_path.clone(),
-                message,
-            }
-        })?;
+        draw(&root)?;
     }
+    Ok(rgb)
+}
+
+/// Encodes an RGB buffer of [`CHART_SIZE`] as PNG and stages it in `batch`.
+fn stage_png(batch: &mut Batch, png_path: &Path, rgb: &[u8]) -> Result<(), ChartError> {
+    let (w, h) = CHART_SIZE;
     let mut bytes = Vec::new();
     {
         let mut enc = png::Encoder::new(&mut bytes, w, h);
         enc.set_color(png::ColorType::Rgb);
         enc.set_depth(png::BitDepth::Eight);
         let png_err = |e: png::EncodingError| ChartError::Png {
-            path: png_path.clone(),
+            path: png_path.to_path_buf(),
             message: e.to_string(),
         };
         let mut writer = enc.write_header().map_err(png_err)?;
-        writer.write_image_data(&rgb).map_err(png_err)?;
+        writer.write_image_data(rgb).map_err(png_err)?;
     }
-    stage(batch, &png_path, &bytes)
+    stage(batch, png_path, &bytes)
 }
 
 fn draw<DB: DrawingBackend>(
@@ -306,4 +321,166 @@ fn stage(batch: &mut Batch, path: &Path, bytes: &[u8]) -> Result<(), ChartError>
         path: path.to_path_buf(),
         source,
     })
+}
+
+/// One panel of a [`panels_chart_into`] chart: its y-axis label and lines.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Panel {
+    /// The y axis's label.
+    pub y_label: String,
+    /// The lines (drawn without markers; non-finite points are skipped).
+    pub series: Vec<Series>,
+}
+
+/// Writes a chart of panels stacked one above the other, sharing the
+/// linear x axis, to `<path_stem>.svg` and `<path_stem>.png` staged in
+/// `batch`: each panel's lines on linear axes spanning its data (a zero
+/// line drawn when the range crosses zero), a legend in the first panel
+/// when there are at most [`LEGEND_MAX`] lines.
+pub fn panels_chart_into(
+    batch: &mut Batch,
+    path_stem: &Path,
+    title: &str,
+    x_label: &str,
+    panels: &[Panel],
+) -> Result<(), ChartError> {
+    register_font();
+    let finite = |p: &(f64, f64)| p.0.is_finite() && p.1.is_finite();
+    let span = |it: &mut dyn Iterator<Item = f64>| {
+        it.fold((f64::MAX, f64::MIN), |(a, b), v| (a.min(v), b.max(v)))
+    };
+    let points = || {
+        panels.iter().flat_map(|p| {
+            p.series
+                .iter()
+                .flat_map(|s| s.points.iter().filter(|q| finite(q)))
+        })
+    };
+    if points().next().is_none() {
+        return Err(ChartError::NoData {
+            path: path_stem.to_path_buf(),
+        });
+    }
+    let x = padded(span(&mut points().map(|p| p.0)), 0.0);
+    let ys: Vec<std::ops::Range<f64>> = panels
+        .iter()
+        .map(|p| {
+            let mut it = p
+                .series
+                .iter()
+                .flat_map(|s| s.points.iter().filter(|q| finite(q)).map(|q| q.1));
+            padded(span(&mut it), 0.05)
+        })
+        .collect();
+    let svg_path = path_stem.with_extension("svg");
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, CHART_SIZE).into_drawing_area();
+        draw_panels(&root, title, x_label, panels, &x, &ys).map_err(|message| {
+            ChartError::Draw {
+                path: svg_path.clone(),
+                message,
+            }
+        })?;
+    }
+    stage(batch, &svg_path, svg.as_bytes())?;
+    let png_path = path_stem.with_extension("png");
+    let rgb = render_rgb(|root| draw_panels(root, title, x_label, panels, &x, &ys)).map_err(
+        |message| ChartError::Draw {
+            path: png_path.clone(),
+            message,
+        },
+    )?;
+    stage_png(batch, &png_path, &rgb)
+}
+
+/// The most lines a panel chart labels in a legend.
+pub const LEGEND_MAX: usize = 12;
+
+/// A data range widened by `pad` of its width on each side; a range of
+/// zero width (or none) is widened to one around its value.
+fn padded((lo, hi): (f64, f64), pad: f64) -> std::ops::Range<f64> {
+    if lo > hi {
+        return -1.0..1.0;
+    }
+    let w = hi - lo;
+    if w <= f64::EPSILON * lo.abs().max(hi.abs()) {
+        let d = lo.abs().max(1.0) * 0.5;
+        return (lo - d)..(hi + d);
+    }
+    (lo - pad * w)..(hi + pad * w)
+}
+
+fn draw_panels<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    title: &str,
+    x_label: &str,
+    panels: &[Panel],
+    xr: &std::ops::Range<f64>,
+    yrs: &[std::ops::Range<f64>],
+) -> Result<(), String> {
+    let e = |err: DrawingAreaErrorKind<DB::ErrorType>| err.to_string();
+    root.fill(&WHITE).map_err(e)?;
+    let root = root.titled(title, (FAMILY, 24)).map_err(e)?;
+    let areas = root.split_evenly((panels.len().max(1), 1));
+    for (k, (panel, area)) in panels.iter().zip(&areas).enumerate() {
+        let yr = yrs[k].clone();
+        let last = k + 1 == panels.len();
+        let mut chart = ChartBuilder::on(area)
+            .margin(10)
+            .x_label_area_size(if last { 45 } else { 20 })
+            .y_label_area_size(80)
+            .build_cartesian_2d(xr.clone(), yr.clone())
+            .map_err(e)?;
+        let mut mesh = chart.configure_mesh();
+        mesh.y_desc(panel.y_label.as_str())
+            .label_style((FAMILY, 15))
+            .axis_desc_style((FAMILY, 17))
+            .light_line_style(RGBColor(235, 235, 235))
+            .bold_line_style(RGBColor(200, 200, 200));
+        if last {
+            mesh.x_desc(x_label);
+        }
+        mesh.draw().map_err(e)?;
+        if yr.start < 0.0 && yr.end > 0.0 {
+            chart
+                .draw_series(LineSeries::new(
+                    [(xr.start, 0.0), (xr.end, 0.0)],
+                    BLACK.stroke_width(1),
+                ))
+                .map_err(e)?;
+        }
+        let legend = k == 0 && panel.series.len() <= LEGEND_MAX;
+        for (i, s) in panel.series.iter().enumerate() {
+            let colour = COLOURS[i % COLOURS.len()];
+            // Runs of finite points, so that a gap is not drawn across.
+            let mut drawn = false;
+            for run in s.points.split(|p| !(p.0.is_finite() && p.1.is_finite())) {
+                if run.is_empty() {
+                    continue;
+                }
+                let a = chart
+                    .draw_series(LineSeries::new(run.iter().copied(), colour.stroke_width(2)))
+                    .map_err(e)?;
+                if legend && !drawn {
+                    a.label(s.label.clone()).legend(move |(x, y)| {
+                        PathElement::new(vec![(x, y), (x + 24, y)], colour.stroke_width(2))
+                    });
+                }
+                drawn = true;
+            }
+        }
+        if legend && !panel.series.is_empty() {
+            chart
+                .configure_series_labels()
+                .label_font((FAMILY, 14))
+                .background_style(WHITE.mix(0.85))
+                .border_style(BLACK)
+                .position(SeriesLabelPosition::UpperRight)
+                .draw()
+                .map_err(e)?;
+        }
+    }
+    root.present().map_err(e)?;
+    Ok(())
 }

@@ -54,6 +54,7 @@ pub mod models;
 pub mod record;
 pub mod run;
 pub mod scene;
+pub mod stability;
 pub mod sweep;
 mod system;
 pub mod systems;

@@ -10,5 +10,6 @@ pub mod list;
 pub mod notes;
 pub mod simulate;
 pub mod snapshot;
+pub mod stability;
 pub mod verify;
 pub mod work_precision;
