@@ -302,12 +302,13 @@ mod tests {
     #[test]
     fn following_keeps_crossing_paths_apart() {
         let z = |re: f64| Complex::new(re, 0.0);
-        // Column 0 rises (−1, 0, 1), column 1 falls (1, 0, −1) — at the
-        // middle step they are close; the prediction tells them apart.
-        let before = [z(-2.0), z(2.0)];
-        let last = [z(-1.0), z(1.0)];
-        let now = vec![z(-0.1), z(0.1)];
-        assert_eq!(follow(&last, &before, now), vec![z(0.1), z(-0.1)]);
+        // Column 0 rises fast (−2, −0.5, then 1), column 1 falls slowly
+        // (0.5, 0.4, then 0.3): they cross between the last two values,
+        // and the nearest to each last value would swap them.
+        let before = [z(-2.0), z(0.5)];
+        let last = [z(-0.5), z(0.4)];
+        let now = vec![z(0.3), z(1.0)];
+        assert_eq!(follow(&last, &before, now), vec![z(1.0), z(0.3)]);
     }
 
     /// A boundary between two grid values is found to the bisection's
