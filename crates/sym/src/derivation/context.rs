@@ -195,30 +195,46 @@ impl Context<'_> {
     /// Records a constant symbol, or sin/cos of a constant angle, as positive.
     pub fn declare_positive(&mut self, s: &Spanned<String>) -> R<()> {
         let base = self.content_start(s);
-        let ast = self.parse_at(s.get_ref(), base)?;
-        let atom = match &ast.kind {
-            AstKind::Name { name, primes: 0 } => self.symbols.atom(name, 0, ast.span),
-            AstKind::Call { func, args } if func == "sin" || func == "cos" => {
-                self.symbols.trig(func, args, ast.span)
-            }
-            _ => {
-                return Err(self.at(
-                    base,
-                    ast.span,
-                    "list constant symbols or sin/cos of a constant angle",
-                ));
-            }
-        }
-        .map_err(|e| self.at(base, e.span, e.message))?;
+        let (atom, span) = self.listed_atom(
+            s.get_ref(),
+            base,
+            false,
+            "list constant symbols or sin/cos of a constant angle",
+        )?;
         if atom.is_time_dependent() {
             return Err(self.at(
                 base,
-                ast.span,
+                span,
                 "only constants (or sin/cos of a constant angle) can be declared positive",
             ));
         }
         self.positive.push(atom);
         Ok(())
+    }
+
+    /// The atom an item of a list of symbols names (`positive`,
+    /// `collect`): a declared symbol — with primes only when `rates` — or
+    /// sin/cos of one, with the item's span; `refusal` at the item when it
+    /// is neither. `base` is the item's offset in the file.
+    pub(crate) fn listed_atom(
+        &self,
+        item: &str,
+        base: usize,
+        rates: bool,
+        refusal: &str,
+    ) -> R<(Atom, Span)> {
+        let ast = self.parse_at(item, base)?;
+        let atom = match &ast.kind {
+            AstKind::Name { name, primes } if rates || *primes == 0 => {
+                self.symbols.atom(name, *primes, ast.span)
+            }
+            AstKind::Call { func, args } if func == "sin" || func == "cos" => {
+                self.symbols.trig(func, args, ast.span)
+            }
+            _ => return Err(self.at(base, ast.span, refusal)),
+        }
+        .map_err(|e| self.at(base, e.span, e.message))?;
+        Ok((atom, ast.span))
     }
 
     /// Whether `name` is a step evaluated so far.

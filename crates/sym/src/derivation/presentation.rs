@@ -5,7 +5,6 @@
 use super::Abbreviation;
 use super::context::{Context, R};
 use super::raw::{RawStep, string_contents};
-use crate::parse::AstKind;
 use crate::present::Presentation;
 
 impl Context<'_> {
@@ -19,21 +18,12 @@ impl Context<'_> {
             let spans = string_contents(self.text, list.span().start, list.span().end);
             for (k, item) in list.get_ref().iter().enumerate() {
                 let base = spans.get(k).map_or(list.span().start, |s| s.0);
-                let ast = self.parse_at(item, base)?;
-                let atom = match &ast.kind {
-                    AstKind::Name { name, primes } => self.symbols.atom(name, *primes, ast.span),
-                    AstKind::Call { func, args } if func == "sin" || func == "cos" => {
-                        self.symbols.trig(func, args, ast.span)
-                    }
-                    _ => {
-                        return Err(self.at(
-                            base,
-                            ast.span,
-                            "collect by symbols such as omega_x, omega_x' or sin(theta)",
-                        ));
-                    }
-                }
-                .map_err(|e| self.at(base, e.span, e.message))?;
+                let (atom, _) = self.listed_atom(
+                    item,
+                    base,
+                    true,
+                    "collect by symbols such as omega_x, omega_x' or sin(theta)",
+                )?;
                 pres.collect.push(atom);
             }
         }
