@@ -7,7 +7,7 @@
 //!
 //! # Example
 //! ```
-//! use hdot_sym::{frame::Frame, Symbols, Vec3};
+//! use hdot_sym::{Frame, Symbols, Vec3};
 //! let s = Symbols::parse_decl(&["I"], &["w_x", "w_y", "w_z"]);
 //! let p = |t: &str| s.poly(t).unwrap();
 //! let b = Frame::rotating("B", Vec3::new([p("w_x"), p("w_y"), p("w_z")]));

@@ -31,28 +31,53 @@
 //!   of expressions is `==` on this form.
 //! * [`Expr`] is a flat, children-first node store used for the written
 //!   shape of expressions (parser input, printer output).
+//!
+//! ## Public surface
+//!
+//! What a user crate needs, and nothing it could come to depend on by
+//! accident (`examples/course-tests`, `hdot-num`, `hdot-sim` and the CLI
+//! use no more):
+//!
+//! * running a derivation: [`derivation`] (load, steps, values,
+//!   expectations, declared physics), [`course`] (a lecturer's
+//!   expectations), [`chain`] (the chained derivations);
+//! * the values: [`Poly`], [`Monomial`], [`Atom`], [`AtomKind`],
+//!   [`Rational`], [`Symbols`], [`Decl`], [`Vec3`], [`Mat3`], [`Frame`],
+//!   [`Expr`] and [`Node`], and [`parse`] for formulas as written;
+//! * showing them: [`present`], [`print`](mod@print), [`render`],
+//!   [`document`], [`notes`], [`label`], [`prose`], [`escape`] (one
+//!   escaping function per output language), [`limits`] and [`work`]
+//!   (the bounds and counters of presentation), [`textfile`] (reading a
+//!   file with located encoding errors).
+//!
+//! The algebra behind the values — differentiation in time (`diff`),
+//! partial derivatives (`partial`), substitution (`subst`), the rational
+//! numbers' arithmetic (`rational`) and frames' kinematics (`frame`) — is
+//! internal: it is reached through the methods of [`Poly`], [`Vec3`] and
+//! [`Frame`] and through the derivation language, so it can change without
+//! breaking a user crate.
 
 pub mod atom;
 pub mod chain;
 pub mod course;
 pub mod derivation;
-pub mod diff;
+pub(crate) mod diff;
 pub mod document;
 pub mod escape;
 pub mod expr;
-pub mod frame;
+pub(crate) mod frame;
 pub mod label;
 pub mod limits;
 pub mod notes;
 pub mod parse;
-pub mod partial;
+pub(crate) mod partial;
 pub mod poly;
 pub mod present;
 pub mod print;
 pub mod prose;
-pub mod rational;
+pub(crate) mod rational;
 pub mod render;
-pub mod subst;
+pub(crate) mod subst;
 pub mod symbols;
 pub mod textfile;
 pub mod vector;
@@ -60,6 +85,7 @@ pub mod work;
 
 pub use atom::{Atom, AtomKind};
 pub use expr::{Expr, Node};
+pub use frame::Frame;
 pub use poly::{Monomial, Poly};
 pub use rational::Rational;
 pub use symbols::{Decl, Symbols};
