@@ -383,3 +383,60 @@ fn the_worked_example_in_the_docs_derives() {
     };
     assert_eq!(k(&d), k(&bundled));
 }
+
+/// Loads: a torque M about the top's axis and a horizontal force at
+/// the point Q on the axis at height a (force F_h). Kane's equations with the loads
+/// equal Lagrange's with the generalized forces computed from the power of
+/// the loads (∂/∂q̇ of T·ω + F·v_Q).
+#[test]
+fn loads_enter_kane_as_their_generalized_active_forces() {
+    let text = TOP
+        .replace("SPEEDS", "speeds = [\"u1\", \"u2\", \"u3\"]")
+        .replace("KINEMATICS", "phi = \"u1\"\ntheta = \"u2\"\npsi = \"u3\"")
+        .replace(
+            "constants = [\"I\", \"Ip\", \"m\", \"g\", \"l\"]",
+            "constants = [\"I\", \"Ip\", \"m\", \"g\", \"l\", \"a\", \"F_h\"]\ntime = [\"M\"]",
+        )
+        .replace("time = [\"phi\", \"theta\", \"psi\"]", "")
+        .replace(
+            "time = [\"M\"]",
+            "time = [\"M\", \"phi\", \"theta\", \"psi\"]",
+        )
+        .replace(
+            "[[body]]",
+            "[[point]]\nname = \"Q\"\nfrom = \"O\"\nat = \"[0, 0, a] in R\"\n\
+             [[load]]\nframe = \"R\"\ntorque = \"[0, 0, M] in R\"\n\
+             [[load]]\npoint = \"Q\"\nforce = \"[F_h, 0, 0] in N\"\n[[body]]",
+        )
+        + r#"
+[[step]]
+name = "power"
+value = "dot(angvel(R), [0, 0, M] in R) + dot(dt(express([0, 0, a] in R, N)), [F_h, 0, 0] in N)"
+[[step]]
+name = "L_loaded"
+value = "lagrange(T, m*g*l*cos(theta), [phi, theta, psi], list(partial(power, phi'), partial(power, theta'), partial(power, psi')))"
+[[step]]
+name = "K"
+value = "kane([u1, u2, u3])"
+expect = ["in_speeds(L_loaded).1", "in_speeds(L_loaded).2", "in_speeds(L_loaded).3"]
+[[step]]
+name = "K_free"
+value = "kane([u1, u2, u3]) - in_speeds(L)"
+"#;
+    let d = load_str("top.toml", &text).unwrap_or_else(|e| panic!("{e}"));
+    assert!(d.all_hold(), "{:?}", d.failures());
+    assert_eq!(d.check_count(), 3);
+    // Without the loads' share the equations differ: the loads count.
+    let Value::List { items, .. } = &d.steps.iter().find(|s| s.name == "K_free").unwrap().value
+    else {
+        panic!()
+    };
+    assert!(items.iter().all(|p| !p.is_zero()));
+    // A load that names an unknown point, or mixes force and torque.
+    let bad = text.replace("point = \"Q\"\nforce", "point = \"Z\"\nforce");
+    let e = load_str("top.toml", &bad).unwrap_err();
+    assert!(e.message.contains("`Z` is not a declared point"), "{e}");
+    let bad = text.replace("point = \"Q\"\nforce", "frame = \"R\"\nforce");
+    let e = load_str("top.toml", &bad).unwrap_err();
+    assert!(e.message.contains("either `point` with `force`"), "{e}");
+}

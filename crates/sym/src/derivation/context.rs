@@ -39,6 +39,8 @@ pub(crate) struct Context<'a> {
     /// The declared bodies, points, gravity and loads, once read (for
     /// operations such as `kane`).
     pub physics: super::physics::Physics,
+    /// Applied forces and torques (`[[load]]`, `loads.rs`).
+    pub loads: Vec<super::loads::Load>,
 }
 
 /// A result whose error is located in the file.
@@ -60,6 +62,7 @@ impl<'a> Context<'a> {
             abbrevs: Vec::new(),
             speeds: Default::default(),
             physics: Default::default(),
+            loads: Vec::new(),
         }
     }
 }

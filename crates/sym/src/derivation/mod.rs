@@ -34,6 +34,7 @@ mod context;
 mod error;
 mod eval;
 mod frames;
+mod loads;
 pub mod ops;
 pub mod physics;
 mod presentation;
@@ -358,6 +359,7 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
     // Bodies, points, gravity, knowns, conditions.
     let physics = physics::declarations(&cx, &raw)?;
     cx.physics = physics.clone();
+    cx.loads = loads::declare(&cx, &raw)?;
     // Steps.
     let mut steps = Vec::new();
     let mut seen: HashMap<String, ()> = HashMap::new();

@@ -37,6 +37,19 @@ pub(crate) struct RawFile {
     /// `[kinematics]`: each coordinate's rate in the coordinates and the
     /// speeds (`speeds.rs`).
     pub kinematics: Option<std::collections::BTreeMap<Spanned<String>, Spanned<String>>>,
+    /// `[[load]]`: forces at points and torques on frames (`loads.rs`).
+    #[serde(default, rename = "load")]
+    pub loads: Vec<RawLoad>,
+}
+
+/// `[[load]]` (`loads.rs`).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawLoad {
+    pub point: Option<Spanned<String>>,
+    pub force: Option<Spanned<String>>,
+    pub frame: Option<Spanned<String>>,
+    pub torque: Option<Spanned<String>>,
 }
 
 /// `[[point]]` (`physics/bodies.rs`).

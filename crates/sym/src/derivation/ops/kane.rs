@@ -12,6 +12,7 @@ use super::velocity::{Speedmap, linear_in_speeds};
 use super::{Call, Op, coefficient};
 use crate::atom::Atom;
 use crate::derivation::context::R;
+use crate::derivation::loads::Load;
 use crate::derivation::physics::Body;
 use crate::derivation::value::Value;
 use crate::parse::AstKind;
@@ -23,7 +24,8 @@ pub(crate) const KANE: Op = Op {
     signature: "kane([u1, u2, …]), kane([u1, …], constraints, [u4, …])",
     doc: "Kane's equations of the declared bodies for the listed (independent) generalized speeds: for each u_r, \
           Σ (v_G,r · (m a_G − m g) + ω_r · (I_G α + ω × I_G ω)), where v_G,r and ω_r are the partial velocities \
-          of each mass centre and body frame and g is `gravity` (= −(F_r + F_r*), zero along the motion); \
+          of each mass centre and body frame and g is `gravity`, less v_P,r · F and ω_r · T of each `[[load]]` \
+          (= −(F_r + F_r*), zero along the motion); \
           velocities are written in the speeds through `[kinematics]`. With constraints (a vector or `list` \
           that vanishes, linear in the speeds, such as `rolling(B, P)`) the dependent speeds listed last are \
           solved for and eliminated. A list, one equation per independent speed, linear in their rates",
@@ -65,7 +67,68 @@ fn eval(c: &Call<'_, '_>) -> R<Value> {
             *e = &*e + &t;
         }
     }
+    for l in &cx.loads {
+        let terms = load_terms(&sp, l, &us)?;
+        for (e, t) in eqs.iter_mut().zip(terms) {
+            *e = &*e - &t;
+        }
+    }
     Ok(Value::list(eqs))
+}
+
+/// A `[[load]]`'s generalized active force for each speed: v_P,r · F for a
+/// force at P, ω_r · T for a torque on a frame.
+fn load_terms(sp: &Speedmap<'_, '_, '_>, l: &Load, us: &[Atom]) -> R<Vec<Poly>> {
+    let cx = sp.c.cx;
+    let (v, f) = match l {
+        Load::Force {
+            point,
+            force,
+            frame,
+        } => {
+            let (v, fv) = sp.point_velocity(point, 0)?;
+            let what = format!("the velocity of point {point}");
+            (sp.vec(&v, &what)?, sp.express(force.clone(), *frame, fv)?)
+        }
+        Load::Torque {
+            on,
+            torque,
+            in_frame,
+        } => {
+            let what = format!("the angular velocity of {}", cx.frames[*on].name);
+            (
+                sp.vec(&cx.frames[*on].omega, &what)?,
+                sp.express(torque.clone(), *in_frame, *on)?,
+            )
+        }
+    };
+    linear_in_speeds(sp.c, &v.0, "a loaded point's or frame's velocity")?;
+    unlisted(sp, &v, us, "a load")?;
+    let f = f.map(|p| sp.poly(p));
+    Ok(us
+        .iter()
+        .map(|&u| v.map(|p| coefficient(p, u)).dot(&f))
+        .collect())
+}
+
+/// An error when a declared speed that is neither listed nor dependent
+/// occurs in `v` (its partial velocity would be lost).
+fn unlisted(sp: &Speedmap<'_, '_, '_>, v: &Vec3, us: &[Atom], of: &str) -> R<()> {
+    let c = sp.c;
+    let left =
+        v.0.iter()
+            .flat_map(Poly::atoms)
+            .find(|a| c.cx.speeds.speeds.contains(a) && !us.contains(a));
+    match left {
+        Some(u) => c.err(
+            c.span,
+            format!(
+                "`{u}` occurs in the velocities of {of} but is not listed: list it with the speeds, or as a \
+                 dependent speed with the constraints that determine it"
+            ),
+        ),
+        None => Ok(()),
+    }
 }
 
 /// Argument `i`: declared speeds in brackets, none of them in `taken`.

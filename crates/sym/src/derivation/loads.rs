@@ -1,0 +1,97 @@
+//! `[[load]]`: applied forces at declared points and torques on frames,
+//! read and checked against the file's points and frames; Kane's method
+//! (`ops/kane.rs`) takes their generalized active forces.
+
+use super::context::{Context, R};
+use super::raw::{RawFile, RawLoad};
+use crate::vector::Vec3;
+
+/// One applied load.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Load {
+    /// A force (components in the frame of that index) at a declared point.
+    Force {
+        /// The point it acts at.
+        point: String,
+        /// The force.
+        force: Vec3,
+        /// The frame of its components.
+        frame: usize,
+    },
+    /// A torque (a couple) on the frame of that index, components in `in_frame`.
+    Torque {
+        /// The frame (a body's) it turns.
+        on: usize,
+        /// The torque.
+        torque: Vec3,
+        /// The frame of its components.
+        in_frame: usize,
+    },
+}
+
+pub(crate) fn declare(cx: &Context<'_>, raw: &RawFile) -> R<Vec<Load>> {
+    raw.loads.iter().map(|l| load(cx, l)).collect()
+}
+
+fn vector(cx: &Context<'_>, s: &toml::Spanned<String>) -> R<(Vec3, usize)> {
+    let base = cx.content_start(s);
+    let ast = cx.parse_at(s.get_ref(), base)?;
+    let (v, f) = cx.vector(&ast, base)?;
+    Ok((v, cx.frame_index(&f).expect("a vector's frame exists")))
+}
+
+fn load(cx: &Context<'_>, l: &RawLoad) -> R<Load> {
+    match (&l.point, &l.force, &l.frame, &l.torque) {
+        (Some(p), Some(f), None, None) => {
+            let name = p.get_ref();
+            if !cx.physics.points.iter().any(|q| &q.name == name) {
+                let known: Vec<&str> = cx.physics.points.iter().map(|q| q.name.as_str()).collect();
+                return Err(cx.diag_string(
+                    p,
+                    0,
+                    name.len(),
+                    format!(
+                        "`{name}` is not a declared point (one of {})",
+                        known.join(", ")
+                    ),
+                ));
+            }
+            let (force, frame) = vector(cx, f)?;
+            Ok(Load::Force {
+                point: name.clone(),
+                force,
+                frame,
+            })
+        }
+        (None, None, Some(fr), Some(t)) => {
+            let Some(on) = cx.frame_index(fr.get_ref()) else {
+                let n = fr.get_ref();
+                return Err(cx.diag_string(
+                    fr,
+                    0,
+                    n.len(),
+                    format!("`{n}` is not a declared frame"),
+                ));
+            };
+            let (torque, in_frame) = vector(cx, t)?;
+            Ok(Load::Torque {
+                on,
+                torque,
+                in_frame,
+            })
+        }
+        _ => {
+            let at = l
+                .point
+                .as_ref()
+                .or(l.frame.as_ref())
+                .or(l.force.as_ref())
+                .or(l.torque.as_ref());
+            let msg = "a [[load]] is either `point` with `force`, or `frame` with `torque`";
+            match at {
+                Some(s) => Err(cx.diag_string(s, 0, s.get_ref().len(), msg)),
+                None => Err(cx.diag(0, 0, msg)),
+            }
+        }
+    }
+}
