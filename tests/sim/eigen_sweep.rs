@@ -324,3 +324,35 @@ fn bad_scenes_name_the_field_and_line() {
         "{e}"
     );
 }
+
+/// Whatever finite constants a scene gives — zero, tiny, huge, negative —
+/// the sweep returns eigenvalues that are all finite, or an error naming
+/// the value; it never panics.
+#[test]
+fn extreme_constants_give_finite_eigenvalues_or_an_error() {
+    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    let pick = |rng: &mut ChaCha8Rng| -> f64 {
+        let v = [0.0, 1e-300, 1e300, 1e-30, 1e30, 1.0, 0.3][rng.gen_range(0..7)];
+        if rng.gen_bool(0.3) { -v } else { v }
+    };
+    for _ in 0..60 {
+        let (i, ip, m, l) = (
+            pick(&mut rng),
+            pick(&mut rng),
+            pick(&mut rng),
+            pick(&mut rng),
+        );
+        let text = top_scene(i, ip, m, l, 1e3, 7);
+        let Ok(scene) = parse(&text) else { continue };
+        match sweep(&scene, &mut |_, _| {}) {
+            Ok(s) => assert!(
+                s.eigenvalues
+                    .iter()
+                    .flatten()
+                    .all(|z| z.re.is_finite() && z.im.is_finite()),
+                "{text}"
+            ),
+            Err(e) => assert!(e.to_string().contains("at omega = "), "{e}"),
+        }
+    }
+}

@@ -90,6 +90,11 @@ pub fn spectrum(
     let ev = f
         .eigenvalues()
         .map_err(|e| format!("the eigenvalue iteration did not converge ({e:?})"))?;
+    if !norm.is_finite() || ev.iter().any(|z| !(z.re.is_finite() && z.im.is_finite())) {
+        return Err(format!(
+            "the state matrix's eigenvalues are not finite (‖A‖ = {norm:e}): rescale the units"
+        ));
+    }
     Ok((ev.iter().map(|z| Complex::new(z.re, z.im)).collect(), norm))
 }
 
