@@ -16,6 +16,7 @@ mod equations_of_motion;
 mod identities;
 mod injection;
 mod kane;
+mod labels;
 mod laurent;
 mod notes;
 mod presentation;

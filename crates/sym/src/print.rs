@@ -557,7 +557,7 @@ pub fn unicode_symbol(name: &str, order: u32) -> String {
     }
 }
 
-fn superscript(n: u32) -> String {
+pub(crate) fn superscript(n: u32) -> String {
     n.to_string()
         .chars()
         .map(|c| match c {

@@ -408,7 +408,10 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
         )?;
         let (value, presentation, axes, checks, meaning) = out.expect("evaluated");
         let label_math = match &s.label {
-            Some(l) => crate::label::LabelMath::parse(l.get_ref(), &cx.symbols).map_err(|m| {
+            Some(l) => crate::label::LabelMath::parse(l.get_ref(), &cx.symbols, &|w| {
+                cx.is_step(w) || w == s.name.get_ref()
+            })
+            .map_err(|m| {
                 let n = s.name.get_ref();
                 cx.diag_string(
                     l,
