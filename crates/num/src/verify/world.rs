@@ -57,13 +57,46 @@ pub struct World<'d> {
 
 /// The jet of a polynomial's value (`p, ṗ, p̈, p⃛`) under `values`.
 pub(crate) fn poly_jet(p: &Poly, values: &Values) -> Result<[f64; ORDERS], VerifyError> {
+    let derivatives = derivatives(p);
     let mut out = [0.0; ORDERS];
-    let mut q = p.clone();
-    for o in &mut out {
-        *o = values.eval(&q)?.0;
-        q = q.dt();
+    for (o, q) in out.iter_mut().zip(derivatives.iter()) {
+        *o = values.eval(q)?.0;
     }
     Ok(out)
+}
+
+/// `p` and its first `ORDERS − 1` time derivatives. A world is built for
+/// every value a linearisation or a sign measures (hundreds per body), and
+/// always from the same few polynomials of the file (Ω of a frame, where a
+/// point sits): each is differentiated once per thread and looked up by
+/// address afterwards, the hit confirmed by equality (an address can be
+/// reused by another derivation's polynomial once the first is dropped).
+fn derivatives(p: &Poly) -> std::rc::Rc<[Poly; ORDERS]> {
+    type Known = HashMap<usize, (Poly, std::rc::Rc<[Poly; ORDERS]>)>;
+    thread_local! {
+        static KNOWN: std::cell::RefCell<Known> = Default::default();
+    }
+    let key = p as *const Poly as usize;
+    KNOWN.with(|k| {
+        let mut k = k.borrow_mut();
+        if let Some((q, d)) = k.get(&key)
+            && q == p
+        {
+            return d.clone();
+        }
+        let mut d: [Poly; ORDERS] = std::array::from_fn(|_| Poly::zero());
+        d[0] = p.clone();
+        for n in 1..ORDERS {
+            d[n] = d[n - 1].dt();
+        }
+        let d = std::rc::Rc::new(d);
+        // Bounded: a long-running process verifying many files starts over.
+        if k.len() >= 4096 {
+            k.clear();
+        }
+        k.insert(key, (p.clone(), d.clone()));
+        d
+    })
 }
 
 fn vec_jet(v: &Vec3, values: &Values) -> Result<VecJet, VerifyError> {
