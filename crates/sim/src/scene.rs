@@ -24,6 +24,7 @@ use crate::exact::SteadyTop;
 use crate::systems::Shaft;
 use crate::{PrincipalMoments, SimError};
 
+mod bind;
 mod derived;
 mod holds;
 mod raw;

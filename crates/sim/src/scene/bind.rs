@@ -1,0 +1,310 @@
+//! Binding the symbols a derivation declares for its bodies and its
+//! gravity from a derived scene's `[[body]]` / `[[cloud]]` tables and its
+//! `g` vector, after checking that each body has the declared symmetry.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use hdot_num::bind::{MeasuredBody, bind_bodies};
+use hdot_num::scene::{Bodies, Group};
+use hdot_sym::derivation::Derivation;
+use hdot_sym::derivation::physics::{Body, Symmetry};
+use nalgebra::{Matrix3, Vector3};
+
+use crate::SimError;
+
+/// Relative tolerance of the symmetry a derivation body declares, checked
+/// on the scene's body (that of the verifier's declared entries).
+const SYMMETRY_TOL: f64 = 1e-9;
+
+/// Binds the symbols of the derivation's `[[body]]` declarations from the
+/// scene's `[[body]]` / `[[cloud]]` tables: each group of tables (`of`)
+/// is one derivation body, written in its frame's axes with the origin at
+/// its reference point. Returns the constants bound.
+pub(super) fn bind_scene_bodies(
+    d: &Derivation,
+    path: &Path,
+    bodies: &Bodies,
+    constants: &BTreeMap<String, f64>,
+    file: &Path,
+) -> Result<BTreeMap<String, f64>, SimError> {
+    let groups = &bodies.groups;
+    let declared = &d.physics.bodies;
+    let bad = |g: &Group, message: String| SimError::BadField {
+        file: file.to_path_buf(),
+        field: g.field.clone(),
+        message: format!("line {}: {message}", g.line),
+    };
+    let names = || {
+        declared
+            .iter()
+            .map(|b| format!("`{}`", b.name))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let mut measured: Vec<Option<MeasuredBody>> = vec![None; declared.len()];
+    let mut given_by: Vec<Option<&Group>> = vec![None; declared.len()];
+    for g in groups {
+        let k = match &g.of {
+            Some(name) => declared
+                .iter()
+                .position(|b| &b.name == name)
+                .ok_or_else(|| {
+                    bad(
+                        g,
+                        format!(
+                            "{} declares no body `{name}` (its bodies: {})",
+                            path.display(),
+                            if declared.is_empty() {
+                                "none".into()
+                            } else {
+                                names()
+                            }
+                        ),
+                    )
+                })?,
+            None if declared.len() == 1 => 0,
+            None if declared.is_empty() => {
+                return Err(bad(
+                    g,
+                    format!(
+                        "{} declares no `[[body]]` whose symbols the tables could bind: give \
+                         its parameters under `[constants]`",
+                        path.display()
+                    ),
+                ));
+            }
+            None => {
+                return Err(bad(
+                    g,
+                    format!(
+                        "{} declares several bodies ({}): name the one these tables make up \
+                         with `of = \"…\"`",
+                        path.display(),
+                        names()
+                    ),
+                ));
+            }
+        };
+        let b = &declared[k];
+        let props = g.body.mass_properties();
+        // About the reference point (the tables' origin), or about G.
+        let about_g = b.about_centre() || b.inertia_about_centre;
+        let (centre, inertia) = if b.about_centre() {
+            (Vector3::zeros(), *props.inertia_g.matrix())
+        } else if about_g {
+            (props.center, *props.inertia_g.matrix())
+        } else {
+            (
+                props.center,
+                *props.inertia_about(&Vector3::zeros()).matrix(),
+            )
+        };
+        let m = MeasuredBody {
+            mass: props.mass,
+            centre,
+            inertia,
+        };
+        check_symmetry(d, b, &m, about_g).map_err(|e| {
+            bad(
+                g,
+                format!(
+                    "the tables make up `{}` of {}, declared {e}",
+                    b.name,
+                    path.display()
+                ),
+            )
+        })?;
+        measured[k] = Some(m);
+        given_by[k] = Some(g);
+    }
+    // A symbol given under [constants] and bound by a body: given twice.
+    for (k, b) in declared.iter().enumerate() {
+        let Some(g) = given_by[k] else { continue };
+        let mut atoms = b.mass.as_ref().map(|p| p.atoms()).unwrap_or_default();
+        atoms.extend(
+            b.mass_centre
+                .iter()
+                .flat_map(|c| c.0.iter().flat_map(|p| p.atoms())),
+        );
+        atoms.extend(b.inertia.0.iter().flatten().flat_map(|p| p.atoms()));
+        if let Some(a) = atoms.iter().find(|a| constants.contains_key(a.name())) {
+            return Err(SimError::BadField {
+                file: file.to_path_buf(),
+                field: format!("constants.{}", a.name()),
+                message: format!(
+                    "`{}` is also bound by the body `{}` ({} at line {}): give it once, under \
+                     `[constants]` or by the body",
+                    a.name(),
+                    b.name,
+                    g.field,
+                    g.line
+                ),
+            });
+        }
+    }
+    bind_bodies(d, &measured, bodies.g, constants).map_err(|e| {
+        let message = format!("{}: {e}", path.display());
+        match given_by.iter().flatten().next() {
+            Some(g) => bad(g, message),
+            None => SimError::BadField {
+                file: file.to_path_buf(),
+                field: "g".into(),
+                message: format!("line {}: {message}", bodies.g_line),
+            },
+        }
+    })
+}
+
+/// The scene's gravity vector `g` against the derivation's declaration
+/// (`gravity = "[0, 0, -g] in N"`): declared in N, the components the file
+/// fixes (the zeros) met, and its symbols not given under `[constants]`
+/// too. The symbols are bound with the bodies'.
+pub(super) fn check_gravity(
+    d: &Derivation,
+    path: &Path,
+    bodies: &Bodies,
+    constants: &BTreeMap<String, f64>,
+    file: &Path,
+) -> Result<(), SimError> {
+    let Some(g) = bodies.g else { return Ok(()) };
+    let bad = |field: &str, message: String| SimError::BadField {
+        file: file.to_path_buf(),
+        field: field.to_string(),
+        message,
+    };
+    let line = bodies.g_line;
+    let Some((v, frame)) = &d.physics.gravity else {
+        return Err(bad(
+            "g",
+            format!(
+                "line {line}: {} declares no gravity (`gravity = \"[0, 0, -g] in N\"`), so no \
+                 symbol of it stands for g",
+                path.display()
+            ),
+        ));
+    };
+    let declared = format!(
+        "[{}] in {frame}",
+        v.0.iter()
+            .map(|p| p.to_source())
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    if frame != "N" {
+        return Err(bad(
+            "g",
+            format!(
+                "line {line}: {} declares gravity {declared}; a scene's g is in N's axes",
+                path.display()
+            ),
+        ));
+    }
+    for (k, p) in v.0.iter().enumerate() {
+        if p.atoms().is_empty() {
+            let x = p.eval(&mut |_| 0.0);
+            if (x - g[k]).abs() > 1e-12 * g.norm() {
+                return Err(bad(
+                    "g",
+                    format!(
+                        "line {line}: {} declares gravity {declared}: the scene's g = [{}, {}, {}] \
+                         must point along it (space Z up: g = [0.0, 0.0, -9.81])",
+                        path.display(),
+                        g.x,
+                        g.y,
+                        g.z
+                    ),
+                ));
+            }
+        }
+        if let Some(a) = p.atoms().iter().find(|a| constants.contains_key(a.name())) {
+            return Err(bad(
+                &format!("constants.{}", a.name()),
+                format!(
+                    "`{}` is also bound by the scene's g (line {line}, gravity {declared}): give it \
+                     once",
+                    a.name()
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Whether the measured body has the symmetry `b` declares (about its
+/// reference point, in its frame's axes): `Err` says what is declared and
+/// what the body has.
+fn check_symmetry(d: &Derivation, b: &Body, m: &MeasuredBody, about_g: bool) -> Result<(), String> {
+    let frame = &d.frames[b.frame];
+    let axes = &frame.axes;
+    let i: &Matrix3<f64> = &m.inertia;
+    let scale = i.trace();
+    let extent = (scale / m.mass).sqrt() + m.centre.norm();
+    let small = |x: f64, s: f64| x.abs() <= SYMMETRY_TOL * s;
+    let product_zero = |r: usize, s: usize| small(i[(r, s)], scale);
+    let (what, ok) = match b.symmetry {
+        Symmetry::None => return Ok(()),
+        Symmetry::Principal => (
+            format!("with principal axes along {}'s axes", frame.name),
+            product_zero(0, 1) && product_zero(0, 2) && product_zero(1, 2),
+        ),
+        Symmetry::Axisymmetric(k) => {
+            let (p, q) = ((k + 1) % 3, (k + 2) % 3);
+            (
+                format!("axisymmetric about its {} axis", axes[k]),
+                product_zero(0, 1)
+                    && product_zero(0, 2)
+                    && product_zero(1, 2)
+                    && small(i[(p, p)] - i[(q, q)], scale)
+                    && small(m.centre[p], extent)
+                    && small(m.centre[q], extent),
+            )
+        }
+        Symmetry::Plane(k) => {
+            let (p, q) = ((k + 1) % 3, (k + 2) % 3);
+            (
+                format!(
+                    "symmetric about its plane {}{}",
+                    axes[p.min(q)],
+                    axes[p.max(q)]
+                ),
+                product_zero(k, p) && product_zero(k, q) && small(m.centre[k], extent),
+            )
+        }
+    };
+    if ok {
+        return Ok(());
+    }
+    let about = if about_g {
+        "G".to_string()
+    } else {
+        format!("the reference point {}", b.point)
+    };
+    let declared = (0..3)
+        .map(|r| {
+            (0..3)
+                .map(|s| b.inertia.0[r][s].to_source())
+                .collect::<Vec<_>>()
+                .join(", ")
+        })
+        .collect::<Vec<_>>()
+        .join("; ");
+    Err(format!(
+        "{what} (inertia [{declared}]), but the body is not: about {about}, in {}'s axes, \
+         inertia [{:.6e}, {:.6e}, {:.6e}; {:.6e}, {:.6e}, {:.6e}; {:.6e}, {:.6e}, {:.6e}], G at \
+         [{:.6e}, {:.6e}, {:.6e}]",
+        frame.name,
+        i[(0, 0)],
+        i[(0, 1)],
+        i[(0, 2)],
+        i[(1, 0)],
+        i[(1, 1)],
+        i[(1, 2)],
+        i[(2, 0)],
+        i[(2, 1)],
+        i[(2, 2)],
+        m.centre.x,
+        m.centre.y,
+        m.centre.z
+    ))
+}
