@@ -8,7 +8,10 @@ no driver, nothing but the Python standard library).
 For each page: no console error or uncaught exception; no horizontal
 overflow at 1280 px and at 400 px wide; a simulation page's canvas differs
 between two times of the animation (the canvas read back at the scrubber's
-start and middle); the file is smaller than --max-bytes (default 2 MB).
+start and middle); on a page of the notes (its <main> carries
+data-equations, the count of equations of the document model) as many
+<math> elements as that count, each with a non-zero rendered size at both
+widths; the file is smaller than --max-bytes (default 2 MB).
 With --screenshot, a PNG of each page at both widths goes to DIR.
 
 Chromium is looked up as $HDOT_CHROMIUM, chromium, chromium-browser. When
@@ -150,6 +153,17 @@ CANVAS_AT_TWO_TIMES = """(async () => {
   return [a.length, b.length, a === b];
 })()"""
 
+# The notes' equations: the count the page states, the <math> elements
+# found, and those rendered with no width or height.
+MATH = """(() => {
+  const m = document.querySelector("main[data-equations]");
+  if (!m) return null;
+  const all = [...document.querySelectorAll("math")];
+  const empty = all.filter(e => { const r = e.getBoundingClientRect(); return !(r.width > 0 && r.height > 0); })
+    .slice(0, 3).map(e => (e.getAttribute("alttext") || "").slice(0, 60));
+  return [Number(m.dataset.equations), all.length, empty];
+})()"""
+
 SETTLE = "new Promise(r => requestAnimationFrame(() => requestAnimationFrame(() => setTimeout(r, 100))))"
 
 OVERFLOW = """(() => {
@@ -184,6 +198,13 @@ def check_page(b, path, max_bytes, shots):
             name = os.path.splitext(os.path.basename(path))[0] + f"-{width}.png"
             with open(os.path.join(shots, name), "wb") as f:
                 f.write(base64.b64decode(png))
+        maths = evaluate(b, s, MATH)
+        if maths is not None:
+            expected, found, empty = maths
+            if found != expected:
+                problems.append(f"{found} <math> elements, but the document model has {expected} equations")
+            if empty:
+                problems.append(f"math rendered with no size at {width} px: {'; '.join(empty)}")
         if width == WIDTHS[0]:
             two = evaluate(b, s, CANVAS_AT_TWO_TIMES)
             if two is not None and two[2]:

@@ -68,14 +68,17 @@ fn check_page_file(path: &Path) -> u64 {
     size
 }
 
-/// Runs the browser check on `pages` (skipped with a note without
-/// Python or Chromium, except under `CI=true`, where the script fails).
-fn browser_check(pages: &[PathBuf]) {
+/// Runs the browser check on `pages`, each within `budget` bytes (the
+/// script's default, 2 MB, when `None`); skipped with a note without
+/// Python or Chromium, except under `CI=true`, where the script fails.
+pub(super) fn browser_check(pages: &[PathBuf], budget: Option<u64>) {
     let python = std::env::var("HDOT_PYTHON").unwrap_or_else(|_| "python3".into());
-    let out = Command::new(&python)
-        .arg(repo_root().join("scripts/check_pages.py"))
-        .args(pages)
-        .output();
+    let mut cmd = Command::new(&python);
+    cmd.arg(repo_root().join("scripts/check_pages.py"));
+    if let Some(b) = budget {
+        cmd.args(["--max-bytes", &b.to_string()]);
+    }
+    let out = cmd.args(pages).output();
     let out = match out {
         Ok(o) => o,
         Err(e) if std::env::var("CI").as_deref() != Ok("true") => {
@@ -179,7 +182,7 @@ fn every_bundled_scene_writes_a_page_the_browser_accepts() {
         );
         pages.push(page);
     }
-    browser_check(&pages);
+    browser_check(&pages, None);
 }
 
 #[test]

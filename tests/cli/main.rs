@@ -7,6 +7,7 @@ use hdot_tests::{hdot_bin, repo_root};
 mod budgets;
 mod derived_errors;
 mod html;
+mod notes_html;
 mod reliability;
 mod review;
 mod stability;

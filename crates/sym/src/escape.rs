@@ -2,10 +2,10 @@
 //! in one place. [`latex`] for LaTeX (text, typewriter code, math, a
 //! comment line), [`markdown`] and [`markdown_code`] for Markdown,
 //! [`python_str`], [`python_comment`] and [`python_name`] for the SymPy
-//! export; every field of every backend that is not built from expression
-//! trees goes through one of them, so no string a user wrote reaches an
-//! output as commands (`\input`, `\write18`, `\def`, unbalanced braces,
-//! HTML, a line of Python).
+//! export, [`html`] for the web pages; every field of every backend that
+//! is not built from expression trees goes through one of them, so no
+//! string a user wrote reaches an output as commands (`\input`,
+//! `\write18`, `\def`, unbalanced braces, HTML, a line of Python).
 //!
 //! The tables of how a Unicode character is written in LaTeX (Greek
 //! letters are in [`crate::symbols`]) live here too: operators and arrows
@@ -248,6 +248,35 @@ pub fn python_name(s: &str) -> String {
         }
     }
     o
+}
+
+/// HTML text and attribute values (a page of the notes, a simulation or a
+/// chart page): `&`, `<`, `>`, `"` and `'` as character references, so a
+/// string shows as written and never opens a tag, a script or an
+/// attribute; control characters other than line breaks and tabs (which
+/// HTML does not allow) as spaces.
+///
+/// # Example
+/// ```
+/// use hdot_sym::escape::html;
+/// assert_eq!(html("a<b & \"c\"</script>"), "a&lt;b &amp; &quot;c&quot;&lt;/script&gt;");
+/// assert_eq!(html("it's\u{7}"), "it&#39;s ");
+/// ```
+pub fn html(s: &str) -> String {
+    let mut out = String::with_capacity(s.len() + 8);
+    for c in s.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&#39;"),
+            '\n' | '\t' => out.push(c),
+            c if c.is_control() => out.push(' '),
+            c => out.push(c),
+        }
+    }
+    out
 }
 
 // ------------------------------------------------------------- tables --

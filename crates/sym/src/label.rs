@@ -18,7 +18,7 @@ use crate::print;
 use crate::symbols::Symbols;
 
 /// A label word with trailing primes: `epsilon_2''` → (`epsilon_2`, 2).
-fn label_word(w: &str) -> (&str, u32) {
+pub(crate) fn label_word(w: &str) -> (&str, u32) {
     let base = w.trim_end_matches('\'');
     (base, (w.len() - base.len()) as u32)
 }
@@ -26,7 +26,7 @@ fn label_word(w: &str) -> (&str, u32) {
 /// Whether a word is shaped like a symbol name the printers write as a
 /// symbol: ASCII letters and digits, `_` between them, and brackets
 /// (`I_x(P)`).
-fn name_shaped(w: &str) -> bool {
+pub(crate) fn name_shaped(w: &str) -> bool {
     let ok = w
         .chars()
         .all(|c| c.is_ascii_alphanumeric() || matches!(c, '_' | '(' | ')'));

@@ -47,6 +47,16 @@ pub trait Style {
     fn minus(&self) -> &'static str {
         "-"
     }
+    /// The plus sign between terms.
+    fn plus(&self) -> &'static str {
+        "+"
+    }
+    /// The digits of an integer that a textbook fraction writes on its own
+    /// (the numerator and denominator of a rational coefficient split over
+    /// the fraction bar).
+    fn digits(&self, digits: &str) -> String {
+        digits.to_owned()
+    }
     /// Opening and closing parentheses.
     fn parens(&self) -> (&'static str, &'static str) {
         ("(", ")")
@@ -147,13 +157,13 @@ fn write(e: &Expr, id: Id, style: &Cached, out: &mut String) {
                     }
                     Node::Add(_) => {
                         if k > 0 {
-                            out.push_str(" + ");
+                            write_plus(style, out);
                         }
                         paren(e, t, style, out);
                     }
                     _ => {
                         if k > 0 {
-                            out.push_str(" + ");
+                            write_plus(style, out);
                         }
                         write(e, t, style, out);
                     }
@@ -191,6 +201,13 @@ fn write(e: &Expr, id: Id, style: &Cached, out: &mut String) {
             out.push_str(&style.inner.pow(&b, e.node(*base), exp.unsigned_abs()));
         }
     }
+}
+
+/// ` + ` between two terms.
+fn write_plus(style: &Cached, out: &mut String) {
+    out.push(' ');
+    out.push_str(style.inner.plus());
+    out.push(' ');
 }
 
 fn write_product(e: &Expr, factors: &[Id], style: &Cached, out: &mut String) {
@@ -231,12 +248,12 @@ fn write_fraction(e: &Expr, nums: &[Id], dens: &[Id], style: &Cached, out: &mut 
         let (n, d) = r.parts();
         nums = &nums[1..];
         if n != "1" || nums.is_empty() {
-            num.push_str(&n);
+            num.push_str(&style.inner.digits(&n));
             if let Some(&next) = nums.first() {
                 num.push_str(style.inner.mul_sep(e.node(first), e.node(next)));
             }
         }
-        den_number = Some(d);
+        den_number = Some(style.inner.digits(&d));
     }
     match nums {
         [] if num.is_empty() => style.write_num(&Rational::ONE, &mut num),
@@ -355,6 +372,7 @@ pub fn break_pieces(
 /// parentheses. A node that is not a sum is one term.
 fn sum_terms(e: &Expr, id: Id, style: &Cached) -> Vec<(String, Id, bool)> {
     let minus = style.inner.minus();
+    let plus = format!("{} ", style.inner.plus());
     let one = |k: usize, t: Id| -> (String, Id, bool) {
         match e.node(t) {
             Node::Neg(inner) => {
@@ -366,8 +384,8 @@ fn sum_terms(e: &Expr, id: Id, style: &Cached) -> Vec<(String, Id, bool)> {
                 let under = matches!(e.node(*inner), Node::Add(_) | Node::Neg(_));
                 (sign, *inner, under)
             }
-            Node::Add(_) => (if k > 0 { "+ " } else { "" }.to_owned(), t, true),
-            _ if k > 0 => ("+ ".to_owned(), t, false),
+            Node::Add(_) => (if k > 0 { plus.clone() } else { String::new() }, t, true),
+            _ if k > 0 => (plus.clone(), t, false),
             _ => (String::new(), t, false),
         }
     };
@@ -451,7 +469,7 @@ pub fn greek_names() -> impl Iterator<Item = &'static str> {
 }
 
 /// Splits a symbol name into its base and subscript: `omega_x` → (`omega`, `x`).
-fn split_name(name: &str) -> (&str, Option<&str>) {
+pub(crate) fn split_name(name: &str) -> (&str, Option<&str>) {
     match name.split_once('_') {
         Some((b, s)) if !b.is_empty() && !s.is_empty() => (b, Some(s)),
         _ => (name, None),
@@ -460,7 +478,7 @@ fn split_name(name: &str) -> (&str, Option<&str>) {
 
 /// A base name written as a single capital followed by `p` means a prime:
 /// `Ip` is I′ (the transverse moment of an axisymmetric body).
-fn primed_base(base: &str) -> Option<char> {
+pub(crate) fn primed_base(base: &str) -> Option<char> {
     let mut cs = base.chars();
     match (cs.next(), cs.next(), cs.next()) {
         (Some(c), Some('p'), None) if c.is_ascii_uppercase() => Some(c),

@@ -1,5 +1,6 @@
 //! `hdot notes`: derivations as lecture notes (LaTeX and Markdown), slides
-//! (LaTeX Beamer) and per-derivation LaTeX fragments.
+//! (LaTeX Beamer), per-derivation LaTeX fragments, or a static web site
+//! with MathML equations (`--html DIR`).
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -17,7 +18,9 @@ use crate::{catalog, output};
 /// (`hdot-notes.tex`) and as Markdown with $$ math (`hdot-notes.md`);
 /// with `--slides` also LaTeX Beamer slides (`hdot-slides.tex`), with
 /// `--fragments` one LaTeX fragment per derivation (`fragments/NAME.tex`,
-/// to \input in your own document).
+/// to \input in your own document). With `--html DIR`, instead, a web
+/// site: DIR/index.html with the contents and one page per derivation,
+/// every equation as MathML (no script, nothing fetched from the network).
 ///
 /// The derivations are the files and folders given (default: the
 /// derivations folder). Chapters, their order, the title and author line
@@ -52,6 +55,11 @@ pub struct NotesArgs {
     /// Also write one standalone LaTeX fragment per derivation (fragments/NAME.tex).
     #[arg(long)]
     fragments: bool,
+    /// Write the notes as a web site into DIR instead (index.html, one page
+    /// per derivation, the stylesheet); DIR must be new, empty, or an
+    /// earlier site of hdot notes.
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["slides", "fragments", "printer_coverage", "out"])]
+    html: Option<PathBuf>,
     /// Also write the printer-coverage test document (for scripts/build_notes).
     #[arg(long, hide = true)]
     printer_coverage: bool,
@@ -70,6 +78,44 @@ fn load_all(files: &[catalog::Entry]) -> Result<Vec<Derivation>, ExitCode> {
         }
     }
     Ok(ds)
+}
+
+/// Whether the site may be written into `dir`: a folder that does not
+/// exist yet, an empty one, or one whose `index.html` hdot notes wrote
+/// (it names [`notes::HTML_GENERATOR`]). Anything else is refused, so a
+/// folder of other files is never written into.
+fn site_folder_ok(dir: &Path) -> Result<(), String> {
+    if !dir.exists() {
+        return Ok(());
+    }
+    if !dir.is_dir() {
+        return Err(format!(
+            "--html {}: exists and is not a folder",
+            dir.display()
+        ));
+    }
+    let mut entries = std::fs::read_dir(dir)
+        .map_err(|e| format!("--html {}: cannot read the folder: {e}", dir.display()))?;
+    if entries.next().is_none() {
+        return Ok(());
+    }
+    let index = dir.join(notes::HTML_INDEX);
+    let ours = std::fs::read_to_string(&index).is_ok_and(|t| {
+        t.contains(&format!(
+            "<meta name=\"generator\" content=\"{}\">",
+            notes::HTML_GENERATOR
+        ))
+    });
+    if ours {
+        Ok(())
+    } else {
+        Err(format!(
+            "--html {}: the folder holds files that are not a site written by hdot notes \
+             (no {} naming it); give a new or empty folder",
+            dir.display(),
+            notes::HTML_INDEX
+        ))
+    }
 }
 
 pub fn run(args: NotesArgs) -> anyhow::Result<ExitCode> {
@@ -119,6 +165,13 @@ pub fn run(args: NotesArgs) -> anyhow::Result<ExitCode> {
         None => Course::plain(&ds),
     };
     let doc = course.document(&ds);
+    if let Some(dir) = &args.html
+        && let Err(why) = site_folder_ok(dir)
+    {
+        eprintln!("error: {why}");
+        eprintln!("error: no notes written");
+        return Ok(ExitCode::from(2));
+    }
     // Every file appears, or none does.
     let mut written: Vec<PathBuf> = Vec::new();
     let mut batch = output::Batch::new();
@@ -133,14 +186,20 @@ pub fn run(args: NotesArgs) -> anyhow::Result<ExitCode> {
         written.push(path);
         Ok(())
     };
-    write(
-        args.out.join(notes::LATEX_FILE),
-        &notes::latex_document(&doc),
-    )?;
-    write(
-        args.out.join(notes::MARKDOWN_FILE),
-        &notes::markdown_document(&doc),
-    )?;
+    if let Some(dir) = &args.html {
+        for page in notes::html_site(&doc) {
+            write(dir.join(&page.file), &page.text)?;
+        }
+    } else {
+        write(
+            args.out.join(notes::LATEX_FILE),
+            &notes::latex_document(&doc),
+        )?;
+        write(
+            args.out.join(notes::MARKDOWN_FILE),
+            &notes::markdown_document(&doc),
+        )?;
+    }
     if args.slides {
         write(
             args.out.join(notes::SLIDES_FILE),
@@ -162,9 +221,10 @@ pub fn run(args: NotesArgs) -> anyhow::Result<ExitCode> {
             &notes::coverage_document(),
         )?;
     }
+    let folder = args.html.as_ref().unwrap_or(&args.out);
     batch
         .commit()
-        .map_err(|e| OutputError::new(format!("cannot write {}", args.out.display()), e))?;
+        .map_err(|e| OutputError::new(format!("cannot write {}", folder.display()), e))?;
     for d in &ds {
         for (step, c) in d.failures() {
             eprintln!(

@@ -50,21 +50,9 @@ pub enum PageError {
     Run(String),
 }
 
-/// Escapes text for HTML content and attribute values.
-pub fn escape(s: &str) -> String {
-    let mut out = String::with_capacity(s.len());
-    for c in s.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            '\'' => out.push_str("&#39;"),
-            c => out.push(c),
-        }
-    }
-    out
-}
+/// Escapes text for HTML content and attribute values (the one escaper of
+/// every page hdot writes).
+pub use hdot_sym::escape::html as escape;
 
 /// The page of `report`, a run of `scene` whose text (for its `[[body]]`
 /// tables) is `text`.

@@ -3,7 +3,8 @@
 //! Markdown page ([`markdown_document`]), as LaTeX Beamer slides
 //! ([`slides_document`]); one derivation as a LaTeX fragment to `\input`
 //! in a lecturer's own document ([`latex_fragment`]) or as Markdown
-//! ([`markdown_fragment`]) — the same sections `hdot derive` prints.
+//! ([`markdown_fragment`]) — the same sections `hdot derive` prints; and
+//! as a static web site with MathML equations ([`html_site`]).
 //!
 //! Every format shows the same things for each derivation, in the same
 //! order: its title, source and file; the summary; what is assumed
@@ -61,16 +62,19 @@
 //! ```
 //!
 //! Each format is a [`Backend`] of the document model, one file each
-//! (`unicode.rs`, `latex.rs`, `markdown.rs`, `slides.rs`), listed once in
+//! (`unicode.rs`, `latex.rs`, `markdown.rs`, `slides.rs`, `html.rs` with
+//! its MathML in `mathml.rs`), listed once in
 //! [`BACKENDS`]; what they share is in `layout.rs` (equations in LaTeX
 //! math: widths, line breaks, matrices) and `words.rs` (titles and
 //! sentences). A new output format is one new file and one line of
 //! [`BACKENDS`].
 
 mod coverage;
+mod html;
 mod latex;
 mod layout;
 mod markdown;
+mod mathml;
 mod slides;
 mod unicode;
 mod words;
@@ -78,15 +82,18 @@ mod words;
 use crate::document::{Backend, Document};
 
 pub use coverage::{Coverage, coverage, coverage_document};
+pub use html::{
+    HTML_CSS_FILE, HTML_GENERATOR, HTML_INDEX, Html, SitePage, html_site, section_math_count,
+};
 pub use latex::{Latex, latex_document, latex_fragment};
 pub use markdown::{Markdown, markdown_document, markdown_fragment};
 pub use slides::{Slides, slides_document};
 pub use unicode::{Unicode, unicode_section};
 
 /// Every backend of the document, by name.
-pub const BACKENDS: &[&dyn Backend] = &[&Unicode, &Latex, &Markdown, &Slides];
+pub const BACKENDS: &[&dyn Backend] = &[&Unicode, &Latex, &Markdown, &Slides, &Html];
 
-/// The backend called `name` (`unicode`, `latex`, `markdown`, `slides`).
+/// The backend called `name` (`unicode`, `latex`, `markdown`, `slides`, `html`).
 pub fn backend(name: &str) -> Option<&'static dyn Backend> {
     BACKENDS.iter().copied().find(|b| b.name() == name)
 }
