@@ -234,6 +234,7 @@ pub(super) fn lhs(l: &Lhs) -> String {
                     label(f, ""),
                     MathMl.atom(*q)
                 ),
+                LabelMath::Formula(ps) => formula(ps),
                 LabelMath::Zero => "<mn>0</mn>".to_owned(),
             };
             if c.is_empty() {
@@ -248,6 +249,21 @@ pub(super) fn lhs(l: &Lhs) -> String {
             }
         }
     }
+}
+
+/// A label formula (`|H_G|^2`, `2T`) piece by piece.
+fn formula(ps: &[crate::label::Piece]) -> String {
+    use crate::label::Piece;
+    let one = |p: &Piece| match p {
+        Piece::Number(n) => format!("<mn>{}</mn>", escape::html(n)),
+        Piece::Name(w, k) => name(w, *k),
+        Piece::Abs(inner) => format!("<mrow><mo>|</mo>{}<mo>|</mo></mrow>", formula(inner)),
+        Piece::Pow(b, k) => format!(
+            "<msup><mrow>{}</mrow><mn>{k}</mn></msup>",
+            formula(std::slice::from_ref(&**b))
+        ),
+    };
+    ps.iter().map(one).collect::<Vec<_>>().join(TIMES)
 }
 
 // -------------------------------------------------------- line breaking --
