@@ -24,6 +24,8 @@ mod eval;
 mod verify;
 // Verification from declarations.
 mod verify_declared;
+// Conserved steps and steps labelled 0, checked along the file's equations.
+mod verify_claims;
 // Generalized quantities under [motion]'s rules (constrained partial velocities).
 mod constrained;
 // Line bodies and point masses: moments of inertia declared zero.

@@ -309,6 +309,28 @@ pub fn run(scene: &Scene, plan: &Plan, out: &mut Output<'_>) -> Result<Report, S
     Ok(report)
 }
 
+/// How far above the run's error a derived scene's conserved step may
+/// drift: more is a failure (the step is not conserved by the equations
+/// integrated, or the run is not converged), not a number to print.
+pub const DRIFT_FACTOR: f64 = 100.0;
+
+/// The error below which a drift is round-off however small the run's
+/// error (relative).
+pub const DRIFT_FLOOR: f64 = 1e-12;
+
+impl Report {
+    /// The drifts of a derived scene's conserved steps more than
+    /// [`DRIFT_FACTOR`] times the error at T (at least [`DRIFT_FLOOR`]):
+    /// each a claim `conserved` the integrated equations contradict.
+    pub fn failed_drifts(&self) -> Vec<&Drift> {
+        let Some(error) = self.error.filter(|_| self.kind == "derived") else {
+            return Vec::new();
+        };
+        let bound = DRIFT_FACTOR * error.max(DRIFT_FLOOR);
+        self.drifts.iter().filter(|d| d.relative > bound).collect()
+    }
+}
+
 /// CSV header of the streamed rows of `model` on a scene.
 pub fn stream_header(scene: &Scene, model: Model) -> String {
     model.entry().stream_header(scene)
@@ -373,12 +395,20 @@ impl fmt::Display for Report {
                 c.difference, c.against
             )?;
         }
+        let failed = self.failed_drifts();
         for d in &self.drifts {
             writeln!(
                 f,
-                "drift {:<6} {:.3e} (relative)",
+                "drift {:<6} {:.3e} (relative){}",
                 format!("{}:", d.name),
-                d.relative
+                d.relative,
+                if failed.iter().any(|x| x.name == d.name) {
+                    format!(
+                        "  FAIL: more than {DRIFT_FACTOR}× the error at T: not conserved by these equations"
+                    )
+                } else {
+                    String::new()
+                }
             )?;
         }
         writeln!(

@@ -218,6 +218,19 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<ExitCode> {
     {
         return Err(e.into());
     }
+    // A conserved step that drifts far above the run's error is a false
+    // claim (or an unconverged run): a failure, not a number.
+    if let Some(d) = report.failed_drifts().first() {
+        eprintln!(
+            "error: step `{}` is declared conserved, but it drifts by {:.3e} (relative), more than {}× the error \
+             at T ({:.3e})",
+            d.name,
+            d.relative,
+            run::DRIFT_FACTOR,
+            report.error.unwrap_or(f64::NAN)
+        );
+        return Ok(ExitCode::from(1));
+    }
     // Without --method, --tol is the error the run must reach; a derived
     // scene fits its tolerance to the default --tol when none is given,
     // and that default must be reached alike.

@@ -25,7 +25,7 @@ use rand_chacha::ChaCha8Rng;
 use super::draw::{Draw, apply, constrain, draw, for_step};
 use super::means::{against_of, frame_index, meaning_value};
 use super::world::{ORDERS, World, mat_t_vec, vee};
-use super::{Comparison, VerifyError, declaration};
+use super::{Comparison, VerifyError, claims, declaration};
 use crate::bind::{Values, bind_all, nth};
 use crate::cloud::ParticleCloud;
 use crate::eval::Tape;
@@ -152,7 +152,11 @@ fn compare_vanishing(
 
 /// Binds the symbols of `[[known]]` from the measured quantities (and
 /// their time derivatives, for point and frame kinematics).
-fn bind_knowns(d: &Derivation, w: &World<'_>, values: &mut Values) -> Result<(), VerifyError> {
+pub(crate) fn bind_knowns(
+    d: &Derivation,
+    w: &World<'_>,
+    values: &mut Values,
+) -> Result<(), VerifyError> {
     for k in &d.physics.knowns {
         let jets: Vec<[f64; 3]> = match (&k.value, &k.meaning) {
             (Value::Vector(_, f), m) => {
@@ -585,9 +589,17 @@ fn run(
             },
         );
     }
+    let eqs = claims::equations(d);
+    let conserved = claims::conserved(d);
+    for (j, c) in conserved.iter().enumerate() {
+        per_step.insert(
+            compiled.len() + vanishing + j,
+            claims::conserved_entry(c, &eqs),
+        );
+    }
     let mut rng = ChaCha8Rng::seed_from_u64(options.seed);
     let mut draws = 0;
-    if !compiled.is_empty() || vanishing > 0 {
+    if !compiled.is_empty() || vanishing > 0 || !conserved.is_empty() {
         for _ in 0..options.draws.max(1) {
             let (dr, mut values) = draw(d, &mut rng, given)?;
             apply(d, &mut values, &d.physics.motion)?;
@@ -596,7 +608,12 @@ fn run(
                 .map(|c| compare_step(d, c, &dr, &values, &mut rng))
                 .collect::<Result<Vec<_>, _>>()?;
             let vanish = compare_vanishing(d, &dr, &values)?;
-            for (k, cs) in steps.into_iter().chain(vanish).enumerate() {
+            let rates = if eqs.is_empty() {
+                Vec::new()
+            } else {
+                claims::compare_conserved(d, &dr, &values, &conserved, &eqs)?
+            };
+            for (k, cs) in steps.into_iter().chain(vanish).chain(rates).enumerate() {
                 let s = per_step.get_mut(&k).expect("inserted");
                 for cmp in cs {
                     let e = cmp.relative_error();
@@ -611,10 +628,12 @@ fn run(
             tick();
         }
     }
+    let mut steps: Vec<StepCheck> = per_step.into_values().collect();
+    steps.extend(d.steps.iter().filter_map(|s| claims::zero_label(d, s)));
     Ok(Report {
         derivation: d.name.clone(),
         draws,
-        steps: per_step.into_values().collect(),
+        steps,
         not_compared: d
             .steps
             .iter()

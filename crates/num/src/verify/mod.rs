@@ -29,6 +29,7 @@
 //! below [`TOLERANCE_ULPS`] units of round-off.
 
 mod bodies;
+mod claims;
 mod declared;
 mod draw;
 pub mod jet;

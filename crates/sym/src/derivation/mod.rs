@@ -34,6 +34,7 @@ mod context;
 mod error;
 mod eval;
 mod frames;
+mod labels;
 mod loads;
 pub mod ops;
 pub mod physics;
@@ -422,6 +423,7 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
             })?,
             None => None,
         };
+        cx.check_label(s, &value, label_math.as_ref())?;
         cx.bind(s.name.get_ref(), value.clone());
         steps.push(Step {
             name: s.name.get_ref().clone(),

@@ -1,0 +1,320 @@
+//! Claims a file makes beyond a step's meaning, checked: a step declared
+//! `conserved = true` has a time derivative that vanishes along the
+//! file's own equations of motion (each step solved for accelerations,
+//! `solve(eqs, [q1'', …])`, and each `mass_matrix`/`forcing` pair, solved
+//! numerically), at the drawn states; a step labelled `0` states that its
+//! value vanishes, which its meaning proves only when it is a law of
+//! motion — a force, moment or generalized force the motion requires less
+//! the loads applied — or when the value is identically zero.
+
+use hdot_sym::atom::Atom;
+use hdot_sym::derivation::physics::{Meaning, Quantity};
+use hdot_sym::derivation::{Derivation, Step, Value};
+use hdot_sym::label::LabelMath;
+use hdot_sym::parse::{AstKind, parse};
+use hdot_sym::poly::Poly;
+use nalgebra::{DMatrix, DVector};
+
+use super::declared::{StepCheck, bind_knowns};
+use super::draw::{Draw, constrain};
+use super::world::World;
+use super::{Comparison, VerifyError};
+use crate::bind::Values;
+
+/// One set of equations of motion stated by the file.
+pub(crate) enum Equations<'d> {
+    /// A step whose value is the accelerations, labelled by them.
+    Solved {
+        step: &'d Step,
+        unknowns: Vec<Atom>,
+        items: Vec<Poly>,
+    },
+    /// `mass_matrix(eqs, [q1'', …])` and `forcing(eqs, [q1'', …])`.
+    MassMatrix {
+        names: (String, String),
+        unknowns: Vec<Atom>,
+        m: Vec<Poly>,
+        f: Vec<Poly>,
+    },
+}
+
+impl Equations<'_> {
+    fn name(&self) -> String {
+        match self {
+            Equations::Solved { step, .. } => step.name.clone(),
+            Equations::MassMatrix { names, .. } => format!("{}, {}", names.0, names.1),
+        }
+    }
+
+    /// The accelerations at `values`, each with the size of its round-off
+    /// scale; `None` for a singular mass matrix.
+    fn accelerations(&self, values: &Values) -> Result<Option<Vec<(f64, f64)>>, VerifyError> {
+        match self {
+            Equations::Solved { items, .. } => Ok(Some(
+                items
+                    .iter()
+                    .map(|p| values.eval(p))
+                    .collect::<Result<Vec<_>, _>>()?,
+            )),
+            Equations::MassMatrix { unknowns, m, f, .. } => {
+                let n = unknowns.len();
+                let mv = m
+                    .iter()
+                    .map(|p| values.eval(p))
+                    .collect::<Result<Vec<_>, _>>()?;
+                let fv = f
+                    .iter()
+                    .map(|p| values.eval(p))
+                    .collect::<Result<Vec<_>, _>>()?;
+                let mm = DMatrix::from_fn(n, n, |i, j| mv[i * n + j].0);
+                let Some(inv) = mm.clone().try_inverse() else {
+                    return Ok(None);
+                };
+                let x = &inv * DVector::from_fn(n, |i, _| fv[i].0);
+                // Round-off of x = M⁻¹ f: |M⁻¹| (|f| + |M| |x|) on the
+                // magnitudes of their terms.
+                let rhs = DVector::from_fn(n, |i, _| {
+                    fv[i].1 + (0..n).map(|j| mv[i * n + j].1 * x[j].abs()).sum::<f64>()
+                });
+                let size = inv.abs() * rhs;
+                Ok(Some((0..n).map(|i| (x[i], size[i])).collect()))
+            }
+        }
+    }
+
+    fn unknowns(&self) -> &[Atom] {
+        match self {
+            Equations::Solved { unknowns, .. } | Equations::MassMatrix { unknowns, .. } => unknowns,
+        }
+    }
+}
+
+/// The unknowns `[q1'', …]` of a step written `func(eqs, [q1'', …])`.
+fn call_unknowns(d: &Derivation, s: &Step, func: &str) -> Option<Vec<Atom>> {
+    let ast = parse(&s.formula).ok()?;
+    let AstKind::Call { func: f, args } = &ast.kind else {
+        return None;
+    };
+    let AstKind::Vector { items, frame: None } = &args.get(1)?.kind else {
+        return None;
+    };
+    if f != func {
+        return None;
+    }
+    items
+        .iter()
+        .map(|a| match &a.kind {
+            AstKind::Name { name, primes: 2 } => d
+                .symbols
+                .atom(name, 2, a.span)
+                .ok()
+                .filter(|x| x.is_time_dependent()),
+            _ => None,
+        })
+        .collect()
+}
+
+/// Every set of equations of motion the file states.
+pub(crate) fn equations(d: &Derivation) -> Vec<Equations<'_>> {
+    let mut out = Vec::new();
+    for s in &d.steps {
+        if let Value::List { items, labels } = &s.value
+            && !labels.is_empty()
+            && labels.len() == items.len()
+            && labels
+                .iter()
+                .all(|a| a.order() == 2 && a.is_time_dependent())
+            && call_unknowns(d, s, "solve").is_some()
+        {
+            out.push(Equations::Solved {
+                step: s,
+                unknowns: labels.clone(),
+                items: items.iter().map(|p| d.unfold(p)).collect(),
+            });
+        }
+        let Some(unknowns) = call_unknowns(d, s, "mass_matrix") else {
+            continue;
+        };
+        let n = unknowns.len();
+        let Some(forcing) = d
+            .steps
+            .iter()
+            .find(|g| call_unknowns(d, g, "forcing").as_ref() == Some(&unknowns))
+        else {
+            continue;
+        };
+        let m: Vec<Poly> = match &s.value {
+            Value::Array(rows) if rows.len() == n && rows.iter().all(|r| r.len() == n) => {
+                rows.iter().flatten().map(|p| d.unfold(p)).collect()
+            }
+            Value::Matrix(m) if n == 3 => m.0.iter().flatten().map(|p| d.unfold(p)).collect(),
+            _ => continue,
+        };
+        let f: Vec<Poly> = forcing.values().iter().map(|p| d.unfold(p)).collect();
+        if f.len() != n {
+            continue;
+        }
+        out.push(Equations::MassMatrix {
+            names: (s.name.clone(), forcing.name.clone()),
+            unknowns,
+            m,
+            f,
+        });
+    }
+    out
+}
+
+/// A conserved step with its time derivative, compiled once.
+pub(crate) struct Conserved<'d> {
+    step: &'d Step,
+    rates: Vec<Poly>,
+}
+
+/// The steps declared conserved, with their time derivatives.
+pub(crate) fn conserved(d: &Derivation) -> Vec<Conserved<'_>> {
+    d.steps
+        .iter()
+        .filter(|s| s.conserved)
+        .map(|s| Conserved {
+            step: s,
+            rates: s.values().into_iter().map(|p| d.unfold(p).dt()).collect(),
+        })
+        .collect()
+}
+
+/// The report's entry for a conserved step, before any draw.
+pub(crate) fn conserved_entry(c: &Conserved<'_>, eqs: &[Equations<'_>]) -> StepCheck {
+    StepCheck {
+        step: c.step.name.clone(),
+        means: "conserved".into(),
+        conditions: String::new(),
+        against: if eqs.is_empty() {
+            "its rate along the file's equations of motion: the file states none (a step \
+             `solve(eqs, [q1'', …])` or `mass_matrix` and `forcing`)"
+                .into()
+        } else {
+            format!(
+                "its rate along the equations of motion of {}",
+                eqs.iter()
+                    .map(|e| format!("`{}`", e.name()))
+                    .collect::<Vec<_>>()
+                    .join(" and ")
+            )
+        },
+        max_error: if eqs.is_empty() { f64::INFINITY } else { 0.0 },
+        worst: None,
+        passed: !eqs.is_empty(),
+    }
+}
+
+/// The rate of each conserved step along each set of equations, in one
+/// draw: zero for a true claim.
+pub(crate) fn compare_conserved(
+    d: &Derivation,
+    draw: &Draw,
+    values: &Values,
+    conserved: &[Conserved<'_>],
+    eqs: &[Equations<'_>],
+) -> Result<Vec<Vec<Comparison>>, VerifyError> {
+    let mut values = values.clone();
+    constrain(d, &mut values, &[])?;
+    let w = World::build(d, draw, &values, &[])?;
+    bind_knowns(d, &w, &mut values)?;
+    let mut along = Vec::new();
+    for e in eqs {
+        let Some(acc) = e.accelerations(&values)? else {
+            continue;
+        };
+        let mut v = values.clone();
+        for (a, (x, s)) in e.unknowns().iter().zip(acc) {
+            v.set(*a, x, s);
+        }
+        // The accelerations the rules tie to the solved ones follow them.
+        constrain(d, &mut v, &[])?;
+        along.push((e.name(), v));
+    }
+    conserved
+        .iter()
+        .map(|c| {
+            let mut out = Vec::new();
+            for (name, v) in &along {
+                for (k, p) in c.rates.iter().enumerate() {
+                    let (r, scale) = v
+                        .eval(p)
+                        .map_err(|e| VerifyError::from(e).in_step(d, &c.step.name))?;
+                    let component = if c.rates.len() == 1 {
+                        String::new()
+                    } else {
+                        format!(".{}", k + 1)
+                    };
+                    out.push(Comparison {
+                        quantity: format!("d({}{component})/dt along `{name}`", c.step.name),
+                        derived: r,
+                        direct: 0.0,
+                        scale: scale + f64::MIN_POSITIVE,
+                    });
+                }
+            }
+            Ok(out)
+        })
+        .collect()
+}
+
+/// Whether a meaning is a law of motion: every quantity in it is one the
+/// motion requires (a force, moment or generalized force) or a load
+/// (weight, its moment or generalized weight, an applied value), and at
+/// least one is required by the motion.
+pub(crate) fn is_law(m: &Meaning) -> bool {
+    fn walk(m: &Meaning, required: &mut bool) -> bool {
+        match m {
+            Meaning::Quantity(q, _) => match q {
+                Quantity::Force | Quantity::Moment | Quantity::GeneralizedForce => {
+                    *required = true;
+                    true
+                }
+                Quantity::Weight | Quantity::WeightMoment | Quantity::GeneralizedWeight => true,
+                _ => false,
+            },
+            Meaning::Applied(_) => true,
+            Meaning::Sum(t) => t.iter().all(|(_, x)| walk(x, required)),
+            Meaning::List(items) => items.iter().all(|x| {
+                let mut r = false;
+                let ok = walk(x, &mut r);
+                *required |= r;
+                ok && r
+            }),
+            Meaning::Along(x, ..) | Meaning::Scaled(_, x) | Meaning::Linear(x) => walk(x, required),
+            _ => false,
+        }
+    }
+    let mut required = false;
+    walk(m, &mut required) && required
+}
+
+/// The failed check of a step labelled `0` whose value is not zero and
+/// whose meaning is not a law of motion (`None` when the label holds or
+/// the step has no meaning: then it is not compared at all).
+pub(crate) fn zero_label(d: &Derivation, s: &Step) -> Option<StepCheck> {
+    if !matches!(s.label_math, Some(LabelMath::Zero)) {
+        return None;
+    }
+    if s.values().iter().all(|p| d.unfold(p).is_zero()) {
+        return None;
+    }
+    let m = s.meaning.as_ref()?;
+    if is_law(&m.meaning) {
+        return None;
+    }
+    Some(StepCheck {
+        step: s.name.clone(),
+        means: m.text.clone(),
+        conditions: m.conditions.clone(),
+        against: "label `0`: the value is printed as vanishing, which its meaning proves only when it is a \
+                  law of motion (a force, moment or generalized force the motion requires less the applied \
+                  loads)"
+            .into(),
+        max_error: f64::INFINITY,
+        worst: None,
+        passed: false,
+    })
+}

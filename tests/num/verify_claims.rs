@@ -1,0 +1,194 @@
+//! Claims beyond a step's meaning (issue 20): a step declared conserved
+//! has a rate that vanishes along the file's own equations of motion, and
+//! a step labelled `0` is a law of motion or zero. Files written for these
+//! tests: a compound pendulum with a true and a false conservation claim.
+
+use hdot_num::verify::{Options, check};
+
+/// A rigid pendulum about a fixed pivot O, turning about y (axisymmetric
+/// about its own z, so that its centre may lie off O on the axis); `{extra}` is
+/// appended as further steps.
+fn pendulum(extra: &str) -> String {
+    format!(
+        r#"
+title = "A compound pendulum, written for this test"
+source = "test"
+gravity = "[0, 0, -g] in N"
+[symbols]
+constants = ["A", "C", "m", "g", "l"]
+time = ["theta"]
+[[frame]]
+name = "P"
+parent = "N"
+rotation = "y(theta)"
+[[point]]
+name = "O"
+fixed = true
+[[body]]
+name = "rod"
+frame = "P"
+point = "O"
+mass = "m"
+mass_centre = "[0, 0, -l] in P"
+inertia = "principal(A, A, C)"
+symmetry = "axisymmetric z"
+[[step]]
+name = "T"
+value = "A*theta'^2/2"
+means = "kinetic_energy(rod)"
+[[step]]
+name = "V"
+value = "-m*g*l*cos(theta)"
+means = "potential_energy(rod, O)"
+[[step]]
+name = "lagrange"
+value = "lagrange(T, V, [theta])"
+means = "list(generalized_force(rod, theta) - generalized_weight(rod, theta))"
+{extra}
+"#
+    )
+}
+
+const ACCELERATIONS: &str = r#"
+[[step]]
+name = "accelerations"
+value = "solve(lagrange, [theta''])"
+means = "solves(list(generalized_force(rod, theta) - generalized_weight(rod, theta)))"
+"#;
+
+const ENERGY: &str = r#"
+[[step]]
+name = "energy"
+value = "T + V"
+means = "kinetic_energy(rod) + potential_energy(rod, O)"
+conserved = true
+"#;
+
+fn options() -> Options {
+    Options { draws: 8, seed: 3 }
+}
+
+#[test]
+fn a_true_conservation_claim_passes_along_the_files_equations() {
+    let d = hdot_sym::derivation::load_str(
+        "pendulum.toml",
+        &pendulum(&format!("{ACCELERATIONS}{ENERGY}")),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let r = check(&d, &options()).unwrap();
+    let s = r
+        .steps
+        .iter()
+        .find(|s| s.step == "energy" && s.means == "conserved")
+        .expect("checked");
+    assert!(s.passed && s.against.contains("`accelerations`"), "{s:?}");
+    assert!(r.passed(), "{r:?}");
+}
+
+#[test]
+fn a_false_conservation_claim_fails_naming_the_step_and_its_rate() {
+    let momentum = r#"
+[[step]]
+name = "momentum"
+value = "A*theta'"
+conserved = true
+"#;
+    let d = hdot_sym::derivation::load_str(
+        "pendulum.toml",
+        &pendulum(&format!("{ACCELERATIONS}{ENERGY}{momentum}")),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let r = check(&d, &options()).unwrap();
+    assert!(!r.passed(), "{r:#?}");
+    let s = r
+        .steps
+        .iter()
+        .find(|s| s.step == "momentum")
+        .expect("checked");
+    assert!(!s.passed, "{s:?}");
+    let w = s.worst.as_ref().expect("a rate");
+    // The rate found is A θ̈ = −m g l sin θ: far from round-off.
+    assert!(
+        w.quantity.contains("d(momentum)/dt") && w.derived.abs() > 1e-3,
+        "{w:?}"
+    );
+    assert!(r.steps.iter().any(|s| s.step == "energy" && s.passed));
+}
+
+#[test]
+fn a_conservation_claim_without_equations_of_motion_fails() {
+    let d = hdot_sym::derivation::load_str("pendulum.toml", &pendulum(ENERGY))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let r = check(&d, &options()).unwrap();
+    let s = r
+        .steps
+        .iter()
+        .find(|s| s.means == "conserved")
+        .expect("listed");
+    assert!(!s.passed && s.against.contains("states none"), "{s:?}");
+}
+
+#[test]
+fn the_mass_matrix_form_is_an_equation_of_motion_too() {
+    let mm = r#"
+[[step]]
+name = "M"
+value = "mass_matrix(lagrange, [theta''])"
+[[step]]
+name = "f"
+value = "forcing(lagrange, [theta''])"
+"#;
+    let wrong = r#"
+[[step]]
+name = "height"
+value = "l*cos(theta)"
+conserved = true
+"#;
+    let d =
+        hdot_sym::derivation::load_str("pendulum.toml", &pendulum(&format!("{mm}{ENERGY}{wrong}")))
+            .unwrap_or_else(|e| panic!("{e}"));
+    let r = check(&d, &options()).unwrap();
+    let energy = r
+        .steps
+        .iter()
+        .find(|s| s.step == "energy" && s.means == "conserved")
+        .unwrap();
+    assert!(
+        energy.passed && energy.against.contains("`M, f`"),
+        "{energy:?}"
+    );
+    let height = r.steps.iter().find(|s| s.step == "height").unwrap();
+    assert!(!height.passed, "{height:?}");
+}
+
+#[test]
+fn a_step_labelled_zero_must_be_a_law_of_motion() {
+    let law = r#"
+[[step]]
+name = "equation"
+label = "0"
+value = "lagrange.1"
+means = "generalized_force(rod, theta) - generalized_weight(rod, theta)"
+"#;
+    let d = hdot_sym::derivation::load_str("pendulum.toml", &pendulum(law))
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert!(check(&d, &options()).unwrap().passed());
+    // The kinetic energy is what it means, but it does not vanish: `T = 0`
+    // printed as `… = 0` is false.
+    let false_zero = r#"
+[[step]]
+name = "resting"
+label = "0"
+value = "T"
+means = "kinetic_energy(rod)"
+"#;
+    let d = hdot_sym::derivation::load_str("pendulum.toml", &pendulum(false_zero))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let r = check(&d, &options()).unwrap();
+    let s = r
+        .steps
+        .iter()
+        .find(|s| s.step == "resting" && !s.passed)
+        .expect("failed");
+    assert!(s.against.contains("label `0`"), "{s:?}");
+}
