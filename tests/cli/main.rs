@@ -454,3 +454,49 @@ fn simulate_derived_default_target_not_met_exits_1() {
         text(&default.stderr)
     );
 }
+
+/// A derived scene whose derivation declares a step conserved that its
+/// equations do not conserve (a pendulum's rate, written for the test)
+/// fails: the drift is far above the error at T, so `simulate` exits 1
+/// naming the step; the energy alone, truly conserved, passes.
+#[test]
+fn simulate_fails_on_a_false_conservation_claim() {
+    let dir = tempfile::tempdir().unwrap();
+    let derivation = |extra: &str| {
+        format!(
+            "title = \"pendulum\"\nsource = \"written for the test\"\n[symbols]\nconstants = [\"k\"]\n\
+             time = [\"x\"]\n[[step]]\nname = \"acc\"\nvalue = \"solve(list(x'' + k*sin(x)), [x''])\"\n\
+             [[step]]\nname = \"energy\"\nvalue = \"x'^2/2 - k*cos(x)\"\nconserved = true\n{extra}"
+        )
+    };
+    let scene = dir.path().join("scene.toml");
+    std::fs::write(
+        &scene,
+        "name = \"pendulum\"\nkind = \"derived\"\nt_end = 3.0\n[derivation]\nfile = \"p.toml\"\n\
+         accelerations = \"acc\"\n[constants]\nk = 4.0\n[initial]\n\
+         coordinates = { x = 1.0 }\nrates = { x = 0.0 }\n",
+    )
+    .unwrap();
+    let scene = scene.to_str().unwrap();
+    std::fs::write(dir.path().join("p.toml"), derivation("")).unwrap();
+    let good = hdot(&["simulate", scene]);
+    assert!(
+        good.status.success(),
+        "{}{}",
+        text(&good.stdout),
+        text(&good.stderr)
+    );
+    std::fs::write(
+        dir.path().join("p.toml"),
+        derivation("[[step]]\nname = \"swing\"\nvalue = \"x'\"\nconserved = true\n"),
+    )
+    .unwrap();
+    let bad = hdot(&["simulate", scene]);
+    assert_eq!(bad.status.code(), Some(1), "{}", text(&bad.stdout));
+    assert!(
+        text(&bad.stderr).contains("step `swing` is declared conserved"),
+        "{}",
+        text(&bad.stderr)
+    );
+    assert!(text(&bad.stdout).contains("FAIL"), "{}", text(&bad.stdout));
+}
