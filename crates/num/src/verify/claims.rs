@@ -1,13 +1,14 @@
 //! Claims a file makes beyond a step's meaning, checked: a step declared
 //! `conserved = true` has a time derivative that vanishes along the
 //! file's own equations of motion (each step solved for accelerations,
-//! `solve(eqs, [q1'', …])`, and each `mass_matrix`/`forcing` pair, solved
-//! numerically), at the drawn states; a step labelled `0` states that its
+//! `solve(eqs, [q1'', …])`, or for the rates of generalized speeds,
+//! `solve(eqs, [u1', …])` with the kinematic equations giving q̇, and each
+//! `mass_matrix`/`forcing` pair, solved numerically), at the drawn states; a step labelled `0` states that its
 //! value vanishes, which its meaning proves only when it is a law of
 //! motion — a force, moment or generalized force the motion requires less
 //! the loads applied — or when the value is identically zero.
 
-use hdot_sym::atom::Atom;
+use hdot_sym::atom::{Atom, AtomKind};
 use hdot_sym::derivation::physics::{Meaning, Quantity};
 use hdot_sym::derivation::{Derivation, Step, Value};
 use hdot_sym::label::LabelMath;
@@ -82,6 +83,25 @@ impl Equations<'_> {
         }
     }
 
+    /// Whether these equations hold wherever `c` is defined: they keep
+    /// every constant of the conserved value (equations with constants
+    /// substituted, `subst(K, I = m*r^2/2)`, are a special case along which
+    /// the general claim is not stated).
+    fn covers(&self, c: &Conserved<'_>) -> bool {
+        let polys: Vec<&Poly> = match self {
+            Equations::Solved { items, .. } => items.iter().collect(),
+            Equations::MassMatrix { m, f, .. } => m.iter().chain(f).collect(),
+        };
+        let mut have = std::collections::BTreeSet::new();
+        for p in polys {
+            have.extend(constants(p));
+        }
+        c.rates
+            .iter()
+            .flat_map(constants)
+            .all(|a| have.contains(&a))
+    }
+
     fn unknowns(&self) -> &[Atom] {
         match self {
             Equations::Solved { unknowns, .. } | Equations::MassMatrix { unknowns, .. } => unknowns,
@@ -89,7 +109,16 @@ impl Equations<'_> {
     }
 }
 
-/// The unknowns `[q1'', …]` of a step written `func(eqs, [q1'', …])`.
+/// The constants of `p`.
+fn constants(p: &Poly) -> Vec<Atom> {
+    p.atoms()
+        .into_iter()
+        .filter(|a| matches!(a.kind(), AtomKind::Var { time: false, .. }))
+        .collect()
+}
+
+/// The unknowns `[q1'', …]` (or `[u1', …]`) of a step written
+/// `func(eqs, [q1'', …])`.
 fn call_unknowns(d: &Derivation, s: &Step, func: &str) -> Option<Vec<Atom>> {
     let ast = parse(&s.formula).ok()?;
     let AstKind::Call { func: f, args } = &ast.kind else {
@@ -104,9 +133,12 @@ fn call_unknowns(d: &Derivation, s: &Step, func: &str) -> Option<Vec<Atom>> {
     items
         .iter()
         .map(|a| match &a.kind {
-            AstKind::Name { name, primes: 2 } => d
+            AstKind::Name {
+                name,
+                primes: p @ (1 | 2),
+            } => d
                 .symbols
-                .atom(name, 2, a.span)
+                .atom(name, *p, a.span)
                 .ok()
                 .filter(|x| x.is_time_dependent()),
             _ => None,
@@ -121,9 +153,10 @@ pub(crate) fn equations(d: &Derivation) -> Vec<Equations<'_>> {
         if let Value::List { items, labels } = &s.value
             && !labels.is_empty()
             && labels.len() == items.len()
-            && labels
-                .iter()
-                .all(|a| a.order() == 2 && a.is_time_dependent())
+            && labels.iter().all(|a| {
+                a.is_time_dependent()
+                    && (a.order() == 2 || (a.order() == 1 && d.speeds().contains(&a.base())))
+            })
             && call_unknowns(d, s, "solve").is_some()
         {
             out.push(Equations::Solved {
@@ -184,13 +217,14 @@ pub(crate) fn conserved(d: &Derivation) -> Vec<Conserved<'_>> {
 
 /// The report's entry for a conserved step, before any draw.
 pub(crate) fn conserved_entry(c: &Conserved<'_>, eqs: &[Equations<'_>]) -> StepCheck {
+    let eqs: Vec<&Equations<'_>> = eqs.iter().filter(|e| e.covers(c)).collect();
     StepCheck {
         step: c.step.name.clone(),
         means: "conserved".into(),
         conditions: String::new(),
         against: if eqs.is_empty() {
-            "its rate along the file's equations of motion: the file states none (a step \
-             `solve(eqs, [q1'', …])` or `mass_matrix` and `forcing`)"
+            "its rate along the file's equations of motion: the file states none in all its constants \
+             (a step `solve(eqs, [q1'', …])` or `mass_matrix` and `forcing`)"
                 .into()
         } else {
             format!(
@@ -220,6 +254,12 @@ pub(crate) fn compare_conserved(
     constrain(d, &mut values, &[])?;
     let w = World::build(d, draw, &values, &[])?;
     bind_knowns(d, &w, &mut values)?;
+    // In generalized speeds the coordinates' rates are the kinematic
+    // equations' q̇ = f(q, u).
+    for (q, f) in d.kinematic_equations() {
+        let (x, s) = values.eval(&d.unfold(f)).map_err(VerifyError::from)?;
+        values.set(crate::bind::nth(q.base(), 1), x, s);
+    }
     let mut along = Vec::new();
     for e in eqs {
         let Some(acc) = e.accelerations(&values)? else {
@@ -231,13 +271,14 @@ pub(crate) fn compare_conserved(
         }
         // The accelerations the rules tie to the solved ones follow them.
         constrain(d, &mut v, &[])?;
-        along.push((e.name(), v));
+        along.push((e, v));
     }
     conserved
         .iter()
         .map(|c| {
             let mut out = Vec::new();
-            for (name, v) in &along {
+            for (e, v) in along.iter().filter(|(e, _)| e.covers(c)) {
+                let name = e.name();
                 for (k, p) in c.rates.iter().enumerate() {
                     let (r, scale) = v
                         .eval(p)
