@@ -69,7 +69,7 @@ impl Context<'_> {
                 self.same_unknown(text, &e.to_poly(), x, &fail)
             }
             (Solved::One(x), None, Some(p)) => self.same_unknown(text, &p, x, &fail),
-            (Solved::One(x), Some(LabelMath::Partial(..)), _) => fail(format!(
+            (Solved::One(x), Some(LabelMath::Partial(..) | LabelMath::Formula(_)), _) => fail(format!(
                 "`{text}` is not what the step solves for: it gives {x}; label it `{x}` or with a name"
             )),
             (_, Some(LabelMath::Zero), _) | (Solved::One(_) | Solved::Several, None, None) => {
@@ -92,7 +92,8 @@ impl Context<'_> {
             (Solved::No, None, Some(p)) if p.atoms().iter().any(|a| a.is_time_dependent()) => {
                 self.identical(text, value, &p, &fail)
             }
-            (Solved::No, None, _) => Ok(()),
+            // A formula of names (`|H_G|^2`) reads as the names it shows.
+            (Solved::No, None | Some(LabelMath::Formula(_)), _) => Ok(()),
         }
     }
 
