@@ -4,14 +4,8 @@
 //! integration may take, checked against an estimate of the steps a run
 //! needs before it starts and enforced while it runs.
 
-use std::sync::atomic::{AtomicU64, Ordering};
-
+pub use crate::budget::{DEFAULT_MAX_STEPS, max_steps, set_max_steps};
 use crate::{Limits, Method, SimError, Step, integrate};
-
-/// The default run budget: steps (accepted and rejected) one integration
-/// may take — 2^22, twice the finest fixed step of the work–precision
-/// sweep. Documented in docs/cli.md; `--max-steps` raises it.
-pub const DEFAULT_MAX_STEPS: u64 = 1 << 22;
 
 /// The most phase `|ω| h` (radians of the scene's rate scale) one step of
 /// any method is taken to cover when the steps of an adaptive run are
@@ -19,20 +13,6 @@ pub const DEFAULT_MAX_STEPS: u64 = 1 << 22;
 /// tolerance swept covers about one radian), so the estimate is a lower
 /// bound and a run it refuses could not finish within the budget.
 pub const MAX_PHASE_PER_STEP: f64 = 4.0;
-
-static MAX_STEPS: AtomicU64 = AtomicU64::new(DEFAULT_MAX_STEPS);
-
-/// The run budget in force: the steps one integration may take
-/// ([`DEFAULT_MAX_STEPS`] unless [`set_max_steps`] changed it).
-pub fn max_steps() -> u64 {
-    MAX_STEPS.load(Ordering::Relaxed)
-}
-
-/// Sets the run budget for the rest of the process (the command line's
-/// `--max-steps`); every integration's [`Limits::default`] takes it.
-pub fn set_max_steps(steps: u64) {
-    MAX_STEPS.store(steps.max(1), Ordering::Relaxed);
-}
 
 /// The budget of the work–precision study's timing: `--min-time` (the
 /// least wall time spent repeating one run) times the number of runs of

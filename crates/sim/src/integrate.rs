@@ -147,7 +147,7 @@ impl Default for Limits {
     fn default() -> Self {
         // The run budget in force (docs/cli.md, `--max-steps`).
         Limits {
-            max_steps: crate::estimate::max_steps(),
+            max_steps: crate::budget::max_steps(),
         }
     }
 }

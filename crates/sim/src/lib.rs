@@ -43,6 +43,7 @@
 //! space axes, `ω` is in body principal axes. Space Z is up.
 
 pub mod body;
+mod budget;
 pub mod dd;
 pub mod elliptic;
 mod error;

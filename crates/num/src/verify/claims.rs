@@ -16,10 +16,10 @@ use hdot_sym::parse::{AstKind, parse};
 use hdot_sym::poly::Poly;
 use nalgebra::{DMatrix, DVector};
 
-use super::declared::{StepCheck, bind_knowns};
 use super::draw::{Draw, constrain};
+use super::knowns::bind_knowns;
 use super::world::World;
-use super::{Comparison, VerifyError};
+use super::{Comparison, StepCheck, VerifyError};
 use crate::bind::Values;
 
 /// One set of equations of motion stated by the file.

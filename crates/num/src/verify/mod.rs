@@ -33,6 +33,7 @@ mod claims;
 mod declared;
 mod draw;
 pub mod jet;
+mod knowns;
 mod linear;
 pub mod means;
 pub mod motion;
@@ -45,7 +46,7 @@ use hdot_sym::atom::Atom;
 use hdot_sym::derivation::Derivation;
 
 pub use bodies::{random_body, random_cloud};
-pub use declared::{Options, Report, StepCheck, check, check_bodies, check_with};
+pub use declared::{Options, Report, check, check_bodies, check_with};
 pub use draw::{Draw, symmetric};
 
 use crate::bind::BindError;
@@ -164,4 +165,24 @@ impl Comparison {
     pub fn passes(&self) -> bool {
         self.relative_error() <= TOLERANCE_ULPS * f64::EPSILON
     }
+}
+
+/// One compared step.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StepCheck {
+    /// The step's name.
+    pub step: String,
+    /// Its meaning as written.
+    pub means: String,
+    /// Its conditions as written (`given = [...]`, `symmetry = {...}`),
+    /// empty without.
+    pub conditions: String,
+    /// What the meaning was measured as.
+    pub against: String,
+    /// The largest relative error over the draws.
+    pub max_error: f64,
+    /// The comparison with the largest error.
+    pub worst: Option<Comparison>,
+    /// Whether every comparison passed.
+    pub passed: bool,
 }

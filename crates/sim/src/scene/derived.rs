@@ -41,27 +41,12 @@ use std::rc::Rc;
 use hdot_num::scene::{Bodies, bodies};
 use hdot_sym::derivation::Derivation;
 use hdot_sym::symbols::Decl;
-use serde::Deserialize;
 
 use super::bind::{bind_scene_bodies, check_gravity};
-use super::raw::RawInitial;
+use super::raw::{RawDerivation, RawInitial};
 use super::text::line_of_field;
 use crate::SimError;
 use crate::systems::derived::{DerivedModel, DerivedSpec, EquationsSpec, TimeFunction};
-
-/// The `[derivation]` table.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub(super) struct RawDerivation {
-    file: String,
-    accelerations: Option<String>,
-    mass_matrix: Option<String>,
-    forcing: Option<String>,
-    coordinates: Option<Vec<String>>,
-    #[serde(default)]
-    conserved: Vec<String>,
-    frame: Option<String>,
-}
 
 /// The `[initial]` values of a derived scene.
 #[derive(Debug, Default, Clone)]

@@ -6,8 +6,6 @@ use std::collections::BTreeMap;
 use serde::Deserialize;
 use serde::de::IgnoredAny;
 
-use super::derived;
-
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct RawScene {
@@ -28,7 +26,7 @@ pub(super) struct RawScene {
     pub(super) top: Option<RawTop>,
     pub(super) shaft: Option<RawShaft>,
     pub(super) motor: Option<RawMotor>,
-    pub(super) derivation: Option<derived::RawDerivation>,
+    pub(super) derivation: Option<RawDerivation>,
     pub(super) constants: Option<BTreeMap<String, f64>>,
     pub(super) inputs: Option<BTreeMap<String, String>>,
 }
@@ -80,4 +78,18 @@ pub(super) struct RawShaft {
 pub(super) struct RawMotor {
     pub(super) stall_torque: f64,
     pub(super) no_load_speed: Option<f64>,
+}
+
+/// The `[derivation]` table.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawDerivation {
+    pub(super) file: String,
+    pub(super) accelerations: Option<String>,
+    pub(super) mass_matrix: Option<String>,
+    pub(super) forcing: Option<String>,
+    pub(super) coordinates: Option<Vec<String>>,
+    #[serde(default)]
+    pub(super) conserved: Vec<String>,
+    pub(super) frame: Option<String>,
 }

@@ -35,12 +35,12 @@ pub(crate) struct Context<'a> {
     /// Abbreviations declared so far, in order.
     pub abbrevs: Vec<Abbreviation>,
     /// Generalized speeds and kinematic equations (`speeds.rs`).
-    pub speeds: super::speeds::Speeds,
+    pub speeds: super::multibody::Speeds,
     /// The declared bodies, points, gravity and loads, once read (for
     /// operations such as `kane`).
     pub physics: super::physics::Physics,
     /// Applied forces and torques (`[[load]]`, `loads.rs`).
-    pub loads: Vec<super::loads::Load>,
+    pub loads: Vec<super::multibody::Load>,
 }
 
 /// A result whose error is located in the file.

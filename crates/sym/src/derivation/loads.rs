@@ -3,31 +3,9 @@
 //! (`ops/kane.rs`) takes their generalized active forces.
 
 use super::context::{Context, R};
+use super::multibody::Load;
 use super::raw::{RawFile, RawLoad};
 use crate::vector::Vec3;
-
-/// One applied load.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Load {
-    /// A force (components in the frame of that index) at a declared point.
-    Force {
-        /// The point it acts at.
-        point: String,
-        /// The force.
-        force: Vec3,
-        /// The frame of its components.
-        frame: usize,
-    },
-    /// A torque (a couple) on the frame of that index, components in `in_frame`.
-    Torque {
-        /// The frame (a body's) it turns.
-        on: usize,
-        /// The torque.
-        torque: Vec3,
-        /// The frame of its components.
-        in_frame: usize,
-    },
-}
 
 pub(crate) fn declare(cx: &Context<'_>, raw: &RawFile) -> R<Vec<Load>> {
     raw.loads.iter().map(|l| load(cx, l)).collect()

@@ -36,6 +36,7 @@ mod eval;
 mod frames;
 mod labels;
 mod loads;
+mod multibody;
 pub mod ops;
 pub mod physics;
 mod presentation;
@@ -48,7 +49,7 @@ use std::path::Path;
 use std::sync::Arc;
 
 pub use error::Diagnostic;
-pub use speeds::Speeds;
+pub use multibody::Speeds;
 pub use value::Value;
 
 use crate::atom::Atom;

@@ -8,55 +8,9 @@ use toml::Spanned;
 
 use super::context::{Context, R};
 use super::raw::RawFile;
-use crate::atom::{Atom, AtomKind};
+use crate::atom::Atom;
 use crate::poly::Poly;
 use crate::symbols::Decl;
-
-/// The speeds a file declares and its kinematic equations.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct Speeds {
-    /// The generalized speeds u, in declaration order.
-    pub speeds: Vec<Atom>,
-    /// q̇ = f(q, u) for each coordinate q (undifferentiated), in the
-    /// file's order, abbreviations unfolded.
-    pub kinematics: Vec<(Atom, Poly)>,
-}
-
-impl Speeds {
-    /// Whether the file declares no speeds.
-    pub fn is_empty(&self) -> bool {
-        self.speeds.is_empty()
-    }
-
-    /// The kinematic equation of coordinate `q`.
-    pub fn rate_of(&self, q: Atom) -> Option<&Poly> {
-        self.kinematics
-            .iter()
-            .find(|(c, _)| *c == q)
-            .map(|(_, f)| f)
-    }
-
-    /// `p` with every rate of a coordinate that has a kinematic equation
-    /// replaced: q̇ by f(q, u), q̈ by ḟ (whose q̇ are replaced in turn), …
-    /// The result holds no rate of those coordinates.
-    pub fn in_speeds(&self, p: &Poly) -> Poly {
-        let mut p = p.clone();
-        loop {
-            let mut changed = false;
-            p = p.subst(&mut |a| match a.kind() {
-                AtomKind::Var { order, .. } if order >= 1 => {
-                    let f = self.rate_of(a.base())?;
-                    changed = true;
-                    Some(f.dt_n(order - 1))
-                }
-                _ => None,
-            });
-            if !changed {
-                return p;
-            }
-        }
-    }
-}
 
 /// Reads `[kinematics]` (the speeds themselves are declared with the other
 /// symbols): each key a declared coordinate, each value its rate in the

@@ -12,7 +12,7 @@ use super::velocity::{Speedmap, linear_in_speeds};
 use super::{Call, Op, coefficient};
 use crate::atom::Atom;
 use crate::derivation::context::R;
-use crate::derivation::loads::Load;
+use crate::derivation::multibody::Load;
 use crate::derivation::physics::Body;
 use crate::derivation::value::Value;
 use crate::parse::AstKind;
