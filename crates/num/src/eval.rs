@@ -22,7 +22,7 @@
 //!
 //! ```
 //! use hdot_num::eval::Tape;
-//! use hdot_sym::{atom::Atom, poly::{Monomial, Poly}, rational::Rational};
+//! use hdot_sym::{Rational, atom::Atom, poly::{Monomial, Poly}};
 //! let (x, y) = (Atom::constant("x"), Atom::constant("y"));
 //! // 3 x² y − ½ y
 //! let p = Poly::from_terms([
