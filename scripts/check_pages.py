@@ -3,16 +3,18 @@
 over its DevTools protocol on a pipe (--remote-debugging-pipe; no network,
 no driver, nothing but the Python standard library).
 
-    scripts/check_pages.py [--screenshot DIR] [--max-bytes N] PAGE.html...
+    scripts/check_pages.py [--screenshot DIR [--full-page]] [--max-bytes N] PAGE.html...
 
 For each page: no console error or uncaught exception; no horizontal
 overflow at 1280 px and at 400 px wide; a simulation page's canvas differs
 between two times of the animation (the canvas read back at the scrubber's
-start and middle); on a page of the notes (its <main> carries
+start and middle); every chart and plot (<svg>) has a non-zero rendered
+size at both widths; on a page of the notes (its <main> carries
 data-equations, the count of equations of the document model) as many
 <math> elements as that count, each with a non-zero rendered size at both
 widths; the file is smaller than --max-bytes (default 2 MB).
-With --screenshot, a PNG of each page at both widths goes to DIR.
+With --screenshot, a PNG of each page at both widths goes to DIR: what
+the window shows (900 px high), or with --full-page the whole page.
 
 Chromium is looked up as $HDOT_CHROMIUM, chromium, chromium-browser. When
 it is missing the check is skipped with a note (exit 0), except under
@@ -164,6 +166,11 @@ MATH = """(() => {
   return [Number(m.dataset.equations), all.length, empty];
 })()"""
 
+# Charts and plots drawn with no width or height (a broken inline SVG).
+SVGS = """(() => [...document.querySelectorAll("svg")]
+  .filter(e => { const r = e.getBoundingClientRect(); return !(r.width > 0 && r.height > 0); })
+  .length)()"""
+
 SETTLE = "new Promise(r => requestAnimationFrame(() => requestAnimationFrame(() => setTimeout(r, 100))))"
 
 OVERFLOW = """(() => {
@@ -175,7 +182,16 @@ OVERFLOW = """(() => {
 })()"""
 
 
-def check_page(b, path, max_bytes, shots):
+def screenshot(b, s, width, full):
+    """A PNG of the window, or of the whole page when `full`."""
+    if not full:
+        return b.call("Page.captureScreenshot", s, format="png", captureBeyondViewport=False)["data"]
+    size = b.call("Page.getLayoutMetrics", s)["cssContentSize"]
+    clip = {"x": 0, "y": 0, "width": width, "height": size["height"], "scale": 1}
+    return b.call("Page.captureScreenshot", s, format="png", captureBeyondViewport=True, clip=clip)["data"]
+
+
+def check_page(b, path, max_bytes, shots, full):
     problems = []
     size = os.path.getsize(path)
     if size >= max_bytes:
@@ -194,10 +210,13 @@ def check_page(b, path, max_bytes, shots):
         if scroll > client:
             problems.append(f"horizontal overflow at {width} px: {scroll} > {client} ({', '.join(wide)})")
         if shots:
-            png = b.call("Page.captureScreenshot", s, format="png", captureBeyondViewport=False)["data"]
+            png = screenshot(b, s, width, full)
             name = os.path.splitext(os.path.basename(path))[0] + f"-{width}.png"
             with open(os.path.join(shots, name), "wb") as f:
                 f.write(base64.b64decode(png))
+        flat = evaluate(b, s, SVGS)
+        if flat:
+            problems.append(f"{flat} <svg> rendered with no size at {width} px")
         maths = evaluate(b, s, MATH)
         if maths is not None:
             expected, found, empty = maths
@@ -215,12 +234,14 @@ def check_page(b, path, max_bytes, shots):
 
 
 def main(argv):
-    shots, max_bytes, pages = None, 2 << 20, []
+    shots, full, max_bytes, pages = None, False, 2 << 20, []
     it = iter(argv)
     for a in it:
         if a == "--screenshot":
             shots = next(it)
             os.makedirs(shots, exist_ok=True)
+        elif a == "--full-page":
+            full = True
         elif a == "--max-bytes":
             max_bytes = int(next(it))
         else:
@@ -240,7 +261,7 @@ def main(argv):
         b = Browser(exe, profile)
         try:
             for page in pages:
-                problems = check_page(b, page, max_bytes, shots)
+                problems = check_page(b, page, max_bytes, shots, full)
                 if problems:
                     failed += 1
                     print(f"FAIL {page}")

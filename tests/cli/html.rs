@@ -1,7 +1,10 @@
-//! `hdot simulate --html` (issue 23): a page for every bundled example
-//! scene, checked as a file (self-contained, within its weight) and then in
-//! headless Chromium by `scripts/check_pages.py` (no console error, no
-//! horizontal overflow at 1280 and 400 px, the canvas moving, < 2 MB).
+//! The pages of a run or a sweep (issue 23): `hdot simulate --html` for
+//! every bundled example scene, `hdot stability --html` and `hdot
+//! work-precision --html`, checked as files (self-contained, within their
+//! weight, one shell and stylesheet) and then in headless Chromium by
+//! `scripts/check_pages.py` (no console error, no horizontal overflow at
+//! 1280 and 400 px, every chart drawn, a simulation's canvas moving, < 2 MB);
+//! and the paths a page is refused at.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -38,14 +41,14 @@ fn view_data(page: &str) -> serde_json::Value {
     serde_json::from_str(&page[start..end]).expect("the view's data parse")
 }
 
-/// Checks what a page must be as a file; returns its size.
-fn check_page_file(path: &Path) -> u64 {
+/// Checks what every page must be as a file (within the budget, one
+/// document, self-contained: no external script, style, image or font);
+/// returns its text.
+fn check_self_contained(path: &Path) -> String {
     let page = std::fs::read_to_string(path).unwrap();
     let size = page.len() as u64;
     assert!(size < PAGE_BUDGET, "{}: {size} bytes", path.display());
     assert!(page.starts_with("<!DOCTYPE html>"), "{}", path.display());
-    assert!(page.contains("<canvas id=\"view\""));
-    // Self-contained: nothing is fetched (no external script, style, image or font).
     for fetch in [
         "src=\"http",
         "href=\"http",
@@ -56,6 +59,33 @@ fn check_page_file(path: &Path) -> u64 {
     ] {
         assert!(!page.contains(fetch), "{}: {fetch}", path.display());
     }
+    page
+}
+
+/// The one stylesheet of the pages of runs and sweeps.
+const PAGE_CSS: &str = include_str!("../../crates/cli/src/html/page.css");
+
+/// Asserts that the page's one `<style>` element is the shared stylesheet
+/// (no second copy of it, no style of its own).
+fn check_stylesheet(path: &Path, page: &str) {
+    assert_eq!(page.matches("<style>").count(), 1, "{}", path.display());
+    let start = page.find("<style>").unwrap() + "<style>".len();
+    let end = page.find("</style>").unwrap();
+    assert_eq!(
+        page[start..end].trim(),
+        PAGE_CSS.trim(),
+        "{}",
+        path.display()
+    );
+    assert!(!page.contains(" style=\""), "{}", path.display());
+}
+
+/// Checks what a simulation page must be as a file; returns its size.
+fn check_page_file(path: &Path) -> u64 {
+    let page = check_self_contained(path);
+    check_stylesheet(path, &page);
+    let size = page.len() as u64;
+    assert!(page.contains("<canvas id=\"view\""));
     let data = view_data(&page);
     assert_eq!(data["t"].as_array().unwrap().len(), FRAMES + 1);
     let groups = data["groups"].as_array().unwrap();
@@ -95,6 +125,14 @@ pub(super) fn browser_check(pages: &[PathBuf], budget: Option<u64>) {
 #[test]
 fn every_bundled_scene_writes_a_page_the_browser_accepts() {
     let scenes = simulation_scenes();
+    // Every bundled simulation example (`sim-*.toml`) parses as a scene.
+    for e in std::fs::read_dir(repo_root().join("docs/examples")).unwrap() {
+        let p = e.unwrap().path();
+        let name = p.file_name().unwrap().to_str().unwrap();
+        if name.starts_with("sim-") && name.ends_with(".toml") {
+            assert!(scenes.contains(&p), "{name} is not a simulation scene");
+        }
+    }
     // Built-in models of every kind and derived ones: no scene dropped
     // silently by the filter.
     for must in [
@@ -206,4 +244,159 @@ fn the_page_never_overwrites_an_input() {
     let out = hdot(&["simulate", s, "--html", same, "--output", same]);
     assert_eq!(out.status.code(), Some(2), "{}", text(&out.stderr));
     assert!(!Path::new(same).exists());
+}
+
+/// Every row of a table body (`<tr><td>` … `</td></tr>`) of a page.
+fn body_rows(page: &str) -> usize {
+    page.matches("<tr><td>").count()
+}
+
+#[test]
+fn sweep_pages_hold_their_charts_and_tables_and_the_browser_accepts_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let out_dir = dir.path().join("out");
+    let o = out_dir.to_str().unwrap();
+    let stability = dir.path().join("stability.html");
+    let out = hdot(&[
+        "stability",
+        "docs/examples/stability-sleeping-top.toml",
+        "--out",
+        o,
+        "--html",
+        stability.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let page = check_self_contained(&stability);
+    check_stylesheet(&stability, &page);
+    // The report as a table, the chart inline (the SVG the command wrote).
+    let report = text(&out.stdout);
+    let verdict = report
+        .lines()
+        .find(|l| l.starts_with("not unstable"))
+        .unwrap();
+    let (_, intervals) = verdict.split_once(':').unwrap();
+    assert!(page.contains(intervals.trim()), "{verdict}");
+    let svg = std::fs::read_to_string(out_dir.join("eigenvalues.svg")).unwrap();
+    assert!(page.contains(svg.trim()), "the chart is not inline");
+    assert_eq!(page.matches("<svg").count(), 1);
+
+    let wp = dir.path().join("work-precision.html");
+    let out = hdot(&[
+        "work-precision",
+        "docs/examples/sim-torque-free-asymmetric.toml",
+        "--t-end",
+        "1",
+        "--min-time",
+        "0",
+        "--out",
+        o,
+        "--html",
+        wp.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let page = check_self_contained(&wp);
+    check_stylesheet(&wp, &page);
+    let stem = out_dir.join("sim-torque-free-asymmetric-work-precision");
+    let svg = std::fs::read_to_string(stem.with_extension("svg")).unwrap();
+    assert!(page.contains(svg.trim()), "the chart is not inline");
+    // One row of the table per run of the CSV, the failed ones included.
+    let csv = std::fs::read_to_string(stem.with_extension("csv")).unwrap();
+    let runs = csv.lines().count() - 1;
+    assert!(runs > 20, "{csv}");
+    assert_eq!(body_rows(&page), runs);
+    for method in ["euler", "rk4", "dop853", "split4"] {
+        assert!(page.contains(&format!("<tr><td>{method}</td>")), "{method}");
+    }
+    browser_check(&[stability, wp], None);
+}
+
+/// A page is refused (exit 2, nothing written, before any run) at a
+/// directory, at an input of the command and at another file it writes.
+#[test]
+fn a_page_is_refused_at_a_directory_an_input_or_another_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path().to_str().unwrap();
+    let scene = dir.path().join("top.toml");
+    let original =
+        std::fs::read_to_string(repo_root().join("docs/examples/sim-heavy-top.toml")).unwrap();
+    std::fs::write(&scene, &original).unwrap();
+    let s = scene.to_str().unwrap();
+    let csv = dir.path().join("top-work-precision.csv");
+    let eigen = dir.path().join("eigenvalues.svg");
+    let cases: [(&[&str], &str); 7] = [
+        (&["simulate", s, "--html", d], "is a directory"),
+        (
+            &["work-precision", s, "--out", d, "--html", d],
+            "is a directory",
+        ),
+        (
+            &["work-precision", s, "--out", d, "--html", s],
+            "is an input",
+        ),
+        (
+            &[
+                "work-precision",
+                s,
+                "--out",
+                d,
+                "--html",
+                csv.to_str().unwrap(),
+            ],
+            "name the same file",
+        ),
+        (
+            &[
+                "stability",
+                "docs/examples/stability-sleeping-top.toml",
+                "--out",
+                d,
+                "--html",
+                d,
+            ],
+            "is a directory",
+        ),
+        (
+            &[
+                "stability",
+                "docs/examples/stability-sleeping-top.toml",
+                "--out",
+                d,
+                "--html",
+                eigen.to_str().unwrap(),
+            ],
+            "name the same file",
+        ),
+        (
+            &[
+                "stability",
+                "docs/examples/stability-sleeping-top.toml",
+                "--out",
+                d,
+                "--html",
+                "docs/examples/stability-sleeping-top.toml",
+            ],
+            "is an input",
+        ),
+    ];
+    let before =
+        std::fs::read_to_string(repo_root().join("docs/examples/stability-sleeping-top.toml"))
+            .unwrap();
+    for (args, why) in cases {
+        let out = hdot(args);
+        let se = text(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {se}");
+        assert!(se.contains(why), "{args:?}: {se}");
+    }
+    // Nothing was written: the folder holds the scene alone, the inputs are whole.
+    let left: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(left, ["top.toml"]);
+    assert_eq!(std::fs::read_to_string(&scene).unwrap(), original);
+    assert_eq!(
+        std::fs::read_to_string(repo_root().join("docs/examples/stability-sleeping-top.toml"))
+            .unwrap(),
+        before
+    );
 }

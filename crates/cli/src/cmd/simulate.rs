@@ -103,16 +103,15 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<ExitCode> {
     let plan = run::plan(&scene, &request)?;
     if let Some(page) = &args.html {
         let mut inputs = vec![args.scene.as_path()];
-        if let hdot_sim::scene::SceneKind::Derived(ds) = &scene.kind {
+        if let Some(ds) = scene.derivation() {
             inputs.push(ds.derivation.as_path());
         }
-        hdot_num::fsio::refuse_overwriting_inputs(page, &inputs)?;
-        if args.output.as_deref() == Some(page.as_path()) {
-            anyhow::bail!(
-                "--html and --output name the same file {}; choose another path",
-                page.display()
-            );
-        }
+        let outputs: Vec<(&str, &std::path::Path)> = args
+            .output
+            .iter()
+            .map(|o| ("--output", o.as_path()))
+            .collect();
+        crate::html::refuse_page_path(page, &inputs, &outputs)?;
     }
 
     let mut file = match &args.output {

@@ -32,6 +32,16 @@ const PROGRESS_FROM: usize = 20_000;
 /// Runs `hdot stability`.
 pub fn run(args: StabilityArgs) -> anyhow::Result<ExitCode> {
     let scene = crate::catalog::stability_scene(&args.scene)?;
+    let stem = args.out.join("eigenvalues");
+    let csv = stem.with_extension("csv");
+    if let Some(page) = &args.html {
+        let (svg, png) = (stem.with_extension("svg"), stem.with_extension("png"));
+        crate::html::refuse_page_path(
+            page,
+            &[args.scene.as_path(), scene.derivation.as_path()],
+            &[("the CSV", &csv), ("the chart", &svg), ("the chart", &png)],
+        )?;
+    }
     let bar = (scene.count >= PROGRESS_FROM && std::io::stderr().is_terminal()).then(|| {
         let bar = indicatif::ProgressBar::new(scene.count as u64);
         bar.set_style(
@@ -54,8 +64,6 @@ pub fn run(args: StabilityArgs) -> anyhow::Result<ExitCode> {
 
     std::fs::create_dir_all(&args.out)
         .map_err(|e| OutputError::new(format!("cannot create {}", args.out.display()), e))?;
-    let stem = args.out.join("eigenvalues");
-    let csv = stem.with_extension("csv");
     let mut batch = output::Batch::new();
     batch
         .write(&csv, stability::csv(&sweep).as_bytes())
@@ -75,7 +83,10 @@ pub fn run(args: StabilityArgs) -> anyhow::Result<ExitCode> {
     if let Some(page) = &args.html {
         let svg = std::fs::read_to_string(stem.with_extension("svg"))
             .map_err(|e| OutputError::new("cannot read the chart back", e))?;
-        output::write_atomic(page, html_page(&scene, &report, &svg).as_bytes())?;
+        output::write_atomic(
+            page,
+            crate::html::stability_page(&scene, &report, &svg).as_bytes(),
+        )?;
     }
     crate::out!("{report}");
     crate::outln!(
@@ -183,41 +194,4 @@ fn intervals(p: &str, list: &[Interval]) -> String {
         })
         .collect::<Vec<_>>()
         .join("; ")
-}
-
-/// A self-contained page: the report as a table and the chart (SVG) inline.
-fn html_page(scene: &StabilityScene, report: &str, svg: &str) -> String {
-    use crate::html::escape;
-    let title = escape(&scene.name);
-    let mut s = String::new();
-    let _ = write!(
-        s,
-        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
-         <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n\
-         <title>{title} — hdot stability</title>\n<style>\n\
-         body{{font-family:sans-serif;margin:0 auto;max-width:960px;padding:1em}}\
-         th{{text-align:left;padding-right:1em;vertical-align:top}}\
-         .chart svg{{width:100%;height:auto}}\n</style>\n</head>\n<body>\n<main>\n\
-         <header><h1>{title}</h1><p>{}</p></header>\n<section class=\"report\">\n<h2>Report</h2>\n<table>\n",
-        escape(&scene.description)
-    );
-    for line in report.lines() {
-        let (k, v) = line.split_once(':').unwrap_or(("", line));
-        let _ = writeln!(
-            s,
-            "<tr><th>{}</th><td>{}</td></tr>",
-            escape(k.trim()),
-            escape(v.trim())
-        );
-    }
-    // The chart's SVG has no XML prolog to strip (plotters writes the
-    // element alone), so it is embedded as it is.
-    let _ = write!(
-        s,
-        "</table>\n</section>\n<section class=\"chart\">\n<h2>Eigenvalues against {}</h2>\n{svg}\n</section>\n\
-         <footer>Written by hdot {} (<code>hdot stability --html</code>).</footer>\n</main>\n</body>\n</html>\n",
-        escape(&scene.parameter),
-        env!("CARGO_PKG_VERSION")
-    );
-    s
 }

@@ -1,5 +1,6 @@
 //! `hdot work-precision SCENE`: sweep every method over step sizes and
-//! tolerances; write the CSV and the chart (error against wall time).
+//! tolerances; write the CSV and the chart (error against wall time), and
+//! with `--html` a page of both (`crate::html::work_precision_page`).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -26,6 +27,10 @@ pub struct WorkPrecisionArgs {
     /// Run budget: steps one integration may take (see docs/cli.md).
     #[arg(long, default_value_t = hdot_sim::estimate::DEFAULT_MAX_STEPS)]
     pub max_steps: u64,
+    /// Also write the report, the chart and the table of every run as one
+    /// self-contained web page.
+    #[arg(long, value_name = "FILE")]
+    pub html: Option<PathBuf>,
 }
 
 /// Runs `hdot work-precision`.
@@ -45,8 +50,6 @@ pub fn run(args: WorkPrecisionArgs) -> anyhow::Result<ExitCode> {
         .map(|m| run::sweep_steps(m, t_end).len())
         .sum();
     hdot_sim::estimate::check_timing_budget(runs, args.min_time).map_err(anyhow::Error::msg)?;
-    std::fs::create_dir_all(&args.out)
-        .map_err(|e| OutputError::new(format!("cannot create {}", args.out.display()), e))?;
     let stem_name = format!(
         "{}-work-precision",
         args.scene
@@ -55,11 +58,25 @@ pub fn run(args: WorkPrecisionArgs) -> anyhow::Result<ExitCode> {
             .unwrap_or("scene")
     );
     let stem = args.out.join(&stem_name);
+    let csv = stem.with_extension("csv");
+    let (svg, png) = (stem.with_extension("svg"), stem.with_extension("png"));
+    if let Some(page) = &args.html {
+        let mut inputs = vec![args.scene.as_path()];
+        if let Some(ds) = scene.derivation() {
+            inputs.push(ds.derivation.as_path());
+        }
+        crate::html::refuse_page_path(
+            page,
+            &inputs,
+            &[("the CSV", &csv), ("the chart", &svg), ("the chart", &png)],
+        )?;
+    }
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| OutputError::new(format!("cannot create {}", args.out.display()), e))?;
     let rows = run::work_precision(&scene, t_end, args.min_time, |r| {
         eprintln!("{}", r.csv());
     })?;
     // The CSV and the chart appear together or not at all.
-    let csv = stem.with_extension("csv");
     let mut text = format!("{}\n", run::CSV_HEADER);
     for r in &rows {
         text.push_str(&r.csv());
@@ -107,14 +124,38 @@ pub fn run(args: WorkPrecisionArgs) -> anyhow::Result<ExitCode> {
     }
     // What the drift columns hold, or why a column is empty.
     let columns = run::drift_columns(&scene)?;
-    for (name, column) in [
+    let drifts = [
         ("energy_drift", &columns.energy),
         ("momentum_drift", &columns.momentum),
-    ] {
+    ];
+    for (name, column) in drifts {
         match column {
             Ok(what) => crate::outln!("{name}: {what}"),
             Err(why) => crate::outln!("{name}: not available: {why}"),
         }
+    }
+    if let Some(page) = &args.html {
+        let chart = if drawable {
+            Some(
+                std::fs::read_to_string(&svg)
+                    .map_err(|e| OutputError::new("cannot read the chart back", e))?,
+            )
+        } else {
+            None
+        };
+        let model = run::sweep_model(&scene)?;
+        let study = crate::html::Study {
+            scene: &scene,
+            t_end,
+            model: model.name(),
+            rows: &rows,
+            drifts,
+        };
+        output::write_atomic(
+            page,
+            crate::html::work_precision_page(&study, chart.as_deref()).as_bytes(),
+        )?;
+        crate::outln!("wrote {}", page.display());
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -1,31 +1,23 @@
-//! `hdot simulate --html`: one self-contained page of a run (nothing is
-//! loaded from the network) — the report, SVG plots of the coordinates, ω
-//! and the conserved quantities' drift against time, and a 3D view of the
-//! body moving on a `<canvas>`, drawn by the small script `view.js`
-//! (embedded) from the scene's `[[body]]` tables and the run's attitudes.
-//!
-//! The page reads only what a run returns ([`hdot_sim::run::Report`], its
-//! trajectory, the attitude of a derived scene's frames) and the scene's
-//! bodies; its size is bounded whatever the run's length (the plots are
-//! drawn at screen resolution, the animation has [`motion::FRAMES`] frames).
+//! The web pages of a run or a sweep, each one self-contained file
+//! (nothing is loaded from the network) in one shell and stylesheet
+//! ([`shell`]): `hdot simulate --html` ([`simulation_page`]: the report,
+//! plots against time and the body moving in 3D), `hdot stability --html`
+//! ([`stability_page`]) and `hdot work-precision --html`
+//! ([`work_precision_page`]): their reports, charts and tables.
+
+use std::path::{Path, PathBuf};
 
 mod motion;
 mod plot;
 mod shapes;
+mod shell;
+mod simulation;
+mod stability;
+mod work_precision;
 
-use std::fmt::Write;
-
-use hdot_num::nalgebra::Vector3;
-use hdot_sim::run::Report;
-use hdot_sim::scene::{Scene, SceneKind};
-use serde_json::{Value, json};
-
-use motion::{Motion, Track};
-use shapes::{Shape, round};
-
-/// The view's script and the page's stylesheet, written in this project.
-const VIEW_JS: &str = include_str!("view.js");
-const PAGE_CSS: &str = include_str!("page.css");
+pub use simulation::simulation_page;
+pub use stability::stability_page;
+pub use work_precision::{Study, work_precision_page};
 
 /// Why a page cannot be written.
 #[derive(Debug, thiserror::Error)]
@@ -54,229 +46,45 @@ pub enum PageError {
 /// every page hdot writes).
 pub use hdot_sym::escape::html as escape;
 
-/// The page of `report`, a run of `scene` whose text (for its `[[body]]`
-/// tables) is `text`.
-pub fn simulation_page(scene: &Scene, text: &str, report: &Report) -> Result<String, PageError> {
-    let motion = Motion::new(scene, report)?;
-    let data = view_data(scene, text, &motion)?;
-    // `</` inside a script element would end it: JSON allows `<\/`.
-    let data = data.to_string().replace("</", "<\\/");
-    let mut s = String::with_capacity(256 << 10);
-    let title = escape(&scene.name);
-    let _ = write!(
-        s,
-        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
-         <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n\
-         <title>{title} — hdot simulate</title>\n<style>\n{PAGE_CSS}</style>\n</head>\n<body>\n<main>\n\
-         <header><h1>{title}</h1><p>{}</p><p class=\"file\">{} · kind {}</p></header>\n",
-        escape(&scene.description),
-        escape(&scene.file.display().to_string()),
-        scene.kind.name()
-    );
-    let _ = write!(
-        s,
-        "<section class=\"view\" aria-label=\"the motion in 3D\">\n<h2>The motion</h2>\n\
-         <canvas id=\"view\" width=\"720\" height=\"480\"></canvas>\n\
-         <div class=\"controls\"><button id=\"play\" type=\"button\">Pause</button>\
-         <label>speed <select id=\"speed\"><option value=\"0.1\">×0.1</option>\
-         <option value=\"0.25\">×0.25</option><option value=\"0.5\">×0.5</option>\
-         <option value=\"1\" selected>×1</option><option value=\"2\">×2</option>\
-         <option value=\"4\">×4</option></select></label>\
-         <input id=\"scrub\" type=\"range\" min=\"0\" max=\"{}\" value=\"0\" aria-label=\"time\">\
-         <output id=\"time\">t = 0 s</output></div>\n<p id=\"legend\" class=\"note\"></p>\n</section>\n",
-        motion.frames.len() - 1
-    );
-    s.push_str("<section class=\"report\">\n<h2>Report</h2>\n<table>\n");
-    for line in report.to_string().lines() {
-        let (k, v) = line.split_once(':').unwrap_or(("", line));
-        let _ = writeln!(
-            s,
-            "<tr><th>{}</th><td>{}</td></tr>",
-            escape(k.trim()),
-            escape(v.trim())
+/// Refuses, before anything is computed, a page path that is a directory,
+/// an input of the command (the scene, its derivation: also through a
+/// link) or another file it writes (`outputs`: the option or file that
+/// names it, and its path). A refusal is a mistake of the command line
+/// (exit 2): nothing is written.
+pub fn refuse_page_path(
+    page: &Path,
+    inputs: &[&Path],
+    outputs: &[(&str, &Path)],
+) -> anyhow::Result<()> {
+    if page.is_dir() {
+        anyhow::bail!(
+            "--html {} is a directory; a page is one file (name it, e.g. {})",
+            page.display(),
+            page.join("page.html").display()
         );
     }
-    s.push_str("</table>\n</section>\n<section class=\"plots\">\n<h2>Against time</h2>\n");
-    for p in &motion.plots {
-        s.push_str(&plot::svg(p, &motion.t));
-        s.push('\n');
+    hdot_num::fsio::refuse_overwriting_inputs(page, inputs)?;
+    for (what, other) in outputs {
+        if hdot_num::fsio::same_file(page, other) || lexical(page) == lexical(other) {
+            anyhow::bail!(
+                "--html and {what} name the same file {}; choose another path",
+                page.display()
+            );
+        }
     }
-    let _ = write!(
-        s,
-        "</section>\n<footer>Written by hdot {} (<code>hdot simulate --html</code>).</footer>\n</main>\n\
-         <script id=\"motion\" type=\"application/json\">{data}</script>\n<script>\n{VIEW_JS}</script>\n\
-         </body>\n</html>\n",
-        env!("CARGO_PKG_VERSION")
-    );
-    Ok(s)
+    Ok(())
 }
 
-/// A rotation track as the page's data: 9 numbers (row-major) per frame.
-fn track_json(track: &Track, frames: usize) -> (Value, Option<String>) {
-    match &track.rotations {
-        Ok(r) => (
-            Value::from(
-                r.iter()
-                    .flat_map(|m| (0..3).flat_map(move |i| (0..3).map(move |j| round(m[(i, j)]))))
-                    .collect::<Vec<_>>(),
-            ),
-            None,
-        ),
-        Err(why) => {
-            let id = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0];
-            (
-                Value::from(id.repeat(frames)),
-                Some(format!("drawn at rest: {why}")),
-            )
-        }
-    }
-}
-
-/// What `view.js` draws: frame times, the groups of parts with their
-/// rotations, the view's scale, gravity, and the top's axis or the free
-/// body's angular momentum.
-fn view_data(scene: &Scene, text: &str, motion: &Motion) -> Result<Value, PageError> {
-    let bodies =
-        hdot_num::scene::bodies(&scene.file, text).map_err(|e| PageError::Run(e.to_string()))?;
-    let frames = motion.frames.len();
-    let mut notes = vec![];
-    let mut groups = vec![];
-    let mut reach = 0.0f64;
-    let mut add = |shapes: Vec<Shape>, track: &Track, notes: &mut Vec<String>| {
-        let (rot, note) = track_json(track, frames);
-        notes.extend(note);
-        for sh in &shapes {
-            reach = reach.max(sh.reach());
-        }
-        groups.push(json!({
-            "frame": track.frame,
-            "parts": shapes.iter().map(Shape::to_json).collect::<Vec<_>>(),
-            "rot": rot,
-        }));
+/// A path made absolute by its directory (resolved when it exists), for
+/// comparing files that need not exist yet.
+fn lexical(p: &Path) -> PathBuf {
+    let dir = match p.parent() {
+        Some(d) if d.as_os_str().is_empty() => Path::new("."),
+        Some(d) => d,
+        None => return p.to_path_buf(),
     };
-    let origin = scene.body_frame.map_or_else(Vector3::zeros, |f| f.origin);
-    match &scene.kind {
-        SceneKind::Derived(ds) => {
-            for g in &bodies.groups {
-                let chain = match &g.of {
-                    Some(name) => ds
-                        .body_frames
-                        .iter()
-                        .find(|(b, _)| b == name)
-                        .map(|(_, c)| c.clone()),
-                    None => ds.body_frames.first().map(|(_, c)| c.clone()),
-                }
-                .or_else(|| ds.frame.clone().map(|f| vec![f]))
-                .unwrap_or_default();
-                let track = motion.frame_track(scene, &chain);
-                if let (Some(first), Ok(_)) = (chain.first(), &track.rotations)
-                    && *first != track.frame
-                {
-                    notes.push(format!(
-                        "{} turns with frame {} (the attitude of its own frame {first} is not a function \
-                         of the coordinates).",
-                        g.of.as_deref().unwrap_or("The body"),
-                        track.frame
-                    ));
-                }
-                add(
-                    shapes::shapes(&g.body, &Vector3::zeros()),
-                    &track,
-                    &mut notes,
-                );
-            }
-            if bodies.groups.is_empty() {
-                notes.push("the scene has no [[body]] table: nothing to draw".into());
-            }
-        }
-        _ => {
-            if let (Some(body), Some(track)) = (&bodies.body, &motion.body) {
-                add(shapes::shapes(body, &origin), track, &mut notes);
-            }
-        }
-    }
-    let bearings = match &scene.kind {
-        SceneKind::FixedAxis { shaft, .. } => Some(shaft.bearings),
-        _ => None,
-    };
-    if let Some(b) = bearings {
-        reach = reach.max(b[0].abs()).max(b[1].abs());
-    }
-    let reach = if reach.is_finite() && reach > 0.0 {
-        reach
-    } else {
-        1.0
-    };
-    let axis = match (&scene.kind, scene.body_frame) {
-        (SceneKind::HeavyTop { .. }, Some(f)) => {
-            let a = f.axes * Vector3::z() * reach;
-            Some([round(a.x), round(a.y), round(a.z)])
-        }
-        _ => None,
-    };
-    let g = bodies.g.and_then(|g| {
-        let n = g.norm();
-        (n > 0.0 && n.is_finite()).then(|| [round(g.x / n), round(g.y / n), round(g.z / n)])
-    });
-    let momentum = motion.momentum.and_then(|h| {
-        let n = h.norm();
-        (n > 0.0 && n.is_finite()).then(|| [round(h.x / n), round(h.y / n), round(h.z / n)])
-    });
-    Ok(json!({
-        "t": motion.frames.iter().map(|t| round(*t)).collect::<Vec<_>>(),
-        "groups": groups,
-        "scale": round(reach),
-        "g": g,
-        "axis": axis,
-        "momentum": momentum,
-        "bearings": bearings,
-        "notes": notes,
-    }))
-}
-
-#[cfg(test)]
-mod tests {
-    use std::path::Path;
-
-    use hdot_sim::run::{self, Output, Request};
-
-    use super::*;
-
-    /// A run of the bundled heavy top (its text, the scene and the report
-    /// with the trajectory).
-    fn heavy_top() -> (String, Scene, Report) {
-        let path = Path::new("docs/examples/sim-heavy-top.toml");
-        let (_, text) = crate::catalog::bundled_scene(path).expect("bundled");
-        let scene = crate::catalog::scene(path).unwrap();
-        let plan = run::plan(&scene, &Request::default()).unwrap();
-        let mut out = Output {
-            store: true,
-            ..Output::default()
-        };
-        let report = run::run(&scene, &plan, &mut out).unwrap();
-        (text.to_owned(), scene, report)
-    }
-
-    #[test]
-    fn a_non_finite_sample_is_refused_and_located() {
-        let (text, scene, mut report) = heavy_top();
-        assert!(simulation_page(&scene, &text, &report).is_ok());
-        let rows = report.trajectory.as_mut().unwrap();
-        let t = rows[7][0];
-        rows[7][3] = f64::NAN;
-        let e = simulation_page(&scene, &text, &report).unwrap_err();
-        assert!(
-            matches!(&e, PageError::NonFinite { sample: 7, quantity, .. } if quantity == "q_y"),
-            "{e}"
-        );
-        assert!(e.to_string().contains(&format!("at t = {t}")), "{e}");
-    }
-
-    #[test]
-    fn text_is_escaped() {
-        assert_eq!(
-            escape("a<b & \"c\"</script>"),
-            "a&lt;b &amp; &quot;c&quot;&lt;/script&gt;"
-        );
+    match (std::fs::canonicalize(dir), p.file_name()) {
+        (Ok(d), Some(name)) => d.join(name),
+        _ => std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf()),
     }
 }

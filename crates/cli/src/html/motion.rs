@@ -5,7 +5,7 @@
 
 use hdot_sim::nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
 use hdot_sim::run::{self, Report};
-use hdot_sim::scene::{Scene, SceneKind};
+use hdot_sim::scene::Scene;
 use hdot_sim::systems::free::{FreeBody, Gravity};
 
 use super::PageError;
@@ -82,15 +82,16 @@ fn rows(scene: &Scene, report: &Report) -> Result<Vec<Vec<f64>>, PageError> {
     } else {
         let times =
             (0..=CLOSED_FORM_SAMPLES).map(|i| t_end * i as f64 / CLOSED_FORM_SAMPLES as f64);
-        match &scene.kind {
-            SceneKind::Free { .. } | SceneKind::HeavyTop { .. } => times
+        if scene.rigid_body().is_some() {
+            times
                 .map(|t| {
                     let (y, _) = run::reference_state(scene, t)
                         .map_err(|e| PageError::Run(e.to_string()))?;
                     Ok(std::iter::once(t).chain(y).collect())
                 })
-                .collect::<Result<_, PageError>>()?,
-            SceneKind::FixedAxis { shaft, y0 } => times
+                .collect::<Result<_, PageError>>()?
+        } else if let Some((shaft, y0)) = scene.shaft() {
+            times
                 .map(|t| {
                     let y = shaft.exact(y0, t);
                     let r = shaft.reactions(y[1]);
@@ -104,8 +105,9 @@ fn rows(scene: &Scene, report: &Report) -> Result<Vec<Vec<f64>>, PageError> {
                         r.bearing_b[1],
                     ]
                 })
-                .collect(),
-            SceneKind::Derived(_) => stored,
+                .collect()
+        } else {
+            stored
         }
     };
     if rows.len() < 2 {
@@ -279,27 +281,27 @@ impl Motion {
     pub fn new(scene: &Scene, report: &Report) -> Result<Motion, PageError> {
         let rows = rows(scene, report)?;
         let t: Vec<f64> = rows.iter().map(|r| r[0]).collect();
-        let quaternion = !matches!(
-            scene.kind,
-            SceneKind::Derived(_) | SceneKind::FixedAxis { .. }
-        ) && report.plan.model.name() != EULER_ANGLES;
+        let rigid = scene.rigid_body();
+        let quaternion = rigid.is_some() && report.plan.model.name() != EULER_ANGLES;
         let anim = resample(&rows, FRAMES, quaternion);
-        let mut m = match &scene.kind {
-            SceneKind::Free { moments, .. } | SceneKind::HeavyTop { moments, .. } => {
-                let gravity = match &scene.kind {
-                    SceneKind::HeavyTop { weight_arm, .. } => Some(Gravity {
-                        weight_arm: *weight_arm,
-                    }),
-                    _ => None,
-                };
-                let body = FreeBody {
-                    moments: moments.get(),
-                    gravity,
-                };
-                body_motion(scene, report, &body, &rows, &anim)
-            }
-            SceneKind::FixedAxis { .. } => shaft_motion(&rows, &anim),
-            SceneKind::Derived(ds) => derived_motion(ds, &rows, &column_names(scene, report)),
+        let mut m = if let Some(b) = rigid {
+            let body = FreeBody {
+                moments: b.moments.get(),
+                gravity: b.pivot.map(|p| Gravity {
+                    weight_arm: p.weight_arm,
+                }),
+            };
+            body_motion(scene, report, &body, &rows, &anim)
+        } else if scene.shaft().is_some() {
+            shaft_motion(&rows, &anim)
+        } else if let Some(ds) = scene.derivation() {
+            derived_motion(ds, &rows, &column_names(scene, report))
+        } else {
+            return Err(PageError::Run(
+                "the page draws a rigid body, a shaft or a derivation's coordinates, and this scene \
+                 holds none of them"
+                    .into(),
+            ));
         };
         m.t = t;
         for p in &m.plots {
@@ -320,7 +322,7 @@ impl Motion {
     /// The attitude of a derivation's frame: the first of `chain` (a frame
     /// and its ancestors) whose attitude is a function of the state.
     pub fn frame_track(&self, scene: &Scene, chain: &[String]) -> Track {
-        let SceneKind::Derived(ds) = &scene.kind else {
+        let Some(ds) = scene.derivation() else {
             return Track {
                 frame: String::new(),
                 rotations: Err("not a derived scene".into()),
