@@ -125,7 +125,11 @@
     ctx.lineTo(b[0] - h * Math.cos(ang - 0.4), b[1] - h * Math.sin(ang - 0.4));
     ctx.lineTo(b[0] - h * Math.cos(ang + 0.4), b[1] - h * Math.sin(ang + 0.4));
     ctx.fill();
+    // The label on a halo of the background, legible over a body.
     ctx.font = 13 * dpr + "px sans-serif";
+    ctx.lineWidth = 3 * dpr;
+    ctx.strokeStyle = "rgba(251, 251, 248, 0.85)";
+    ctx.strokeText(label, b[0] + 4 * dpr, b[1] - 4 * dpr);
     ctx.fillText(label, b[0] + 4 * dpr, b[1] - 4 * dpr);
   }
   const light = [0.4, -0.5, 0.77];
@@ -212,7 +216,8 @@
       ctx.stroke();
       arrow(o, mul(rot, 9 * frame, D.axis), "#be123c", "axis");
     }
-    if (D.momentum) arrow(o, D.momentum.map((c) => 1.2 * S * c), "#15803d", "H");
+    // H reaches past the body (S is the body's reach), within the view.
+    if (D.momentum) arrow(o, D.momentum.map((c) => 1.45 * S * c), "#15803d", "H");
     timeOut.textContent = "t = " + D.t[frame].toFixed(3) + " s";
     scrub.value = frame;
   }
