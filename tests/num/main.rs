@@ -26,6 +26,10 @@ mod verify;
 mod verify_declared;
 // Conserved steps and steps labelled 0, checked along the file's equations.
 mod verify_claims;
+// Reactions at declared supports, from particle sums and their equilibrium.
+mod verify_supports;
+// ∂T/∂q, abbreviations with a meaning, conditions fixing a constant.
+mod verify_meanings;
 // Generalized quantities under [motion]'s rules (constrained partial velocities).
 mod constrained;
 // Line bodies and point masses: moments of inertia declared zero.

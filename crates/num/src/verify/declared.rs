@@ -130,9 +130,12 @@ fn compare_vanishing(
         .collect()
 }
 
-/// A step compiled once.
+/// A step (or an abbreviation) compiled once.
 struct Compiled<'d> {
-    step: &'d Step,
+    /// Its name.
+    name: String,
+    /// Its value (an abbreviation's definition, a scalar).
+    value: Value,
     meaning: &'d StepMeaning,
     tape: Tape,
     labels: Vec<String>,
@@ -140,20 +143,30 @@ struct Compiled<'d> {
 }
 
 fn compile<'d>(d: &'d Derivation, step: &'d Step, meaning: &'d StepMeaning) -> Compiled<'d> {
-    let polys: Vec<Poly> = step.values().into_iter().map(|p| d.unfold(p)).collect();
+    compile_value(d, &step.name, step.value.clone(), &step.axes, meaning)
+}
+
+fn compile_value<'d>(
+    d: &'d Derivation,
+    name: &str,
+    value: Value,
+    axes: &[String; 3],
+    meaning: &'d StepMeaning,
+) -> Compiled<'d> {
+    let polys: Vec<Poly> = value
+        .components()
+        .into_iter()
+        .map(|p| d.unfold(p))
+        .collect();
     let tape = Tape::compile(&polys);
-    let labels = match &step.value {
-        Value::Scalar(_) => vec![step.name.clone()],
-        Value::Vector(..) => step
-            .axes
-            .iter()
-            .map(|a| format!("{}.{a}", step.name))
-            .collect(),
+    let labels = match &value {
+        Value::Scalar(_) => vec![name.to_owned()],
+        Value::Vector(..) => axes.iter().map(|a| format!("{}.{a}", name)).collect(),
         Value::Matrix(_) => (0..9)
             .map(|k| {
                 format!(
                     "{}.{}{}",
-                    step.name,
+                    name,
                     ["x", "y", "z"][k / 3],
                     ["x", "y", "z"][k % 3]
                 )
@@ -161,24 +174,23 @@ fn compile<'d>(d: &'d Derivation, step: &'d Step, meaning: &'d StepMeaning) -> C
             .collect(),
         Value::List { items, labels } => (0..items.len())
             .map(|k| match labels.get(k) {
-                Some(a) => format!("{}[{a}]", step.name),
-                None => format!("{}.{}", step.name, k + 1),
+                Some(a) => format!("{}[{a}]", name),
+                None => format!("{}.{}", name, k + 1),
             })
             .collect(),
         Value::Array(rows) => rows
             .iter()
             .enumerate()
-            .flat_map(|(i, r)| {
-                (0..r.len()).map(move |j| format!("{}.{}{}", step.name, i + 1, j + 1))
-            })
+            .flat_map(|(i, r)| (0..r.len()).map(move |j| format!("{}.{}{}", name, i + 1, j + 1)))
             .collect(),
     };
-    let frame = match &step.value {
+    let frame = match &value {
         Value::Vector(_, f) => Some(frame_index(d, f)),
         _ => None,
     };
     Compiled {
-        step,
+        name: name.to_owned(),
+        value,
         meaning,
         tape,
         labels,
@@ -193,7 +205,7 @@ impl Compiled<'_> {
         for &a in self.tape.atoms() {
             let (v, s) = values.get(a).ok_or_else(|| VerifyError::Unbound {
                 derivation: d.name.clone(),
-                step: self.step.name.clone(),
+                step: self.name.clone(),
                 symbol: a.to_string(),
             })?;
             inputs.push(v);
@@ -269,7 +281,7 @@ fn compare_step(
             })
             .collect());
     }
-    if let (Meaning::Solves(x), Value::List { labels, .. }) = (&c.meaning.meaning, &c.step.value) {
+    if let (Meaning::Solves(x), Value::List { labels, .. }) = (&c.meaning.meaning, &c.value) {
         // X at the solved accelerations must vanish; X is linear in them.
         let at = |vals: &Values| -> Result<(Vec<f64>, f64), VerifyError> {
             let w = World::build(d, draw, vals, &coordinate(x))?;
@@ -306,7 +318,7 @@ fn compare_step(
             .iter()
             .enumerate()
             .map(|(k, r)| Comparison {
-                quantity: format!("{}: ({}).{}", c.step.name, c.meaning.text, k + 1),
+                quantity: format!("{}: ({}).{}", c.name, c.meaning.text, k + 1),
                 derived: *r,
                 direct: 0.0,
                 scale: scale + f64::MIN_POSITIVE,
@@ -432,10 +444,20 @@ fn run(
     given: Option<&[ParticleCloud]>,
     tick: &mut dyn FnMut(),
 ) -> Result<Report, VerifyError> {
+    let axes = ["x", "y", "z"].map(String::from);
     let compiled: Vec<Compiled<'_>> = d
-        .steps
+        .abbreviations
         .iter()
-        .filter_map(|s| s.meaning.as_ref().map(|m| compile(d, s, m)))
+        .filter_map(|a| {
+            a.meaning
+                .as_ref()
+                .map(|m| compile_value(d, &a.name, Value::Scalar(a.definition.clone()), &axes, m))
+        })
+        .chain(
+            d.steps
+                .iter()
+                .filter_map(|s| s.meaning.as_ref().map(|m| compile(d, s, m))),
+        )
         .collect();
     let mut per_step: BTreeMap<usize, StepCheck> = BTreeMap::new();
     for (k, c) in compiled.iter().enumerate() {
@@ -443,7 +465,7 @@ fn run(
         per_step.insert(
             k,
             StepCheck {
-                step: c.step.name.clone(),
+                step: c.name.clone(),
                 means: c.meaning.text.clone(),
                 conditions: c.meaning.conditions.clone(),
                 against,

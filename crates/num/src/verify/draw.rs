@@ -352,6 +352,17 @@ pub(crate) fn apply(
     rules: &[Rule],
 ) -> Result<(), VerifyError> {
     for r in rules {
+        if !r.target.is_time_dependent() {
+            // A constant's value (`s = 0`): a special case of the file.
+            let (v, s) = match &r.value {
+                RuleValue::QuarterTurns(t) => (*t as f64 * std::f64::consts::FRAC_PI_2, 1.0),
+                RuleValue::Expr(p) => values
+                    .eval(p)
+                    .map_err(|e| VerifyError::from(e).in_step(d, &format!("given {}", r.text)))?,
+            };
+            values.set(r.target, v, s);
+            continue;
+        }
         let from = r.target.order();
         let base = Atom::time(r.target.name(), 0);
         match &r.value {

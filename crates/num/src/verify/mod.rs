@@ -38,6 +38,7 @@ mod linear;
 pub mod means;
 pub mod motion;
 pub mod quantities;
+mod reactions;
 #[cfg(feature = "proptest")]
 pub mod strategy;
 pub mod world;

@@ -167,6 +167,13 @@ pub static REGISTRY: &[Measure] = &[
         compute: generalized_weight,
     },
     Measure {
+        quantity: Quantity::KineticEnergyPartial,
+        call: "kinetic_energy_partial(body, q)",
+        doc: "∂T/∂q with the other coordinates and every rate held: T = Σ ½ m v² measured at nine values of q spaced evenly around the circle, differentiated as the trigonometric polynomial through them (exact for an angle, which enters through sin and cos); for a coordinate that enters the points' places or a frame's angular velocity as itself (a length), central differences at q ± ½, q ± 1, Richardson-extrapolated (exact for T of degree ≤ 4 in q)",
+        measured_as: "∂(Σ ½ m v²)/∂q from T at neighbouring q",
+        compute: kinetic_energy_partial,
+    },
+    Measure {
         quantity: Quantity::PointVelocity,
         call: "point_velocity(body, point)",
         doc: "ṙ of the body's own (material) point at the point's place: ṙ_O + Ṙ q with q = Rᵀ (r_P − r_O) fixed in the body (a rolling disk's point at the contact C, whose velocity is zero, while C itself moves along the floor)",
@@ -193,6 +200,20 @@ pub static REGISTRY: &[Measure] = &[
         doc: "ω of the body, at rest before, just after an impulse F at the point (the same rigid velocity field): the 3 × 3 system about G whose columns are the particle sums Σ m ρ × (e_j × ρ), solved by LU",
         measured_as: "ω solving Σ m v = F̂, Σ m (r − r_G) × v = (r_P − r_G) × F̂ over the particles",
         compute: angular_velocity_after_impulse,
+    },
+    Measure {
+        quantity: Quantity::Reaction,
+        call: "reaction(support)",
+        doc: "the force a declared `[[support]]` exerts on its body: Σ m a less the weight (Σ m g), and Σ (r − r_O) × m a less the weight's moment, distributed over the supports that hold the body by solving their equilibrium for the components each carries (SVD); a set the six equations do not determine (statically indeterminate), or one that cannot hold what the motion requires, is an error",
+        measured_as: "the supports' equilibrium with Σ m a − Σ m g and Σ (r − r_O) × m (a − g)",
+        compute: reaction,
+    },
+    Measure {
+        quantity: Quantity::ReactionCouple,
+        call: "reaction_couple(support)",
+        doc: "the couple a clamp or a drive exerts on its body, from the same solve (a drive's about its axis: `along(reaction_couple(motor), [0, 0, 1] in N)`)",
+        measured_as: "the supports' equilibrium with Σ m a − Σ m g and Σ (r − r_O) × m (a − g)",
+        compute: reaction_couple,
     },
 ];
 
@@ -405,6 +426,66 @@ fn generalized_weight(w: &World<'_>, a: &[Arg]) -> Out {
     Ok((Measured::Scalar(v), s))
 }
 
+/// ∂T/∂q with the rates held, from T measured at other values of q (the
+/// same draw): for an angle, T is a trigonometric polynomial in q of low
+/// degree (each frame's rotation enters the velocities once, T twice), so
+/// the derivative of its interpolant through nine equally spaced values
+/// is exact; for a coordinate that enters as itself, T is a polynomial
+/// and Richardson-extrapolated central differences are exact to degree 4.
+fn kinetic_energy_partial(w: &World<'_>, a: &[Arg]) -> Out {
+    let Arg::Coordinate(q) = a[1] else {
+        unreachable!("validated by hdot-sym")
+    };
+    let (q0, _) = w
+        .values
+        .get(q)
+        .ok_or_else(|| VerifyError::unbound(w.d, "kinetic_energy_partial", q))?;
+    let t = |x: f64| -> Result<(f64, f64), VerifyError> {
+        let wx = w.at(&w.values.with(q, x))?;
+        match kinetic_energy(&wx, &a[..1])? {
+            (Measured::Scalar(v), s) => Ok((v, s)),
+            _ => unreachable!("a scalar"),
+        }
+    };
+    let (mut v, mut s) = (0.0, 0.0);
+    if enters_as_itself(w, q) {
+        for (h, c) in [(0.5, 4.0 / 3.0), (1.0, -1.0 / 6.0)] {
+            let (p, ps) = t(q0 + h)?;
+            let (m, ms) = t(q0 - h)?;
+            v += c * (p - m);
+            s += c.abs() * (ps + ms);
+        }
+    } else {
+        const M: usize = 9;
+        let h = std::f64::consts::TAU / M as f64;
+        for j in 1..M {
+            let sign = if j % 2 == 0 { -1.0 } else { 1.0 };
+            let c = sign * 0.5 / (j as f64 * h / 2.0).sin();
+            let (x, xs) = t(q0 + j as f64 * h)?;
+            v += c * x;
+            s += c.abs() * xs;
+        }
+    }
+    Ok((Measured::Scalar(v), s))
+}
+
+/// Whether the coordinate `q` enters the model as itself (a length in a
+/// point's place, a rate in a frame's angular velocity), not only through
+/// the sine and cosine of a frame's rotation.
+fn enters_as_itself(w: &World<'_>, q: hdot_sym::atom::Atom) -> bool {
+    use hdot_sym::derivation::physics::PointKind;
+    let ph = &w.d.physics;
+    let polys = ph
+        .points
+        .iter()
+        .flat_map(|p| match &p.kind {
+            PointKind::From { at, .. } | PointKind::Fixed(at, _) => at.0.iter().collect(),
+            PointKind::Free => Vec::new(),
+        })
+        .chain(w.d.frames.iter().flat_map(|f| f.omega.0.iter()));
+    polys.map(|p| w.d.unfold(p)).any(|p| p.atoms().contains(&q))
+}
+
 /// The material point of one body at a point's place: `r = r_O + R q`
 /// with q fixed in the body, differentiated as the particles are.
 fn material(w: &World<'_>, a: &[Arg], order: usize) -> Out {
@@ -499,6 +580,23 @@ fn after_impulse(w: &World<'_>, a: &[Arg]) -> Result<[(Vector3<f64>, f64); 2], V
     let omega_scale = omega.norm() * sys.norm() * inverse.norm()
         + inverse.norm() * (p.norm() + g.norm()) * fhat.norm();
     Ok([(v, v.norm() + fhat.norm() / m), (omega, omega_scale)])
+}
+
+fn support(a: &[Arg]) -> usize {
+    match a {
+        [Arg::Support(s)] => *s,
+        _ => unreachable!("validated by hdot-sym"),
+    }
+}
+
+fn reaction(w: &World<'_>, a: &[Arg]) -> Out {
+    let r = super::reactions::reaction(w, support(a))?;
+    Ok((Measured::Vector(r.force), r.scale))
+}
+
+fn reaction_couple(w: &World<'_>, a: &[Arg]) -> Out {
+    let r = super::reactions::reaction(w, support(a))?;
+    Ok((Measured::Vector(r.couple), r.scale))
 }
 
 fn velocity_after_impulse(w: &World<'_>, a: &[Arg]) -> Out {

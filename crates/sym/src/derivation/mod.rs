@@ -101,6 +101,8 @@ pub struct Abbreviation {
     pub definition: Poly,
     /// One-line description.
     pub doc: String,
+    /// What it means physically (`means`), verified like a step's.
+    pub meaning: Option<physics::StepMeaning>,
 }
 
 /// One evaluated step.
@@ -344,6 +346,7 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
             atom: Atom::time(a.name.get_ref(), 0),
             definition: def,
             doc: a.doc.clone(),
+            meaning: None,
         };
         cx.abbrevs.push(abbreviation.clone());
         abbreviations.push(abbreviation);
@@ -360,6 +363,10 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
     speeds::declare(&mut cx, &raw)?;
     // Bodies, points, gravity, knowns, conditions.
     let physics = physics::declarations(&cx, &raw)?;
+    for (a, r) in abbreviations.iter_mut().zip(&raw.abbreviations) {
+        let value = Value::Scalar(a.definition.clone());
+        a.meaning = physics::abbreviation_meaning(&cx, &physics, r, &value)?;
+    }
     cx.physics = physics.clone();
     cx.loads = loads::declare(&cx, &raw)?;
     // Steps.

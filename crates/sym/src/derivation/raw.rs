@@ -33,6 +33,8 @@ pub(crate) struct RawFile {
     pub bodies: Vec<RawBody>,
     #[serde(default, rename = "known")]
     pub knowns: Vec<RawKnown>,
+    #[serde(default, rename = "support")]
+    pub supports: Vec<RawSupport>,
     pub motion: Option<RawMotion>,
     /// `[kinematics]`: each coordinate's rate in the coordinates and the
     /// speeds (`speeds.rs`).
@@ -50,6 +52,21 @@ pub(crate) struct RawLoad {
     pub force: Option<Spanned<String>>,
     pub frame: Option<Spanned<String>>,
     pub torque: Option<Spanned<String>>,
+}
+
+/// `[[support]]` (`physics/supports.rs`).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawSupport {
+    pub name: Spanned<String>,
+    #[serde(default)]
+    pub doc: String,
+    pub kind: Spanned<String>,
+    pub body: Option<Spanned<String>>,
+    pub point: Option<Spanned<String>>,
+    pub axis: Option<Spanned<String>>,
+    pub carries: Option<Spanned<String>>,
+    pub friction: Option<Spanned<bool>>,
 }
 
 /// `[[point]]` (`physics/bodies.rs`).
@@ -151,6 +168,10 @@ pub(crate) struct RawAbbrev {
     pub value: Spanned<String>,
     #[serde(default)]
     pub doc: String,
+    /// What it means, verified like a step's (`physics/conditions.rs`).
+    pub means: Option<Spanned<String>>,
+    #[serde(default)]
+    pub given: Vec<Spanned<String>>,
 }
 
 #[derive(Debug, Deserialize)]

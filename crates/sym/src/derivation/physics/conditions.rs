@@ -2,6 +2,8 @@
 //! the motion, points at rest, inequalities selecting a class of bodies)
 //! and `symmetry`; the rules of `[motion] given` are read here too.
 
+use std::collections::BTreeMap;
+
 use toml::Spanned;
 
 use super::check::{no_step_names, unknown};
@@ -9,7 +11,7 @@ use super::means::{check_shape, meaning};
 use super::{Physics, PointKind, Rule, RuleValue, StepMeaning};
 use crate::atom::Atom;
 use crate::derivation::context::{Context, R};
-use crate::derivation::raw::RawStep;
+use crate::derivation::raw::{RawAbbrev, RawStep};
 use crate::derivation::value::Value;
 use crate::parse::AstKind;
 use crate::poly::Poly;
@@ -23,8 +25,39 @@ pub(crate) fn step_meaning(
     s: &RawStep,
     value: &Value,
 ) -> R<Option<StepMeaning>> {
-    let Some(means) = &s.means else {
-        if let Some(g) = s.given.first() {
+    conditioned(
+        cx,
+        ph,
+        s.means.as_ref(),
+        &s.given,
+        s.symmetry.as_ref(),
+        value,
+    )
+}
+
+/// Reads an abbreviation's `means` and `given`: its definition, a scalar,
+/// is verified like a step's value.
+pub(crate) fn abbreviation_meaning(
+    cx: &Context<'_>,
+    ph: &Physics,
+    a: &RawAbbrev,
+    value: &Value,
+) -> R<Option<StepMeaning>> {
+    conditioned(cx, ph, a.means.as_ref(), &a.given, None, value)
+}
+
+/// A meaning with its conditions: `given` (rules, points at rest,
+/// inequalities) and `symmetry`.
+fn conditioned(
+    cx: &Context<'_>,
+    ph: &Physics,
+    means: Option<&Spanned<String>>,
+    given_raw: &[Spanned<String>],
+    symmetry_raw: Option<&Spanned<BTreeMap<String, Spanned<String>>>>,
+    value: &Value,
+) -> R<Option<StepMeaning>> {
+    let Some(means) = means else {
+        if let Some(g) = given_raw.first() {
             let n = g.get_ref().len();
             return Err(cx.diag_string(
                 g,
@@ -33,7 +66,7 @@ pub(crate) fn step_meaning(
                 "`given` is the condition of a step's `means`; this step has none",
             ));
         }
-        if let Some(t) = &s.symmetry {
+        if let Some(t) = symmetry_raw {
             let span = t.span();
             return Err(cx.diag(
                 span.start,
@@ -48,26 +81,25 @@ pub(crate) fn step_meaning(
     let mut given = Vec::new();
     let mut at_rest = Vec::new();
     let mut bounds = Vec::new();
-    for r in &s.given {
+    for r in given_raw {
         if r.get_ref().contains(['<', '>']) {
             bounds.push(bound(cx, r)?);
             continue;
         }
         match point_at_rest(cx, ph, r)? {
             Some(p) => at_rest.push(p),
-            None => given.push(rule(cx, r)?),
+            None => given.push(rule(cx, ph, r)?),
         }
     }
     let mut conditions = Vec::new();
-    if !s.given.is_empty() {
-        let items: Vec<String> = s
-            .given
+    if !given_raw.is_empty() {
+        let items: Vec<String> = given_raw
             .iter()
             .map(|g| format!("{:?}", g.get_ref()))
             .collect();
         conditions.push(format!("given = [{}]", items.join(", ")));
     }
-    if let Some(t) = &s.symmetry {
+    if let Some(t) = symmetry_raw {
         let items: Vec<String> = t
             .get_ref()
             .iter()
@@ -76,8 +108,8 @@ pub(crate) fn step_meaning(
         conditions.push(format!("symmetry = {{{}}}", items.join(", ")));
     }
     let mut symmetry = Vec::new();
-    for (name, sym) in s.symmetry.iter().flat_map(|t| t.get_ref()) {
-        let table = s.symmetry.as_ref().expect("present");
+    for (name, sym) in symmetry_raw.iter().flat_map(|t| t.get_ref()) {
+        let table = symmetry_raw.expect("present");
         let Some(i) = ph.bodies.iter().position(|b| &b.name == name) else {
             let known: Vec<String> = ph.bodies.iter().map(|b| b.name.clone()).collect();
             let span = table.span();
@@ -180,8 +212,9 @@ fn point_at_rest(
     Ok(Some((name.to_owned(), order)))
 }
 
-/// Parses a rule `q = e`, `q' = e`, `q = pi/2`.
-pub(super) fn rule(cx: &Context<'_>, s: &Spanned<String>) -> R<Rule> {
+/// Parses a rule `q = e`, `q' = e`, `q = pi/2`, or a constant's value
+/// `s = 0` (a special case: a constant the bodies and knowns do not bind).
+pub(super) fn rule(cx: &Context<'_>, ph: &Physics, s: &Spanned<String>) -> R<Rule> {
     // Parsed as the argument of a call, where `name = value` is allowed.
     let base = cx.content_start(s);
     let wrapped = format!("f({})", s.get_ref());
@@ -210,14 +243,36 @@ pub(super) fn rule(cx: &Context<'_>, s: &Spanned<String>) -> R<Rule> {
     else {
         return Err(bad());
     };
-    if !matches!(cx.symbols.get(name), Some(Decl::Time)) {
-        return Err(cx.at(
-            shifted,
-            *name_span,
-            format!("`{name}` is not a time symbol: a condition sets a coordinate or a rate"),
-        ));
-    }
-    let target = Atom::time(name, *primes);
+    let target = match cx.symbols.get(name) {
+        Some(Decl::Time) => Atom::time(name, *primes),
+        Some(Decl::Constant) if *primes == 0 => {
+            let c = Atom::constant(name);
+            if let Some(by) = bound_by(ph, c) {
+                return Err(cx.at(
+                    shifted,
+                    *name_span,
+                    format!(
+                        "`{name}` is measured on the particles ({by}): a condition cannot fix it"
+                    ),
+                ));
+            }
+            c
+        }
+        Some(Decl::Constant) => {
+            return Err(cx.at(
+                shifted,
+                *name_span,
+                format!("`{name}` is a constant: it has no rates (write `{name} = e`)"),
+            ));
+        }
+        _ => {
+            return Err(cx.at(
+                shifted,
+                *name_span,
+                format!("`{name}` is neither a time symbol nor a constant: a condition sets a coordinate, a rate or a constant"),
+            ));
+        }
+    };
     let value = match crate::derivation::ops::quarter_turns(value) {
         Some(t) if *primes == 0 => RuleValue::QuarterTurns(t),
         Some(_) => {
@@ -232,7 +287,7 @@ pub(super) fn rule(cx: &Context<'_>, s: &Spanned<String>) -> R<Rule> {
             let p = cx.scalar(value, shifted)?;
             if p.atoms()
                 .iter()
-                .any(|a| a.base() == target.base() && a.order() >= *primes)
+                .any(|a| *a == target || a.base() == target.base() && a.order() >= *primes)
             {
                 return Err(cx.at(
                     shifted,
@@ -248,4 +303,25 @@ pub(super) fn rule(cx: &Context<'_>, s: &Spanned<String>) -> R<Rule> {
         value,
         text: s.get_ref().clone(),
     })
+}
+
+/// What binds the constant `c` from the particles, when something does:
+/// a body's mass, mass centre or inertia, or a `[[known]]`.
+fn bound_by(ph: &Physics, c: Atom) -> Option<String> {
+    for b in &ph.bodies {
+        let polys = b
+            .mass
+            .iter()
+            .chain(b.mass_centre.iter().flat_map(|v| v.0.iter()))
+            .chain(b.inertia.0.iter().flatten());
+        for p in polys {
+            if p.atoms().contains(&c) {
+                return Some(format!("body `{}`", b.name));
+            }
+        }
+    }
+    ph.knowns
+        .iter()
+        .find(|k| k.value.components().iter().any(|p| p.atoms().contains(&c)))
+        .map(|k| format!("the known `{}`", k.text))
 }

@@ -10,6 +10,7 @@ use super::bodies::{body, point};
 use super::check::{constant, parse_spanned, unknown};
 use super::conditions::rule;
 use super::means::{check_shape, meaning};
+use super::supports::supports;
 use super::{FrameMotion, Known, Physics, PointKind, Shape};
 use crate::atom::{Atom, AtomKind};
 use crate::derivation::context::{Context, R};
@@ -138,12 +139,14 @@ pub(crate) fn declarations(cx: &Context<'_>, raw: &RawFile) -> R<Physics> {
     for (b, centre) in raw.bodies.iter().zip(centres) {
         ph.bodies.push(body(cx, b, centre, &known_point)?);
     }
+    ph.supports = supports(cx, &ph, &raw.supports)?;
     for k in &raw.knowns {
         ph.knowns.push(known(cx, &ph, k)?);
     }
     if let Some(m) = &raw.motion {
         for r in &m.given {
-            ph.motion.push(rule(cx, r)?);
+            let r = rule(cx, &ph, r)?;
+            ph.motion.push(r);
         }
         for v in &m.vanishes {
             let m = meaning(cx, &ph, v)?;

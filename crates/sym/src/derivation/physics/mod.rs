@@ -12,20 +12,22 @@
 //! This file holds the model's types; the reading is split by job:
 //! `declare.rs` reads a file's declarations in order (frames' motion,
 //! gravity, names, knowns, `[motion]`), `bodies.rs` a `[[point]]` and a
-//! `[[body]]` table, `means.rs` the `means` language (its vocabulary of
-//! quantities, its tree [`Meaning`] and its parser) and `conditions.rs` a
-//! step's meaning with its conditions (`given`, `symmetry`); `check.rs`
-//! holds the small checks they share.
+//! `[[body]]` table, `supports.rs` a `[[support]]` table, `vocabulary.rs`
+//! the `means` language's quantities and its tree [`Meaning`], `means.rs`
+//! its parser and `conditions.rs` a step's meaning with its conditions
+//! (`given`, `symmetry`); `check.rs` holds the small checks they share.
 
 mod bodies;
 mod check;
 mod conditions;
 mod declare;
 mod means;
+mod supports;
+mod vocabulary;
 
-pub(crate) use conditions::step_meaning;
+pub(crate) use conditions::{abbreviation_meaning, step_meaning};
 pub(crate) use declare::declarations;
-pub use means::{
+pub use vocabulary::{
     Arg, ArgKind, Bodies, COMBINATORS, Meaning, QUANTITIES, Quantity, QuantitySig, Shape,
 };
 
@@ -45,6 +47,8 @@ pub struct Physics {
     pub points: Vec<Point>,
     /// Declared bodies.
     pub bodies: Vec<Body>,
+    /// Declared supports: what holds the bodies (`[[support]]`).
+    pub supports: Vec<Support>,
     /// What symbols stand for.
     pub knowns: Vec<Known>,
     /// Rules every motion satisfies (`[motion] given`).
@@ -158,6 +162,64 @@ impl Body {
     /// Whether the reference point is the body's own mass centre.
     pub fn about_centre(&self) -> bool {
         self.centre.as_deref() == Some(self.point.as_str())
+    }
+}
+
+/// A declared support: where and how a body is held. Its reaction is what
+/// the verifier measures for `reaction(S)` and `reaction_couple(S)`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Support {
+    /// Its name (`reaction(name)`).
+    pub name: String,
+    /// One line.
+    pub doc: String,
+    /// Index of the body it holds.
+    pub body: usize,
+    /// The point it acts at (none for a drive, which is a couple).
+    pub point: Option<String>,
+    /// What it can carry.
+    pub kind: SupportKind,
+    /// The shaft's axis of a bearing or a drive, the floor's normal: a
+    /// vector expression and the frame of its components.
+    pub axis: Option<(Vec3, String)>,
+}
+
+/// What a support can carry.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SupportKind {
+    /// A bearing on a shaft: a force across the axis, and along it too
+    /// when `axial`.
+    Bearing {
+        /// It carries an axial force (a thrust bearing).
+        axial: bool,
+    },
+    /// A ball-and-socket joint, or a fixed point (a top's tip): a force in
+    /// every direction.
+    Ball,
+    /// A clamp (the body welded to the ground): a force and a couple in
+    /// every direction.
+    Clamp,
+    /// A contact with the floor: a force along its normal, and across it
+    /// too with `friction`.
+    Floor {
+        /// It carries friction (a rolling contact).
+        friction: bool,
+    },
+    /// A drive (a motor) turning a shaft: a couple about the axis.
+    Drive,
+}
+
+impl SupportKind {
+    /// How many force and couple components it carries.
+    pub fn unknowns(self) -> (usize, usize) {
+        match self {
+            SupportKind::Bearing { axial: false } => (2, 0),
+            SupportKind::Bearing { axial: true } | SupportKind::Ball => (3, 0),
+            SupportKind::Clamp => (3, 3),
+            SupportKind::Floor { friction: false } => (1, 0),
+            SupportKind::Floor { friction: true } => (3, 0),
+            SupportKind::Drive => (0, 1),
+        }
     }
 }
 
