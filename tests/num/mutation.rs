@@ -1,9 +1,12 @@
-//! Verification catches wrong derivations on its own (issue 9, item 6).
+//! Verification catches wrong derivations on its own (issue 9, item 6;
+//! issue 20, item 5).
 //!
-//! For every bundled file verified through its declarations, with its
-//! expectations removed, small mutations of the *derivation* — a sign in a
-//! step, the axis of a frame's rotation, two arguments of an inertia
-//! tensor swapped — are applied while the declared model (bodies, points,
+//! For every bundled file verified through its declarations, and the files
+//! written for this test, with the expectations removed, small mutations of
+//! the *derivation* — the slips a lecturer makes: a sign in a step, the axis
+//! of a frame's rotation, two arguments of an inertia tensor or of `cross`
+//! swapped, a factor 2 ↔ 3 or ½ ↔ 1, a vector expressed in another frame,
+//! `dt` for `dt_rel`, a term of a sum left out — are applied while the declared model (bodies, points,
 //! the frames' motion, `[motion]`) stays the original one. Every mutant
 //! whose derived output differs from the original in a step with a
 //! meaning — along the motions that step is compared on (`[motion]`'s
@@ -30,23 +33,27 @@ use rand_chacha::ChaCha8Rng;
 /// Mutants tried per file without `slow-tests`.
 const PER_FILE: usize = 10;
 
+/// The bundled files and those written for this test
+/// (`tests/num/derivations/`).
 fn bundled() -> Vec<(String, String)> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../derivations");
-    let mut out: Vec<(String, String)> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
-        .filter(|p| {
-            p.file_name()
-                .is_some_and(|n| n != hdot_sym::course::MANIFEST_FILE)
-        })
-        .map(|p| {
-            (
-                p.file_stem().unwrap().to_string_lossy().into_owned(),
-                std::fs::read_to_string(&p).unwrap(),
-            )
-        })
-        .collect();
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut out: Vec<(String, String)> =
+        [root.join("../derivations"), root.join("num/derivations")]
+            .iter()
+            .flat_map(|dir| std::fs::read_dir(dir).unwrap())
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+            .filter(|p| {
+                p.file_name()
+                    .is_some_and(|n| n != hdot_sym::course::MANIFEST_FILE)
+            })
+            .map(|p| {
+                (
+                    p.file_stem().unwrap().to_string_lossy().into_owned(),
+                    std::fs::read_to_string(&p).unwrap(),
+                )
+            })
+            .collect();
     out.sort();
     out
 }
@@ -115,6 +122,14 @@ fn mutants(text: &str) -> Vec<(String, String)> {
     let lines: Vec<&str> = text.lines().collect();
     let sec = sections(text);
     let mut out = Vec::new();
+    // The frames a vector may be expressed in: N and every declared one.
+    let frames: Vec<String> = std::iter::once("N".to_string())
+        .chain(lines.iter().enumerate().filter_map(|(k, l)| {
+            (sec[k] == "frame")
+                .then(|| quoted(l, "name").map(|(_, n)| n.to_string()))
+                .flatten()
+        }))
+        .collect();
     let with_line = |k: usize, new: String| -> String {
         let mut l: Vec<String> = lines.iter().map(|s| s.to_string()).collect();
         l[k] = new;
@@ -168,6 +183,16 @@ fn mutants(text: &str) -> Vec<(String, String)> {
                 }
             }
         }
+        if sec[k] == "step"
+            && let Some((prefix, v)) = quoted(line, "value")
+        {
+            for (what, m) in lecturer_slips(v, &frames) {
+                out.push((
+                    format!("line {}: {what}: `{v}` → `{m}`", k + 1),
+                    with_line(k, format!("{prefix}{m}\"")),
+                ));
+            }
+        }
         if sec[k] == "frame"
             && let Some((prefix, v)) = quoted(line, "rotation")
             && let Some(open) = v.find('(')
@@ -185,6 +210,97 @@ fn mutants(text: &str) -> Vec<(String, String)> {
                     format!("line {}: rotation `{v}` → `{m}`", k + 1),
                     with_line(k, format!("{prefix}{m}\"")),
                 ));
+            }
+        }
+    }
+    out
+}
+
+/// The kind of a mutant no measurement can tell from the original: a
+/// step's whole value expressed in other axes is the same vector, and a
+/// vector step is compared in its own axes. Such mutants are counted and
+/// skipped, not tried.
+const EQUIVALENT: &str = "the whole value in another frame (the same vector)";
+
+/// Mutants of particular files that no measurement can tell from the
+/// original, each with the reason: (file, the mutated text, why).
+const LISTED: &[(&str, &str, &str)] = &[(
+    "steady-precession",
+    "principal(Ip, Ip, I) * express(angvel(R), R)",
+    "the rotor is axisymmetric about z, which R and F share: principal(Ip, Ip, I) is the same tensor in both axes, so [I]ω in R's axes is the same H",
+)];
+
+/// Where each call of `f` (a whole name: `cross(` not `xcross(`) opens.
+fn calls<'a>(v: &'a str, f: &'a str) -> impl Iterator<Item = usize> + 'a {
+    v.match_indices(f)
+        .filter(move |(at, _)| {
+            *at == 0 || !v[..*at].ends_with(|c: char| c.is_alphanumeric() || c == '_')
+        })
+        .map(move |(at, _)| at + f.len() - 1)
+}
+
+/// The slips a lecturer makes in a step's formula, each with its kind:
+/// the arguments of `cross` swapped, a factor 2 ↔ 3 or ½ ↔ 1, a vector
+/// expressed in another frame, `dt` for `dt_rel`, a term of a sum left
+/// out.
+fn lecturer_slips(v: &str, frames: &[String]) -> Vec<(&'static str, String)> {
+    let mut out = Vec::new();
+    let splice = |a: usize, b: usize, with: &str| format!("{}{with}{}", &v[..a], &v[b..]);
+    for open in calls(v, "cross(") {
+        if let [a, b] = arguments(v, open).as_slice() {
+            let (x, y) = (&v[a.0..a.1], &v[b.0..b.1]);
+            out.push((
+                "cross swapped",
+                format!("{}{y}{}{x}{}", &v[..a.0], &v[a.1..b.0], &v[b.1..]),
+            ));
+        }
+    }
+    for (at, _) in v.match_indices("/2") {
+        out.push(("factor 1/2 to 1", splice(at, at + 2, "")));
+        out.push(("factor 2 to 3", splice(at, at + 2, "/3")));
+    }
+    for (at, _) in v.match_indices("2*") {
+        if at == 0 || !v[..at].ends_with(|c: char| c.is_alphanumeric() || c == '_' || c == '^') {
+            out.push(("factor 2 to 3", splice(at, at + 2, "3*")));
+        }
+    }
+    for open in calls(v, "express(") {
+        if let [_, f] = arguments(v, open).as_slice() {
+            let frame = v[f.0..f.1].trim();
+            // The whole value in other axes is the same vector: true, and
+            // compared in its own axes (an equivalent mutant, listed).
+            let whole = open + 1 == "express(".len() && v[f.1..].trim() == ")";
+            let kind = if whole {
+                EQUIVALENT
+            } else {
+                "another frame in express"
+            };
+            for other in frames.iter().filter(|o| o.as_str() != frame) {
+                out.push((kind, splice(f.0, f.1, other)));
+            }
+        }
+    }
+    for open in calls(v, "dt_rel(") {
+        out.push(("dt for dt_rel", splice(open - 6, open, "dt")));
+    }
+    // A term of the top-level sum left out.
+    let mut depth = 0i32;
+    let mut cuts = vec![0];
+    for (i, c) in v.char_indices() {
+        match c {
+            '(' | '[' => depth += 1,
+            ')' | ']' => depth -= 1,
+            '+' | '-' if depth == 0 && i > 0 && v[..i].ends_with(' ') => cuts.push(i),
+            _ => {}
+        }
+    }
+    if cuts.len() > 1 {
+        cuts.push(v.len());
+        for w in cuts.windows(2) {
+            let m = splice(w[0], w[1], "");
+            let m = m.trim().trim_start_matches('+').trim();
+            if !m.is_empty() {
+                out.push(("a term left out", m.to_string()));
             }
         }
     }
@@ -253,6 +369,13 @@ fn verification_rejects_every_mutant_that_changes_a_step_with_a_meaning() {
             if !all && tried == PER_FILE {
                 break;
             }
+            if what.contains(EQUIVALENT)
+                || LISTED
+                    .iter()
+                    .any(|(f, m, _)| name == *f && what.contains(&format!("→ `{m}`")))
+            {
+                continue;
+            }
             // Not a derivation (a sign that does not parse, an axis the
             // engine refuses): not a mutant.
             let Ok(mut m) = load_str(&path, &mutated) else {
@@ -300,8 +423,48 @@ fn the_mutations_change_what_they_say() {
         "value = \"principal(B, A, C) * w + v\"",
         "value = \"principal(A, C, B) * w + v\"",
         "value = \"principal(C, B, A) * w + v\"",
+        "value = \"principal(A, B, C) * w\"",
+        "value = \"v\"",
     ] {
         assert!(ms.iter().any(|t| t.contains(expected)), "{expected}");
     }
-    assert_eq!(ms.len(), 7);
+    assert_eq!(ms.len(), 9);
+}
+
+#[test]
+fn the_lecturers_slips_change_what_they_say() {
+    let frames = ["N".to_string(), "F".to_string()];
+    let got = lecturer_slips("dt_rel(H) + cross(w, H)/2 - 2*express(v, F)", &frames);
+    for (kind, expected) in [
+        (
+            "cross swapped",
+            "dt_rel(H) + cross(H, w)/2 - 2*express(v, F)",
+        ),
+        (
+            "factor 1/2 to 1",
+            "dt_rel(H) + cross(w, H) - 2*express(v, F)",
+        ),
+        (
+            "factor 2 to 3",
+            "dt_rel(H) + cross(w, H)/3 - 2*express(v, F)",
+        ),
+        (
+            "factor 2 to 3",
+            "dt_rel(H) + cross(w, H)/2 - 3*express(v, F)",
+        ),
+        (
+            "another frame in express",
+            "dt_rel(H) + cross(w, H)/2 - 2*express(v, N)",
+        ),
+        ("dt for dt_rel", "dt(H) + cross(w, H)/2 - 2*express(v, F)"),
+        ("a term left out", "cross(w, H)/2 - 2*express(v, F)"),
+        ("a term left out", "dt_rel(H) - 2*express(v, F)"),
+        ("a term left out", "dt_rel(H) + cross(w, H)/2"),
+    ] {
+        assert!(
+            got.iter().any(|(k, m)| *k == kind && m == expected),
+            "{kind}: {expected} not in {got:#?}"
+        );
+    }
+    assert_eq!(got.len(), 9, "{got:#?}");
 }
