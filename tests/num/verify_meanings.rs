@@ -2,7 +2,8 @@
 //! measured on the particles, abbreviations that carry a meaning and are
 //! verified like steps, and a step's `given` fixing a constant (`s = 0`).
 //! The file, written for these tests: an axisymmetric body about a fixed
-//! point, turned by φ about the vertical and tilted by θ.
+//! point, turned by φ about the vertical and tilted by θ; and the bundled
+//! rolling disk's contact (issue 24, item 7).
 
 use hdot_num::verify::{Options, check};
 use hdot_sym::derivation::load_str;
@@ -120,4 +121,29 @@ fn a_condition_may_fix_a_constant_for_a_special_case() {
     let msg = e.to_string();
     assert!(msg.contains("measured on the particles"), "{msg}");
     assert!(msg.contains("t.toml:"), "{msg}");
+}
+
+/// Issue 24, item 7: the rolling disk's constraint measured on the
+/// particles — along the rolling rules its material point at C is at rest
+/// — and a rule with a slipped sign fails there.
+#[test]
+fn the_rolling_disks_contact_is_at_rest_along_its_rules() {
+    let text = include_str!("../../derivations/disk-rolling-on-plane.toml");
+    let r = check(&load(text), &options()).unwrap_or_else(|e| panic!("{e}"));
+    let c = r
+        .steps
+        .iter()
+        .find(|s| s.step == "[motion] vanishes")
+        .expect("the contact is measured");
+    assert!(c.passed && c.means == "point_velocity(disk, C)", "{c:?}");
+    let wrong = text.replace("\"x' = r*phi'*cos(psi)\"", "\"x' = -r*phi'*cos(psi)\"");
+    assert_ne!(wrong, text);
+    let r = check(&load(&wrong), &options()).unwrap_or_else(|e| panic!("{e}"));
+    let failed: Vec<&str> = r
+        .steps
+        .iter()
+        .filter(|s| !s.passed)
+        .map(|s| s.step.as_str())
+        .collect();
+    assert_eq!(failed, ["[motion] vanishes"]);
 }
