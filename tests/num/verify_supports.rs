@@ -322,3 +322,27 @@ fn bad_supports_are_located_errors() {
         assert!(msg.contains("t.toml:"), "{expected}: not located: {msg}");
     }
 }
+
+#[test]
+fn declared_loads_are_taken_from_what_the_supports_carry() {
+    // A ball joint at O and a drive about the vertical, with a torque
+    // T_a on the body about its axis and a force F along x at O: the drive
+    // supplies C φ̈ − T_a, the joint −F along x and the weight's opposite.
+    let ball = "[[support]]\nname = \"joint\"\nkind = \"ball\"\npoint = \"O\"\n[[support]]\nname = \"motor\"\nkind = \"drive\"\naxis = \"[0, 0, 1] in N\"\n[[load]]\nframe = \"B\"\ntorque = \"[0, 0, T_a] in B\"\n[[load]]\npoint = \"O\"\nforce = \"[F, 0, 0] in N\"\n";
+    let steps = |drive: &str| {
+        format!(
+            "[[step]]\nname = \"force\"\nvalue = \"[-F, 0, m*g] in N\"\nmeans = \"reaction(joint)\"\n[[step]]\nname = \"drive\"\nvalue = \"{drive}\"\nmeans = \"along(reaction_couple(motor), [0, 0, 1] in N)\"\n"
+        )
+    };
+    let text = |drive: &str| {
+        held(ball, &steps(drive)).replace(
+            "constants = [\"m\", \"g\", \"a\", \"h\", \"A\", \"C\"]",
+            "constants = [\"m\", \"g\", \"a\", \"h\", \"A\", \"C\", \"T_a\", \"F\"]",
+        )
+    };
+    let r = check(&load(&text("C*phi'' - T_a")), &options()).unwrap_or_else(|e| panic!("{e}"));
+    assert!(r.passed() && r.steps.len() == 2, "{:?}", r.steps);
+    // The load left out of the statics: the drive's couple fails.
+    let r = check(&load(&text("C*phi''")), &options()).unwrap_or_else(|e| panic!("{e}"));
+    assert!(r.steps[0].passed && !r.steps[1].passed, "{:?}", r.steps);
+}

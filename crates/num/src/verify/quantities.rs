@@ -204,7 +204,7 @@ pub static REGISTRY: &[Measure] = &[
     Measure {
         quantity: Quantity::Reaction,
         call: "reaction(support)",
-        doc: "the force a declared `[[support]]` exerts on its body: Σ m a less the weight (Σ m g), and Σ (r − r_O) × m a less the weight's moment, distributed over the supports that hold the body by solving their equilibrium for the components each carries (SVD); a set the six equations do not determine (statically indeterminate), or one that cannot hold what the motion requires, is an error",
+        doc: "the force a declared `[[support]]` exerts on its body: Σ m a less the weight (Σ m g) and the `[[load]]`s on the body, and Σ (r − r_O) × m a less their moments, distributed over the supports that hold the body by solving their equilibrium for the components each carries (SVD); a set the six equations do not determine (statically indeterminate), or one that cannot hold what the motion requires, is an error",
         measured_as: "the supports' equilibrium with Σ m a − Σ m g and Σ (r − r_O) × m (a − g)",
         compute: reaction,
     },

@@ -1,7 +1,7 @@
 //! The reactions of declared supports, measured on the particles: the
 //! resultant force and moment the drawn motion requires (Σ m a and
 //! Σ (r − r_O) × m a, particle sums) less the weight (Σ m g and its
-//! moment), distributed over the supports that hold the body by solving
+//! moment) and the `[[load]]`s on the body, distributed over the supports that hold the body by solving
 //! their equilibrium — six equations in the components each support
 //! carries (a radial bearing two forces across its axis, a thrust bearing
 //! three, a ball three, a clamp three forces and three couples, a floor
@@ -12,7 +12,9 @@
 //! (a direction no support holds) are errors that say so; no formula of
 //! the file enters.
 
+use hdot_sym::derivation::Load;
 use hdot_sym::derivation::physics::{Bodies, SupportKind};
+use hdot_sym::vector::Vec3;
 use nalgebra::{DMatrix, DVector, Vector3};
 
 use super::means::frame_index;
@@ -122,6 +124,47 @@ pub(crate) fn reaction(w: &World<'_>, s: usize) -> Result<Reaction, VerifyError>
         m += rho.cross(&q) * p.m;
         sf += p.m * (p.mag[2] + g.norm());
         sm += p.m * (p.mag[0] + o_mag) * (p.mag[2] + g.norm());
+    }
+    // The declared loads on the body: forces at its points (every point
+    // when the file has one body), torques on its frame.
+    let body_decl = &d.physics.bodies[b];
+    let vector = |v: &Vec3, frame: usize| -> Result<(Vector3<f64>, f64), VerifyError> {
+        let (mut local, mut size) = (Vector3::zeros(), 0.0);
+        for (k, c) in v.0.iter().enumerate() {
+            let (x, s) = w.values.eval(&d.unfold(c))?;
+            local[k] = x;
+            size += s;
+        }
+        Ok((w.frames[frame][0] * local, size))
+    };
+    for load in &d.loads {
+        match load {
+            Load::Force {
+                point,
+                force,
+                frame,
+            } if d.physics.bodies.len() == 1
+                || *point == body_decl.point
+                || Some(point) == body_decl.centre.as_ref() =>
+            {
+                let (fv, size) = vector(force, *frame)?;
+                let at = &w.points[point];
+                f -= fv;
+                m -= (at.r[0] - o).cross(&fv);
+                sf += size;
+                sm += size * (at.mag[0] + o_mag);
+            }
+            Load::Torque {
+                on,
+                torque,
+                in_frame,
+            } if *on == body_decl.frame => {
+                let (tv, size) = vector(torque, *in_frame)?;
+                m -= tv;
+                sm += size;
+            }
+            _ => {}
+        }
     }
     let comps = components(w, b)?;
     let names = || -> String {

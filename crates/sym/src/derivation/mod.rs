@@ -49,7 +49,7 @@ use std::path::Path;
 use std::sync::Arc;
 
 pub use error::Diagnostic;
-pub use multibody::Speeds;
+pub use multibody::{Load, Speeds};
 pub use value::Value;
 
 use crate::atom::Atom;
@@ -88,6 +88,9 @@ pub struct Derivation {
     /// The generalized speeds and kinematic equations (empty without
     /// `[symbols] speeds`).
     pub speeds: Speeds,
+    /// The applied forces and torques (`[[load]]`): verification takes them
+    /// from the resultant a body's supports carry.
+    pub loads: Vec<Load>,
 }
 
 /// A named abbreviation such as ω_z := ψ̇ + φ̇ cos θ.
@@ -465,5 +468,6 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
         steps,
         physics,
         speeds: cx.speeds.clone(),
+        loads: cx.loads.clone(),
     })
 }
