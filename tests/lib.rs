@@ -88,3 +88,202 @@ fn newest_source() -> Option<std::time::SystemTime> {
     }
     newest
 }
+
+/// Reading what hdot wrote as LaTeX, Markdown or HTML, for the tests that
+/// feed hostile strings to every field (`tests/sym/injection.rs`,
+/// `tests/fuzz/hostile.rs`).
+pub mod markup {
+    /// Control words hdot never writes of its own.
+    pub const FORBIDDEN: &[&str] = &[
+        "input",
+        "include",
+        "immediate",
+        "write",
+        "def",
+        "x",
+        "catcode",
+        "csname",
+        "openout",
+    ];
+
+    /// LaTeX without its comments: each line up to its first `%` that is
+    /// not escaped as `\%`.
+    pub fn uncommented(tex: &str) -> String {
+        let mut o = String::with_capacity(tex.len());
+        for line in tex.lines() {
+            let mut escaped = false;
+            for c in line.chars() {
+                if c == '%' && !escaped {
+                    break;
+                }
+                escaped = c == '\\' && !escaped;
+                o.push(c);
+            }
+            o.push('\n');
+        }
+        o
+    }
+
+    /// The LaTeX `tex` written for `h` holds none of [`FORBIDDEN`], braces
+    /// that balance, `documents` times `\end{document}` and no `^^`
+    /// character code (outside comments).
+    pub fn assert_safe(what: &str, h: &str, tex: &str, documents: usize) {
+        let (words, balanced) = control_words(tex);
+        for w in FORBIDDEN {
+            assert!(
+                !words.iter().any(|x| x == w),
+                "{what} of {h:?}: the control word \\{w} survives:\n{tex}"
+            );
+        }
+        assert!(balanced, "{what} of {h:?}: braces do not balance:\n{tex}");
+        let uncommented = uncommented(tex);
+        assert_eq!(
+            uncommented.matches(r"\end{document}").count(),
+            documents,
+            "{what} of {h:?}: \\end{{document}} written by the input:\n{tex}"
+        );
+        assert!(
+            !uncommented.contains("^^"),
+            "{what} of {h:?}: a ^^ character code:\n{tex}"
+        );
+    }
+
+    /// No HTML tag of the input in Markdown outside code: every `<` before
+    /// a letter or `/` is escaped (hdot's own anchors aside).
+    pub fn assert_no_html(what: &str, h: &str, md: &str) {
+        let text = without_code(md);
+        for (k, _) in text.match_indices('<') {
+            let after = &text[k + 1..];
+            let tag = after.starts_with(|c: char| c.is_alphabetic() || c == '/');
+            let escaped = text[..k].ends_with('\\');
+            assert!(
+                !tag || escaped || after.starts_with("a id=") || after.starts_with("/a>"),
+                "{what} of {h:?}: an HTML tag at {}",
+                &text[k..(k + 20).min(text.len())]
+            );
+        }
+    }
+
+    /// The control words of LaTeX text (escaped characters such as `\{`
+    /// and `\\` skipped), and whether its braces balance, comments left out.
+    pub fn control_words(tex: &str) -> (Vec<String>, bool) {
+        let mut words = Vec::new();
+        let mut depth = 0i64;
+        let mut balanced = true;
+        for line in tex.lines() {
+            let mut cs = line.chars().peekable();
+            while let Some(c) = cs.next() {
+                match c {
+                    '\\' => {
+                        let mut w = String::new();
+                        while let Some(&n) = cs.peek().filter(|n| n.is_ascii_alphabetic()) {
+                            w.push(n);
+                            cs.next();
+                        }
+                        if w.is_empty() {
+                            cs.next();
+                        } else {
+                            words.push(w);
+                        }
+                    }
+                    '%' => break,
+                    '{' => depth += 1,
+                    '}' => {
+                        depth -= 1;
+                        balanced &= depth >= 0;
+                    }
+                    _ => {}
+                }
+            }
+        }
+        (words, balanced && depth == 0)
+    }
+
+    /// Markdown without its code spans (which show their text as written).
+    pub fn without_code(md: &str) -> String {
+        let mut o = String::new();
+        let mut rest = md;
+        while let Some(k) = rest.find('`') {
+            o.push_str(&rest[..k]);
+            let run = rest[k..].chars().take_while(|&c| c == '`').count();
+            let fence = "`".repeat(run);
+            let after = &rest[k + run..];
+            // The closing fence: a run of exactly as many backticks.
+            let close = after.match_indices(&fence).find(|(i, _)| {
+                !after[i + run..].starts_with('`') && (*i == 0 || !after[..*i].ends_with('`'))
+            });
+            match close {
+                Some((i, _)) => rest = &after[i + run..],
+                None => {
+                    o.push_str(&fence);
+                    rest = after;
+                }
+            }
+        }
+        o.push_str(rest);
+        o
+    }
+
+    /// The tags of an HTML page in order, each as its name (lower case, a
+    /// closing tag with its `/`) and the names of its attributes; text,
+    /// comments and the contents of `<script>`/`<style>` elements skipped.
+    pub fn html_tags(page: &str) -> Vec<(String, Vec<String>)> {
+        let mut tags = Vec::new();
+        let mut rest = page;
+        while let Some(k) = rest.find('<') {
+            rest = &rest[k + 1..];
+            if let Some(r) = rest.strip_prefix("!--") {
+                rest = r.find("-->").map_or("", |e| &r[e + 3..]);
+                continue;
+            }
+            let closing = rest.starts_with('/');
+            let body = rest.trim_start_matches('/');
+            let name: String = body
+                .chars()
+                .take_while(|c| c.is_ascii_alphanumeric() || *c == '-' || *c == '!')
+                .collect();
+            if name.is_empty() {
+                continue;
+            }
+            let mut attrs = Vec::new();
+            let mut cs = body[name.len()..].char_indices().peekable();
+            let mut end = body.len();
+            while let Some((i, c)) = cs.next() {
+                match c {
+                    '>' => {
+                        end = i + name.len();
+                        break;
+                    }
+                    '"' | '\'' => {
+                        for (_, d) in cs.by_ref() {
+                            if d == c {
+                                break;
+                            }
+                        }
+                    }
+                    c if c.is_ascii_alphabetic() => {
+                        let mut a = String::from(c);
+                        while let Some(&(_, d)) = cs.peek() {
+                            if d.is_ascii_alphanumeric() || d == '-' || d == ':' {
+                                a.push(d);
+                                cs.next();
+                            } else {
+                                break;
+                            }
+                        }
+                        attrs.push(a.to_ascii_lowercase());
+                    }
+                    _ => {}
+                }
+            }
+            rest = &body[(end + 1).min(body.len())..];
+            let lower = name.to_ascii_lowercase();
+            if !closing && (lower == "script" || lower == "style") {
+                let close = format!("</{lower}");
+                rest = rest.find(&close).map_or("", |e| &rest[e..]);
+            }
+            tags.push((if closing { format!("/{lower}") } else { lower }, attrs));
+        }
+        tags
+    }
+}

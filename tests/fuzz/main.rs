@@ -16,6 +16,7 @@
 mod corpus;
 mod derivation;
 mod files;
+mod hostile;
 
 use proptest::test_runner::Config;
 

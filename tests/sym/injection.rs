@@ -12,6 +12,7 @@ use hdot_sym::derivation::{Derivation, load_str};
 use hdot_sym::document::Course;
 use hdot_sym::notes;
 use hdot_sym::render::{Format, render};
+use hdot_tests::markup::{FORBIDDEN, assert_no_html, assert_safe, control_words, without_code};
 
 /// The hostile strings.
 const HOSTILE: &[&str] = &[
@@ -23,19 +24,6 @@ const HOSTILE: &[&str] = &[
     r"}} unbalanced \x",
     r"$\input{x}$ and $x^^5cinput$ and $x_$",
     r"``` \x <script>alert(1)</script> ` %% & # ~ ^ _",
-];
-
-/// Control words hdot never writes of its own.
-const FORBIDDEN: &[&str] = &[
-    "input",
-    "include",
-    "immediate",
-    "write",
-    "def",
-    "x",
-    "catcode",
-    "csname",
-    "openout",
 ];
 
 /// A TOML string holding `s`.
@@ -89,106 +77,6 @@ expect = "m*w_y"
 
 fn derivation(h: &str) -> Derivation {
     load_str(h, &file(h)).unwrap_or_else(|e| panic!("{h}: {e}"))
-}
-
-/// The control words of LaTeX text (escaped characters such as `\{` and
-/// `\\` skipped), and whether its braces balance, comments left out.
-fn control_words(tex: &str) -> (Vec<String>, bool) {
-    let mut words = Vec::new();
-    let mut depth = 0i64;
-    let mut balanced = true;
-    for line in tex.lines() {
-        let mut cs = line.chars().peekable();
-        while let Some(c) = cs.next() {
-            match c {
-                '\\' => {
-                    let mut w = String::new();
-                    while let Some(&n) = cs.peek().filter(|n| n.is_ascii_alphabetic()) {
-                        w.push(n);
-                        cs.next();
-                    }
-                    if w.is_empty() {
-                        cs.next();
-                    } else {
-                        words.push(w);
-                    }
-                }
-                '%' => break,
-                '{' => depth += 1,
-                '}' => {
-                    depth -= 1;
-                    balanced &= depth >= 0;
-                }
-                _ => {}
-            }
-        }
-    }
-    (words, balanced && depth == 0)
-}
-
-/// Markdown without its code spans (which show their text as written).
-fn without_code(md: &str) -> String {
-    let mut o = String::new();
-    let mut rest = md;
-    while let Some(k) = rest.find('`') {
-        o.push_str(&rest[..k]);
-        let run = rest[k..].chars().take_while(|&c| c == '`').count();
-        let fence = "`".repeat(run);
-        let after = &rest[k + run..];
-        // The closing fence: a run of exactly as many backticks.
-        let close = after.match_indices(&fence).find(|(i, _)| {
-            !after[i + run..].starts_with('`') && (*i == 0 || !after[..*i].ends_with('`'))
-        });
-        match close {
-            Some((i, _)) => rest = &after[i + run..],
-            None => {
-                o.push_str(&fence);
-                rest = after;
-            }
-        }
-    }
-    o.push_str(rest);
-    o
-}
-
-/// No HTML tag of the input in Markdown outside code: every `<` before a
-/// letter or `/` is escaped (hdot's own anchors aside).
-fn assert_no_html(what: &str, h: &str, md: &str) {
-    let text = without_code(md);
-    for (k, _) in text.match_indices('<') {
-        let after = &text[k + 1..];
-        let tag = after.starts_with(|c: char| c.is_alphabetic() || c == '/');
-        let escaped = text[..k].ends_with('\\');
-        assert!(
-            !tag || escaped || after.starts_with("a id=") || after.starts_with("/a>"),
-            "{what} of {h:?}: an HTML tag at {}",
-            &text[k..(k + 20).min(text.len())]
-        );
-    }
-}
-
-fn assert_safe(what: &str, h: &str, tex: &str, documents: usize) {
-    let (words, balanced) = control_words(tex);
-    for w in FORBIDDEN {
-        assert!(
-            !words.iter().any(|x| x == w),
-            "{what} of {h:?}: the control word \\{w} survives:\n{tex}"
-        );
-    }
-    assert!(balanced, "{what} of {h:?}: braces do not balance:\n{tex}");
-    let uncommented: String = tex
-        .lines()
-        .map(|l| l.split('%').next().unwrap_or("").to_owned() + "\n")
-        .collect();
-    assert_eq!(
-        uncommented.matches(r"\end{document}").count(),
-        documents,
-        "{what} of {h:?}: \\end{{document}} written by the input:\n{tex}"
-    );
-    assert!(
-        !uncommented.contains("^^"),
-        "{what} of {h:?}: a ^^ character code:\n{tex}"
-    );
 }
 
 #[test]

@@ -18,6 +18,7 @@ mod injection;
 mod kane;
 mod labels;
 mod laurent;
+mod lecturer;
 mod notes;
 mod presentation;
 mod snapshots;

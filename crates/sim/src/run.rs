@@ -375,7 +375,9 @@ fn refuse_non_finite(r: &Report) -> Result<(), SimError> {
 impl fmt::Display for Report {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let p = &self.plan;
-        writeln!(f, "scene:       {} ({})", self.scene, self.kind)?;
+        // The scene's name as a terminal shows it, never obeyed.
+        let scene = hdot_sym::escape::terminal(&self.scene);
+        writeln!(f, "scene:       {scene} ({})", self.kind)?;
         writeln!(f, "model:       {}", p.model)?;
         writeln!(f, "why:         {}", p.reason)?;
         match (p.method, p.step) {

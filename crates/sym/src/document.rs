@@ -295,6 +295,8 @@ impl Section {
     /// The section of derivation `d`, showing the steps named in `show`
     /// (in the file's order), or the file's shown steps when `None`.
     pub fn of(d: &Derivation, show: Option<&[String]>) -> Section {
+        // Symbols named in prose as in formulas (`theta'`) in their notation.
+        let notation = |t: &str| crate::prose::in_notation(t, &d.symbols);
         let names = |want: fn(&Decl) -> bool| -> Vec<String> {
             d.symbols
                 .names()
@@ -320,7 +322,7 @@ impl Section {
                         rhs: Arc::new(Expr::from_poly(p)),
                     })
                     .collect(),
-                doc: f.doc.clone(),
+                doc: notation(&f.doc),
             })
             .collect();
         let steps = d
@@ -330,15 +332,18 @@ impl Section {
                 Some(list) => list.contains(&s.name),
                 None => s.show,
             })
-            .map(StepBlock::of)
+            .map(|s| StepBlock {
+                doc: notation(&s.doc),
+                ..StepBlock::of(s)
+            })
             .collect();
         Section {
             name: d.name.clone(),
-            title: d.title.clone(),
+            title: notation(&d.title),
             source: d.source.clone(),
             path: d.path.clone(),
-            summary: d.summary.trim().to_owned(),
-            assumptions: d.assumptions.clone(),
+            summary: notation(d.summary.trim()),
+            assumptions: d.assumptions.iter().map(|a| notation(a)).collect(),
             constants: names(|x| matches!(x, Decl::Constant)),
             time: names(|x| matches!(x, Decl::Time)),
             abbreviations: d
@@ -348,7 +353,7 @@ impl Section {
                     (
                         a.name.clone(),
                         Expr::from_poly(&a.definition),
-                        a.doc.clone(),
+                        notation(&a.doc),
                     )
                 })
                 .collect(),

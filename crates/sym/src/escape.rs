@@ -2,7 +2,7 @@
 //! in one place. [`latex`] for LaTeX (text, typewriter code, math, a
 //! comment line), [`markdown`] and [`markdown_code`] for Markdown,
 //! [`python_str`], [`python_comment`] and [`python_name`] for the SymPy
-//! export, [`html`] for the web pages; every field of every backend that
+//! export, [`html`] for the web pages, [`terminal`] for error messages; every field of every backend that
 //! is not built from expression trees goes through one of them, so no
 //! string a user wrote reaches an output as commands (`\input`,
 //! `\write18`, `\def`, unbalanced braces, HTML, a line of Python).
@@ -52,7 +52,7 @@ pub enum Latex {
 pub fn latex(s: &str, to: Latex) -> String {
     let mut o = String::with_capacity(s.len() + 8);
     for c in s.chars() {
-        if c.is_ascii_control() && !(to == Latex::Text && matches!(c, '\n' | '\t')) {
+        if c.is_control() && !(to == Latex::Text && matches!(c, '\n' | '\t')) {
             o.push(' ');
             continue;
         }
@@ -98,7 +98,7 @@ pub fn latex_math_char(c: char) -> String {
         '\\' => r"\backslash ".into(),
         '~' => r"\sim ".into(),
         '^' => r"\hat{}".into(),
-        c if c.is_ascii_control() => " ".into(),
+        c if c.is_control() => " ".into(),
         c if c.is_ascii() => c.to_string(),
         c => {
             if let Some(g) = symbols::greek_latex(c) {
@@ -146,10 +146,15 @@ pub fn letter(c: char) -> String {
 }
 
 /// Markdown text: `\`, `*`, `_`, `` ` ``, `$`, `[`, `]` and `<` show as
-/// themselves (no emphasis, code, math, link or HTML).
+/// themselves (no emphasis, code, math, link or HTML); control characters
+/// other than line breaks and tabs as spaces.
 pub fn markdown(s: &str) -> String {
     let mut o = String::with_capacity(s.len() + 8);
     for c in s.chars() {
+        if c.is_control() && !matches!(c, '\n' | '\t') {
+            o.push(' ');
+            continue;
+        }
         if "\\*_`$[]<".contains(c) {
             o.push('\\');
         }
@@ -277,6 +282,27 @@ pub fn html(s: &str) -> String {
         }
     }
     out
+}
+
+/// Text for a terminal (an error message quoting a file): control
+/// characters other than line breaks and tabs, which could move the cursor
+/// or recolour the screen, written visibly as `\u{1b}`.
+///
+/// # Example
+/// ```
+/// use hdot_sym::escape::terminal;
+/// assert_eq!(terminal("a\u{1b}[31m b\n"), "a\\u{1b}[31m b\n");
+/// ```
+pub fn terminal(s: &str) -> String {
+    let mut o = String::with_capacity(s.len());
+    for c in s.chars() {
+        if c.is_control() && !matches!(c, '\n' | '\t') {
+            let _ = write!(o, "\\u{{{:x}}}", c as u32);
+        } else {
+            o.push(c);
+        }
+    }
+    o
 }
 
 // ------------------------------------------------------------- tables --

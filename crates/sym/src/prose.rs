@@ -13,6 +13,12 @@
 //! output format renders the pieces: [`latex`] (and the PDF), [`markdown`]
 //! (`$…$` math) and [`unicode`] (the text as written, without `$`).
 //!
+//! A derivation's prose may also name its declared symbols as they are
+//! written in its formulas (`theta'`, `omega_z`, `beta`, `I'` for the
+//! constant `Ip`): [`in_notation`] rewrites each such word into the
+//! notation the printers give the symbol (θ̇, ω_z, β, I′), before any
+//! format sees it, so every format typesets it as that symbol.
+//!
 //! Inside `$…$` the same notation is used: `$ΣM_O = (Ḣ_O)_Oxyz$`;
 //! multi-letter subscripts and `^` exponents are allowed there. A `$`
 //! without a closing `$` is a dollar sign.
@@ -36,7 +42,7 @@
 //! ```
 
 use crate::escape::{self, Latex, precomposed_accent};
-use crate::symbols;
+use crate::symbols::{self, Decl, Symbols};
 
 pub use crate::escape::{combining_accent, unicode_math};
 
@@ -84,6 +90,73 @@ fn push(out: &mut Vec<Piece>, p: Piece) {
         (Some(Piece::Text(a)), Piece::Text(b)) => a.push_str(&b),
         (_, Piece::Math(m)) if m.is_empty() => {}
         (_, p) => out.push(p),
+    }
+}
+
+/// `s` with each declared symbol written as in a formula — `theta'`,
+/// `omega_z`, `beta`, a constant `I'` whose name is `Ip` — in the notation
+/// the printers give it (θ̇, ω_z, β, I′). A word is such a name when it
+/// is a whole word (not part of `top's` or `dt_rel`) and declared in
+/// `symbols`; a constant with primes is primed (I′), a function of time
+/// differentiated (θ̇). Other words are left as written.
+///
+/// # Example
+/// ```
+/// use hdot_sym::{Symbols, prose};
+/// let s = Symbols::parse_decl(&["Ip", "beta", "Omega"], &["theta", "omega_z"]);
+/// assert_eq!(
+///     prose::in_notation("theta' and omega_z at beta; I' Omega^2, the top's", &s),
+///     "θ̇ and ω_z at β; I′ Ω^2, the top's"
+/// );
+/// ```
+pub fn in_notation(s: &str, symbols: &Symbols) -> String {
+    let mut o = String::with_capacity(s.len() + 8);
+    let mut rest = s;
+    let mut prev: Option<char> = None;
+    while let Some(c) = rest.chars().next() {
+        let boundary = prev.is_none_or(|p| !(p.is_alphanumeric() || p == '_' || p == '\\'));
+        if c.is_ascii_alphabetic() && boundary {
+            let len = rest
+                .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+                .unwrap_or(rest.len());
+            let primes = rest[len..].chars().take_while(|&c| c == '\'').count();
+            let end = len + primes;
+            let after = rest[end..].chars().next();
+            let whole = after.is_none_or(|a| !(a.is_alphanumeric() || a == '_'));
+            let word = &rest[..len];
+            if let Some(t) = whole
+                .then(|| symbol_notation(word, primes, symbols))
+                .flatten()
+            {
+                o.push_str(&t);
+                prev = t.chars().last();
+                rest = &rest[end..];
+                continue;
+            }
+            o.push_str(word);
+            prev = word.chars().last();
+            rest = &rest[len..];
+            continue;
+        }
+        o.push(c);
+        prev = Some(c);
+        rest = &rest[c.len_utf8()..];
+    }
+    o
+}
+
+/// The notation of the declared symbol `name` written with `primes`, or
+/// `None` when it is not one (see [`in_notation`]).
+fn symbol_notation(name: &str, primes: usize, symbols: &Symbols) -> Option<String> {
+    let order = u32::try_from(primes).ok()?;
+    match symbols.get(name) {
+        Some(Decl::Time | Decl::Abbrev(_)) => Some(crate::print::unicode_symbol(name, order)),
+        Some(Decl::Constant) => Some(crate::print::unicode_symbol(name, 0) + &"′".repeat(primes)),
+        // `I'` for the constant `Ip`, which prints as I′.
+        None if primes == 1 && matches!(symbols.get(&format!("{name}p")), Some(Decl::Constant)) => {
+            Some(crate::print::unicode_symbol(&format!("{name}p"), 0))
+        }
+        None => None,
     }
 }
 

@@ -137,7 +137,12 @@ fn report(scene: &StabilityScene, s: &Sweep) -> String {
     let m = &scene.matrices;
     let steps = m.steps();
     let mut out = String::new();
-    let _ = writeln!(out, "scene:      {} ({})", scene.name, scene.file.display());
+    let _ = writeln!(
+        out,
+        "scene:      {} ({})",
+        hdot_sym::escape::terminal(&scene.name),
+        hdot_sym::escape::terminal(&scene.file.display().to_string())
+    );
     let _ = writeln!(
         out,
         "equations:  M q'' + C q' + K q = 0 from {} (M = `{}`, C = {}, K = `{}`), {} coordinates",

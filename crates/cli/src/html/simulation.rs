@@ -30,8 +30,9 @@ const VIEW_JS: &str = include_str!("view.js");
 pub fn simulation_page(scene: &Scene, text: &str, report: &Report) -> Result<String, PageError> {
     let motion = Motion::new(scene, report)?;
     let data = view_data(scene, text, &motion)?;
-    // `</` inside a script element would end it: JSON allows `<\/`.
-    let data = data.to_string().replace("</", "<\\/");
+    // No `<` in a script element (`</script>` would end it, `<!--` would
+    // change how it ends): JSON writes it `\u003c`, inside strings only.
+    let data = data.to_string().replace('<', "\\u003c");
     let mut s = String::with_capacity(256 << 10);
     let _ = write!(
         s,

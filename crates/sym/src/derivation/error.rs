@@ -2,6 +2,8 @@
 
 use std::fmt;
 
+use crate::escape::terminal;
+
 /// An error in a derivation file, with its location and a caret snippet.
 ///
 /// `Display` prints it the way compilers do:
@@ -89,15 +91,29 @@ impl Diagnostic {
 
 impl fmt::Display for Diagnostic {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        writeln!(f, "error: {}", self.message)?;
+        // What the file holds is quoted, never obeyed by the terminal.
+        let path = terminal(&self.path);
+        writeln!(f, "error: {}", terminal(&self.message))?;
         if self.line == 0 {
-            return write!(f, "  --> {}", self.path);
+            return write!(f, "  --> {path}");
         }
         let n = self.line.to_string();
         let pad = " ".repeat(n.len());
-        writeln!(f, "{pad}--> {}:{}:{}", self.path, self.line, self.column)?;
+        writeln!(f, "{pad}--> {path}:{}:{}", self.line, self.column)?;
         writeln!(f, "{pad} |")?;
-        writeln!(f, "{n} | {}", self.source_line)?;
+        // One character for one, so that the caret stays under its column.
+        let line: String = self
+            .source_line
+            .chars()
+            .map(|c| {
+                if c.is_control() && c != '\t' {
+                    '\u{FFFD}'
+                } else {
+                    c
+                }
+            })
+            .collect();
+        writeln!(f, "{n} | {line}")?;
         let lead: String = self
             .source_line
             .chars()

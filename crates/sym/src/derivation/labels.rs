@@ -14,7 +14,6 @@ use super::context::{Context, R};
 use super::raw::RawStep;
 use super::unfold;
 use super::value::Value;
-use crate::atom::Atom;
 use crate::label::LabelMath;
 use crate::parse::{Ast, AstKind, parse};
 use crate::poly::Poly;
@@ -25,8 +24,8 @@ use crate::symbols::Decl;
 enum Solved {
     /// Not a solve.
     No,
-    /// `solve(eq, x)`: one unknown.
-    One(Atom),
+    /// `solve(eq, x)`: one unknown (or `solve(eq, x^k)`: its power).
+    One(Poly),
     /// `solve(eqs, [x, y, …])`: several, each labelling its own item.
     Several,
 }
@@ -66,9 +65,9 @@ impl Context<'_> {
                  themselves; label the step with a name (`accelerations`)"
             )),
             (Solved::One(x), Some(LabelMath::Expr(e)), _) => {
-                self.same_unknown(text, &e.to_poly(), x, &fail)
+                self.same_unknown(text, &e.to_poly(), &x, &fail)
             }
-            (Solved::One(x), None, Some(p)) => self.same_unknown(text, &p, x, &fail),
+            (Solved::One(x), None, Some(p)) => self.same_unknown(text, &p, &x, &fail),
             (Solved::One(x), Some(LabelMath::Partial(..) | LabelMath::Formula(_)), _) => fail(format!(
                 "`{text}` is not what the step solves for: it gives {x}; label it `{x}` or with a name"
             )),
@@ -113,10 +112,10 @@ impl Context<'_> {
         &self,
         text: &str,
         label: &Poly,
-        x: Atom,
+        x: &Poly,
         fail: &dyn Fn(String) -> R<()>,
     ) -> R<()> {
-        if (label - &Poly::atom(x)).is_zero() {
+        if (label - x).is_zero() {
             return Ok(());
         }
         fail(format!(
@@ -171,7 +170,11 @@ impl Context<'_> {
             AstKind::Name { name, primes } => self
                 .symbols
                 .atom(name, *primes, a.span)
-                .map_or(Solved::No, Solved::One),
+                .map_or(Solved::No, |x| Solved::One(Poly::atom(x))),
+            AstKind::Pow(base, k) => match self.unknown(base) {
+                Solved::One(x) => Solved::One(x.pow(*k)),
+                _ => Solved::No,
+            },
             AstKind::Vector { .. } => Solved::Several,
             _ => Solved::No,
         }

@@ -115,7 +115,8 @@ pub fn unicode_section(s: &Section) -> String {
             }
         }
     }
-    o
+    // Text for a terminal: what the file holds is shown, never obeyed.
+    crate::escape::terminal(&o)
 }
 
 /// `lhs = rhs` in Unicode; `rhs = 0` for a left side `0`.

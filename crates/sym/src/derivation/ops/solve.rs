@@ -1,12 +1,15 @@
 //! `solve(eq, x)` and `solve(eqs, [x, y, …])`: linear equations solved
-//! exactly, dividing only by what the canonical form can divide by.
+//! exactly, dividing only by what the canonical form can divide by; and
+//! `solve(eq, x^k)`, an equation in which x occurs only as x^k (the
+//! conical pendulum's φ̇²) solved for that power.
 
 use super::mass_matrix::system;
 use super::{Call, Op};
 use crate::derivation::context::R;
 use crate::derivation::value::Value;
 use crate::expr::Expr;
-use crate::poly::{Monomial, Poly};
+use crate::parse::{Ast, AstKind};
+use crate::poly::{Exp, Monomial, Poly};
 use crate::rational::Rational;
 use crate::vector::Vec3;
 
@@ -17,11 +20,15 @@ pub(crate) const SOLVE: Op = Op {
           linearly and the coefficient matrix's determinant can be divided by (numbers, constants, sin and cos: \
           otherwise use `mass_matrix`/`forcing`); a factor common to all terms of an equation is divided out first. \
           A vector equation in three unknowns gives a vector; otherwise one unknown gives a scalar and several a \
-          list labelled by the unknowns (θ̈ = …)",
+          list labelled by the unknowns (θ̈ = …). `solve(eq, x^k)` solves one equation in which x occurs only as \
+          x^k for that power (φ̇² = 3 g/(2 L cos θ))",
     eval,
 };
 
 fn eval(c: &Call<'_, '_>) -> R<Value> {
+    if let Some(AstKind::Pow(base, k)) = c.args.get(1).map(|a| &a.kind) {
+        return solve_power(c, base, *k);
+    }
     let super::mass_matrix::System {
         m,
         f,
@@ -29,10 +36,78 @@ fn eval(c: &Call<'_, '_>) -> R<Value> {
         listed,
         value: v,
     } = system(c)?;
-    // Divide each equation by the monomial common to all its terms (such
-    // as sin θ or θ̇), assumed not zero: it cannot change the solution.
     let mut m = m;
     let mut f = f;
+    divide_common(&mut m, &mut f);
+    let x = solve_system(&m, &f).map_err(|msg| c.cx.at(c.base, c.args[0].span, msg))?;
+    Ok(match v {
+        Value::Vector(_, frame)
+            if unknowns.len() == 3 && unknowns.iter().all(|u| u.order() == 0) =>
+        {
+            Value::Vector(Vec3(x.try_into().expect("three")), frame)
+        }
+        _ if !listed => Value::Scalar(x.into_iter().next().expect("one unknown")),
+        _ => Value::List {
+            items: x,
+            labels: unknowns,
+        },
+    })
+}
+
+/// `solve(eq, x^k)`: one scalar equation in which the symbol x occurs only
+/// as x^k, solved for x^k as for an unknown of its own.
+fn solve_power(c: &Call<'_, '_>, base: &Ast, k: u32) -> R<Value> {
+    c.arity(2)?;
+    let u = c.cx.symbol_arg(base, c.base)?;
+    let at = c.args[1].span;
+    if k < 2 {
+        return c.err(
+            at,
+            format!("solve for `{u}` itself, not for a power {k} of it"),
+        );
+    }
+    let v = c.value(0)?;
+    let Value::Scalar(eq) = &v else {
+        return c.err(
+            c.args[0].span,
+            format!(
+                "solving for a power `{u}^{k}` needs one scalar equation, found {}",
+                v.describe()
+            ),
+        );
+    };
+    let eq = c.cx.unfold(eq);
+    let k = Exp::try_from(k).unwrap_or(Exp::MAX);
+    let (mut coefficient, mut rest) = (Vec::new(), Vec::new());
+    for (m, a) in eq.terms() {
+        match m.exponent(u) {
+            0 => rest.push((m.clone(), a.clone())),
+            e if e == k => coefficient.push((m.without(u, k), a.clone())),
+            e => {
+                return c.err(
+                    at,
+                    format!(
+                        "`{u}` occurs to the power {e} in the equation: solving for `{u}^{k}` needs `{u}` only as \
+                         `{u}^{k}` (an equation linear in `{u}^{k}`)"
+                    ),
+                );
+            }
+        }
+    }
+    if coefficient.is_empty() {
+        return c.err(at, format!("`{u}^{k}` does not occur in the equation"));
+    }
+    let mut m = vec![vec![Poly::from_terms(coefficient)]];
+    let mut f = vec![-&Poly::from_terms(rest)];
+    divide_common(&mut m, &mut f);
+    let x = solve_system(&m, &f).map_err(|msg| c.cx.at(c.base, c.args[0].span, msg))?;
+    Ok(Value::Scalar(x.into_iter().next().expect("one unknown")))
+}
+
+/// Divides each equation `m[i] · x = f[i]` by the monomial common to all
+/// its terms (such as sin θ or θ̇), assumed not zero: it cannot change the
+/// solution.
+fn divide_common(m: &mut [Vec<Poly>], f: &mut [Poly]) {
     for (row, fi) in m.iter_mut().zip(f.iter_mut()) {
         let terms: Vec<&Monomial> = row
             .iter()
@@ -48,19 +123,6 @@ fn eval(c: &Call<'_, '_>) -> R<Value> {
             }
         }
     }
-    let x = solve_system(&m, &f).map_err(|msg| c.cx.at(c.base, c.args[0].span, msg))?;
-    Ok(match v {
-        Value::Vector(_, frame)
-            if unknowns.len() == 3 && unknowns.iter().all(|u| u.order() == 0) =>
-        {
-            Value::Vector(Vec3(x.try_into().expect("three")), frame)
-        }
-        _ if !listed => Value::Scalar(x.into_iter().next().expect("one unknown")),
-        _ => Value::List {
-            items: x,
-            labels: unknowns,
-        },
-    })
 }
 
 /// `M x = f` by Cramer's rule, when `det M` can be divided by.
