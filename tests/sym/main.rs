@@ -5,6 +5,8 @@
 //! - `identities`: one-line `input => expected` identities;
 //! - `presentation`: presented forms expand back to the derived values;
 //! - `snapshots`: every derivation file in every output format (insta);
+//! - `textbook`: printed forms a textbook would use, on files written for
+//!   them (`textbook/*.toml`, insta);
 //! - `broken`: broken derivation files, each asserting its error's location;
 //! - `work_budget`: deterministic work of reference workloads against the
 //!   committed budget (`work_budget.toml`).
@@ -24,4 +26,5 @@ mod presentation;
 mod snapshots;
 mod speeds;
 mod strategies;
+mod textbook;
 mod work_budget;

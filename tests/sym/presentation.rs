@@ -7,7 +7,7 @@
 use hdot_sym::derivation::{Derivation, load};
 use hdot_sym::poly::Poly;
 
-fn assert_exact(d: &Derivation) -> usize {
+pub(crate) fn assert_exact(d: &Derivation) -> usize {
     let mut compared = 0;
     for s in &d.steps {
         let values = s.values();

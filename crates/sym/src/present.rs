@@ -16,9 +16,14 @@
 //!    terms have different constant divisors (a solved form) is not put
 //!    over one divisor: each term keeps its own ratio, `(m g l/I′) sin θ`.
 //!    Inside a bracket, terms with the same rates (and sin, cos) are one
-//!    term with a bracket of constants, ((I_2 − A_3) ω_3 − h) ω_2/I_1; what
-//!    the collect list leaves over is grouped the same way and written as
-//!    terms of the sum, not as one more bracket.
+//!    term with a bracket of constants, ((I_2 − A_3) ω_3 − h) ω_2/I_1;
+//!    terms with the same constants and rates that differ in sin and cos
+//!    are one term, I′ φ̇ (1 + cos² θ); constants sharing a coefficient
+//!    are one term, a (A_x − B_x); what the collect list leaves over is
+//!    grouped the same way and written as terms of the sum, not as one
+//!    more bracket. Whether divisors go term by term is decided once for
+//!    the whole result: every term divided by constants then carries its
+//!    ratio in front, alone or in a bracket (one rule for a ratio).
 //! 3. **Factor by known factors** (a step's `factor` list, such as A − B
 //!    and A − C): a bracket equal to their product, or to one of them,
 //!    times a monomial and a number is printed as that product; the
@@ -132,6 +137,11 @@ pub fn present(p: &Poly, pres: &Presentation) -> Expr {
         }
     }
     groups.retain(|(_, ts)| !ts.is_empty());
+    // One rule for a constant ratio: when the result is a solved form whose
+    // constant divisors go term by term (some terms divided by constants,
+    // others not), every such term carries its ratio in front, whichever
+    // group or bracket it is printed in.
+    let ratios = bracket::distributes_over(p.terms().iter().map(|t| &t.0));
     let mut e = Expr::new();
     let several = groups.len() > 1;
     let mut ids: Vec<Id> = Vec::new();
@@ -141,13 +151,13 @@ pub fn present(p: &Poly, pres: &Presentation) -> Expr {
             // its terms are grouped by their rates (and sin, cos), each with
             // its own constants, A_3 ω̇_3 + ḣ − (I_1 − I_2) ω_1 ω_2.
             for (t, rest) in by_time_part(ts) {
-                ids.push(group_node(&mut e, &t, &rest, pres));
+                ids.push(group_node(&mut e, &t, &rest, pres, ratios));
             }
         } else if let Some(classes) = split_by_content(ts) {
             // ½ (I′ θ̇² + …) − m g l cos θ: a fraction is pulled out only
             // over the terms that carry it; inside a collected group's
             // bracket too, ((J − I′) Ω² + (1/2) m g L) ε.
-            let parts = content_parts(&mut e, &classes, pres);
+            let parts = content_parts(&mut e, &classes, pres, ratios);
             if k.is_one() {
                 ids.extend(parts);
             } else {
@@ -158,7 +168,7 @@ pub fn present(p: &Poly, pres: &Presentation) -> Expr {
                 ids.push(e.mul(factors));
             }
         } else {
-            ids.push(group_node(&mut e, k, ts, pres));
+            ids.push(group_node(&mut e, k, ts, pres, ratios));
         }
     }
     if ids.len() > 1 {
@@ -199,7 +209,8 @@ fn by_time_part(ts: &[(Monomial, Rational)]) -> Vec<(Monomial, Vec<(Monomial, Ra
 /// A sum whose rational content is a fraction, split so that the fraction
 /// is pulled out only over the terms that carry it: the terms are classed
 /// by their degree in the rates (time-dependent symbols and constant rates
-/// named by Greek letters; sin and cos do not count), classes of the same
+/// named by Greek letters; sin and cos do not count), the terms of degree
+/// 0 also by whether their coefficient is whole, classes of the same
 /// content are merged, highest degree first. So an energy keeps
 /// ½ (I′ θ̇² + …) and its potential − m g l cos θ apart, and
 /// I′ θ̈ − (I′ − J) Ω² sin θ cos θ + ½ m g L sin θ keeps its integer terms
@@ -216,10 +227,14 @@ fn split_by_content(ts: &[(Monomial, Rational)]) -> Option<Vec<Vec<(Monomial, Ra
             .map(|(_, e)| *e)
             .sum()
     };
-    let mut by_degree: BTreeMap<Reverse<i32>, Vec<(Monomial, Rational)>> = BTreeMap::new();
+    // Terms without rates are classed by whether their coefficient is
+    // whole too: a half is never pulled over a bracket of doubles,
+    // a (A_x − B_x) + (1/2) m g L sin β, not (1/2) (2 a (A_x − B_x) + …).
+    let mut by_degree: BTreeMap<(Reverse<i32>, bool), Vec<(Monomial, Rational)>> = BTreeMap::new();
     for t in ts {
+        let d = degree(&t.0);
         by_degree
-            .entry(Reverse(degree(&t.0)))
+            .entry((Reverse(d), d == 0 && t.1.is_integer()))
             .or_default()
             .push(t.clone());
     }
@@ -240,10 +255,11 @@ fn content_parts(
     e: &mut Expr,
     classes: &[Vec<(Monomial, Rational)>],
     pres: &Presentation,
+    ratios: bool,
 ) -> Vec<Id> {
     let parts: Vec<Id> = classes
         .iter()
-        .map(|class| group_node(e, &Monomial::one(), class, pres))
+        .map(|class| group_node(e, &Monomial::one(), class, pres, ratios))
         .collect();
     let mut parts = splice_sums(e, parts);
     let negative = |e: &Expr, id: Id| matches!(e.node(id), Node::Neg(_));

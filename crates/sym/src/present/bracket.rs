@@ -22,17 +22,31 @@ use crate::expr::{Expr, Id, Node, PrintTerm, print_sorted};
 use crate::poly::{Monomial, Poly};
 use crate::rational::Rational;
 
-/// `key · Σ terms` with the sum factored.
+/// `key · Σ terms` with the sum factored. `ratios`: the whole result is a
+/// solved form whose constant divisors are written term by term
+/// ([`distributes`] of all its terms), so every term of this group that
+/// is divided by constants carries its ratio in front, `(m g l/I′) sin θ`,
+/// whether it stands alone or in a bracket (one rule for a constant ratio).
 pub(super) fn group_node(
     e: &mut Expr,
     key: &Monomial,
     terms: &[(Monomial, Rational)],
     pres: &Presentation,
+    ratios: bool,
 ) -> Id {
     let known = &pres.factors[..];
     let order = &pres.constant_order[..];
     let mut terms = print_sorted(terms, true);
-    let distribute = distributes(&terms);
+    if ratios && terms.len() == 1 {
+        let m = key.mul(terms[0].1);
+        let mut f: SmallVec<[(Atom, i32); 16]> = m.sorted_for_print().into_iter().collect();
+        conventional(&mut f, order);
+        if let Some(id) = ratio_node(e, &f, terms[0].2) {
+            return id;
+        }
+    }
+    let distribute = distributes(&terms)
+        || (ratios && terms.len() > 1 && terms.iter().any(|t| has_constant_divisor(t.1)));
     // Highest derivative first; then terms of constants only (J + I′ sin² θ);
     // in a distributed bracket the terms that were not divided before the
     // divided ones (θ̈ = φ̇² sin θ cos θ − (I/I′) …); then by name.
@@ -130,7 +144,7 @@ pub(super) fn group_node(
         negative ^= c.is_negative();
         fs.iter().map(|f| known_factor_node(e, f, pres)).collect()
     } else {
-        let (sum, flip) = bracket_sum(e, &terms, &common, &inv, distribute, pres);
+        let (sum, flip) = bracket_sum(e, &terms, &common, &inv, distribute, pres, ratios);
         negative ^= flip;
         vec![sum]
     };
@@ -153,12 +167,29 @@ pub(super) fn group_node(
     for (a, x) in lead {
         ids.push(e.atom_pow(a, x));
     }
-    ids.extend(bracket);
+    // A bracket of sines and cosines only follows the rates, as the
+    // bracket of like terms does: I′ φ̇ (1 + cos² θ).
+    let trig_only = terms.len() > 1
+        && terms.iter().all(|t| {
+            t.1.factors()
+                .iter()
+                .all(|&(a, x)| is_trig(a) || x == common.exponent(a))
+                && common
+                    .factors()
+                    .iter()
+                    .all(|&(a, x)| is_trig(a) || x == t.1.exponent(a))
+        });
+    if !trig_only {
+        ids.extend(bracket.iter().copied());
+    }
     let mut trailing: Vec<(Atom, i32)> =
         factors.iter().copied().filter(|f| !leading(f.0)).collect();
     cyclic_pair(&mut trailing);
     for (a, x) in trailing {
         ids.push(e.atom_pow(a, x));
+    }
+    if trig_only {
+        ids.extend(bracket);
     }
     let m = e.mul(ids);
     if negative { e.push(Node::Neg(m)) } else { m }
@@ -177,6 +208,7 @@ fn bracket_sum(
     inv: &Rational,
     distribute: bool,
     pres: &Presentation,
+    ratios: bool,
 ) -> (Id, bool) {
     let order = &pres.constant_order[..];
     let plain = common.is_one() && inv.is_one();
@@ -214,6 +246,38 @@ fn bracket_sum(
         }
     }
     shared.retain(|_, v| v.len() > 1);
+    // A coefficient shared by constants (a A_x − a B_x): one term,
+    // a (A_x − B_x); the first of them stands for all.
+    let linear = if big {
+        Vec::new()
+    } else {
+        linear_groups(&parts, &timed)
+    };
+    let mut linear_of: Vec<Option<(usize, bool)>> = vec![None; timed.len()];
+    for (g, (_, members)) in linear.iter().enumerate() {
+        for (j, f) in members.iter().enumerate() {
+            linear_of[f.0] = Some((g, j == 0));
+        }
+    }
+    // Like terms: terms with the same constants and rates that differ
+    // only in sin and cos are one term with a bracket of those,
+    // I′ φ̇ (1 + cos² θ), not I′ φ̇ + I′ φ̇ cos² θ.
+    let mut alike: FxHashMap<Monomial, Vec<(Monomial, Rational)>> = FxHashMap::default();
+    let mut alike_of: Vec<Option<Monomial>> = vec![None; timed.len()];
+    for (k, ((m, c), t)) in parts.iter().zip(&timed).enumerate() {
+        if shared.contains_key(t) || linear_of[k].is_some() {
+            continue;
+        }
+        let (trig, rest) = m.split(is_trig);
+        if !rest.is_one() {
+            alike
+                .entry(rest.clone())
+                .or_default()
+                .push((trig, c.clone()));
+            alike_of[k] = Some(rest);
+        }
+    }
+    alike.retain(|_, v| v.len() > 1);
     let mut atoms: FxHashMap<(Atom, i32), Id> = FxHashMap::default();
     // (node, negative, highest derivative order, has a part that
     // follows a bracket)
@@ -223,11 +287,35 @@ fn bracket_sum(
         let follows = match timed.get(k) {
             None => m.factors().iter().any(|&(a, _)| !leading_constant(a)),
             Some(t) => {
+                if let Some((g, first)) = linear_of[k] {
+                    if first {
+                        let (x, members) = &linear[g];
+                        let sub: Vec<(Monomial, Rational)> = members
+                            .iter()
+                            .map(|(_, u, c)| (u.clone(), c.clone()))
+                            .collect();
+                        let id = group_node(e, x, &sub, pres, ratios);
+                        nodes.push((id, matches!(e.node(id), Node::Neg(_)), top, false));
+                    }
+                    continue;
+                }
+                if let Some(rest) = &alike_of[k]
+                    && let Some(sub) = alike.get_mut(rest)
+                {
+                    // The first of the like terms stands for all of them.
+                    if !sub.is_empty() {
+                        let sub = std::mem::take(sub);
+                        let id = group_node(e, rest, &sub, pres, ratios);
+                        let follows = rest.factors().iter().any(|&(a, _)| !leading_constant(a));
+                        nodes.push((id, matches!(e.node(id), Node::Neg(_)), top, follows));
+                    }
+                    continue;
+                }
                 if let Some(sub) = shared.get_mut(t) {
                     // The first term of the shared part stands for all of them.
                     if !sub.is_empty() {
                         let sub = std::mem::take(sub);
-                        let id = group_node(e, t, &sub, pres);
+                        let id = group_node(e, t, &sub, pres, ratios);
                         nodes.push((id, matches!(e.node(id), Node::Neg(_)), top, true));
                     }
                     continue;
@@ -339,9 +427,65 @@ pub(super) fn lead_positive_inside(terms: &mut Vec<PrintTerm<'_>>) -> bool {
     true
 }
 
+/// Terms of constants only that differ in one constant, to the first
+/// power, and share the rest (`a A_x − a B_x`, a coefficient and the
+/// unknowns it multiplies): each group as (what they share, [(term's
+/// index, its constant, its coefficient)]), so that the group prints as
+/// one term, a (A_x − B_x). A term can be split in several ways; the
+/// largest groups are taken first, each term in one group at most, ties
+/// broken by the shared part's order (the result depends only on the
+/// terms). Linear in the terms times their factors, and a sort of the
+/// candidate groups.
+#[allow(clippy::type_complexity)]
+fn linear_groups(
+    parts: &[(Cow<'_, Monomial>, Rational)],
+    timed: &[Monomial],
+) -> Vec<(Monomial, Vec<(usize, Monomial, Rational)>)> {
+    let mut by_rest: BTreeMap<Monomial, Vec<(usize, Monomial, Rational)>> = BTreeMap::new();
+    for (k, ((m, c), t)) in parts.iter().zip(timed).enumerate() {
+        if !t.is_one() || m.factors().len() < 2 {
+            continue;
+        }
+        for &(u, x) in m.factors() {
+            if x == 1 && leading_constant(u) {
+                let u = Monomial::atom(u, 1);
+                by_rest
+                    .entry(m.div(&u))
+                    .or_default()
+                    .push((k, u, c.clone()));
+            }
+        }
+    }
+    let mut candidates: Vec<(Monomial, Vec<(usize, Monomial, Rational)>)> =
+        by_rest.into_iter().filter(|g| g.1.len() > 1).collect();
+    candidates.sort_by_key(|g| Reverse(g.1.len()));
+    let mut taken = vec![false; parts.len()];
+    let mut groups = Vec::new();
+    for (rest, members) in candidates {
+        let free: Vec<_> = members.into_iter().filter(|f| !taken[f.0]).collect();
+        if free.len() > 1 {
+            for f in &free {
+                taken[f.0] = true;
+            }
+            groups.push((rest, free));
+        }
+    }
+    groups
+}
+
+/// A sine or a cosine.
+fn is_trig(a: Atom) -> bool {
+    matches!(a.kind(), AtomKind::Sin(_) | AtomKind::Cos(_))
+}
+
 /// True when the monomial divides by something (a negative power).
 pub(super) fn has_divisor(m: &Monomial) -> bool {
     m.factors().iter().any(|f| f.1 < 0)
+}
+
+/// True when the monomial divides by constants, and by nothing else.
+fn has_constant_divisor(m: &Monomial) -> bool {
+    has_divisor(m) && m.factors().iter().all(|f| f.1 > 0 || leading_constant(f.0))
 }
 
 /// Whether a bracket's constant divisor is distributed over its terms
@@ -354,6 +498,11 @@ pub(super) fn has_divisor(m: &Monomial) -> bool {
 /// all divided by different constants go over their common denominator,
 /// H_G (I′ − I) cos θ/(I I′).
 pub(super) fn distributes(terms: &[PrintTerm<'_>]) -> bool {
+    distributes_over(terms.iter().map(|t| t.1))
+}
+
+/// [`distributes`] of the terms' monomials.
+pub(super) fn distributes_over<'a>(terms: impl ExactSizeIterator<Item = &'a Monomial>) -> bool {
     if terms.len() < 2 {
         return false;
     }
@@ -361,12 +510,13 @@ pub(super) fn distributes(terms: &[PrintTerm<'_>]) -> bool {
         let d: Vec<(Atom, i32)> = m.factors().iter().copied().filter(|f| f.1 < 0).collect();
         d.iter().all(|f| leading_constant(f.0)).then_some(d)
     };
-    let Some(first) = divisor(terms[0].1) else {
+    let mut terms = terms;
+    let Some(first) = terms.next().and_then(divisor) else {
         return false;
     };
     let (mut differ, mut undivided) = (false, first.is_empty());
-    for t in &terms[1..] {
-        let Some(d) = divisor(t.1) else { return false };
+    for t in terms {
+        let Some(d) = divisor(t) else { return false };
         differ |= d != first;
         undivided |= d.is_empty();
     }
@@ -376,32 +526,41 @@ pub(super) fn distributes(terms: &[PrintTerm<'_>]) -> bool {
 /// `c · factors` for a term of a distributed bracket: constant factors
 /// over a constant divisor, followed by rates, sin and cos, are written
 /// as a ratio in front, `(m g l/I′) sin θ`, as a textbook writes a solved
-/// form; a term of constants only is one fraction (`I L²/r²`).
+/// form, the number in the ratio (`(m g L/(4 a)) sin β`, `(2 m L²/a) φ̇²`,
+/// as presentation rule 10 writes a fraction); a term of constants only
+/// is one fraction (`I L²/r²`).
 pub(super) fn ratio_term(e: &mut Expr, factors: &[(Atom, i32)], c: &Rational) -> Id {
+    ratio_node(e, factors, c).unwrap_or_else(|| e.term_node(factors, c))
+}
+
+/// [`ratio_term`] when the term is a ratio of constants times something
+/// else; `None` otherwise.
+fn ratio_node(e: &mut Expr, factors: &[(Atom, i32)], c: &Rational) -> Option<Id> {
     type Factors = Vec<(Atom, i32)>;
     let (constants, rest): (Factors, Factors) =
         factors.iter().copied().partition(|f| leading_constant(f.0));
     let numerator = constants.iter().any(|f| f.1 > 0);
     let denominator = constants.iter().any(|f| f.1 < 0);
     if rest.is_empty() || !numerator || !denominator {
-        return e.term_node(factors, c);
+        return None;
     }
     let mut ids = Vec::new();
     let mag = c.abs();
+    let mut ratio: Vec<Id> = Vec::with_capacity(constants.len() + 1);
     if !mag.is_one() {
-        ids.push(e.push(Node::Num(mag)));
+        ratio.push(e.push(Node::Num(mag)));
     }
-    let ratio: Vec<Id> = constants.iter().map(|&(a, x)| e.atom_pow(a, x)).collect();
+    ratio.extend(constants.iter().map(|&(a, x)| e.atom_pow(a, x)));
     ids.push(e.mul(ratio));
     for &(a, x) in &rest {
         ids.push(e.atom_pow(a, x));
     }
     let m = e.mul(ids);
-    if c.is_negative() {
+    Some(if c.is_negative() {
         e.push(Node::Neg(m))
     } else {
         m
-    }
+    })
 }
 
 /// `c · factors` as [`Expr::term_node`] writes it, with each atom power

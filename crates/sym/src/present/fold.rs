@@ -14,8 +14,11 @@ use crate::rational::Rational;
 /// unchanged when no atom can be eliminated or every fold would leave more
 /// terms than `p` has: folding w := ψ̇ + a cos θ into a linearised
 /// b (ψ̇ + a) θ would bring back cos θ (b (w − a cos θ + a) θ), which reads
-/// as a term of higher order. Exact: the result equals `p` once `name` is
-/// replaced by `def`.
+/// as a term of higher order. Nor is the component the abbreviation
+/// defines folded into the abbreviation itself (ω_z = ω_z): a fold that
+/// leaves `name` alone, or one of its derivatives alone, is not made, and
+/// the definition is printed (ω_z = φ̇ cos θ + ψ̇). Exact: the result
+/// equals `p` once `name` is replaced by `def`.
 pub fn fold(p: &Poly, name: Atom, def: &Poly) -> Poly {
     let mut best: Option<Poly> = None;
     for (v, coef, c) in eliminable(def) {
@@ -32,11 +35,26 @@ pub fn fold(p: &Poly, name: Atom, def: &Poly) -> Poly {
             } if a.base() == v.base() && order >= v.order() => Some(v_expr.dt_n(order - v.order())),
             _ => None,
         });
-        if q.len() <= p.len() && best.as_ref().is_none_or(|b| q.len() < b.len()) {
+        if q.len() <= p.len()
+            && !is_the_abbreviation(&q, name)
+            && best.as_ref().is_none_or(|b| q.len() < b.len())
+        {
             best = Some(q);
         }
     }
     best.unwrap_or_else(|| p.clone())
+}
+
+/// Whether `q` is `name` alone, or one of its derivatives alone (ω_z, ω̇_z):
+/// what the component that defines the abbreviation folds into.
+fn is_the_abbreviation(q: &Poly, name: Atom) -> bool {
+    match q.terms() {
+        [(m, c)] => {
+            c.is_one()
+                && matches!(m.factors(), [(a, 1)] if a.base() == name.base() && a.order() >= name.order())
+        }
+        _ => false,
+    }
 }
 
 /// The atoms of `def` that occur in exactly one term, to the first power,
