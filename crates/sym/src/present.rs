@@ -230,7 +230,8 @@ fn split_by_content(ts: &[(Monomial, Rational)]) -> Option<Vec<Vec<(Monomial, Ra
     // Terms without rates are classed by whether their coefficient is
     // whole too: a half is never pulled over a bracket of doubles,
     // a (A_x − B_x) + (1/2) m g L sin β, not (1/2) (2 a (A_x − B_x) + …).
-    let mut by_degree: BTreeMap<(Reverse<i32>, bool), Vec<(Monomial, Rational)>> = BTreeMap::new();
+    type Class = (Reverse<i32>, bool);
+    let mut by_degree: BTreeMap<Class, Vec<(Monomial, Rational)>> = BTreeMap::new();
     for t in ts {
         let d = degree(&t.0);
         by_degree
