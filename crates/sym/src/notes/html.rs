@@ -22,6 +22,12 @@ use crate::label::latex_name;
 use crate::print;
 use crate::prose;
 
+/// Estimated width (characters of math, [`mathml::width`]) of a frame's
+/// angular velocity written as a row `(ω_x, ω_y, ω_z)` beyond which it is
+/// written as a column: what fits a phone's line (400 px) in the list of
+/// frames beside the frame's name.
+const FRAME_ROW_BUDGET: f32 = 30.0;
+
 /// The HTML backend.
 pub struct Html;
 
@@ -389,10 +395,20 @@ fn html_section(o: &mut String, number: &str, s: &Section, ids: &StepIds) {
                 None => String::new(),
             };
             let comps: Vec<String> = f.omega.iter().map(|e| mathml::expr(&e.rhs)).collect();
-            let body = format!(
-                "<msub><mi mathvariant=\"normal\">Ω</mi>{}</msub><mo>=</mo><mrow><mo>(</mo>{}<mo>)</mo></mrow>",
-                mathml::name(&f.name, 0),
+            // Components that fit a phone's line as a row, or else a column
+            // (an inline equation cannot break: it would scroll).
+            let row = format!(
+                "<mrow><mo>(</mo>{}<mo>)</mo></mrow>",
                 comps.join("<mo>,</mo>")
+            );
+            let value = if mathml::width(&row) <= FRAME_ROW_BUDGET {
+                row
+            } else {
+                mathml::matrix(&comps, 1)
+            };
+            let body = format!(
+                "<msub><mi mathvariant=\"normal\">Ω</mi>{}</msub><mo>=</mo>{value}",
+                mathml::name(&f.name, 0),
             );
             let latex = format!(
                 r"\Omega_{{{}}} = {}",
