@@ -41,13 +41,18 @@ impl ParticleCloud {
     pub fn try_from_particles(
         particles: impl IntoIterator<Item = (Vector3<f64>, f64)>,
     ) -> Result<Self, BodyError> {
+        let particles = particles.into_iter();
+        let n = particles.size_hint().0;
         let mut c = Self {
-            x: Vec::new(),
-            y: Vec::new(),
-            z: Vec::new(),
-            m: Vec::new(),
+            x: Vec::with_capacity(n),
+            y: Vec::with_capacity(n),
+            z: Vec::with_capacity(n),
+            m: Vec::with_capacity(n),
         };
-        for (i, (p, m)) in particles.into_iter().enumerate() {
+        for (i, (p, m)) in particles.enumerate() {
+            // The particle's name is formatted only for an error: clouds
+            // are built per draw in `verify`, and the name cost more than
+            // the checks.
             let what = || format!("particle {i}");
             for (field, value) in [("x", p.x), ("y", p.y), ("z", p.z)] {
                 if !value.is_finite() {
@@ -58,7 +63,7 @@ impl ParticleCloud {
                     });
                 }
             }
-            crate::mass::check_mass(&what(), m)?;
+            crate::mass::check_mass("", m).or_else(|_| crate::mass::check_mass(&what(), m))?;
             c.x.push(p.x);
             c.y.push(p.y);
             c.z.push(p.z);
@@ -207,6 +212,7 @@ impl ParticleCloud {
         (&self.x, &self.y, &self.z, &self.m)
     }
     /// Particle `i` as `(position, mass)`.
+    #[inline]
     pub fn particle(&self, i: usize) -> (Vector3<f64>, f64) {
         (Vector3::new(self.x[i], self.y[i], self.z[i]), self.m[i])
     }

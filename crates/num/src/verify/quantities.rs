@@ -250,7 +250,7 @@ fn frame(a: &Arg) -> usize {
 }
 
 fn mass(w: &World<'_>, a: &[Arg]) -> Out {
-    let m: f64 = w.particles(bodies(&a[0])).iter().map(|p| p.m).sum();
+    let m: f64 = w.particles(bodies(&a[0])).map(|p| p.m).sum();
     Ok((Measured::Scalar(m), m))
 }
 
@@ -287,23 +287,21 @@ fn angular_acceleration(w: &World<'_>, a: &[Arg]) -> Out {
 fn sum_vec(
     w: &World<'_>,
     b: Bodies,
-    f: impl Fn(&super::world::Particle) -> (Vector3<f64>, f64),
+    f: impl Fn(&super::world::Particle<'_>) -> (Vector3<f64>, f64),
 ) -> (Vector3<f64>, f64) {
-    w.particles(b)
-        .iter()
-        .fold((Vector3::zeros(), 0.0), |(s, m), p| {
-            let (v, mag) = f(p);
-            (s + v, m + mag)
-        })
+    w.particles(b).fold((Vector3::zeros(), 0.0), |(s, m), p| {
+        let (v, mag) = f(&p);
+        (s + v, m + mag)
+    })
 }
 
 fn sum_scalar(
     w: &World<'_>,
     b: Bodies,
-    f: impl Fn(&super::world::Particle) -> (f64, f64),
+    f: impl Fn(&super::world::Particle<'_>) -> (f64, f64),
 ) -> (f64, f64) {
-    w.particles(b).iter().fold((0.0, 0.0), |(s, m), p| {
-        let (v, mag) = f(p);
+    w.particles(b).fold((0.0, 0.0), |(s, m), p| {
+        let (v, mag) = f(&p);
         (s + v, m + mag)
     })
 }
@@ -405,7 +403,7 @@ fn coordinate(w: &World<'_>, a: &Arg) -> usize {
 fn generalized_force(w: &World<'_>, a: &[Arg]) -> Out {
     let k = coordinate(w, &a[1]);
     let (v, s) = sum_scalar(w, bodies(&a[0]), |p| {
-        (p.m * p.r[2].dot(&p.dr[k]), p.m * p.mag[2] * p.dr[k].norm())
+        (p.m * p.r[2].dot(&p.dr(k)), p.m * p.mag[2] * p.dr(k).norm())
     });
     Ok((Measured::Scalar(v), s))
 }
@@ -413,7 +411,7 @@ fn generalized_force(w: &World<'_>, a: &[Arg]) -> Out {
 fn generalized_momentum(w: &World<'_>, a: &[Arg]) -> Out {
     let k = coordinate(w, &a[1]);
     let (v, s) = sum_scalar(w, bodies(&a[0]), |p| {
-        (p.m * p.r[1].dot(&p.dr[k]), p.m * p.mag[1] * p.dr[k].norm())
+        (p.m * p.r[1].dot(&p.dr(k)), p.m * p.mag[1] * p.dr(k).norm())
     });
     Ok((Measured::Scalar(v), s))
 }
@@ -421,7 +419,7 @@ fn generalized_momentum(w: &World<'_>, a: &[Arg]) -> Out {
 fn generalized_weight(w: &World<'_>, a: &[Arg]) -> Out {
     let (g, k) = (w.gravity, coordinate(w, &a[1]));
     let (v, s) = sum_scalar(w, bodies(&a[0]), |p| {
-        (p.m * g.dot(&p.dr[k]), p.m * g.norm() * p.dr[k].norm())
+        (p.m * g.dot(&p.dr(k)), p.m * g.norm() * p.dr(k).norm())
     });
     Ok((Measured::Scalar(v), s))
 }
@@ -551,10 +549,10 @@ fn after_impulse(w: &World<'_>, a: &[Arg]) -> Result<[(Vector3<f64>, f64); 2], V
             .0;
     }
     let fhat = w.frames[fi][0] * local;
-    let m: f64 = ps.iter().map(|q| q.m).sum();
-    let g = ps.iter().map(|q| q.r[0] * q.m).sum::<Vector3<f64>>() / m;
+    let m: f64 = ps.clone().map(|q| q.m).sum();
+    let g = ps.clone().map(|q| q.r[0] * q.m).sum::<Vector3<f64>>() / m;
     let mut sys = Matrix3::zeros();
-    for q in &ps {
+    for q in ps {
         let rho = q.r[0] - g;
         for j in 0..3 {
             // ω = e_j: v = e_j × ρ, angular momentum m ρ × v.

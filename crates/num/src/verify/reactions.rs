@@ -109,7 +109,7 @@ fn components(w: &World<'_>, b: usize) -> Result<Vec<Component>, VerifyError> {
 pub(crate) fn reaction(w: &World<'_>, s: usize) -> Result<Reaction, VerifyError> {
     let d = w.d;
     let b = d.physics.supports[s].body;
-    let ps = w.particles(Bodies::One(b));
+    let ps: Vec<_> = w.particles(Bodies::One(b)).collect();
     let mass: f64 = ps.iter().map(|p| p.m).sum();
     // Moments about the particles' centroid: the arms stay small.
     let o = ps.iter().map(|p| p.r[0] * p.m).sum::<Vector3<f64>>() / mass;

@@ -19,19 +19,131 @@ use super::jet::{BINOMIAL, fro, generator};
 pub use super::jet::{
     MatJet, ORDERS, PointJet, VecJet, mat_mat, mat_t_vec, mat_vec, rotation_jet, vee,
 };
+use crate::ParticleCloud;
 use crate::bind::Values;
 
-/// One particle at the instant.
-#[derive(Clone, Debug)]
-pub struct Particle {
+/// One particle at the instant, placed as it is read: `r = r_P + R q`
+/// from its body's [`Placed`] and its position `q` in the body.
+#[derive(Clone, Copy, Debug)]
+pub struct Particle<'w> {
     /// Mass.
     pub m: f64,
     /// Position, velocity, acceleration (N's axes).
     pub r: [Vector3<f64>; 3],
     /// Magnitudes of the terms of each.
     pub mag: [f64; 3],
-    /// ∂r/∂q for each of the world's coordinates.
-    pub dr: Vec<Vector3<f64>>,
+    /// Position in the body (its axes, about its reference point).
+    q: Vector3<f64>,
+    body: &'w Placed<'w>,
+}
+
+impl Particle<'_> {
+    /// The virtual displacement `δr` for the world's `k`th coordinate
+    /// (see [`World::build`]).
+    pub fn dr(&self, k: usize) -> Vector3<f64> {
+        self.body.dr[k]
+            .iter()
+            .fold(Vector3::zeros(), |s, (c, dref, partial)| {
+                s + *c * (dref + partial * self.q)
+            })
+    }
+}
+
+/// One term `c · (∂r_P/∂x + ∂R/∂x q)` of a particle's virtual
+/// displacement: `c` the coordinate x's share ([`displacement`]), the
+/// reference point's and the attitude's partials in x.
+type DisplacementTerm = (f64, Vector3<f64>, Matrix3<f64>);
+
+/// A body at the instant: its particles (placed once, in its own axes, by
+/// the draw) and the motion that carries them — the reference point's jet
+/// and the frame's attitude jet. A world is built for every value a
+/// linearisation or a sign measures (tens of thousands per file), so the
+/// particles are not placed in N's axes until a quantity reads them.
+#[derive(Debug)]
+pub struct Placed<'d> {
+    cloud: &'d ParticleCloud,
+    /// The reference point's jet.
+    reference: PointJet,
+    /// The frame's attitude jet.
+    frame: MatJet,
+    /// Frobenius norms of the attitude jet's first three orders.
+    norms: [f64; 3],
+    /// For each of the world's coordinates, the terms its displacement
+    /// sums.
+    dr: Vec<Vec<DisplacementTerm>>,
+}
+
+impl<'d> Placed<'d> {
+    /// The number of particles.
+    pub fn len(&self) -> usize {
+        self.cloud.len()
+    }
+
+    /// Whether the body has no particles (never: a cloud is non-empty).
+    pub fn is_empty(&self) -> bool {
+        self.cloud.len() == 0
+    }
+
+    /// The particles, placed at the instant.
+    pub fn particles(&self) -> Particles<'_> {
+        Particles {
+            bodies: std::slice::from_ref(self),
+            next: 0,
+        }
+    }
+
+    /// Particle `k`, placed at the instant.
+    #[inline(always)]
+    fn particle(&self, k: usize) -> Particle<'_> {
+        let (q, m) = self.cloud.particle(k);
+        let (reference, rj, norms) = (&self.reference, &self.frame, &self.norms);
+        let size = q.norm();
+        Particle {
+            m,
+            r: std::array::from_fn(|n| reference.r[n] + rj[n] * q),
+            mag: std::array::from_fn(|n| reference.mag[n] + norms[n] * size),
+            q,
+            body: self,
+        }
+    }
+}
+
+/// The particles of consecutive bodies, each placed as it is read.
+#[derive(Clone, Debug)]
+pub struct Particles<'w> {
+    bodies: &'w [Placed<'w>],
+    /// The next particle of `bodies[0]`.
+    next: usize,
+}
+
+impl<'w> Iterator for Particles<'w> {
+    type Item = Particle<'w>;
+
+    #[inline]
+    fn next(&mut self) -> Option<Particle<'w>> {
+        loop {
+            let (b, rest) = self.bodies.split_first()?;
+            if self.next < b.len() {
+                self.next += 1;
+                return Some(b.particle(self.next - 1));
+            }
+            self.bodies = rest;
+            self.next = 0;
+        }
+    }
+
+    #[inline]
+    fn fold<A, F: FnMut(A, Particle<'w>) -> A>(self, init: A, mut f: F) -> A {
+        let mut acc = init;
+        let mut from = self.next;
+        for b in self.bodies {
+            for k in from..b.len() {
+                acc = f(acc, b.particle(k));
+            }
+            from = 0;
+        }
+        acc
+    }
 }
 
 /// The model at one instant.
@@ -43,8 +155,8 @@ pub struct World<'d> {
     pub frames: Vec<MatJet>,
     /// Point jets by name (declared points and body centres).
     pub points: HashMap<String, PointJet>,
-    /// The particles of each body.
-    pub bodies: Vec<Vec<Particle>>,
+    /// Each body with the motion that places its particles.
+    pub bodies: Vec<Placed<'d>>,
     /// Gravity in N's axes.
     pub gravity: Vector3<f64>,
     /// The coordinate the particles' ∂r/∂q is being computed for.
@@ -212,31 +324,30 @@ impl<'d> World<'d> {
         if atoms.is_empty() {
             return Ok(w);
         }
-        // ∂r/∂x of each particle (body by body) for each of `atoms`.
-        let of = |w: &World<'_>| -> Vec<Vec<Vector3<f64>>> {
+        // ∂r_P/∂x and ∂R/∂x of each body for each of `atoms`.
+        let of = |w: &World<'_>| -> Vec<(Vector3<f64>, Matrix3<f64>)> {
             w.bodies
                 .iter()
-                .map(|b| b.iter().map(|p| p.dr[0]).collect())
+                .map(|b| (b.dr[0][0].1, b.dr[0][0].2))
                 .collect()
         };
-        let mut partials: Vec<Vec<Vec<Vector3<f64>>>> = vec![of(&w)];
+        let mut partials: Vec<Vec<(Vector3<f64>, Matrix3<f64>)>> = vec![of(&w)];
         for x in atoms.iter().skip(1) {
             partials.push(of(&World::build_for(d, draw, values, Some(*x))?));
         }
         for (bi, b) in w.bodies.iter_mut().enumerate() {
-            for (pi, p) in b.iter_mut().enumerate() {
-                p.dr = displacements
-                    .iter()
-                    .map(|disp| {
-                        disp.iter()
-                            .map(|(x, c)| {
-                                let k = atoms.iter().position(|a| a == x).expect("collected");
-                                *c * partials[k][bi][pi]
-                            })
-                            .sum()
-                    })
-                    .collect();
-            }
+            b.dr = displacements
+                .iter()
+                .map(|disp| {
+                    disp.iter()
+                        .map(|(x, c)| {
+                            let k = atoms.iter().position(|a| a == x).expect("collected");
+                            let (dref, partial) = partials[k][bi];
+                            (*c, dref, partial)
+                        })
+                        .collect()
+                })
+                .collect();
         }
         Ok(w)
     }
@@ -330,27 +441,18 @@ impl<'d> World<'d> {
         for (bi, b) in ph.bodies.iter().enumerate() {
             let reference = w.point(&b.point, draw, values, &partials, &mut point_partials, 0)?;
             let dref = point_partials[&b.point];
-            let rj = &w.frames[b.frame];
-            let norms: [f64; 3] = std::array::from_fn(|n| fro(&rj[n]));
-            let cloud = draw.body(bi);
-            let mut ps = Vec::with_capacity(cloud.len());
-            for k in 0..cloud.len() {
-                let (q, m) = cloud.particle(k);
-                let r: [Vector3<f64>; 3] = std::array::from_fn(|n| reference.r[n] + rj[n] * q);
-                let mag: [f64; 3] = std::array::from_fn(|n| reference.mag[n] + norms[n] * q.norm());
-                ps.push(Particle {
-                    m,
-                    r,
-                    mag,
-                    // Only a world built for a coordinate carries ∂r/∂q
-                    // (one allocation per particle spared in the others).
-                    dr: match coordinate {
-                        Some(_) => vec![dref + partials[b.frame] * q],
-                        None => Vec::new(),
-                    },
-                });
-            }
-            w.bodies.push(ps);
+            let rj = w.frames[b.frame];
+            w.bodies.push(Placed {
+                cloud: draw.body(bi),
+                reference,
+                frame: rj,
+                norms: std::array::from_fn(|n| fro(&rj[n])),
+                // Only a world built for a coordinate carries ∂r/∂q.
+                dr: match coordinate {
+                    Some(_) => vec![vec![(1.0, dref, partials[b.frame])]],
+                    None => Vec::new(),
+                },
+            });
         }
         Ok(w)
     }
@@ -458,11 +560,15 @@ impl<'d> World<'d> {
         Ok(jet)
     }
 
-    /// The particles of `bodies`.
-    pub fn particles(&self, bodies: Bodies) -> Vec<&Particle> {
-        match bodies {
-            Bodies::One(i) => self.bodies[i].iter().collect(),
-            Bodies::System => self.bodies.iter().flatten().collect(),
+    /// The particles of `bodies`, placed at the instant.
+    pub fn particles(&self, bodies: Bodies) -> Particles<'_> {
+        let range = match bodies {
+            Bodies::One(i) => i..i + 1,
+            Bodies::System => 0..self.bodies.len(),
+        };
+        Particles {
+            bodies: &self.bodies[range],
+            next: 0,
         }
     }
 }
