@@ -10,6 +10,8 @@ mod derived;
 mod derived_model;
 // scene/derived.rs and models/derived.rs: scenes of kind "derived".
 mod derived_scene;
+// systems/derived/first_order.rs: first-order scenes in (q, u), the gyrostat with its attitude.
+mod derived_first_order;
 // scene/derived.rs: a derived scene's `[[body]]` tables bind the derivation's symbols.
 mod derived_bodies;
 // stability/: eigenvalue sweeps of linearised equations (hdot stability).

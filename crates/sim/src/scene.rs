@@ -113,8 +113,8 @@ impl Scene {
             SceneKind::Free { w0, .. } | SceneKind::HeavyTop { w0, .. } => w0.norm(),
             SceneKind::FixedAxis { y0, .. } => y0[1].abs(),
             SceneKind::Derived(ds) => {
-                let n = ds.y0.len() / 2;
-                ds.y0[n..].iter().fold(0.0, |m: f64, v| m.max(v.abs()))
+                let (n, base) = (ds.model.dof(), ds.model.carried_base());
+                ds.y0[n..base].iter().fold(0.0, |m: f64, v| m.max(v.abs()))
             }
         }
     }
@@ -286,12 +286,17 @@ impl Scene {
             }
             SceneKind::FixedAxis { .. } => ("initial.rate".to_string(), "rate".to_string()),
             SceneKind::Derived(ds) => {
-                let n = ds.y0.len() / 2;
-                let k = (0..n)
-                    .max_by(|&a, &b| ds.y0[n + a].abs().total_cmp(&ds.y0[n + b].abs()))
-                    .unwrap_or(0);
-                let name = ds.model.coordinates()[k].name().to_string();
-                (format!("initial.rates.{name}"), name)
+                let n = ds.model.dof();
+                let k = (n..ds.model.carried_base())
+                    .max_by(|&a, &b| ds.y0[a].abs().total_cmp(&ds.y0[b].abs()))
+                    .unwrap_or(n);
+                if ds.model.is_first_order() {
+                    let name = ds.model.speeds()[k - n].name().to_string();
+                    (format!("initial.speeds.{name}"), name)
+                } else {
+                    let name = ds.model.coordinates()[k - n].name().to_string();
+                    (format!("initial.rates.{name}"), name)
+                }
             }
         };
         Err(SimError::BadField {
@@ -306,6 +311,8 @@ impl Scene {
                     &key,
                     if field.starts_with("initial.rates") {
                         "rates"
+                    } else if field.starts_with("initial.speeds") {
+                        "speeds"
                     } else {
                         ""
                     }

@@ -500,7 +500,12 @@ fn derived_motion(
 ) -> Motion {
     let n = ds.model.dof();
     let col = |k: usize| rows.iter().map(|r| r[k]).collect::<Vec<_>>();
-    let coordinates = (1..=n).map(|k| series(&names[k], col(k))).collect();
+    // The carried angles (after the rates) are coordinates too.
+    let base = ds.model.carried_base();
+    let coordinates = (1..=n)
+        .chain(base + 1..names.len())
+        .map(|k| series(&names[k], col(k)))
+        .collect();
     let rates = match &ds.frame {
         Some(f) => {
             let w: Vec<Vector3<f64>> = rows
@@ -523,7 +528,7 @@ fn derived_motion(
         None => Plot {
             title: "rates of the coordinates".into(),
             unit: String::new(),
-            series: (n + 1..=2 * n).map(|k| series(&names[k], col(k))).collect(),
+            series: (n + 1..=base).map(|k| series(&names[k], col(k))).collect(),
             note: None,
         },
     };

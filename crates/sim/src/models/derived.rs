@@ -3,9 +3,10 @@
 //! ([`DerivedSystem`]), with the same recording, reference run and drift
 //! report as the built-in models; its tolerance is fitted on the scene.
 //!
-//! The state has `2 × dof` components, a number known only when the scene
-//! is read, while the integrators take fixed-size arrays; `with_len`
-//! dispatches on it once, up to [`MAX_DOF`] coordinates.
+//! The state has `2 × dof` components (or the coordinates and speeds of a
+//! first-order model), a number known only when the scene is read, while
+//! the integrators take fixed-size arrays; `with_len` dispatches on it
+//! once, up to `2 ×` [`MAX_DOF`] components.
 
 use nalgebra::Matrix3;
 
@@ -18,19 +19,25 @@ use crate::scene::{DerivedScene, Scene};
 use crate::systems::derived::{Conserved, DerivedModel, DerivedSystem, MAX_DOF};
 use crate::{Limits, Method, SimError, Stats, Step, integrate};
 
-/// Calls `$f::<N>(args)` for the state length `$len` (2, 4, …, 2·MAX_DOF).
+/// Calls `$f::<N>(args)` for the state length `$len` (2 to 2·MAX_DOF).
 macro_rules! with_len {
     ($len:expr, $f:ident ( $($arg:expr),* )) => {
         match $len {
             2 => $f::<2>($($arg),*),
+            3 => $f::<3>($($arg),*),
             4 => $f::<4>($($arg),*),
+            5 => $f::<5>($($arg),*),
             6 => $f::<6>($($arg),*),
+            7 => $f::<7>($($arg),*),
             8 => $f::<8>($($arg),*),
+            9 => $f::<9>($($arg),*),
             10 => $f::<10>($($arg),*),
+            11 => $f::<11>($($arg),*),
             12 => $f::<12>($($arg),*),
             n => Err(SimError::Derived {
                 message: format!(
-                    "a state of {n} components; derived models have 1 to {MAX_DOF} coordinates"
+                    "a state of {n} components; derived models have 2 to {} components",
+                    2 * MAX_DOF
                 ),
             }),
         }
@@ -253,6 +260,9 @@ pub fn error_measure(ds: &DerivedScene) -> String {
             "√(angle² + |Δω|²) of frame {f} at T, as for the built-in models (the angle of the rotation \
              between the two attitudes, ω in the frame's axes)"
         ),
+        None if ds.model.is_first_order() => {
+            "largest |Δq| plus largest |Δu| over the largest |u| at T (no frame named)".into()
+        }
         None => "largest |Δq| plus largest |Δq̇| over the largest |q̇| at T (no frame named)".into(),
     }
 }
@@ -270,10 +280,11 @@ pub fn distance(ds: &DerivedScene, t: f64, y: &[f64], r: &[f64]) -> f64 {
     {
         return rotation_angle(&(a.transpose() * b)).hypot((wa - wb).norm());
     }
-    let n = y.len() / 2;
+    // The carried angles follow from the rest: not counted.
+    let (n, base) = (m.dof(), m.carried_base());
     let dq = (0..n).map(|i| (y[i] - r[i]).abs()).fold(0.0, f64::max);
-    let scale = r[n..].iter().map(|v| v.abs()).fold(0.0, f64::max);
-    let dv = (n..2 * n).map(|i| (y[i] - r[i]).abs()).fold(0.0, f64::max);
+    let scale = r[n..base].iter().map(|v| v.abs()).fold(0.0, f64::max);
+    let dv = (n..base).map(|i| (y[i] - r[i]).abs()).fold(0.0, f64::max);
     dq + dv / scale.max(f64::MIN_POSITIVE)
 }
 

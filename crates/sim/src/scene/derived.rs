@@ -11,6 +11,9 @@
 //! file = "heavy-top"                 # a bundled derivation's name, or a path (with / or .toml) from this scene's folder
 //! accelerations = "accelerations"    # a step solved for [q1'', q2'', …]; or:
 //! # mass_matrix = "mass_matrix", forcing = "forcing", coordinates = ["phi", "theta", "psi"]
+//! # or, first order in generalized speeds (state (q, u), [initial] speeds):
+//! # rates = "rates" (a step solved for [u1', …]), or mass_matrix/forcing in [u1', …],
+//! # and dependent = "dependent" (a step solved for the dependent speeds)
 //! frame = "R"                        # the body frame whose attitude and ω are reported
 //! [constants]
 //! I = 0.02
@@ -46,13 +49,14 @@ use super::bind::{bind_scene_bodies, check_gravity};
 use super::raw::{RawDerivation, RawInitial};
 use super::text::line_of_field;
 use crate::SimError;
-use crate::systems::derived::{DerivedModel, DerivedSpec, EquationsSpec, TimeFunction};
+use crate::systems::derived::{DerivedModel, DerivedSpec, EquationsSpec, SpeedRates, TimeFunction};
 
 /// The `[initial]` values of a derived scene.
 #[derive(Debug, Default, Clone)]
 struct RawStart {
     coordinates: BTreeMap<String, f64>,
     rates: BTreeMap<String, f64>,
+    speeds: BTreeMap<String, f64>,
 }
 
 /// Finds a derivation a scene names: `Ok((shown path, text))`.
@@ -92,7 +96,7 @@ pub struct DerivedScene {
     pub model: Rc<DerivedModel>,
     /// What the scene asked for (constants, inputs, steps).
     pub spec: DerivedSpec,
-    /// The initial state `(q, q̇)`.
+    /// The initial state `(q, q̇)`, or `(q, u)` for a first-order model.
     pub y0: Vec<f64>,
     /// The frame whose attitude and angular velocity are reported.
     pub frame: Option<String>,
@@ -104,13 +108,10 @@ pub struct DerivedScene {
 }
 
 impl DerivedScene {
-    /// The state's component names: each coordinate, then each rate (`theta'`).
+    /// The state's component names: each coordinate, then each rate
+    /// (`theta'`) or, in a first-order model, each speed (`u_1`).
     pub fn state_names(&self) -> Vec<String> {
-        let q = self.model.coordinates();
-        q.iter()
-            .map(|c| c.name().to_string())
-            .chain(q.iter().map(|c| format!("{}'", c.name())))
-            .collect()
+        self.model.state_names()
     }
 }
 
@@ -168,6 +169,7 @@ pub(super) fn read(
     let start = RawStart {
         coordinates: initial.coordinates.unwrap_or_default(),
         rates: initial.rates.unwrap_or_default(),
+        speeds: initial.speeds.unwrap_or_default(),
     };
     parse(
         tables.derivation,
@@ -228,12 +230,17 @@ fn parse(
     })?;
     let mut equations = match (
         raw.accelerations,
+        raw.rates,
         raw.mass_matrix,
         raw.forcing,
         raw.coordinates,
     ) {
-        (Some(step), None, None, None) => EquationsSpec::Explicit { step },
-        (None, Some(mass_matrix), Some(forcing), coordinates) => EquationsSpec::MassMatrix {
+        (Some(step), None, None, None, None) => EquationsSpec::Explicit { step },
+        (None, Some(step), None, None, None) => EquationsSpec::FirstOrder {
+            rates: SpeedRates::Explicit { step },
+            dependent: raw.dependent.clone(),
+        },
+        (None, None, Some(mass_matrix), Some(forcing), coordinates) => EquationsSpec::MassMatrix {
             mass_matrix,
             forcing,
             coordinates: coordinates.unwrap_or_default(),
@@ -241,9 +248,9 @@ fn parse(
         _ => {
             return Err(bad(
                 "derivation",
-                "give either `accelerations` (a step solved for the accelerations) or \
-                 `mass_matrix` and `forcing` (and, if the mass-matrix step does not list its \
-                 unknowns, `coordinates`)"
+                "give either `accelerations` (a step solved for the accelerations), `rates` (a step \
+                 solved for the generalized speeds' rates) or `mass_matrix` and `forcing` (and, if \
+                 the mass-matrix step does not list its unknowns, `coordinates`)"
                     .into(),
             ));
         }
@@ -259,6 +266,23 @@ fn parse(
     let (path, text) = resolve(&raw.file).map_err(|e| bad("derivation.file", e))?;
     let d = hdot_sym::derivation::load_str(&path.display().to_string(), &text)
         .map_err(|e| bad("derivation.file", e.to_string()))?;
+    // A mass-matrix form in the speeds' rates ([u1', …]) is of first order.
+    if let EquationsSpec::MassMatrix {
+        mass_matrix,
+        forcing,
+        coordinates,
+    } = &equations
+        && coordinates.is_empty()
+        && crate::systems::derived::in_speed_rates(&d, mass_matrix)
+    {
+        equations = EquationsSpec::FirstOrder {
+            rates: SpeedRates::MassMatrix {
+                mass_matrix: mass_matrix.clone(),
+                forcing: forcing.clone(),
+            },
+            dependent: raw.dependent.clone(),
+        };
+    }
     if let EquationsSpec::MassMatrix {
         mass_matrix,
         coordinates,
@@ -267,6 +291,29 @@ fn parse(
     {
         coordinates_of_step(&d, mass_matrix, coordinates)
             .map_err(|e| bad("derivation.coordinates", e))?;
+    }
+    let first_order = matches!(equations, EquationsSpec::FirstOrder { .. });
+    if raw.dependent.is_some() && !first_order {
+        return Err(bad(
+            "derivation.dependent",
+            "dependent speeds belong to a first-order model: name the speeds' rates with `rates` \
+             (or a mass_matrix and forcing in [u1', …])"
+                .into(),
+        ));
+    }
+    let (given, wanted) = if first_order {
+        (
+            "initial.rates",
+            "`initial.speeds` (the independent generalized speeds)",
+        )
+    } else {
+        ("initial.speeds", "`initial.rates` (the coordinates' rates)")
+    };
+    if (first_order && !start.rates.is_empty()) || (!first_order && !start.speeds.is_empty()) {
+        return Err(bad(
+            given,
+            format!("the state of these equations is given by `initial.coordinates` and {wanted}"),
+        ));
     }
     let declared: Vec<&str> = d
         .symbols
@@ -323,6 +370,7 @@ fn parse(
     for (k, v) in start.rates {
         values.insert(format!("{k}'"), v);
     }
+    values.extend(start.speeds);
     let y0 = model.initial_state(&values).map_err(|e| match e {
         SimError::Derived { message } => bad("initial", message),
         e => e,

@@ -43,6 +43,7 @@ pub(super) struct RawInitial {
     pub(super) rate: Option<f64>,
     pub(super) coordinates: Option<BTreeMap<String, f64>>,
     pub(super) rates: Option<BTreeMap<String, f64>>,
+    pub(super) speeds: Option<BTreeMap<String, f64>>,
 }
 
 #[derive(Debug, Deserialize, Clone, Copy)]
@@ -86,6 +87,8 @@ pub(super) struct RawMotor {
 pub(super) struct RawDerivation {
     pub(super) file: String,
     pub(super) accelerations: Option<String>,
+    pub(super) rates: Option<String>,
+    pub(super) dependent: Option<String>,
     pub(super) mass_matrix: Option<String>,
     pub(super) forcing: Option<String>,
     pub(super) coordinates: Option<Vec<String>>,

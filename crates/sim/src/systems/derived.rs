@@ -1,7 +1,10 @@
 //! Equations of motion taken from a derivation file: the accelerations a
 //! derivation solved for (`solve(eqs, [q1'', …])`), or its mass-matrix
 //! form M(q) q̈ = f(q, q̇, t) (`mass_matrix`, `forcing`), compiled with
-//! `hdot-num`'s [`Tape`] and integrated as `y = (q, q̇)`.
+//! `hdot-num`'s [`Tape`] and integrated as `y = (q, q̇)`; or a first-order
+//! form in generalized speeds, the kinematic equations q̇ = f(q, u) with
+//! the speeds' rates solved for or in mass-matrix form, integrated as
+//! `y = (q, u)` (`derived/first_order.rs`).
 //!
 //! What is integrated is exactly what was derived: the polynomials of the
 //! steps, with abbreviations expanded, evaluated at the state. Each atom of
@@ -32,10 +35,12 @@ use crate::{SimError, System};
 pub use super::time_function::TimeFunction;
 
 mod build;
+mod carried;
 mod compile;
+mod first_order;
 mod small_solve;
 
-pub use build::step_coordinates;
+pub use build::{in_speed_rates, step_coordinates};
 use compile::{Compiled, Source};
 use small_solve::solve_small;
 
@@ -57,6 +62,35 @@ pub enum EquationsSpec {
         forcing: String,
         /// The coordinates q (not their accelerations), in column order.
         coordinates: Vec<String>,
+    },
+    /// A first-order form in generalized speeds: the derivation's
+    /// kinematic equations q̇ = f(q, u) and the speeds' rates; the state
+    /// is `(q, u)`, q in the order of `[kinematics]`, u the independent
+    /// speeds in the order the rates' step solves for them.
+    FirstOrder {
+        /// Where the speeds' rates are.
+        rates: SpeedRates,
+        /// A step solved for the dependent speeds in the others
+        /// (`solve(constraints, [u4, u5])`), replaced by their values.
+        dependent: Option<String>,
+    },
+}
+
+/// Where a first-order model's speed rates are.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SpeedRates {
+    /// A step `solve(eqs, [u1', u2', …])`.
+    Explicit {
+        /// The step's name.
+        step: String,
+    },
+    /// Steps `mass_matrix(eqs, [u1', …])` and `forcing(eqs, [u1', …])`:
+    /// M(q) u̇ = f(q, u).
+    MassMatrix {
+        /// The step holding M.
+        mass_matrix: String,
+        /// The step holding f.
+        forcing: String,
     },
 }
 
@@ -113,8 +147,9 @@ pub fn energy_reason(s: &hdot_sym::derivation::Step) -> Option<String> {
 
 #[derive(Debug, Clone)]
 enum Form {
+    /// q̈ (second order), or q̇ then u̇ (first order).
     Explicit(Compiled),
-    /// M (row-major) and f, the outputs of one tape.
+    /// M (row-major) and f, the outputs of one tape; then q̇ in a first-order model.
     MassMatrix(Compiled),
 }
 
@@ -129,6 +164,13 @@ struct Divisor {
 #[derive(Debug)]
 pub struct DerivedModel {
     coordinates: Vec<Atom>,
+    /// The independent generalized speeds of a first-order state
+    /// `(q, u)`, in state order; empty for a second-order state `(q, q̇)`.
+    speeds: Vec<Atom>,
+    /// Angles a `[motion]` rule's rate ties to the state (a frame turns by
+    /// them), carried at the end of the state, and their rates.
+    carried: Vec<Atom>,
+    carried_rates: Option<Compiled>,
     form: Form,
     inputs: Vec<(String, TimeFunction)>,
     divisors: Vec<Divisor>,
@@ -209,9 +251,20 @@ pub const MAX_DOF: usize = 6;
 
 /// # Queries
 impl DerivedModel {
-    /// The coordinates q, in state order (`y = (q, q̇)`).
+    /// The coordinates q, in state order (`y = (q, q̇)` or `(q, u)`).
     pub fn coordinates(&self) -> &[Atom] {
         &self.coordinates
+    }
+
+    /// The independent generalized speeds of a first-order model, in
+    /// state order (`y = (q, u)`); empty for a second-order model.
+    pub fn speeds(&self) -> &[Atom] {
+        &self.speeds
+    }
+
+    /// Whether the state is `(q, u)` (first order) rather than `(q, q̇)`.
+    pub fn is_first_order(&self) -> bool {
+        !self.speeds.is_empty()
     }
 
     /// The number of coordinates.
@@ -219,47 +272,87 @@ impl DerivedModel {
         self.coordinates.len()
     }
 
+    /// The angles carried at the end of the state: a frame turns by them
+    /// and a `[motion]` rule gives their rate (`psi' = -(L/r)*phi'`).
+    pub fn carried(&self) -> &[Atom] {
+        &self.carried
+    }
+
+    /// Where the carried angles start in the state: after `(q, q̇)` or
+    /// `(q, u)`.
+    pub fn carried_base(&self) -> usize {
+        if self.is_first_order() {
+            self.coordinates.len() + self.speeds.len()
+        } else {
+            2 * self.coordinates.len()
+        }
+    }
+
+    /// The number of the state's components: `2 × dof`, or the
+    /// coordinates and speeds of a first-order model, and the carried
+    /// angles.
+    pub fn state_len(&self) -> usize {
+        self.carried_base() + self.carried.len()
+    }
+
+    /// The state's component names: each coordinate, then each rate
+    /// (`theta'`) or each speed (`u_1`), then each carried angle.
+    pub fn state_names(&self) -> Vec<String> {
+        let q = self.coordinates.iter().map(|c| c.name().to_string());
+        let names: Vec<String> = if self.is_first_order() {
+            q.chain(self.speeds.iter().map(|u| u.name().to_string()))
+                .collect()
+        } else {
+            q.chain(self.coordinates.iter().map(|c| format!("{}'", c.name())))
+                .collect()
+        };
+        names
+            .into_iter()
+            .chain(self.carried.iter().map(|a| a.name().to_string()))
+            .collect()
+    }
+
     /// The quantities reported as drifts.
     pub fn conserved(&self) -> &[Conserved] {
         &self.conserved
     }
 
-    /// The initial state from values of q and q̇ by coordinate name
-    /// (`theta`, `theta'`); every one must be given.
+    /// The initial state from values of q and q̇ (or u) by name (`theta`,
+    /// `theta'`, `u_1`); every one must be given, except the carried
+    /// angles (0 unless given).
     pub fn initial_state(&self, values: &BTreeMap<String, f64>) -> Result<Vec<f64>, SimError> {
-        let n = self.dof();
-        let mut y = vec![0.0; 2 * n];
+        let names = self.state_names();
+        let mut y = vec![0.0; names.len()];
         // A misspelt name is reported as such, before the name it misses.
         for key in values.keys() {
-            let base = key.trim_end_matches('\'');
-            if !self.coordinates.iter().any(|c| c.name() == base) || key.len() - base.len() > 1 {
+            if !names.contains(key) {
+                let what = if self.is_first_order() {
+                    "a coordinate or an independent speed"
+                } else {
+                    "a coordinate or its rate"
+                };
                 return Err(err(format!(
-                    "initial value for `{key}`, which is not a coordinate or its rate"
+                    "initial value for `{key}`, which is not {what} (the state: {})",
+                    names.join(", ")
                 )));
             }
         }
-        for (i, q) in self.coordinates.iter().enumerate() {
-            for (k, key) in [q.name().to_string(), format!("{}'", q.name())]
-                .into_iter()
-                .enumerate()
-            {
-                let v = values.get(&key).copied().ok_or_else(|| {
-                    err(format!(
-                        "the initial value of `{key}` is missing (give every coordinate and its rate: {})",
-                        self.coordinates
-                            .iter()
-                            .map(|c| format!("{0}, {0}'", c.name()))
-                            .collect::<Vec<_>>()
-                            .join(", ")
-                    ))
-                })?;
-                if !v.is_finite() {
-                    return Err(err(format!(
-                        "the initial value of `{key}` is not finite ({v})"
-                    )));
-                }
-                y[k * n + i] = v;
+        let base = self.carried_base();
+        for (k, (slot, key)) in y.iter_mut().zip(&names).enumerate() {
+            // A carried angle starts at 0 unless given.
+            let v = values.get(key).copied().or((k >= base).then_some(0.0));
+            let v = v.ok_or_else(|| {
+                err(format!(
+                    "the initial value of `{key}` is missing (give every component of the state: {})",
+                    names.join(", ")
+                ))
+            })?;
+            if !v.is_finite() {
+                return Err(err(format!(
+                    "the initial value of `{key}` is not finite ({v})"
+                )));
             }
+            *slot = v;
         }
         Ok(y)
     }
@@ -282,7 +375,7 @@ impl DerivedModel {
         for &(slot, s) in &g.other {
             into[slot] = match s {
                 Source::Coordinate(i) => y[i],
-                Source::Rate(i) => y[n + i],
+                Source::Rate(i) | Source::Speed(i) => y[n + i],
                 Source::SinOf(i) => y[i].sin(),
                 Source::CosOf(i) => y[i].cos(),
                 Source::Value(v) => v,
@@ -305,9 +398,28 @@ impl DerivedModel {
         c.tape.eval_slots(&mut buf, out, false);
     }
 
-    /// The accelerations q̈ at `(t, y)`; `None` when the mass matrix cannot
-    /// be factorised there.
+    /// The rate of the state, `ẏ` at `(t, y)`: `(q̇, q̈)` or `(q̇, u̇)`;
+    /// `None` when the mass matrix cannot be factorised there.
+    pub fn rates(&self, t: f64, y: &[f64], dy: &mut [f64]) -> Option<()> {
+        if let Some(c) = &self.carried_rates {
+            let base = self.carried_base();
+            self.eval(c, t, y, &mut dy[base..base + self.carried.len()]);
+        }
+        if self.is_first_order() {
+            return self.first_order_rates(t, y, dy);
+        }
+        let n = self.dof();
+        dy[..n].copy_from_slice(&y[n..2 * n]);
+        self.accelerations(t, y, &mut dy[n..2 * n])
+    }
+
+    /// The accelerations q̈ at `(t, y)` of a second-order model; `None`
+    /// when the mass matrix cannot be factorised there, or the model is of
+    /// first order (see [`DerivedModel::rates`]).
     pub fn accelerations(&self, t: f64, y: &[f64], qdd: &mut [f64]) -> Option<()> {
+        if self.is_first_order() {
+            return None;
+        }
         let n = self.dof();
         match &self.form {
             Form::Explicit(c) => {
@@ -358,8 +470,13 @@ impl DerivedModel {
             }
         }
         if let Form::MassMatrix(mf) = &self.form {
-            let n = self.dof();
-            let mut mm = vec![0.0; n * n + n];
+            // M is over the speeds' rates in a first-order model.
+            let n = if self.is_first_order() {
+                self.speeds.len()
+            } else {
+                self.dof()
+            };
+            let mut mm = vec![0.0; mf.tape.outputs()];
             self.eval(mf, t, y, &mut mm);
             let sv = DMatrix::from_row_slice(n, n, &mm[..n * n]).singular_values();
             let (lo, hi) = (sv.min(), sv.max());
@@ -436,7 +553,8 @@ impl DerivedModel {
     }
 }
 
-/// The model as an ODE on `y = (q, q̇)` with `N = 2 × dof` components.
+/// The model as an ODE on `y = (q, q̇)` with `N = 2 × dof` components, or
+/// on `y = (q, u)` (first order) with the coordinates and speeds.
 pub struct DerivedSystem<'a, const N: usize>(pub &'a DerivedModel);
 
 impl<const N: usize> System<N> for DerivedSystem<'_, N> {
@@ -445,10 +563,9 @@ impl<const N: usize> System<N> for DerivedSystem<'_, N> {
     }
 
     fn rhs(&self, t: f64, y: &[f64; N]) -> [f64; N] {
-        let n = N / 2;
         let mut dy = [0.0; N];
-        dy[..n].copy_from_slice(&y[n..]);
-        if self.0.accelerations(t, y, &mut dy[n..]).is_none() {
+        if self.0.rates(t, y, &mut dy).is_none() {
+            let n = self.0.dof();
             dy[n..].fill(f64::NAN);
         }
         dy

@@ -13,7 +13,8 @@ use nalgebra::Vector3;
 use super::compile::{Resolver, Source};
 use super::{
     Conserved, DIVISOR_BOUND, DerivedModel, DerivedSpec, Divisor, EquationsSpec, Form,
-    FrameAttitude, FrameChain, MAX_DOF, TimeFunction, at, energy_reason, err, in_steps,
+    FrameAttitude, FrameChain, MAX_DOF, SpeedRates, TimeFunction, at, carried, energy_reason, err,
+    first_order, in_steps,
 };
 use crate::SimError;
 
@@ -28,17 +29,38 @@ impl DerivedModel {
                 mass_matrix,
                 forcing,
                 ..
+            }
+            | EquationsSpec::FirstOrder {
+                rates:
+                    SpeedRates::MassMatrix {
+                        mass_matrix,
+                        forcing,
+                    },
+                ..
             } => (
                 "derivation.mass_matrix",
                 vec![mass_matrix.as_str(), forcing.as_str()],
             ),
+            EquationsSpec::FirstOrder {
+                rates: SpeedRates::Explicit { step },
+                ..
+            } => ("derivation.rates", vec![step.as_str()]),
         };
-        let (coordinates, outputs) = equations(d, &spec.equations).map_err(|e| at(field, e))?;
+        let (coordinates, speeds, mut replace, outputs) = match &spec.equations {
+            EquationsSpec::FirstOrder { rates, dependent } => {
+                let e = first_order::equations(d, rates, dependent.as_deref())?;
+                (e.coordinates, e.speeds, e.replace, e.outputs)
+            }
+            e => {
+                let (q, out) = equations(d, e).map_err(|e| at(field, e))?;
+                (q, Vec::new(), Vec::new(), out)
+            }
+        };
         let n = coordinates.len();
-        if n == 0 || n > MAX_DOF {
+        if n == 0 || (speeds.is_empty() && n > MAX_DOF) {
             let field = match &spec.equations {
-                EquationsSpec::Explicit { .. } => field,
                 EquationsSpec::MassMatrix { .. } => "derivation.coordinates",
+                _ => field,
             };
             return Err(at(
                 field,
@@ -53,23 +75,81 @@ impl DerivedModel {
             .iter()
             .map(|(k, v)| (k.clone(), v.clone()))
             .collect();
+        // Angles a [motion] rule's rate ties to the state, carried after
+        // it; their rates replace theirs wherever they occur.
+        let input_names: Vec<&str> = inputs.iter().map(|(k, _)| k.as_str()).collect();
+        let carried = carried::carried_angles(d, &coordinates, &speeds, &input_names);
+        let carried_base = if speeds.is_empty() {
+            2 * n
+        } else {
+            n + speeds.len()
+        };
+        let carried_rates: Vec<Poly> = {
+            let cx = Resolver {
+                d,
+                spec,
+                coordinates: &coordinates,
+                speeds: &speeds,
+                replace: &replace,
+                carried: &[],
+                carried_base,
+                inputs: &inputs,
+            };
+            carried.iter().map(|(_, rate)| cx.replaced(rate)).collect()
+        };
+        if carried_base + carried.len() > 2 * MAX_DOF {
+            return Err(at(
+                field,
+                err(format!(
+                    "{}: a state of {} components with the angles its [motion] rules carry; a derived \
+                     model has at most {}",
+                    d.path,
+                    carried_base + carried.len(),
+                    2 * MAX_DOF
+                )),
+            ));
+        }
+        replace.extend(
+            carried
+                .iter()
+                .zip(&carried_rates)
+                .map(|((a, _), v)| (a.derivative().expect("a time symbol"), v.clone())),
+        );
+        let carried: Vec<Atom> = carried.into_iter().map(|(a, _)| a).collect();
         let cx = Resolver {
             d,
             spec,
             coordinates: &coordinates,
+            speeds: &speeds,
+            replace: &replace,
+            carried: &carried,
+            carried_base,
             inputs: &inputs,
         };
         let polys = unfold(d, &outputs);
-        let (divisors, singular) = divisors(&polys, spec, &coordinates);
+        let replaced: Vec<Poly> = polys.iter().map(|p| cx.replaced(p)).collect();
+        let (divisors, singular) = divisors(&replaced, spec, &coordinates);
         let compiled = cx.compile(&polys).map_err(|e| in_steps(&steps, e))?;
         let form = match &spec.equations {
-            EquationsSpec::Explicit { .. } => Form::Explicit(compiled),
-            EquationsSpec::MassMatrix { .. } => Form::MassMatrix(compiled),
+            EquationsSpec::Explicit { .. }
+            | EquationsSpec::FirstOrder {
+                rates: SpeedRates::Explicit { .. },
+                ..
+            } => Form::Explicit(compiled),
+            _ => Form::MassMatrix(compiled),
         };
         let conserved = conserved(d, spec, &cx)?;
         let frames = frames(d, &cx);
+        let carried_rates = if carried.is_empty() {
+            None
+        } else {
+            Some(cx.compile(&carried_rates).map_err(|e| at(field, e))?)
+        };
         Ok(DerivedModel {
             coordinates,
+            speeds,
+            carried,
+            carried_rates,
             form,
             inputs,
             divisors,
@@ -87,7 +167,7 @@ fn unfold(d: &Derivation, v: &[Poly]) -> Vec<Poly> {
 }
 
 /// The step called `name`, or an error listing the steps.
-fn step<'d>(d: &'d Derivation, name: &str) -> Result<&'d Step, SimError> {
+pub(super) fn step<'d>(d: &'d Derivation, name: &str) -> Result<&'d Step, SimError> {
     d.steps.iter().find(|s| s.name == name).ok_or_else(|| {
         err(format!(
             "{}: no step named `{name}` (steps: {})",
@@ -133,36 +213,7 @@ fn equations(d: &Derivation, spec: &EquationsSpec) -> Result<(Vec<Atom>, Vec<Pol
             forcing,
             coordinates,
         } => {
-            let sm = step(mass_matrix)?;
-            let sf = step(forcing).map_err(|e| at("derivation.forcing", e))?;
-            let n = coordinates.len();
-            let m = match &sm.value {
-                Value::Array(rows) if rows.len() == n && rows.iter().all(|r| r.len() == n) => {
-                    rows.iter().flatten().cloned().collect::<Vec<_>>()
-                }
-                Value::Matrix(m) if n == 3 => m.0.iter().flatten().cloned().collect(),
-                v => {
-                    return Err(err(format!(
-                        "{}: step `{mass_matrix}` is {}, not an {n}×{n} mass matrix",
-                        d.path,
-                        v.describe()
-                    )));
-                }
-            };
-            let f = match &sf.value {
-                Value::List { items, .. } if items.len() == n => items.clone(),
-                Value::Vector(v, _) if n == 3 => v.0.to_vec(),
-                v => {
-                    return Err(at(
-                        "derivation.forcing",
-                        err(format!(
-                            "{}: step `{forcing}` is {}, not a forcing list of {n}",
-                            d.path,
-                            v.describe()
-                        )),
-                    ));
-                }
-            };
+            let mf = mass_matrix_and_forcing(d, mass_matrix, forcing, coordinates.len())?;
             let coords = coordinates
                 .iter()
                 .map(|c| match d.symbols.get(c) {
@@ -176,9 +227,53 @@ fn equations(d: &Derivation, spec: &EquationsSpec) -> Result<(Vec<Atom>, Vec<Pol
                     )),
                 })
                 .collect::<Result<Vec<_>, _>>()?;
-            (coords, m.into_iter().chain(f).collect())
+            (coords, mf)
+        }
+        EquationsSpec::FirstOrder { .. } => {
+            unreachable!("a first-order form is read by first_order.rs")
         }
     })
+}
+
+/// The entries of an n × n mass matrix (step `mass_matrix`, row-major)
+/// followed by the n items of the forcing (step `forcing`): the outputs
+/// of one tape, so that the two share their inputs, sines and products.
+pub(super) fn mass_matrix_and_forcing(
+    d: &Derivation,
+    mass_matrix: &str,
+    forcing: &str,
+    n: usize,
+) -> Result<Vec<Poly>, SimError> {
+    let sm = step(d, mass_matrix)?;
+    let sf = step(d, forcing).map_err(|e| at("derivation.forcing", e))?;
+    let m = match &sm.value {
+        Value::Array(rows) if rows.len() == n && rows.iter().all(|r| r.len() == n) => {
+            rows.iter().flatten().cloned().collect::<Vec<_>>()
+        }
+        Value::Matrix(m) if n == 3 => m.0.iter().flatten().cloned().collect(),
+        v => {
+            return Err(err(format!(
+                "{}: step `{mass_matrix}` is {}, not an {n}×{n} mass matrix",
+                d.path,
+                v.describe()
+            )));
+        }
+    };
+    let f = match &sf.value {
+        Value::List { items, .. } if items.len() == n => items.clone(),
+        Value::Vector(v, _) if n == 3 => v.0.to_vec(),
+        v => {
+            return Err(at(
+                "derivation.forcing",
+                err(format!(
+                    "{}: step `{forcing}` is {}, not a forcing list of {n}",
+                    d.path,
+                    v.describe()
+                )),
+            ));
+        }
+    };
+    Ok(m.into_iter().chain(f).collect())
 }
 
 /// The sines and cosines of coordinates the equations divide by, and the
@@ -325,9 +420,21 @@ fn frames(d: &Derivation, cx: &Resolver<'_>) -> Vec<(String, Result<FrameChain, 
 
 /// The coordinates a step `mass_matrix(eqs, [q1'', q2'', …])` (or
 /// `forcing(…)`) was written for, in the order of its columns: `None`
-/// when the step's formula is not such a call with its unknowns in
+/// when the step's formula is not such a call with second derivatives in
 /// brackets.
 pub fn step_coordinates(d: &Derivation, step: &str) -> Option<Vec<String>> {
+    let unknowns = step_unknowns(d, step)?;
+    unknowns
+        .into_iter()
+        .map(|(name, primes)| (primes == 2).then_some(name))
+        .collect()
+}
+
+/// The unknowns of a step `mass_matrix(eqs, [x1', x2'', …])` (or
+/// `forcing(…)`): each name and its number of primes, in the order of the
+/// columns; `None` when the step's formula is not such a call with its
+/// unknowns in brackets.
+pub(super) fn step_unknowns(d: &Derivation, step: &str) -> Option<Vec<(String, u32)>> {
     use hdot_sym::parse::{AstKind, parse};
     let s = d.steps.iter().find(|s| s.name == step)?;
     let ast = parse(&s.formula).ok()?;
@@ -343,8 +450,19 @@ pub fn step_coordinates(d: &Derivation, step: &str) -> Option<Vec<String>> {
     items
         .iter()
         .map(|a| match &a.kind {
-            AstKind::Name { name, primes: 2 } => Some(name.clone()),
+            AstKind::Name { name, primes } if *primes > 0 => Some((name.clone(), *primes)),
             _ => None,
         })
         .collect()
+}
+
+/// Whether a step `mass_matrix(eqs, [u1', …])` is written for the rates
+/// of generalized speeds (a first-order mass-matrix form).
+pub fn in_speed_rates(d: &Derivation, step: &str) -> bool {
+    let speeds = d.speeds();
+    step_unknowns(d, step).is_some_and(|u| {
+        !u.is_empty()
+            && u.iter()
+                .all(|(name, primes)| *primes == 1 && speeds.contains(&Atom::time(name, 0)))
+    })
 }

@@ -1,7 +1,10 @@
 //! Compiling the polynomials of derived equations to a [`Tape`]: where
-//! each atom's value comes from (a coordinate, its rate, sin or cos of
-//! one, a constant folded in, or an applied input), and how the tape's
-//! inputs are gathered from `(t, y)` once planned.
+//! each atom's value comes from (a coordinate, its rate or a generalized
+//! speed, sin or cos of a coordinate, a constant folded in, or an applied
+//! input), and how the tape's inputs are gathered from `(t, y)` once
+//! planned. In a first-order model the coordinates' rates and the
+//! dependent speeds are first replaced by what the kinematic equations
+//! and the constraints give for them (the resolver's `replace`).
 
 use hdot_num::eval::Tape;
 use hdot_sym::atom::{Atom, AtomKind};
@@ -16,8 +19,10 @@ use crate::SimError;
 pub(super) enum Source {
     /// `y[i]`: coordinate i.
     Coordinate(usize),
-    /// `y[n + i]`: the rate of coordinate i.
+    /// `y[n + i]`: the rate of coordinate i (a second-order state).
     Rate(usize),
+    /// `y[n + k]`: generalized speed k (a first-order state `(q, u)`).
+    Speed(usize),
     /// sin of coordinate i.
     SinOf(usize),
     /// cos of coordinate i.
@@ -61,7 +66,7 @@ impl Gather {
         for (slot, &s) in sources.iter().enumerate() {
             match s {
                 Source::Coordinate(i) => g.copies.push((slot, i)),
-                Source::Rate(i) => g.copies.push((slot, n + i)),
+                Source::Rate(i) | Source::Speed(i) => g.copies.push((slot, n + i)),
                 Source::SinOf(i) | Source::CosOf(i) => {
                     let k = match g.trig.iter().position(|t| t.0 == i) {
                         Some(k) => k,
@@ -87,11 +92,41 @@ pub(super) struct Resolver<'a> {
     pub(super) d: &'a Derivation,
     pub(super) spec: &'a DerivedSpec,
     pub(super) coordinates: &'a [Atom],
+    /// The generalized speeds of a first-order state, in state order
+    /// (empty for a second-order state `(q, q̇)`).
+    pub(super) speeds: &'a [Atom],
+    /// Atoms replaced before compiling (a first-order model's q̇ = f(q, u)
+    /// and dependent speeds), each by a polynomial free of them.
+    pub(super) replace: &'a [(Atom, Poly)],
+    /// Angles carried in the state after the coordinates and their rates
+    /// or speeds (see `carried.rs`), the first at `y[carried_base]`.
+    pub(super) carried: &'a [Atom],
+    pub(super) carried_base: usize,
     pub(super) inputs: &'a [(String, TimeFunction)],
 }
 
 impl Resolver<'_> {
+    /// `p` with the atoms of `replace` replaced.
+    pub(super) fn replaced(&self, p: &Poly) -> Poly {
+        if self.replace.is_empty() {
+            return p.clone();
+        }
+        p.subst(&mut |a| {
+            self.replace
+                .iter()
+                .find(|(x, _)| *x == a)
+                .map(|(_, v)| v.clone())
+        })
+    }
+
     pub(super) fn compile(&self, polys: &[Poly]) -> Result<Compiled, SimError> {
+        let replaced: Vec<Poly>;
+        let polys = if self.replace.is_empty() {
+            polys
+        } else {
+            replaced = polys.iter().map(|p| self.replaced(p)).collect();
+            &replaced
+        };
         // Constants (and sin, cos of constant angles) are folded into the
         // coefficients: only the state and the inputs are read per
         // evaluation. A constant without a value stays an input, and its
@@ -115,6 +150,14 @@ impl Resolver<'_> {
 
     pub(super) fn source(&self, a: Atom) -> Result<Source, SimError> {
         let coord = |q: Atom| self.coordinates.iter().position(|&c| c == q);
+        let speed = |u: Atom| self.speeds.iter().position(|&c| c == u);
+        let first_order = !self.speeds.is_empty();
+        let carried = |q: Atom| {
+            self.carried
+                .iter()
+                .position(|&c| c == q)
+                .map(|k| self.carried_base + k)
+        };
         let input = |q: Atom| self.inputs.iter().position(|(n, _)| n == q.name());
         let constant = |q: Atom| -> Result<f64, SimError> {
             self.spec.constants.get(q.name()).copied().ok_or_else(|| {
@@ -130,30 +173,39 @@ impl Resolver<'_> {
             AtomKind::Var { order: 0, .. } if coord(a).is_some() => {
                 Source::Coordinate(coord(a).expect("checked"))
             }
-            AtomKind::Var { order: 1, .. } if coord(a.base()).is_some() => {
+            AtomKind::Var { order: 0, .. } if carried(a).is_some() => {
+                Source::Coordinate(carried(a).expect("checked"))
+            }
+            AtomKind::Var { order: 0, .. } if speed(a).is_some() => {
+                Source::Speed(speed(a).expect("checked"))
+            }
+            AtomKind::Var { order: 1, .. } if !first_order && coord(a.base()).is_some() => {
                 Source::Rate(coord(a.base()).expect("checked"))
             }
             AtomKind::Var { order: 0, .. } if input(a).is_some() => {
                 Source::Input(input(a).expect("checked"))
             }
             AtomKind::Var { .. } => {
-                return Err(at(
-                    "inputs",
-                    err(format!(
-                        "{}: `{a}` is neither a coordinate, its rate, nor an input given as a function of t: \
-                     the equations of motion must be in q and q̇ (coordinates: {})",
-                        self.d.path,
-                        self.coordinates
-                            .iter()
-                            .map(|c| c.name())
-                            .collect::<Vec<_>>()
-                            .join(", ")
-                    )),
-                ));
+                let names = |v: &[Atom]| v.iter().map(|c| c.name()).collect::<Vec<_>>().join(", ");
+                let why = if first_order {
+                    format!(
+                        "`{a}` is neither a coordinate, an independent speed, nor an input given as a function of t: \
+                         the equations of a first-order model must be in q and u (coordinates: {}; speeds: {})",
+                        names(self.coordinates),
+                        names(self.speeds)
+                    )
+                } else {
+                    format!(
+                        "`{a}` is neither a coordinate, its rate, nor an input given as a function of t: \
+                         the equations of motion must be in q and q̇ (coordinates: {})",
+                        names(self.coordinates)
+                    )
+                };
+                return Err(at("inputs", err(format!("{}: {why}", self.d.path))));
             }
             AtomKind::Sin(q) | AtomKind::Cos(q) => {
                 let sin = matches!(a.kind(), AtomKind::Sin(_));
-                if let Some(i) = coord(q) {
+                if let Some(i) = coord(q).or_else(|| carried(q)) {
                     if sin {
                         Source::SinOf(i)
                     } else {
