@@ -150,9 +150,9 @@ fn every_method_that_applies_integrates_the_gyrostat() {
         };
         match method {
             Method::Split2 | Method::Split4 => {
-                let e = run::plan(&scene, &req)
-                    .err()
-                    .expect("a splitting is refused");
+                let Err(e) = run::plan(&scene, &req) else {
+                    panic!("a splitting is refused")
+                };
                 assert!(e.to_string().contains("derived"), "{e}");
             }
             _ => {
