@@ -4,6 +4,9 @@
 // Shared named proptest strategies.
 mod strategies;
 
+// The Whipple bicycle's linearized equations against the published benchmark.
+mod bicycle;
+
 // The hand-written right-hand sides against the derived equations.
 mod derived;
 // systems/derived.rs: equations of motion from derivation files, integrated.

@@ -21,6 +21,7 @@ mod kane;
 mod labels;
 mod laurent;
 mod lecturer;
+mod linearize;
 mod notes;
 mod presentation;
 mod snapshots;

@@ -37,6 +37,7 @@ mod frames;
 mod labels;
 mod loads;
 mod multibody;
+mod operating;
 pub mod ops;
 pub mod physics;
 mod presentation;

@@ -4,15 +4,16 @@
 //! body frames (with dependent speeds eliminated through constraints
 //! linear in the speeds), the generalized active forces of gravity and the
 //! generalized inertia forces, written as −(F_r + F_r*) = 0 for each
-//! independent speed.
+//! independent speed; exactly, or to first order about an operating point
+//! (the constraints and that expansion are `constraints.rs`).
 
-use super::mass_matrix::linear_system;
-use super::solve::solve_system;
+use super::constraints::{Linear, coordinates_arg, eliminate};
 use super::velocity::{Speedmap, linear_in_speeds};
 use super::{Call, Op, coefficient};
 use crate::atom::Atom;
 use crate::derivation::context::R;
 use crate::derivation::multibody::Load;
+use crate::derivation::operating::OperatingPoint;
 use crate::derivation::physics::Body;
 use crate::derivation::value::Value;
 use crate::parse::AstKind;
@@ -21,38 +22,66 @@ use crate::vector::{Mat3, Vec3};
 
 pub(crate) const KANE: Op = Op {
     names: &["kane"],
-    signature: "kane([u1, u2, …]), kane([u1, …], constraints, [u4, …])",
+    signature: "kane([u1, u2, …]), kane([u1, …], constraints, [u4, …]), kane([u1, …], constraints, [u4, …], [q4, …]), kane(…, q = q0, u = u0, …)",
     doc: "Kane's equations of the declared bodies for the listed (independent) generalized speeds: for each u_r, \
           Σ (v_G,r · (m a_G − m g) + ω_r · (I_G α + ω × I_G ω)), where v_G,r and ω_r are the partial velocities \
           of each mass centre and body frame and g is `gravity`, less v_P,r · F and ω_r · T of each `[[load]]` \
           (= −(F_r + F_r*), zero along the motion); \
           velocities are written in the speeds through `[kinematics]`. With constraints (a vector or `list` \
           that vanishes, linear in the speeds, such as `rolling(B, P)`) the dependent speeds listed last are \
-          solved for and eliminated. A list, one equation per independent speed, linear in their rates",
+          solved for and eliminated; a constraint free of the speeds is a configuration constraint f(q) = 0, whose \
+          rate joins the velocity constraints, with its dependent coordinate listed after the dependent speeds. \
+          With an operating point `q = value, …` (as `linearize`), the equations to first order about it: \
+          velocities to first order in the coordinates, the dependent speeds solved at the operating point and \
+          corrected to first order, the dependent coordinates by implicit differentiation of the configuration \
+          constraints. A list, one equation per independent speed, linear in their rates",
     eval,
 };
 
 fn eval(c: &Call<'_, '_>) -> R<Value> {
-    if c.args.len() != 1 {
-        c.arity(3)?;
-    }
     let cx = c.cx;
+    let positional = c
+        .args
+        .iter()
+        .take_while(|a| !matches!(a.kind, AstKind::Assign { .. }))
+        .count();
+    if !matches!(positional, 1 | 3 | 4) {
+        return c.err(
+            c.span,
+            format!(
+                "`kane` takes the speeds, then optionally the constraints, the dependent speeds and the dependent \
+                 coordinates, then optionally an operating point `q = value, …`; found {positional} argument{} \
+                 before the operating point",
+                if positional == 1 { "" } else { "s" }
+            ),
+        );
+    }
     if cx.speeds.is_empty() {
         return c.err(
             c.span,
             "Kane's method needs generalized speeds: declare [symbols] speeds and a [kinematics] table",
         );
     }
+    let op = OperatingPoint::read(c, &c.args[positional..])?;
+    let lin = (!op.is_empty()).then(|| Linear { c, op });
     let us = speeds_arg(c, 0, &[])?;
-    let sp = match c.args.len() {
-        3 => {
-            let deps = speeds_arg(c, 2, &us)?;
+    let (sp, coordinates) = if positional >= 3 {
+        let deps = speeds_arg(c, 2, &us)?;
+        let qdeps = if positional == 4 {
+            coordinates_arg(c, 3)?
+        } else {
+            Vec::new()
+        };
+        let e = eliminate(c, &deps, &qdeps, lin.as_ref())?;
+        (
             Speedmap {
                 c,
-                dependent: dependent_speeds(c, &deps)?,
-            }
-        }
-        _ => Speedmap::plain(c),
+                dependent: e.speeds,
+            },
+            e.coordinates,
+        )
+    } else {
+        (Speedmap::plain(c), Vec::new())
     };
     if cx.physics.bodies.is_empty() {
         return c.err(
@@ -62,23 +91,45 @@ fn eval(c: &Call<'_, '_>) -> R<Value> {
     }
     let mut eqs = vec![Poly::zero(); us.len()];
     for b in &cx.physics.bodies {
-        let terms = body_terms(&sp, b, &us)?;
+        let terms = body_terms(&sp, b, &us, lin.as_ref())?;
         for (e, t) in eqs.iter_mut().zip(terms) {
             *e = &*e + &t;
         }
     }
     for l in &cx.loads {
-        let terms = load_terms(&sp, l, &us)?;
+        let terms = load_terms(&sp, l, &us, lin.as_ref())?;
         for (e, t) in eqs.iter_mut().zip(terms) {
             *e = &*e - &t;
         }
+    }
+    if let Some(lin) = &lin {
+        // The dependent coordinates' deviations, by implicit
+        // differentiation of the configuration constraints.
+        eqs = eqs
+            .iter()
+            .map(|e| {
+                lin.full(e).map(|e| {
+                    e.subst(&mut |a| {
+                        coordinates
+                            .iter()
+                            .find(|(q, _)| *q == a)
+                            .map(|(_, v)| v.clone())
+                    })
+                })
+            })
+            .collect::<R<Vec<_>>>()?;
     }
     Ok(Value::list(eqs))
 }
 
 /// A `[[load]]`'s generalized active force for each speed: v_P,r · F for a
 /// force at P, ω_r · T for a torque on a frame.
-fn load_terms(sp: &Speedmap<'_, '_, '_>, l: &Load, us: &[Atom]) -> R<Vec<Poly>> {
+fn load_terms(
+    sp: &Speedmap<'_, '_, '_>,
+    l: &Load,
+    us: &[Atom],
+    lin: Option<&Linear<'_, '_, '_>>,
+) -> R<Vec<Poly>> {
     let cx = sp.c.cx;
     let (v, f) = match l {
         Load::Force {
@@ -105,10 +156,17 @@ fn load_terms(sp: &Speedmap<'_, '_, '_>, l: &Load, us: &[Atom]) -> R<Vec<Poly>> 
     linear_in_speeds(sp.c, &v.0, "a loaded point's or frame's velocity")?;
     unlisted(sp, &v, us, "a load")?;
     let f = f.map(|p| sp.poly(p));
-    Ok(us
-        .iter()
-        .map(|&u| v.map(|p| coefficient(p, u)).dot(&f))
-        .collect())
+    let Some(lin) = lin else {
+        return Ok(us
+            .iter()
+            .map(|&u| v.map(|p| coefficient(p, u)).dot(&f))
+            .collect());
+    };
+    let v = lin.vec(&v, Linear::positional)?;
+    let f = lin.vec(&f, Linear::full)?;
+    us.iter()
+        .map(|&u| lin.full(&v.map(|p| coefficient(p, u)).dot(&f)))
+        .collect()
 }
 
 /// An error when a declared speed that is neither listed nor dependent
@@ -155,54 +213,14 @@ fn speeds_arg(c: &Call<'_, '_>, i: usize, taken: &[Atom]) -> R<Vec<Atom>> {
     Ok(us)
 }
 
-/// The constraints (argument 1) solved for the dependent speeds `deps`.
-fn dependent_speeds(c: &Call<'_, '_>, deps: &[Atom]) -> R<Vec<(Atom, Poly)>> {
-    let span = c.args[1].span;
-    let v = c.value(1)?;
-    let Some(eqs) = v.equations() else {
-        return c.err(
-            span,
-            format!(
-                "the constraints are a vector or a list that vanishes, found {}",
-                v.describe()
-            ),
-        );
-    };
-    let plain = Speedmap::plain(c);
-    let eqs: Vec<Poly> = eqs
-        .iter()
-        .map(|p| plain.poly(p))
-        .filter(|p| !p.is_zero())
-        .collect();
-    if let Some(a) = eqs.iter().flat_map(Poly::atoms).find(|a| a.order() > 0) {
-        return c.err(
-            span,
-            format!(
-                "`{a}` occurs in the constraints: they are written in the coordinates and the speeds (give `{}` a kinematic equation)",
-                a.base()
-            ),
-        );
-    }
-    let at = |msg: String| c.cx.at(c.base, span, msg);
-    linear_in_speeds(c, &eqs, "a constraint").map_err(|e| at(e.message))?;
-    if eqs.len() != deps.len() {
-        return Err(at(format!(
-            "{} independent constraint equation{} for {} dependent speed{}: give one dependent speed per constraint",
-            eqs.len(),
-            if eqs.len() == 1 { "" } else { "s" },
-            deps.len(),
-            if deps.len() == 1 { "" } else { "s" },
-        )));
-    }
-    let (m, f) = linear_system(&eqs, deps).map_err(at)?;
-    let x = solve_system(&m, &f)
-        .map_err(|e| at(format!("the dependent speeds cannot be eliminated: {e}")))?;
-    Ok(deps.iter().copied().zip(x).collect())
-}
-
 /// Body `b`'s share of each speed's equation: v_G,r · (m a_G − m g) +
 /// ω_r · (I_G α + ω × I_G ω).
-fn body_terms(sp: &Speedmap<'_, '_, '_>, b: &Body, us: &[Atom]) -> R<Vec<Poly>> {
+fn body_terms(
+    sp: &Speedmap<'_, '_, '_>,
+    b: &Body,
+    us: &[Atom],
+    lin: Option<&Linear<'_, '_, '_>>,
+) -> R<Vec<Poly>> {
     let c = sp.c;
     let cx = c.cx;
     let name = &b.name;
@@ -243,8 +261,22 @@ fn body_terms(sp: &Speedmap<'_, '_, '_>, b: &Body, us: &[Atom]) -> R<Vec<Poly>> 
             ),
         );
     }
-    let ag = sp.vec(&vg.dt().add(&w.cross(&vg)), "")?;
-    let alpha = sp.vec(&w.dt(), "")?;
+    // About an operating point: velocities to first order in the
+    // coordinates (exact in the speeds, so that the partial velocities are
+    // first order too), accelerations and the rest to first order in all.
+    let (w, vg) = match lin {
+        Some(lin) => (
+            lin.vec(&w, Linear::positional)?,
+            lin.vec(&vg, Linear::positional)?,
+        ),
+        None => (w, vg),
+    };
+    let mut ag = sp.vec(&vg.dt().add(&w.cross(&vg)), "")?;
+    let mut alpha = sp.vec(&w.dt(), "")?;
+    if let Some(lin) = lin {
+        ag = lin.vec(&ag, Linear::full)?;
+        alpha = lin.vec(&alpha, Linear::full)?;
+    }
     let ig = if b.inertia_about_centre || r.is_zero() {
         b.inertia.clone()
     } else {
@@ -259,18 +291,25 @@ fn body_terms(sp: &Speedmap<'_, '_, '_>, b: &Body, us: &[Atom]) -> R<Vec<Poly>> 
         b.inertia.add(&shift.map(|p| -p))
     };
     let iw = ig.mul_vec(&w);
-    let hdot = ig.mul_vec(&alpha).add(&w.cross(&iw));
+    let mut hdot = ig.mul_vec(&alpha).add(&w.cross(&iw));
     let mut force = ag.scale(&m);
     if let Some((g, gf)) = &cx.physics.gravity {
         let gi = cx.frame_index(gf).expect("gravity's frame exists");
         force = force.sub(&sp.express(g.clone(), gi, bi)?.scale(&m));
     }
-    Ok(us
-        .iter()
+    if let Some(lin) = lin {
+        hdot = lin.vec(&hdot, Linear::full)?;
+        force = lin.vec(&force.map(|p| cx.unfold(p)), Linear::full)?;
+    }
+    us.iter()
         .map(|&u| {
             let vr: Vec3 = vg.map(|p| coefficient(p, u));
             let wr: Vec3 = w.map(|p| coefficient(p, u));
-            &vr.dot(&force) + &wr.dot(&hdot)
+            let e = &vr.dot(&force) + &wr.dot(&hdot);
+            match lin {
+                Some(lin) => lin.full(&e),
+                None => Ok(e),
+            }
         })
-        .collect())
+        .collect()
 }

@@ -1,16 +1,22 @@
-//! `linearize(x)`: first order in the symbols declared small.
+//! `linearize(x)`: first order in the symbols declared small; and
+//! `linearize(x, q = q0, u = u0, …)`: first order about an operating point.
 
 use super::{Call, Op};
 use crate::atom::AtomKind;
 use crate::derivation::context::R;
+use crate::derivation::operating::OperatingPoint;
 use crate::derivation::value::Value;
+use crate::parse::AstKind;
 use crate::poly::Poly;
 
 pub(crate) const LINEARIZE: Op = Op {
     names: &["linearize"],
-    signature: "linearize(x), linearize(x, e_1)",
+    signature: "linearize(x), linearize(x, e_1), linearize(x, q = q0, u = u0, …)",
     doc: "keep terms of first order in the symbols declared `small` (an undeclared one is an error); a small angle \
-          counts as first order under sin and cos (sin ε → ε, cos ε → 1)",
+          counts as first order under sin and cos (sin ε → ε, cos ε → 1). With `name = value` arguments, the \
+          first-order Taylor polynomial about that operating point, f(x₀) + Σ ∂f/∂x(x₀) (x − x₀), in the listed \
+          coordinates, speeds and rates (values in constants; a rate of a listed symbol is 0 there unless listed; \
+          symbols not listed are held as they are)",
     eval,
 };
 
@@ -19,6 +25,12 @@ pub(crate) const LINEARIZE: Op = Op {
 fn eval(c: &Call<'_, '_>) -> R<Value> {
     if c.args.is_empty() {
         return c.err(c.span, "linearize(x) needs an expression");
+    }
+    if c.args[1..]
+        .iter()
+        .any(|a| matches!(a.kind, AstKind::Assign { .. }))
+    {
+        return about(c);
     }
     let mut small = Vec::new();
     for (i, a) in c.args.iter().enumerate().skip(1) {
@@ -62,4 +74,29 @@ fn eval(c: &Call<'_, '_>) -> R<Value> {
             (order <= 1).then(|| (m.clone(), c.clone()))
         }))
     }))
+}
+
+/// `linearize(x, q = q0, …)`: the Taylor polynomial of first order about
+/// the operating point.
+fn about(c: &Call<'_, '_>) -> R<Value> {
+    let op = OperatingPoint::read(c, &c.args[1..])?;
+    let v = c.value(0)?;
+    let mut failed = None;
+    let out = v.map(&mut |p| {
+        let p = c.cx.unfold(p);
+        op.first_order(&p, &|_| true).unwrap_or_else(|a| {
+            failed.get_or_insert(a);
+            p
+        })
+    });
+    match failed {
+        Some(a) => c.err(
+            c.span,
+            format!(
+                "`{a}` cannot be expanded about its operating value: give an angle the value 0 or a constant \
+                 symbol, and divide by no sine or cosine that vanishes there"
+            ),
+        ),
+        None => Ok(out),
+    }
 }

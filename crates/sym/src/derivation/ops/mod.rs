@@ -10,6 +10,7 @@
 
 mod angvel;
 mod coeff;
+mod constraints;
 mod dt;
 mod express;
 mod in_speeds;
@@ -20,6 +21,7 @@ mod list;
 mod mass_matrix;
 mod matrix;
 mod partial;
+mod position;
 mod sign;
 mod solve;
 mod subst;
@@ -67,6 +69,7 @@ pub(crate) static OPS: &[&Op] = &[
     &partial::PARTIAL,
     &lagrange::LAGRANGE,
     &in_speeds::IN_SPEEDS,
+    &position::POSITION,
     &velocity::VELOCITY,
     &velocity::ROLLING,
     &kane::KANE,

@@ -1,0 +1,159 @@
+//! An operating point — the values of coordinates, speeds and rates along
+//! a steady motion (`phi = 0, u_6 = -v/r_R`), read from `name = value`
+//! arguments — and the first-order Taylor expansion of a polynomial about
+//! it, f(x₀) + Σ ∂f/∂x(x₀) (x − x₀), shared by `linearize` and the
+//! linearized form of `kane`.
+
+use crate::atom::{Atom, AtomKind};
+use crate::derivation::context::R;
+use crate::derivation::ops::Call;
+use crate::parse::{Ast, AstKind};
+use crate::poly::Poly;
+
+/// The values of the listed symbols along a steady motion. A symbol's
+/// rates of higher order than a listed one are zero there (the values are
+/// constants): `phi = 0` gives φ̇ = φ̈ = 0, `u = -v/r` gives u̇ = 0.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct OperatingPoint {
+    /// Each listed symbol (a time symbol of any order) with its value, an
+    /// expression in constants.
+    pub values: Vec<(Atom, Poly)>,
+}
+
+impl OperatingPoint {
+    /// Reads the `name = value` arguments `args` of a call; an error at
+    /// the argument when a name is not a time symbol, is listed twice, or
+    /// its value is not an expression in constants.
+    pub fn read(c: &Call<'_, '_>, args: &[Ast]) -> R<OperatingPoint> {
+        let mut values: Vec<(Atom, Poly)> = Vec::with_capacity(args.len());
+        for r in args {
+            let AstKind::Assign {
+                name,
+                primes,
+                name_span,
+                value,
+            } = &r.kind
+            else {
+                return c.err(
+                    r.span,
+                    "expected an operating value `name = value` (such as phi = 0 or u_6 = -v/r_R)",
+                );
+            };
+            let a =
+                c.cx.symbols
+                    .atom(name, *primes, *name_span)
+                    .map_err(|e| c.cx.at(c.base, e.span, e.message))?;
+            if !a.is_time_dependent() {
+                return c.err(
+                    *name_span,
+                    format!(
+                        "`{name}` is a constant: an operating point gives values to coordinates, speeds and rates"
+                    ),
+                );
+            }
+            if values.iter().any(|(b, _)| *b == a) {
+                return c.err(*name_span, format!("`{a}` is given twice"));
+            }
+            let v = c.cx.unfold(&c.cx.scalar(value, c.base)?);
+            if let Some(t) = v.atoms().into_iter().find(|t| t.is_time_dependent()) {
+                return c.err(
+                    value.span,
+                    format!(
+                        "an operating value is written in constants, found `{t}`: the steady motion's values are fixed"
+                    ),
+                );
+            }
+            values.push((a, v));
+        }
+        Ok(OperatingPoint { values })
+    }
+
+    /// Whether no symbol is listed.
+    pub fn is_empty(&self) -> bool {
+        self.values.is_empty()
+    }
+
+    /// The value of the time symbol `a` (any order) at the operating
+    /// point: listed, or zero as a rate of a listed symbol.
+    pub fn value(&self, a: Atom) -> Option<Poly> {
+        if let Some((_, v)) = self.values.iter().find(|(b, _)| *b == a) {
+            return Some(v.clone());
+        }
+        self.values
+            .iter()
+            .any(|(b, _)| b.base() == a.base() && b.order() < a.order())
+            .then(Poly::zero)
+    }
+
+    /// `p` at the operating point: each symbol with a value (and passing
+    /// `which`) replaced, sin and cos of a listed angle too. `Err(a)` when
+    /// the angle `a`'s value is neither 0 nor a constant symbol, or its
+    /// sine or cosine divides and vanishes there.
+    pub fn at(&self, p: &Poly, which: &dyn Fn(Atom) -> bool) -> Result<Poly, Atom> {
+        let mut bad = None;
+        let out = p.subst(&mut |a| match a.kind() {
+            AtomKind::Var { time: true, .. } if which(a) => self.value(a),
+            AtomKind::Sin(q) | AtomKind::Cos(q) if q.is_time_dependent() && which(q) => {
+                let v = self.value(q)?;
+                let sin = matches!(a.kind(), AtomKind::Sin(_));
+                if v.is_zero() {
+                    return Some(if sin { Poly::zero() } else { Poly::one() });
+                }
+                match v.as_atom().filter(|b| b.is_angle()) {
+                    Some(b) if sin => Some(Poly::atom(Atom::sin(b).expect("an angle"))),
+                    Some(b) => Some(Poly::atom(Atom::cos(b).expect("an angle"))),
+                    None => {
+                        bad = Some(q);
+                        None
+                    }
+                }
+            }
+            _ => None,
+        });
+        if let Some(q) = bad {
+            return Err(q);
+        }
+        // A sine or cosine that vanishes where it divides stays an atom.
+        let left = out.atoms().into_iter().find(|a| match a.kind() {
+            AtomKind::Var { time: true, .. } => which(*a) && self.value(*a).is_some(),
+            AtomKind::Sin(q) | AtomKind::Cos(q) => {
+                q.is_time_dependent() && which(q) && self.value(q).is_some()
+            }
+            AtomKind::Var { .. } => false,
+        });
+        match left {
+            Some(a) => Err(match a.kind() {
+                AtomKind::Sin(q) | AtomKind::Cos(q) => q,
+                _ => a,
+            }),
+            None => Ok(out),
+        }
+    }
+
+    /// The first-order Taylor polynomial of `p` about the operating point
+    /// in the symbols that have a value there and pass `which`:
+    /// f(x₀) + Σ ∂f/∂x(x₀) (x − x₀). Other symbols are held as they are.
+    pub fn first_order(&self, p: &Poly, which: &dyn Fn(Atom) -> bool) -> Result<Poly, Atom> {
+        let mut vars: Vec<Atom> = Vec::new();
+        for a in p.atoms() {
+            let x = match a.kind() {
+                AtomKind::Var { time: true, .. } => a,
+                AtomKind::Sin(q) | AtomKind::Cos(q) if q.is_time_dependent() => q,
+                _ => continue,
+            };
+            if which(x) && self.value(x).is_some() && !vars.contains(&x) {
+                vars.push(x);
+            }
+        }
+        let mut out = self.at(p, which)?;
+        for x in vars {
+            let dx = self.at(&p.partial(x), which)?;
+            if dx.is_zero() {
+                continue;
+            }
+            let x0 = self.value(x).expect("a value");
+            out = &out + &(&dx * &(&Poly::atom(x) - &x0));
+        }
+        Ok(out)
+    }
+}

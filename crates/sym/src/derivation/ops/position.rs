@@ -1,0 +1,105 @@
+//! `position(P, Q)`: the vector from declared point Q to declared point P,
+//! summed along the points' `at` vectors (what `hdot verify` measures as
+//! `position(point, from)`).
+
+use super::express::express_in;
+use super::{Call, Op};
+use crate::derivation::context::R;
+use crate::derivation::physics::PointKind;
+use crate::derivation::value::Value;
+use crate::parse::AstKind;
+use crate::vector::Vec3;
+
+pub(crate) const POSITION: Op = Op {
+    names: &["position"],
+    signature: "position(P, Q)",
+    doc: "the vector from the declared point `Q` to the declared point `P`: the `at` vectors from each back to \
+          a fixed point, in the components of the frame of `P`'s `at` (N for a fixed point)",
+    eval,
+};
+
+/// The pieces (vector, frame index) from the fixed point at the root of
+/// `name`'s chain to `name`, and that root.
+type Chain = (Vec<(Vec3, usize)>, String);
+
+fn eval(c: &Call<'_, '_>) -> R<Value> {
+    c.arity(2)?;
+    let cx = c.cx;
+    let (p, q) = (point(c, 0)?, point(c, 1)?);
+    let (pp, proot) = chain(c, &p)?;
+    let (qp, qroot) = chain(c, &q)?;
+    if proot != qroot {
+        return c.err(
+            c.span,
+            format!(
+                "`{p}` is placed from the fixed point `{proot}` and `{q}` from `{qroot}`: place both from one fixed point"
+            ),
+        );
+    }
+    let to = pp.first().map_or(0, |(_, f)| *f);
+    let mut r = Vec3::zero();
+    for ((v, f), sign) in pp
+        .iter()
+        .map(|x| (x, false))
+        .chain(qp.iter().map(|x| (x, true)))
+        .map(|((v, f), s)| ((v.map(|x| cx.unfold(x)), *f), s))
+    {
+        let Some(v) = express_in(cx, v, f, to) else {
+            return c.err(
+                c.span,
+                format!(
+                    "no chain of rotations relates frames {} and {}",
+                    cx.frames[f].name, cx.frames[to].name
+                ),
+            );
+        };
+        r = if sign { r.sub(&v) } else { r.add(&v) };
+    }
+    Ok(Value::Vector(r, cx.frames[to].name.clone()))
+}
+
+/// Argument `i`, the name of a declared point.
+fn point(c: &Call<'_, '_>, i: usize) -> R<String> {
+    let points = &c.cx.physics.points;
+    if let AstKind::Name { name, primes: 0 } = &c.args[i].kind
+        && points.iter().any(|p| &p.name == name)
+    {
+        return Ok(name.clone());
+    }
+    let names: Vec<&str> = points.iter().map(|p| p.name.as_str()).collect();
+    c.err(
+        c.args[i].span,
+        format!("expected a declared point (one of {})", names.join(", ")),
+    )
+}
+
+fn chain(c: &Call<'_, '_>, name: &str) -> R<Chain> {
+    let cx = c.cx;
+    let mut pieces = Vec::new();
+    let mut at = name.to_string();
+    loop {
+        let p = cx
+            .physics
+            .points
+            .iter()
+            .find(|p| p.name == at)
+            .expect("a declared point");
+        match &p.kind {
+            PointKind::Fixed(..) => return Ok((pieces, at)),
+            PointKind::Free => {
+                return c.err(
+                    c.span,
+                    format!("point `{at}` moves freely: its position is not declared"),
+                );
+            }
+            PointKind::From { from, at: v, frame } => {
+                if pieces.len() > cx.physics.points.len() {
+                    return c.err(c.span, format!("point `{name}` leads back to itself"));
+                }
+                let f = cx.frame_index(frame).expect("the point's frame exists");
+                pieces.push((v.clone(), f));
+                at = from.clone();
+            }
+        }
+    }
+}

@@ -1,0 +1,141 @@
+//! The Whipple bicycle: derivations/bicycle.toml through the stability
+//! scene docs/examples/stability-bicycle.toml against the published
+//! benchmark (Meijaard, Papadopoulos, Ruina & Schwab, Proc. R. Soc. A 463
+//! (2007)): M, C₁, K₀ and K₂ (§5 / appendix A), the eigenvalues at 0 and
+//! 5 m/s and the weave and capsize speeds (Table 2). The published numbers
+//! are expectations here only; the derivation derives the matrices.
+
+use hdot_sim::nalgebra::Complex;
+use hdot_sim::stability::{Edge, StabilityScene, spectrum, sweep};
+use hdot_tests::repo_root;
+
+const G: f64 = 9.81;
+
+fn scene() -> StabilityScene {
+    StabilityScene::from_file(&repo_root().join("docs/examples/stability-bicycle.toml"))
+        .unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// M, C and K (row-major, 2 × 2 each) at speed `v`.
+fn matrices(s: &StabilityScene, v: f64) -> [[f64; 4]; 3] {
+    let mut out = vec![0.0; 12];
+    s.matrices.eval(v, &mut Vec::new(), &mut out);
+    std::array::from_fn(|k| std::array::from_fn(|i| out[4 * k + i]))
+}
+
+/// Each entry within 1e-12 of the matrix's largest published entry.
+fn assert_close(name: &str, got: [f64; 4], want: [f64; 4]) {
+    let scale = want.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    for (i, (g, w)) in got.iter().zip(want).enumerate() {
+        assert!(
+            (g - w).abs() <= 1e-12 * scale,
+            "{name}[{}][{}] = {g:e}, published {w:e}",
+            i / 2,
+            i % 2
+        );
+    }
+}
+
+#[test]
+fn the_bicycle_matrices_are_the_benchmark() {
+    let s = scene();
+    assert_eq!(s.matrices.dof(), 2);
+    let [m0, c0, k0] = matrices(&s, 0.0);
+    let [m1, c1, k1] = matrices(&s, 1.0);
+    let [_, c2, k2] = matrices(&s, 2.0);
+    assert_eq!(m0, m1, "M does not depend on the speed");
+    assert!(c0.iter().all(|x| *x == 0.0), "C vanishes at rest: {c0:?}");
+    for i in 0..4 {
+        // C = v C₁ and K = g K₀ + v² K₂ exactly in form: check the shape.
+        assert!((c2[i] - 2.0 * c1[i]).abs() <= 1e-12 * c1[i].abs().max(1.0));
+        let k2v = k2[i] - k0[i];
+        assert!((k2v - 4.0 * (k1[i] - k0[i])).abs() <= 1e-10 * k2v.abs().max(1.0));
+    }
+    assert_close(
+        "M",
+        m0,
+        [
+            80.81722,
+            2.31941332208709,
+            2.31941332208709,
+            0.29784188199686,
+        ],
+    );
+    assert_close(
+        "C1",
+        c1,
+        [0.0, 33.86641391492494, -0.85035641456978, 1.68540397397560],
+    );
+    assert_close(
+        "K0",
+        k0.map(|x| x / G),
+        [
+            -80.95,
+            -2.59951685249872,
+            -2.59951685249872,
+            -0.80329488458618,
+        ],
+    );
+    let k2: [f64; 4] = std::array::from_fn(|i| k1[i] - k0[i]);
+    assert_close("K2", k2, [0.0, 76.59734589573222, 0.0, 2.65431523794604]);
+}
+
+/// The eigenvalues at rest and at 5 m/s, Table 2's digits.
+#[test]
+fn the_bicycle_eigenvalues_are_the_benchmark() {
+    let s = scene();
+    let cases: [(f64, Vec<Complex<f64>>); 2] = [
+        (
+            0.0,
+            vec![
+                Complex::new(-5.53094371765393, 0.0),
+                Complex::new(-3.13164324790656, 0.0),
+                Complex::new(3.13164324790656, 0.0),
+                Complex::new(5.53094371765393, 0.0),
+            ],
+        ),
+        (
+            5.0,
+            vec![
+                Complex::new(-14.07838969279822, 0.0),
+                Complex::new(-0.77534188219585, -4.46486771378823),
+                Complex::new(-0.77534188219585, 4.46486771378823),
+                Complex::new(-0.32286642900409, 0.0),
+            ],
+        ),
+    ];
+    for (v, want) in cases {
+        let (ev, _) = spectrum(&s.matrices, v, &mut Vec::new()).unwrap();
+        for z in &want {
+            let nearest = ev.iter().map(|e| (e - z).norm()).fold(f64::MAX, f64::min);
+            // The published values carry 14 to 15 significant digits.
+            assert!(
+                nearest <= 1e-11 * z.norm().max(1.0),
+                "v = {v}: {z} not among {ev:?}"
+            );
+        }
+    }
+}
+
+/// Self-stable from the weave speed to the capsize speed (Table 2:
+/// 4.292382536341 and 6.024262015388 m/s), found by the sweep to 1e-8.
+#[test]
+fn the_bicycle_is_self_stable_between_weave_and_capsize() {
+    let s = scene();
+    let out = sweep(&s, &mut |_, _| {}).unwrap();
+    assert_eq!(out.stable.len(), 1, "{:?}", out.stable);
+    let iv = out.stable[0];
+    let (weave, capsize) = (4.29238253634111, 6.02426201538837);
+    assert!(
+        (iv.lo - weave).abs() <= 1e-8 * weave,
+        "weave speed {}",
+        iv.lo
+    );
+    assert!(
+        (iv.hi - capsize).abs() <= 1e-8 * capsize,
+        "capsize speed {}",
+        iv.hi
+    );
+    assert!(matches!(iv.lo_edge, Edge::Boundary { .. }));
+    assert!(matches!(iv.hi_edge, Edge::Boundary { .. }));
+}
