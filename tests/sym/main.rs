@@ -17,6 +17,7 @@ mod chain;
 mod equations_of_motion;
 mod identities;
 mod injection;
+mod joints;
 mod kane;
 mod labels;
 mod laurent;

@@ -69,6 +69,21 @@ pub fn rotation_jet(k: usize, q: [f64; ORDERS]) -> MatJet {
     ]
 }
 
+/// The rotation about the unit axis `k` by `q(t)` and its derivatives
+/// (a hinge), as [`rotation_jet`] with the generator `[k]×`.
+pub fn hinge_jet(k: Vector3<f64>, q: [f64; ORDERS]) -> MatJet {
+    let axis = nalgebra::Unit::new_normalize(k);
+    let r = *nalgebra::Rotation3::from_axis_angle(&axis, q[0]).matrix();
+    let g = axis.into_inner().cross_matrix();
+    let (g2, g3) = (g * g, g * g * g);
+    [
+        r,
+        r * g * q[1],
+        r * (g2 * (q[1] * q[1]) + g * q[2]),
+        r * (g3 * q[1].powi(3) + g2 * (3.0 * q[1] * q[2]) + g * q[3]),
+    ]
+}
+
 /// Frobenius norm.
 pub(crate) fn fro(m: &Matrix3<f64>) -> f64 {
     m.norm()

@@ -15,7 +15,7 @@ use nalgebra::{Matrix3, Vector3};
 
 use super::VerifyError;
 use super::draw::Draw;
-use super::jet::{BINOMIAL, fro, generator};
+use super::jet::{BINOMIAL, fro, generator, hinge_jet};
 pub use super::jet::{
     MatJet, ORDERS, PointJet, VecJet, mat_mat, mat_t_vec, mat_vec, rotation_jet, vee,
 };
@@ -392,6 +392,29 @@ impl<'d> World<'d> {
                     let mut partial = partials[*parent] * rot[0];
                     if Some(angle.base()) == coordinate {
                         partial += frames[*parent][0] * rot[0] * generator(*axis);
+                    }
+                    (jet, partial)
+                }
+                FrameMotion::Hinge {
+                    parent,
+                    axis,
+                    angle,
+                } => {
+                    let q = (0..ORDERS as u32)
+                        .map(|n| match n {
+                            0 => values.get(*angle).map(|(v, _)| v),
+                            _ if !angle.is_time_dependent() => Some(0.0),
+                            _ => values.time(*angle, n).map(|(v, _)| v),
+                        })
+                        .collect::<Option<Vec<f64>>>();
+                    let q = q.ok_or_else(|| VerifyError::unbound(d, "frame", *angle))?;
+                    // The axis is constant: its jet's value.
+                    let k = vec_jet(axis, values)?[0];
+                    let rot = hinge_jet(k, [q[0], q[1], q[2], q[3]]);
+                    let jet = mat_mat(&frames[*parent], &rot);
+                    let mut partial = partials[*parent] * rot[0];
+                    if Some(angle.base()) == coordinate {
+                        partial += frames[*parent][0] * rot[0] * k.cross_matrix();
                     }
                     (jet, partial)
                 }

@@ -123,6 +123,45 @@ impl Context<'_> {
                     a.starts_with(|c: char| c.is_ascii_digit())
                         && text[lead..].starts_with(&format!("{a}("))
                 });
+                // The revolute-joint shorthand: about([k_x, k_y, k_z], q).
+                let about = super::joints::ABOUT;
+                let ast = (numbered.is_none()
+                    && text[lead..].starts_with(&format!("{about}("))
+                    && !parent_frame.axes.iter().any(|a| a == about))
+                .then(|| self.parse_at(text, base))
+                .transpose()?;
+                if let Some(ast) = &ast
+                    && let AstKind::Call { func, args } = &ast.kind
+                    && func == about
+                {
+                    let [axis, arg] = args.as_slice() else {
+                        return Err(self.at(
+                            base,
+                            ast.span,
+                            "a hinge is written about([k_x, k_y, k_z], angle): a unit axis in the parent's components and the angle",
+                        ));
+                    };
+                    let AstKind::Name { name: q, primes: 0 } = &arg.kind else {
+                        return Err(self.at(
+                            base,
+                            arg.span,
+                            "the rotation angle must be a declared symbol",
+                        ));
+                    };
+                    let q = self
+                        .symbols
+                        .atom(q, 0, arg.span)
+                        .map_err(|e| self.at(base, e.span, e.message))?;
+                    let (r, k) = super::joints::hinge(self, axis, q, base)?;
+                    // Ω_child = Rᵀ Ω_parent + q̇ k (R k = k).
+                    let mut omega = r.transpose().mul_vec(&parent_frame.omega);
+                    if let Some(qd) = q.derivative() {
+                        omega = omega.add(&k.scale(&Poly::atom(qd)));
+                    }
+                    frame.omega = omega;
+                    frame.parent = Some((parent_frame.name.clone(), r));
+                    return Ok(frame);
+                }
                 let (k, arg, base) = if let Some(k) = numbered {
                     let off = lead + parent_frame.axes[k].len();
                     let arg = self.parse_at(&text[off..], base + off)?;

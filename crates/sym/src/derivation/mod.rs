@@ -34,6 +34,7 @@ mod context;
 mod error;
 mod eval;
 mod frames;
+mod joints;
 mod labels;
 mod loads;
 mod multibody;

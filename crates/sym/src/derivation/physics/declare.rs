@@ -30,6 +30,31 @@ fn rotation_of(m: &Mat3) -> Option<(usize, Atom)> {
     })
 }
 
+/// A hinge's axis and angle from its matrix cos q E + sin q [k]× +
+/// (1 − cos q) k kᵀ (`derivation/joints.rs`): [k]× is the coefficient of
+/// sin q.
+fn hinge_of(m: &Mat3) -> Option<(crate::vector::Vec3, Atom)> {
+    // The angle is the one whose sine's coefficients form a unit axis free
+    // of it (the axis may hold sines of constants, such as a tilt).
+    let mut angles: Vec<Atom> =
+        m.0.iter()
+            .flatten()
+            .flat_map(|p| p.atoms())
+            .filter_map(|a| match a.kind() {
+                AtomKind::Sin(q) => Some(q),
+                _ => None,
+            })
+            .collect();
+    angles.dedup();
+    angles.into_iter().find_map(|q| {
+        let sin = Atom::sin(q)?;
+        let k = |i: usize, j: usize| crate::derivation::ops::coefficient(&m.0[i][j], sin);
+        let k = crate::vector::Vec3([k(2, 1), k(0, 2), k(1, 0)]);
+        let free = k.0.iter().all(|p| !crate::subst::mentions_symbol(p, q));
+        (free && k.dot(&k) == crate::poly::Poly::one()).then_some((k, q))
+    })
+}
+
 /// Reads the declarations of `raw` (after its symbols and frames).
 pub(crate) fn declarations(cx: &Context<'_>, raw: &RawFile) -> R<Physics> {
     let mut ph = Physics {
@@ -40,11 +65,21 @@ pub(crate) fn declarations(cx: &Context<'_>, raw: &RawFile) -> R<Physics> {
     for f in &cx.frames {
         ph.frames.push(match &f.parent {
             Some((p, m)) => {
-                let (axis, angle) = rotation_of(m).expect("frames turn about one axis");
-                FrameMotion::Rotation {
-                    parent: cx.frame_index(p).expect("parent exists"),
-                    axis,
-                    angle,
+                let parent = cx.frame_index(p).expect("parent exists");
+                match rotation_of(m) {
+                    Some((axis, angle)) => FrameMotion::Rotation {
+                        parent,
+                        axis,
+                        angle,
+                    },
+                    None => {
+                        let (axis, angle) = hinge_of(m).expect("frames turn about one axis");
+                        FrameMotion::Hinge {
+                            parent,
+                            axis,
+                            angle,
+                        }
+                    }
                 }
             }
             None if f.omega.is_zero() => FrameMotion::Inertial,

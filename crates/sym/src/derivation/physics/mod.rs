@@ -79,6 +79,16 @@ pub enum FrameMotion {
         /// The angle symbol.
         angle: Atom,
     },
+    /// Its parent turned by `angle` about a hinge: `axis` is a unit vector
+    /// of constants in the parent's components (`rotation = "about(k, q)"`).
+    Hinge {
+        /// Index of the parent frame.
+        parent: usize,
+        /// The hinge axis, parent's components.
+        axis: crate::vector::Vec3,
+        /// The angle symbol.
+        angle: Atom,
+    },
     /// Given by its angular velocity (the frame's `omega`, own components);
     /// its attitude is free.
     AngularVelocity,
