@@ -458,7 +458,17 @@ fn linear_groups(
     }
     let mut candidates: Vec<(Monomial, Vec<(usize, Monomial, Rational)>)> =
         by_rest.into_iter().filter(|g| g.1.len() > 1).collect();
-    candidates.sort_by_key(|g| Reverse(g.1.len()));
+    // Ties by the shared part's factors in print order (names, never the
+    // atoms' ids, which depend on what was interned first).
+    candidates.sort_by_cached_key(|g| {
+        let shared: Vec<_> = g
+            .0
+            .sorted_for_print()
+            .into_iter()
+            .map(|(a, x)| (a.sort_key(), x))
+            .collect();
+        (Reverse(g.1.len()), shared)
+    });
     let mut taken = vec![false; parts.len()];
     let mut groups = Vec::new();
     for (rest, members) in candidates {
