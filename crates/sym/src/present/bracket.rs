@@ -461,12 +461,11 @@ fn linear_groups(
     // Ties by the shared part's factors in print order (names, never the
     // atoms' ids, which depend on what was interned first).
     candidates.sort_by_cached_key(|g| {
-        let shared: Vec<_> = g
-            .0
-            .sorted_for_print()
-            .into_iter()
-            .map(|(a, x)| (a.sort_key(), x))
-            .collect();
+        let shared: Vec<_> =
+            g.0.sorted_for_print()
+                .into_iter()
+                .map(|(a, x)| (a.sort_key(), x))
+                .collect();
         (Reverse(g.1.len()), shared)
     });
     let mut taken = vec![false; parts.len()];
