@@ -103,3 +103,48 @@ fn the_work_of_a_workload_is_repeatable() {
     assert_eq!(a, b);
     assert!(a.monomial_products > 0 && a.terms_accumulated > 0 && a.presented_nodes > 0);
 }
+
+/// A sum of n distinct constants (`hdot_sym::chain::sum_source`, made
+/// here, never stored) costs work linear in n: every pass from the file to
+/// the LaTeX sees n terms, so twice the terms may cost at most 2.2 times
+/// the work. Adding the terms one at a time (each addition merging the
+/// whole sum so far) cost n²/2 and failed this.
+#[test]
+fn a_long_sum_costs_work_linear_in_its_length() {
+    let work = |n: usize| {
+        let (out, w) = measure(|| {
+            let d = load_str(&format!("sum-{n}.toml"), &hdot_sym::chain::sum_source(n))
+                .unwrap_or_else(|e| panic!("{e}"));
+            assert_eq!(d.steps[0].values()[0].len(), n, "sum-{n}: terms");
+            render(&d, Format::Latex)
+        });
+        assert!(
+            out.contains(&format!("c_{{{n}}}")),
+            "sum-{n}: last term not printed"
+        );
+        assert!(w.terms_accumulated >= n as u64, "sum-{n}: {w:?}");
+        assert!(w.presented_nodes >= n as u64, "sum-{n}: {w:?}");
+        w
+    };
+    let n = 4_000;
+    let (one, two) = (work(n), work(2 * n));
+    for (key, a, b) in [
+        (
+            "monomial_products",
+            one.monomial_products,
+            two.monomial_products,
+        ),
+        (
+            "terms_accumulated",
+            one.terms_accumulated,
+            two.terms_accumulated,
+        ),
+        ("presented_nodes", one.presented_nodes, two.presented_nodes),
+    ] {
+        assert!(
+            b as f64 <= 2.2 * a as f64,
+            "{key}: {a} for {n} terms, {b} for {} — more than linear",
+            2 * n
+        );
+    }
+}

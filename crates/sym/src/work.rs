@@ -21,7 +21,8 @@ pub struct Work {
     /// in arithmetic, derivatives, substitution and presentation alike.
     pub monomial_products: u64,
     /// Terms added into a sum being accumulated (before like terms
-    /// cancel): the size of every general sum and product formed.
+    /// cancel), and the terms of every sum formed by merging two: the
+    /// size of every general sum and product formed.
     pub terms_accumulated: u64,
     /// Nodes of the presented (textbook-form) expression trees.
     pub presented_nodes: u64,
@@ -91,6 +92,14 @@ pub(crate) fn monomial_product() {
 #[inline]
 pub(crate) fn term_accumulated() {
     bump(|w| w.terms_accumulated += 1);
+}
+
+/// Counts the terms of a sum formed by merging two (one add for the
+/// whole merge): a sum built by adding terms one at a time shows here as
+/// the quadratic work it is.
+#[inline]
+pub(crate) fn terms_merged(n: usize) {
+    bump(|w| w.terms_accumulated += n as u64);
 }
 
 /// Counts the nodes of a presented tree.

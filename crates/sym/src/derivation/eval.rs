@@ -165,9 +165,26 @@ impl Context<'_> {
     fn sum(&self, items: &[Ast], base: usize) -> R<Value> {
         let err = |span: Span, m: String| -> R<Value> { Err(self.at(base, span, m)) };
         let mut acc = self.eval(&items[0], base)?;
+        // Scalar terms are gathered and summed in one pass when the run of
+        // them ends: adding them one by one would merge the growing sum
+        // into a new one at every term, quadratic in a sum of many
+        // distinct terms (50,000 constants).
+        let mut scalars: Vec<Poly> = Vec::new();
+        let flush = |acc: Value, scalars: &mut Vec<Poly>| match acc {
+            Value::Scalar(a) if !scalars.is_empty() => {
+                Value::Scalar(std::iter::once(a).chain(scalars.drain(..)).sum())
+            }
+            acc => acc,
+        };
         for it in &items[1..] {
-            let v = self.eval(it, base)?;
-            acc = match (acc, v) {
+            let v = match (&acc, self.eval(it, base)?) {
+                (Value::Scalar(_), Value::Scalar(b)) => {
+                    scalars.push(b);
+                    continue;
+                }
+                (_, v) => v,
+            };
+            acc = match (flush(acc, &mut scalars), v) {
                 (Value::Scalar(a), Value::Scalar(b)) => Value::Scalar(&a + &b),
                 (Value::Vector(a, fa), Value::Vector(b, fb)) => {
                     self.same_frame(base, it.span, &fa, &fb)?;
@@ -205,7 +222,7 @@ impl Context<'_> {
                 }
             };
         }
-        Ok(acc)
+        Ok(flush(acc, &mut scalars))
     }
 
     /// A product (a divisor is a factor `Recip`).

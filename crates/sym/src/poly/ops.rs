@@ -41,6 +41,7 @@ impl std::ops::Add for &Poly {
         }
         out.extend_from_slice(&a[i..]);
         out.extend_from_slice(&b[j..]);
+        crate::work::terms_merged(out.len());
         if !limits::allow_terms(out.len()) {
             return Poly::zero();
         }
