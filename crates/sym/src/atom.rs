@@ -148,6 +148,34 @@ fn publish(id: usize, kind: AtomKind) {
     let _ = chunk[id % CHUNK].set(kind);
 }
 
+/// A property of atoms worked out once per atom and thread and then read
+/// by the atom's id (an index, no hashing): the presentation asks such
+/// questions (is it a leading constant, what is its cyclic place) of
+/// every factor of every term. `f` must not read the same memo.
+pub(crate) struct AtomMemo<T: Copy>(std::cell::RefCell<Vec<Option<T>>>);
+
+impl<T: Copy> AtomMemo<T> {
+    /// An empty memo (for a `thread_local!` with `const` initialisation).
+    pub(crate) const fn new() -> Self {
+        AtomMemo(std::cell::RefCell::new(Vec::new()))
+    }
+
+    /// The value for `a`, computed by `f` the first time.
+    pub(crate) fn get(&self, a: Atom, f: impl FnOnce(Atom) -> T) -> T {
+        let i = a.0 as usize;
+        if let Some(Some(v)) = self.0.borrow().get(i) {
+            return *v;
+        }
+        let v = f(a);
+        let mut table = self.0.borrow_mut();
+        if table.len() <= i {
+            table.resize(i + 1, None);
+        }
+        table[i] = Some(v);
+        v
+    }
+}
+
 /// # Queries
 impl Atom {
     /// What this atom is.

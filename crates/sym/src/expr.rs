@@ -145,7 +145,7 @@ impl Expr {
 }
 
 /// A term in print order: its factors sorted for printing, and the term.
-pub(crate) type PrintTerm<'a> = (SmallVec<[(Atom, i32); 8]>, &'a Monomial, &'a Rational);
+pub(crate) type PrintTerm<'a> = (SmallVec<[(Atom, i32); 12]>, &'a Monomial, &'a Rational);
 
 /// `terms` sorted for printing, each with its factors in print order: by
 /// [`print_order`] of the sorted factors, preceded, when `derivative_first`,
@@ -172,33 +172,38 @@ pub(crate) fn print_sorted(
     atoms.sort_unstable();
     atoms.dedup();
     atoms.sort_by_cached_key(|a| a.sort_key());
-    let rank: rustc_hash::FxHashMap<Atom, u64> = atoms
-        .iter()
-        .enumerate()
-        .map(|(k, &a)| (a, k as u64))
-        .collect();
-    let code = |a: Atom, x: i32| (rank[&a] << 32) | (i64::from(i32::MAX) - i64::from(x)) as u64;
-    let mut keyed: Vec<(SmallVec<[u64; 8]>, usize)> = terms
-        .iter()
-        .enumerate()
-        .map(|(i, (m, _))| {
-            let top = if derivative_first {
-                m.factors().iter().map(|f| f.0.order()).max().unwrap_or(0)
-            } else {
-                0
-            };
-            let mut k: SmallVec<[u64; 8]> = SmallVec::with_capacity(m.factors().len() + 1);
-            k.push(u64::from(u32::MAX - top));
-            k.extend(m.factors().iter().map(|&(a, x)| code(a, x)));
-            k[1..].sort_unstable();
-            (k, i)
-        })
-        .collect();
-    keyed.sort_unstable_by(|a, b| a.0.cmp(&b.0));
+    // The rank of an atom, read by its id (a table as long as the largest
+    // id, not a hash map: looked up for every factor of every term).
+    let mut rank = vec![u32::MAX; atoms.iter().map(|a| a.id() as usize + 1).max().unwrap_or(0)];
+    for (k, a) in atoms.iter().enumerate() {
+        rank[a.id() as usize] = k as u32;
+    }
+    let code = |a: Atom, x: i32| {
+        (u64::from(rank[a.id() as usize]) << 32) | (i64::from(i32::MAX) - i64::from(x)) as u64
+    };
+    // Every term's key in one flat array (its slice `start..end`), so
+    // that no key is allocated on its own.
+    let mut codes: Vec<u64> =
+        Vec::with_capacity(terms.iter().map(|t| t.0.factors().len() + 1).sum());
+    let mut keyed: Vec<(u32, u32, u32)> = Vec::with_capacity(terms.len());
+    for (i, (m, _)) in terms.iter().enumerate() {
+        let top = if derivative_first {
+            m.factors().iter().map(|f| f.0.order()).max().unwrap_or(0)
+        } else {
+            0
+        };
+        let start = codes.len();
+        codes.push(u64::from(u32::MAX - top));
+        codes.extend(m.factors().iter().map(|&(a, x)| code(a, x)));
+        codes[start + 1..].sort_unstable();
+        keyed.push((start as u32, codes.len() as u32, i as u32));
+    }
+    let key = |k: &(u32, u32, u32)| &codes[k.0 as usize..k.1 as usize];
+    keyed.sort_unstable_by(|a, b| key(a).cmp(key(b)));
     keyed
-        .into_iter()
-        .map(|(k, i)| {
-            let mut factors: SmallVec<[(Atom, i32); 8]> = k[1..]
+        .iter()
+        .map(|k| {
+            let mut factors: SmallVec<[(Atom, i32); 12]> = key(k)[1..]
                 .iter()
                 .map(|&c| {
                     let atom = atoms[(c >> 32) as usize];
@@ -207,6 +212,7 @@ pub(crate) fn print_sorted(
                 })
                 .collect();
             crate::poly::trig_by_angle(&mut factors);
+            let i = k.2 as usize;
             (factors, &terms[i].0, &terms[i].1)
         })
         .collect()

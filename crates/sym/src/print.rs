@@ -328,8 +328,27 @@ pub fn break_pieces(
     style: &dyn Style,
     too_long: &dyn Fn(&str) -> bool,
 ) -> Vec<(String, bool)> {
+    measured_pieces(e, style, too_long, &|long| long)
+        .into_iter()
+        .map(|(text, inside, _)| (text, inside))
+        .collect()
+}
+
+/// [`break_pieces`] with each piece's measure: `measure` is taken of every
+/// piece once (a term that is not split is measured as a whole, and that
+/// measure is the piece's), and a term is split when `too_long` holds of
+/// its measure. A line breaker that adds up widths so measures each piece
+/// once, not once to decide the split and again to fill the line.
+pub fn measured_pieces<W: Copy>(
+    e: &Expr,
+    style: &dyn Style,
+    measure: &dyn Fn(&str) -> W,
+    too_long: &dyn Fn(W) -> bool,
+) -> Vec<(String, bool, W)> {
     if e.is_empty() {
-        return vec![(style.num(&Rational::ZERO), false)];
+        let zero = style.num(&Rational::ZERO);
+        let w = measure(&zero);
+        return vec![(zero, false, w)];
     }
     let cached = Cached {
         inner: style,
@@ -337,56 +356,74 @@ pub fn break_pieces(
         pows: Default::default(),
         nums: Default::default(),
     };
-    let text = |f: &dyn Fn(&mut String)| {
-        let mut o = String::new();
-        f(&mut o);
-        o
-    };
     let root = e.root();
     let mut out = Vec::new();
+    // Each piece is written into one scratch buffer and copied out at its
+    // length: no string grows by doubling, once per piece.
+    let mut scratch = String::new();
     for (prefix, id, bracketed) in sum_terms(e, root, &cached) {
-        let whole = text(&|o| {
-            o.push_str(&prefix);
-            if bracketed {
-                paren(e, id, &cached, o)
-            } else {
-                write(e, id, &cached, o)
-            }
-        });
-        let split = if too_long(&whole) {
-            bracket_split(e, id, &prefix, &cached)
+        scratch.clear();
+        prefix.write(&mut scratch);
+        if bracketed {
+            paren(e, id, &cached, &mut scratch)
+        } else {
+            write(e, id, &cached, &mut scratch)
+        }
+        let w = measure(&scratch);
+        let split = if too_long(w) {
+            bracket_split(e, id, prefix, &cached)
         } else {
             None
         };
         match split {
-            Some(pieces) => out.extend(pieces),
-            None => out.push((whole, false)),
+            Some(pieces) => out.extend(pieces.into_iter().map(|(text, inside)| {
+                let w = measure(&text);
+                (text, inside, w)
+            })),
+            None => out.push((scratch.as_str().to_owned(), false, w)),
         }
     }
     out
+}
+
+/// The text that joins a term to the one before it: a sign (empty for
+/// the first term unless it is negated) and whether a space follows it.
+#[derive(Clone, Copy)]
+struct Prefix(&'static str, bool);
+
+impl Prefix {
+    fn write(self, out: &mut String) {
+        out.push_str(self.0);
+        if self.1 {
+            out.push(' ');
+        }
+    }
 }
 
 /// The terms of the sum at `id` as [`write`] prints them: the sign text
 /// that precedes each (empty, `+ `, `- `, or the minus of a leading
 /// negation), the node written after it, and whether that node is put in
 /// parentheses. A node that is not a sum is one term.
-fn sum_terms(e: &Expr, id: Id, style: &Cached) -> Vec<(String, Id, bool)> {
+fn sum_terms(e: &Expr, id: Id, style: &Cached) -> Vec<(Prefix, Id, bool)> {
     let minus = style.inner.minus();
-    let plus = format!("{} ", style.inner.plus());
-    let one = |k: usize, t: Id| -> (String, Id, bool) {
+    let plus = style.inner.plus();
+    let one = |k: usize, t: Id| -> (Prefix, Id, bool) {
         match e.node(t) {
             Node::Neg(inner) => {
-                let sign = if k > 0 {
-                    format!("{minus} ")
-                } else {
-                    minus.to_owned()
-                };
                 let under = matches!(e.node(*inner), Node::Add(_) | Node::Neg(_));
-                (sign, *inner, under)
+                (Prefix(minus, k > 0), *inner, under)
             }
-            Node::Add(_) => (if k > 0 { plus.clone() } else { String::new() }, t, true),
-            _ if k > 0 => (plus.clone(), t, false),
-            _ => (String::new(), t, false),
+            Node::Add(_) => (
+                if k > 0 {
+                    Prefix(plus, true)
+                } else {
+                    Prefix("", false)
+                },
+                t,
+                true,
+            ),
+            _ if k > 0 => (Prefix(plus, true), t, false),
+            _ => (Prefix("", false), t, false),
         }
     };
     match e.node(id) {
@@ -397,7 +434,7 @@ fn sum_terms(e: &Expr, id: Id, style: &Cached) -> Vec<(String, Id, bool)> {
 
 /// A product term broken inside its first bracketed sum (see
 /// [`break_pieces`]); `None` when the term has no such bracket.
-fn bracket_split(e: &Expr, id: Id, prefix: &str, style: &Cached) -> Option<Vec<(String, bool)>> {
+fn bracket_split(e: &Expr, id: Id, prefix: Prefix, style: &Cached) -> Option<Vec<(String, bool)>> {
     let factors: &[Id] = match e.node(id) {
         Node::Mul(factors) => factors,
         // A bracketed sum alone (after a minus sign: −(a + b + …)).
@@ -415,7 +452,8 @@ fn bracket_split(e: &Expr, id: Id, prefix: &str, style: &Cached) -> Option<Vec<(
         .position(|f| matches!(e.node(*f), Node::Add(_)))?;
     let inner = sum_terms(e, factors[j], style);
     let (l, r) = style.inner.parens();
-    let mut before = prefix.to_owned();
+    let mut before = String::new();
+    prefix.write(&mut before);
     if j > 0 {
         write_product(e, &factors[..j], style, &mut before);
         before.push_str(
@@ -445,7 +483,7 @@ fn bracket_split(e: &Expr, id: Id, prefix: &str, style: &Cached) -> Option<Vec<(
                 } else {
                     String::new()
                 };
-                piece.push_str(&sign);
+                sign.write(&mut piece);
                 if bracketed {
                     paren(e, t, style, &mut piece);
                 } else {

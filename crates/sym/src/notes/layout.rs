@@ -104,7 +104,7 @@ fn printed_if_fits(rhs: &Expr, budget: f32) -> Option<String> {
 /// The lines of one equation `lhs = rhs` for an `align*`/`aligned` block
 /// no wider than `width` (estimated characters of math):
 /// the first `lhs &= …`, continuation lines `&\quad + …`. The right side
-/// is broken on its expression tree ([`print::break_pieces`]): between its
+/// is broken on its expression tree ([`print::measured_pieces`]): between its
 /// top-level terms, and inside the bracket of a product term that is
 /// itself too long; each piece is printed by the printer and its width
 /// estimated on its own. A break inside the bracket closes the line with
@@ -122,8 +122,10 @@ pub(super) fn equation_lines(lhs: &str, rhs: &Expr, width: f32) -> Vec<String> {
     let mut lines: Vec<String> = Vec::new();
     let mut current = String::new();
     let mut current_units = 0u32;
-    for (piece, inside) in print::break_pieces(rhs, &print::Latex, &|t| math_width(t) > budget) {
-        let units = width_units(&piece);
+    let pieces = print::measured_pieces(rhs, &print::Latex, &width_units, &|units| {
+        units as f32 / 100.0 > budget
+    });
+    for (piece, inside, units) in pieces {
         if !current.is_empty() && (current_units + units) as f32 > budget_units {
             let mut line = std::mem::take(&mut current);
             current_units = 0;

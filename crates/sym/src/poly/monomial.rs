@@ -225,15 +225,29 @@ impl Monomial {
 /// `sin θ cos θ cos² λ`, `sin ψ cos ψ sin θ`; a cosine whose sine is
 /// absent keeps its place after the sines (`sin θ cos ψ`).
 pub(crate) fn trig_by_angle<E>(fs: &mut [(Atom, E)]) {
+    // Each factor's kind is read once: (is a cosine, its angle) for sin
+    // and cos, None for the others; nothing moves without a sine.
+    let mut trig: SmallVec<[Option<(bool, Atom)>; 16]> = fs
+        .iter()
+        .map(|f| match f.0.kind() {
+            AtomKind::Sin(q) => Some((false, q)),
+            AtomKind::Cos(q) => Some((true, q)),
+            AtomKind::Var { .. } => None,
+        })
+        .collect();
+    if !trig.iter().any(|t| matches!(t, Some((false, _)))) {
+        return;
+    }
     for k in 0..fs.len() {
-        let AtomKind::Cos(q) = fs[k].0.kind() else {
+        let Some((true, q)) = trig[k] else {
             continue;
         };
-        if let Some(j) = fs[..k].iter().position(|f| f.0.kind() == AtomKind::Sin(q))
+        if let Some(j) = trig[..k].iter().position(|t| *t == Some((false, q)))
             && j + 1 < k
         {
             // Moving it forward shifts the factors between, all already seen.
             fs[j + 1..=k].rotate_right(1);
+            trig[j + 1..=k].rotate_right(1);
         }
     }
 }

@@ -2,10 +2,9 @@
 //! the file's or the conventional order (m g l, I′ θ̇), and two members of
 //! one cyclic family (x → y → z, 1 → 2 → 3, A → B → C) in cyclic order.
 
-use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
 
-use crate::atom::{Atom, AtomKind};
+use crate::atom::{Atom, AtomKind, AtomMemo};
 
 /// A constant symbol that leads a product (`m g l`), as opposed to a rate,
 /// sin or cos, or a constant named by a Greek letter (a constant rate Ω),
@@ -14,10 +13,10 @@ pub(super) fn leading_constant(a: Atom) -> bool {
     // Asked for every factor of every term: each atom's answer (a name
     // looked up in the Greek table) is found once.
     thread_local! {
-        static KNOWN: std::cell::RefCell<FxHashMap<Atom, bool>> = Default::default();
+        static KNOWN: AtomMemo<bool> = const { AtomMemo::new() };
     }
     KNOWN.with(|k| {
-        *k.borrow_mut().entry(a).or_insert_with(|| {
+        k.get(a, |a| {
             !a.is_time_dependent()
                 && matches!(a.kind(), AtomKind::Var { .. })
                 && crate::symbols::greek(a.name().split('_').next().unwrap_or("")).is_none()
@@ -52,9 +51,9 @@ pub(super) type Place = (&'static str, usize, u8);
 pub(super) fn cyclic_place(a: Atom) -> Option<Place> {
     // Each atom's place is found once (names compared as strings).
     thread_local! {
-        static KNOWN: std::cell::RefCell<FxHashMap<Atom, Option<Place>>> = Default::default();
+        static KNOWN: AtomMemo<Option<Place>> = const { AtomMemo::new() };
     }
-    KNOWN.with(|k| *k.borrow_mut().entry(a).or_insert_with(|| place_of(a)))
+    KNOWN.with(|k| k.get(a, place_of))
 }
 
 pub(super) fn place_of(a: Atom) -> Option<Place> {
@@ -127,14 +126,21 @@ pub(super) fn cyclic_pair(fs: &mut [(Atom, i32)]) {
     // Each factor's place is looked up once (names are compared as
     // strings), and a swap moves two factors of one family, so the places
     // move with them.
-    let mut places: SmallVec<[Option<Place>; 8]> = fs.iter().map(|f| cyclic_place(f.0)).collect();
+    let mut places: SmallVec<[Option<Place>; 16]> = fs.iter().map(|f| cyclic_place(f.0)).collect();
+    if places.iter().filter(|p| p.is_some()).count() < 2 {
+        return;
+    }
     let next = |a: Place, b: Place| a.0 == b.0 && a.2 == b.2 && (a.1 + 1) % 3 == b.1;
     for i in 0..fs.len() {
         let Some((family, _, _)) = places[i] else {
             continue;
         };
         let mut same = (0..fs.len()).filter(|&k| places[k].is_some_and(|(f, _, _)| f == family));
-        let (Some(p), Some(q), None) = (same.next(), same.next(), same.next()) else {
+        // Only the first factor of its family moves (p == i below).
+        let Some(p) = same.next().filter(|&p| p == i) else {
+            continue;
+        };
+        let (Some(q), None) = (same.next(), same.next()) else {
             continue;
         };
         let (Some(pp), Some(pq)) = (places[p], places[q]) else {
