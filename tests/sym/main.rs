@@ -14,6 +14,7 @@
 mod algebra;
 mod broken;
 mod chain;
+mod contact;
 mod equations_of_motion;
 mod identities;
 mod injection;

@@ -41,6 +41,8 @@ pub(crate) struct Context<'a> {
     pub physics: super::physics::Physics,
     /// Applied forces and torques (`[[load]]`, `loads.rs`).
     pub loads: Vec<super::multibody::Load>,
+    /// Rolling contacts (`[[contact]]`, `contact.rs`).
+    pub contacts: Vec<super::contact::Contact>,
 }
 
 /// A result whose error is located in the file.
@@ -63,6 +65,7 @@ impl<'a> Context<'a> {
             speeds: Default::default(),
             physics: Default::default(),
             loads: Vec::new(),
+            contacts: Vec::new(),
         }
     }
 }

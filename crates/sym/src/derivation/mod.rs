@@ -30,6 +30,7 @@
 //! ```
 
 mod checks;
+mod contact;
 mod context;
 mod error;
 mod eval;
@@ -367,7 +368,12 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
     }
     speeds::declare(&mut cx, &raw)?;
     // Bodies, points, gravity, knowns, conditions.
-    let physics = physics::declarations(&cx, &raw)?;
+    let mut physics = physics::declarations(&cx, &raw)?;
+    // Rolling contacts declare their contact points.
+    cx.physics = physics.clone();
+    let (contacts, contact_points) = contact::declare(&cx, &raw.contacts)?;
+    physics.points.extend(contact_points);
+    cx.contacts = contacts;
     for (a, r) in abbreviations.iter_mut().zip(&raw.abbreviations) {
         let value = Value::Scalar(a.definition.clone());
         a.meaning = physics::abbreviation_meaning(&cx, &physics, r, &value)?;

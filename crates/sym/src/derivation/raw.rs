@@ -42,6 +42,24 @@ pub(crate) struct RawFile {
     /// `[[load]]`: forces at points and torques on frames (`loads.rs`).
     #[serde(default, rename = "load")]
     pub loads: Vec<RawLoad>,
+    /// `[[contact]]`: wheels rolling on the ground (`contact.rs`).
+    #[serde(default, rename = "contact")]
+    pub contacts: Vec<RawContact>,
+}
+
+/// `[[contact]]` (`contact.rs`).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawContact {
+    pub name: Spanned<String>,
+    pub wheel: Spanned<String>,
+    pub centre: Option<Spanned<String>>,
+    pub frame: Option<Spanned<String>>,
+    pub axle: Spanned<String>,
+    pub down: Spanned<String>,
+    pub radius: Spanned<String>,
+    pub angle: Option<Spanned<String>>,
+    pub plane: Option<Spanned<String>>,
 }
 
 /// `[[load]]` (`loads.rs`).

@@ -11,6 +11,7 @@
 mod angvel;
 mod coeff;
 mod constraints;
+mod contact;
 mod dt;
 mod express;
 mod in_speeds;
@@ -29,6 +30,7 @@ mod trig;
 mod vector;
 mod velocity;
 
+pub(crate) use express::express_in;
 pub(crate) use subst::quarter_turns;
 
 use super::context::{Context, R};
@@ -72,6 +74,11 @@ pub(crate) static OPS: &[&Op] = &[
     &position::POSITION,
     &velocity::VELOCITY,
     &velocity::ROLLING,
+    &contact::CONTACT_VELOCITY,
+    &contact::ROLLING_CONSTRAINTS,
+    &contact::CONTACT_HEIGHT,
+    &contact::CONTACT_TANGENT,
+    &contact::CONTACT_CONSTRAINTS,
     &kane::KANE,
     &list::LIST,
     &solve::SOLVE,
