@@ -286,4 +286,21 @@ fn the_nonlinear_bicycle_linearizes_to_the_benchmark_matrices() {
         };
         assert!(p.atoms().iter().any(|a| a.name() == atom), "{s}: {p}");
     }
+    // The nonlinear equations before the constraints: 8 × 8 in the rates
+    // of the speeds that move a body, and the power balance (checked by
+    // the file's `expect`) is not vacuous.
+    let Value::Array(m) = step(&exact, "M_all") else {
+        panic!("M_all: an array")
+    };
+    assert_eq!((m.len(), m[0].len()), (8, 8));
+    let Value::Array(a) = step(&exact, "A_c") else {
+        panic!("A_c: an array")
+    };
+    assert_eq!((a.len(), a[0].len()), (6, 9));
+    let power = exact.steps.iter().find(|s| s.name == "power").unwrap();
+    assert_eq!(power.checks.len(), 1);
+    let Value::Scalar(e) = step(&exact, "E") else {
+        panic!("E: a scalar")
+    };
+    assert!(e.terms().len() > 50, "{e}");
 }
