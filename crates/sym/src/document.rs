@@ -201,6 +201,12 @@ pub struct StepBlock {
     pub shape: Option<(usize, usize)>,
     /// Whether it equals its expectation.
     pub verdict: Verdict,
+    /// The conditions the result holds under (its `given`: a constant,
+    /// coordinate or rate fixed, a point at rest, a class of bodies), as
+    /// prose with each formula between `$` signs — `$θ = π/2$, $O$ at
+    /// rest`; empty for a step without conditions. The backends print it
+    /// beside the step as "for …".
+    pub condition: String,
 }
 
 /// True for the expression `0`.
@@ -287,7 +293,56 @@ impl StepBlock {
             .filter(|(n, m)| n * m == equations.len() && n * m > 0),
             equations,
             verdict,
+            condition: condition(s),
         }
+    }
+}
+
+/// The conditions of step `s` as prose (see [`StepBlock::condition`]):
+/// its rules as equations in the printers' notation, then its points at
+/// rest, then the inequalities selecting a class of bodies.
+fn condition(s: &Step) -> String {
+    use crate::derivation::physics::{RuleValue, StepMeaning};
+    let Some(StepMeaning {
+        given,
+        at_rest,
+        bounds,
+        ..
+    }) = &s.meaning
+    else {
+        return String::new();
+    };
+    let mut items: Vec<String> = given
+        .iter()
+        .map(|r| {
+            let mut lhs = Expr::new();
+            lhs.push(crate::expr::Node::Atom(r.target));
+            let rhs = match &r.value {
+                RuleValue::Expr(p) => print::unicode(&Expr::from_poly(p)),
+                RuleValue::QuarterTurns(t) => quarter_turns(*t),
+            };
+            format!("${} = {rhs}$", print::unicode(&lhs))
+        })
+        .collect();
+    items.extend(at_rest.iter().map(|(p, order)| match order {
+        1 => format!("${p}$ at rest"),
+        2 => format!("${p}$ without acceleration"),
+        k => format!("the derivatives of ${p}$ from order {k} zero"),
+    }));
+    items.extend(bounds.iter().map(|(_, text)| format!("${}$", text.trim())));
+    items.join(", ")
+}
+
+/// `t` quarter turns as an angle in the printers' notation: π/2, π,
+/// −3π/2, 0.
+fn quarter_turns(t: i64) -> String {
+    let sign = if t < 0 { "−" } else { "" };
+    match (t.unsigned_abs(), t % 2 == 0) {
+        (0, _) => "0".to_owned(),
+        (2, _) => format!("{sign}π"),
+        (1, _) => format!("{sign}π/2"),
+        (a, true) => format!("{sign}{}π", a / 2),
+        (a, false) => format!("{sign}{a}π/2"),
     }
 }
 
@@ -332,9 +387,13 @@ impl Section {
                 Some(list) => list.contains(&s.name),
                 None => s.show,
             })
-            .map(|s| StepBlock {
-                doc: notation(&s.doc),
-                ..StepBlock::of(s)
+            .map(|s| {
+                let b = StepBlock::of(s);
+                StepBlock {
+                    doc: notation(&s.doc),
+                    condition: notation(&b.condition),
+                    ..b
+                }
             })
             .collect();
         Section {

@@ -479,6 +479,13 @@ fn step_html(o: &mut String, n: usize, st: &StepBlock, id: &str) {
             mathml::math(&step_body(st), &latex, true)
         );
     }
+    if !st.condition.is_empty() {
+        let _ = writeln!(
+            o,
+            "<p class=\"condition\">(for {})</p>",
+            prose_html(&st.condition)
+        );
+    }
     match &st.verdict {
         Verdict::NoExpectation => {
             let _ = writeln!(

@@ -233,6 +233,9 @@ pub(super) fn latex_section(o: &mut String, s: &Section, level: usize, target: T
             write_step_lines(o, st, LINE_BUDGET);
             o.push_str("\n\\end{align*}\n");
         }
+        if !st.condition.is_empty() {
+            let _ = writeln!(o, "(for {})\n", prose::latex(&st.condition));
+        }
         match &st.verdict {
             Verdict::NoExpectation => {
                 let _ = writeln!(o, "\\emph{{No expectation is stated for this step.}}\n");

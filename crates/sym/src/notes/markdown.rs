@@ -194,6 +194,9 @@ pub(super) fn markdown_section(o: &mut String, number: &str, s: &Section, level:
         } else {
             md_math_block(o, &step_lines(st, LINE_BUDGET));
         }
+        if !st.condition.is_empty() {
+            let _ = writeln!(o, "(for {})\n", prose::markdown(&st.condition));
+        }
         match &st.verdict {
             Verdict::NoExpectation => {
                 let _ = writeln!(o, "*No expectation is stated for this step.*\n");

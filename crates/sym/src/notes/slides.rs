@@ -241,16 +241,20 @@ pub(super) fn frames_of(groups: Vec<Vec<String>>, room: f32) -> Vec<Vec<String>>
 /// taller than a frame; the verdict on the last.
 pub(super) fn slides_step(o: &mut String, section_title: &str, st: &StepBlock) {
     let title = frame_title(section_title);
-    let note = if st.doc.trim().is_empty() {
+    let mut note = if st.doc.trim().is_empty() {
         step_title(0, st)
     } else {
         prose::latex(&sentence(&st.doc))
     };
-    let note_chars = if st.doc.trim().is_empty() {
+    let mut note_chars = if st.doc.trim().is_empty() {
         8
     } else {
         st.doc.chars().count()
     };
+    if !st.condition.is_empty() {
+        note = format!("{note} (for {})", prose::latex(&st.condition));
+        note_chars += 6 + prose::unicode(&st.condition).chars().count();
+    }
     let room = FRAME_HEIGHT
         - FRAME_FIXED
         - (text_lines(prose::ascii(section_title).chars().count(), TITLE_CHARS) - 1.0)

@@ -97,6 +97,9 @@ pub fn unicode_section(s: &Section) -> String {
                 let _ = writeln!(o, "   {}", equation_unicode(e));
             }
         }
+        if !st.condition.is_empty() {
+            let _ = writeln!(o, "   (for {})", prose::unicode(&st.condition));
+        }
         match &st.verdict {
             Verdict::NoExpectation => {}
             Verdict::Holds => {
