@@ -236,6 +236,7 @@ fn bad_contacts_are_located_errors() {
         ("centre = \"Z\"", "", "`Z` is not a declared point"),
         ("angle = \"r\"", "", "declare it under [symbols] time"),
         ("frame = \"D\"\ndown = \"z\"", "", "auxiliary angle"),
+        ("down = \"z\"", "", "the rim's highest point"),
         (
             "",
             "[[step]]\nname = \"h\"\nvalue = \"contact_height(G)\"",

@@ -14,7 +14,7 @@ use super::context::{Context, R};
 use super::ops::express_in;
 use super::physics::{Point, PointKind};
 use super::raw::RawContact;
-use crate::atom::Atom;
+use crate::atom::{Atom, AtomKind};
 use crate::poly::Poly;
 use crate::rational::Rational;
 use crate::symbols::Decl;
@@ -84,6 +84,38 @@ fn axis(cx: &Context<'_>, f: usize, s: &Spanned<String>, key: &str) -> R<Vec3> {
             ),
         )),
     }
+}
+
+/// With `gravity` declared: at every coordinate 0 the contact direction
+/// must point down (along the weight), not to the rim's highest point.
+fn lowest(cx: &Context<'_>, c: &RawContact, frame: usize, down: &Vec3) -> R<()> {
+    let Some((g, gf)) = &cx.physics.gravity else {
+        return Ok(());
+    };
+    let gi = cx.frame_index(gf).expect("gravity's frame exists");
+    let Some(g) = express_in(cx, g.clone(), gi, frame) else {
+        return Ok(());
+    };
+    let zero = g.dot(down).subst(&mut |a| {
+        if !a.is_time_dependent() {
+            return None;
+        }
+        Some(match a.kind() {
+            AtomKind::Cos(_) => Poly::one(),
+            _ => Poly::zero(),
+        })
+    });
+    if !zero.is_zero() && zero.terms().iter().all(|(_, k)| k.is_negative()) {
+        return Err(whole(
+            cx,
+            &c.down,
+            format!(
+                "at zero angles `down` points up, against the weight (gravity · g = {zero}): the contact would be \
+                 the rim's highest point; give the opposite axis"
+            ),
+        ));
+    }
+    Ok(())
 }
 
 fn one(cx: &Context<'_>, c: &RawContact, earlier: &[Point]) -> R<(Contact, Point)> {
@@ -258,6 +290,7 @@ fn one(cx: &Context<'_>, c: &RawContact, earlier: &[Point]) -> R<(Contact, Point
             (d.scale(&cos).add(&side.scale(&sin)), Some(chi))
         }
     };
+    lowest(cx, c, frame, &down)?;
     let point = Point {
         name: name.clone(),
         doc: format!("the contact point of {} on the ground", body.name),
