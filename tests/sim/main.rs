@@ -15,6 +15,8 @@ mod derived_model;
 mod derived_scene;
 // systems/derived/first_order.rs: first-order scenes in (q, u), the gyrostat with its attitude.
 mod derived_first_order;
+// systems/derived/holonomic.rs: configuration constraints solved at the start and kept by projection.
+mod holonomic;
 // scene/derived.rs: a derived scene's `[[body]]` tables bind the derivation's symbols.
 mod derived_bodies;
 // stability/: eigenvalue sweeps of linearised equations (hdot stability).

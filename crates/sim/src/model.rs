@@ -322,6 +322,24 @@ pub struct Drift {
     pub relative: f64,
 }
 
+/// What a derived scene's configuration constraints f(q) = 0 met along
+/// the run (`holonomic` in the scene's `[derivation]` table).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ConstraintDrift {
+    /// The steps holding f.
+    pub steps: Vec<String>,
+    /// The dependent coordinates solved for.
+    pub dependent: Vec<String>,
+    /// The largest |f_i(q)| over the accepted steps (after the
+    /// projection, when there is one).
+    pub max_residual: f64,
+    /// Whether q_d was projected back onto f = 0 after every step.
+    pub projected: bool,
+    /// The largest correction the projection made to a dependent
+    /// coordinate in one step (0 without projection).
+    pub max_correction: f64,
+}
+
 /// §7 check of a simulated steady precession.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct PrecessionCheck {
@@ -385,6 +403,8 @@ pub struct Outcome {
     /// A step or tolerance fitted on the scene during the run, and what
     /// was measured to fit it (appended to the plan's reason).
     pub fitted: Option<(Step, String)>,
+    /// A derived scene's configuration constraints along the run.
+    pub constraints: Option<ConstraintDrift>,
 }
 
 /// What one timed run of the work-precision sweep measured.

@@ -45,8 +45,8 @@ use serde::Serialize;
 
 pub use crate::estimate::{CHECK_TOL, CLOSED_FORM_BOUND, closed_form_estimate};
 pub use crate::model::{
-    Check, Cover, DEFAULT_DT, DEFAULT_TOL, Drift, DriftColumns, FrameState, Integration, Model,
-    ModelEntry, Plan, PrecessionCheck, REFERENCE_TOL, Request, step_label,
+    Check, ConstraintDrift, Cover, DEFAULT_DT, DEFAULT_TOL, Drift, DriftColumns, FrameState,
+    Integration, Model, ModelEntry, Plan, PrecessionCheck, REFERENCE_TOL, Request, step_label,
 };
 use crate::model::{not_applicable, requested_step};
 pub use crate::models::rigid_body::{PILOT_SAFETY, pilot_choice};
@@ -262,6 +262,10 @@ pub struct Report {
     /// A derived scene's reported frame at T.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub frame: Option<FrameState>,
+    /// A derived scene's configuration constraints along the run: the
+    /// largest |f(q)| and the projection's largest correction.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub constraints: Option<ConstraintDrift>,
 }
 
 /// Refuses `model` on `scene` when its entry says it does not apply.
@@ -304,6 +308,7 @@ pub fn run(scene: &Scene, plan: &Plan, out: &mut Output<'_>) -> Result<Report, S
         trajectory: rec.take_rows(),
         state_names: o.state_names,
         frame: o.frame,
+        constraints: o.constraints,
     };
     refuse_non_finite(&report)?;
     Ok(report)
@@ -358,6 +363,14 @@ fn refuse_non_finite(r: &Report) -> Result<(), SimError> {
             return bad(format!("drift of {}", d.name));
         }
     }
+    if let Some(c) = &r.constraints
+        && !(c.max_residual.is_finite() && c.max_correction.is_finite())
+    {
+        return bad(format!(
+            "residual of the constraint(s) {}",
+            c.steps.join(", ")
+        ));
+    }
     if let Some(re) = &r.reactions {
         const RN: [&str; 7] = ["A_x", "A_y", "B_x", "B_y", "M_x", "M_y", "M_z"];
         if let Some(k) = re.iter().position(|v| !v.is_finite()) {
@@ -411,6 +424,31 @@ impl fmt::Display for Report {
                 } else {
                     String::new()
                 }
+            )?;
+        }
+        if let Some(c) = &self.constraints {
+            let steps = c
+                .steps
+                .iter()
+                .map(|s| format!("`{s}`"))
+                .collect::<Vec<_>>()
+                .join(", ");
+            let kept = if c.projected {
+                format!(
+                    "{} projected onto f = 0 after each step by Newton's method (largest correction {:.3e})",
+                    c.dependent.join(", "),
+                    c.max_correction
+                )
+            } else {
+                format!(
+                    "not projected (project = false): {} integrated from the constraints' rates",
+                    c.dependent.join(", ")
+                )
+            };
+            writeln!(
+                f,
+                "constraint:  max |f(q)| = {:.3e} over the run (step(s) {steps}); {kept}",
+                c.max_residual
             )?;
         }
         writeln!(

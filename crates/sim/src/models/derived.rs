@@ -11,8 +11,9 @@
 use nalgebra::Matrix3;
 
 use crate::model::{
-    DEFAULT_TOL, Descriptor, Drift, DriftColumns, FrameState, Integration, Measured, Model,
-    ModelEntry, Outcome, Plan, REFERENCE_TOL, Request, not_a_splitting, not_applicable,
+    ConstraintDrift, DEFAULT_TOL, Descriptor, Drift, DriftColumns, FrameState, Integration,
+    Measured, Model, ModelEntry, Outcome, Plan, REFERENCE_TOL, Request, not_a_splitting,
+    not_applicable,
 };
 use crate::record::{Recorder, integrate_recorded, time_and_state, timed};
 use crate::scene::{DerivedScene, Scene};
@@ -331,6 +332,7 @@ fn run_n<const N: usize>(
         step = Step::Tolerance(tol);
         report.fitted = Some((step, why));
     }
+    ds.model.reset_constraint_monitor();
     let (y, stats, wall) = integrate_recorded(
         &DerivedSystem::<N>(&ds.model),
         (method, step),
@@ -347,8 +349,28 @@ fn run_n<const N: usize>(
     report.final_state = y.to_vec();
     report.state_names = ds.state_names();
     report.frame = frame_state(ds, plan.t_end, &y);
+    report.constraints = constraint_drift(ds, &y0);
     report.stats = stats;
     Ok(report)
+}
+
+/// What the configuration constraints met along the run just made (the
+/// model's monitor), with the residual at the start counted.
+fn constraint_drift(ds: &DerivedScene, y0: &[f64]) -> Option<ConstraintDrift> {
+    let m = &ds.model;
+    let (steps, dependent) = m.holonomic()?;
+    let rec = m.constraint_monitor()?;
+    let r0 = m
+        .constraint_residual(0.0, y0)
+        .iter()
+        .fold(0.0_f64, |a, v| a.max(v.abs()));
+    Some(ConstraintDrift {
+        steps,
+        dependent,
+        max_residual: rec.max_residual.max(r0),
+        projected: m.projects(),
+        max_correction: rec.max_correction,
+    })
 }
 
 /// The reported frame's attitude and angular velocity at `(t, y)`.

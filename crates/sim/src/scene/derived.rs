@@ -49,7 +49,10 @@ use super::bind::{bind_scene_bodies, check_gravity};
 use super::raw::{RawDerivation, RawInitial};
 use super::text::line_of_field;
 use crate::SimError;
-use crate::systems::derived::{DerivedModel, DerivedSpec, EquationsSpec, SpeedRates, TimeFunction};
+use crate::systems::derived::{
+    DerivedModel, DerivedSpec, EquationsSpec, HolonomicSpec, NewtonFailure, SpeedRates,
+    TimeFunction,
+};
 
 /// The `[initial]` values of a derived scene.
 #[derive(Debug, Default, Clone)]
@@ -228,6 +231,11 @@ fn parse(
             "missing table [derivation] (file = \"…\", and accelerations = \"…\" or mass_matrix/forcing/coordinates)".into(),
         )
     })?;
+    let holonomic_raw = (
+        raw.holonomic.clone(),
+        raw.dependent_coordinates.clone(),
+        raw.project,
+    );
     let mut equations = match (
         raw.accelerations,
         raw.rates,
@@ -239,6 +247,7 @@ fn parse(
         (None, Some(step), None, None, None) => EquationsSpec::FirstOrder {
             rates: SpeedRates::Explicit { step },
             dependent: raw.dependent.clone(),
+            holonomic: None,
         },
         (None, None, Some(mass_matrix), Some(forcing), coordinates) => EquationsSpec::MassMatrix {
             mass_matrix,
@@ -281,6 +290,7 @@ fn parse(
                 forcing: forcing.clone(),
             },
             dependent: raw.dependent.clone(),
+            holonomic: None,
         };
     }
     if let EquationsSpec::MassMatrix {
@@ -300,6 +310,10 @@ fn parse(
              (or a mass_matrix and forcing in [u1', …])"
                 .into(),
         ));
+    }
+    let holonomic = holonomic_spec(&holonomic_raw, first_order).map_err(|(f, m)| bad(f, m))?;
+    if let EquationsSpec::FirstOrder { holonomic: h, .. } = &mut equations {
+        *h = holonomic;
     }
     let (given, wanted) = if first_order {
         (
@@ -375,6 +389,7 @@ fn parse(
         SimError::Derived { message } => bad("initial", message),
         e => e,
     })?;
+    let y0 = solve_holonomic(&model, y0, (file, scene_text))?;
     if let Some(f) = &raw.frame
         && let Err(why) = model
             .attitude(f, 0.0, &y0)
@@ -399,6 +414,108 @@ fn parse(
         y0,
         frame: raw.frame,
         body_frames,
+    })
+}
+
+/// The configuration constraints the `[derivation]` table names
+/// (`holonomic`, `dependent_coordinates`, `project`), or the field and
+/// why they are refused.
+fn holonomic_spec(
+    (holonomic, dependent, project): &(Option<Vec<String>>, Option<Vec<String>>, Option<bool>),
+    first_order: bool,
+) -> Result<Option<HolonomicSpec>, (&'static str, String)> {
+    match (holonomic, dependent) {
+        (None, None) if project.is_some() => Err((
+            "derivation.project",
+            "projects onto configuration constraints: name them with `holonomic` (their steps) \
+             and `dependent_coordinates`"
+                .into(),
+        )),
+        (None, None) => Ok(None),
+        (Some(_), None) => Err((
+            "derivation.holonomic",
+            "configuration constraints need their dependent coordinates: \
+             `dependent_coordinates = [\"q\", …]`, one per constraint"
+                .into(),
+        )),
+        (None, Some(_)) => Err((
+            "derivation.dependent_coordinates",
+            "dependent coordinates belong to configuration constraints: name their steps with \
+             `holonomic = [\"f\", …]`"
+                .into(),
+        )),
+        (Some(_), Some(_)) if !first_order => Err((
+            "derivation.holonomic",
+            "configuration constraints are kept in a first-order model (state (q, u), its \
+             dependent coordinates' rates from the constraints' rates): name the speeds' rates with \
+             `rates` (or a mass_matrix and forcing in [u1', …])"
+                .into(),
+        )),
+        (Some(steps), Some(dependent)) => Ok(Some(HolonomicSpec {
+            steps: steps.clone(),
+            dependent: dependent.clone(),
+            project: project.unwrap_or(true),
+        })),
+    }
+}
+
+/// The initial state with its dependent coordinates solved from the
+/// configuration constraints by Newton's method, from the scene's guess
+/// (unchanged without constraints).
+fn solve_holonomic(
+    model: &DerivedModel,
+    mut y0: Vec<f64>,
+    (file, text): (&Path, &str),
+) -> Result<Vec<f64>, SimError> {
+    let Some((steps, dependent)) = model.holonomic() else {
+        return Ok(y0);
+    };
+    let names = model.state_names();
+    let guess = dependent
+        .iter()
+        .map(|q| {
+            let v = names
+                .iter()
+                .position(|n| n == q)
+                .map_or(f64::NAN, |i| y0[i]);
+            format!("{q} = {v}")
+        })
+        .collect::<Vec<_>>()
+        .join(", ");
+    let field = format!("initial.coordinates.{}", dependent[0]);
+    let line =
+        line_of_field(text, "initial.coordinates").map_or(String::new(), |n| format!("line {n}: "));
+    let steps = steps
+        .iter()
+        .map(|s| format!("`{s}`"))
+        .collect::<Vec<_>>()
+        .join(", ");
+    let why = match model.solve_constraints(0.0, &mut y0, true) {
+        Ok(_) => return Ok(y0),
+        Err(NewtonFailure::NoConvergence { residual }) => format!(
+            "no solution near the initial guess ({guess}): Newton's method on the configuration \
+             constraint(s) {steps} in {} did not converge (|f| = {residual:.3e} at its last \
+             iterate); give a guess nearer a configuration that satisfies them",
+            dependent.join(", ")
+        ),
+        Err(NewtonFailure::Singular { at }) => format!(
+            "the configuration constraint(s) {steps} cannot be solved for {} from the initial guess \
+             ({guess}): their Jacobian with respect to {} is singular at {} (choose other dependent \
+             coordinates, or another guess)",
+            dependent.join(", "),
+            dependent.join(", "),
+            dependent
+                .iter()
+                .zip(&at)
+                .map(|(q, v)| format!("{q} = {v}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    };
+    Err(SimError::BadField {
+        file: file.to_path_buf(),
+        field,
+        message: format!("{line}{why}"),
     })
 }
 

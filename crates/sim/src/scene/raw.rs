@@ -95,4 +95,10 @@ pub(super) struct RawDerivation {
     #[serde(default)]
     pub(super) conserved: Vec<String>,
     pub(super) frame: Option<String>,
+    /// Steps f(q) = 0 (configuration constraints) of a first-order model.
+    pub(super) holonomic: Option<Vec<String>>,
+    /// Their dependent coordinates, one per constraint.
+    pub(super) dependent_coordinates: Option<Vec<String>>,
+    /// Whether to project onto f = 0 after each step (default true).
+    pub(super) project: Option<bool>,
 }

@@ -38,10 +38,12 @@ mod build;
 mod carried;
 mod compile;
 mod first_order;
+mod holonomic;
 mod small_solve;
 
 pub use build::{in_speed_rates, step_coordinates};
 use compile::{Compiled, Source};
+pub use holonomic::{ConstraintMonitor, NewtonFailure};
 use small_solve::solve_small;
 
 /// Which steps of the derivation hold the equations of motion.
@@ -73,7 +75,23 @@ pub enum EquationsSpec {
         /// A step solved for the dependent speeds in the others
         /// (`solve(constraints, [u4, u5])`), replaced by their values.
         dependent: Option<String>,
+        /// Configuration constraints f(q) = 0 and their dependent
+        /// coordinates (`derived/holonomic.rs`).
+        holonomic: Option<HolonomicSpec>,
     },
+}
+
+/// Configuration constraints f(q) = 0 of a first-order model: solved for
+/// the dependent coordinates at the start, monitored along the run and
+/// (by default) kept by projection after each step.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HolonomicSpec {
+    /// The steps whose components are f (each a scalar or a list).
+    pub steps: Vec<String>,
+    /// The dependent coordinates q_d, one per constraint.
+    pub dependent: Vec<String>,
+    /// Whether q_d is projected back onto f = 0 after every step.
+    pub project: bool,
 }
 
 /// Where a first-order model's speed rates are.
@@ -178,6 +196,8 @@ pub struct DerivedModel {
     /// (see [`DerivedModel::constant_singularity`]).
     singular: Vec<(String, String)>,
     conserved: Vec<Conserved>,
+    /// Configuration constraints and their dependent coordinates.
+    holonomic: Option<holonomic::Holonomic>,
     /// The derivation's frames, in order: each frame's name and its
     /// motion, or why its attitude cannot be evaluated.
     frames: Vec<(String, Result<FrameChain, String>)>,
@@ -569,6 +589,13 @@ impl<const N: usize> System<N> for DerivedSystem<'_, N> {
             dy[n..].fill(f64::NAN);
         }
         dy
+    }
+
+    /// The configuration constraints' residual recorded and, when the
+    /// scene asks for it (the default), q_d projected back onto f = 0.
+    fn project(&self, y: &mut [f64; N]) -> bool {
+        // f(q) has no applied input (refused when compiled): t is not read.
+        self.0.keep_constraints(0.0, y)
     }
 
     fn check(&self, t: f64, y: &[f64; N]) -> Result<(), SimError> {

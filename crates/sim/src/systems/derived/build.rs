@@ -14,7 +14,7 @@ use super::compile::{Resolver, Source};
 use super::{
     Conserved, DIVISOR_BOUND, DerivedModel, DerivedSpec, Divisor, EquationsSpec, Form,
     FrameAttitude, FrameChain, MAX_DOF, SpeedRates, TimeFunction, at, carried, energy_reason, err,
-    first_order, in_steps,
+    first_order, holonomic, in_steps,
 };
 use crate::SimError;
 
@@ -47,7 +47,9 @@ impl DerivedModel {
             } => ("derivation.rates", vec![step.as_str()]),
         };
         let (coordinates, speeds, mut replace, outputs) = match &spec.equations {
-            EquationsSpec::FirstOrder { rates, dependent } => {
+            EquationsSpec::FirstOrder {
+                rates, dependent, ..
+            } => {
                 let e = first_order::equations(d, rates, dependent.as_deref())?;
                 (e.coordinates, e.speeds, e.replace, e.outputs)
             }
@@ -139,6 +141,12 @@ impl DerivedModel {
             _ => Form::MassMatrix(compiled),
         };
         let conserved = conserved(d, spec, &cx)?;
+        let holonomic = match &spec.equations {
+            EquationsSpec::FirstOrder {
+                holonomic: Some(h), ..
+            } => Some(holonomic::compile(d, h, &cx)?),
+            _ => None,
+        };
         let frames = frames(d, &cx);
         let carried_rates = if carried.is_empty() {
             None
@@ -155,6 +163,7 @@ impl DerivedModel {
             divisors,
             singular,
             conserved,
+            holonomic,
             frames,
             scratch: RefCell::new(Vec::new()),
         })
