@@ -195,8 +195,9 @@ fn a_constraint_without_a_solution_near_the_guess_is_refused() {
 
 /// Bad declarations, each refused at its field: constraints without
 /// dependent coordinates, a dependent coordinate that is not one, a
-/// constraint with a speed in it, a step that does not exist, and
-/// `project` without constraints.
+/// constraint with a speed in it, a step that does not exist, `project`
+/// without constraints, and dependent speeds that do not come from the
+/// constraint's rate (θ̇ = u₁/L instead of u₁/(L cos θ)).
 #[test]
 fn bad_constraint_declarations_are_refused_at_their_field() {
     let cases = [
@@ -235,6 +236,12 @@ fn bad_constraint_declarations_are_refused_at_their_field() {
             "project = false",
             "derivation.project",
             "name them with `holonomic`",
+        ),
+        (
+            "dependent = \"dependent\"",
+            "dependent = \"not_the_rate\"",
+            "derivation.dependent",
+            "does not vanish with the dependent speeds",
         ),
     ];
     for (from, to, want_field, want) in cases {

@@ -491,7 +491,7 @@ fn solve_holonomic(
         .collect::<Vec<_>>()
         .join(", ");
     let why = match model.solve_constraints(0.0, &mut y0, true) {
-        Ok(_) => return Ok(y0),
+        Ok(_) => return rate_vanishes(model, y0, (file, text), &steps),
         Err(NewtonFailure::NoConvergence { residual }) => format!(
             "no solution near the initial guess ({guess}): Newton's method on the configuration \
              constraint(s) {steps} in {} did not converge (|f| = {residual:.3e} at its last \
@@ -517,6 +517,49 @@ fn solve_holonomic(
         field,
         message: format!("{line}{why}"),
     })
+}
+
+/// The constraints' rate must vanish along the motion the equations
+/// integrate: the dependent speeds (the step `dependent`) must come from
+/// the constraints' rates ḟ = 0, or the dependent coordinates would be
+/// integrated by a rate of their own and projection would fight the
+/// motion. Checked at the initial configuration with the independent
+/// speeds set to 1, 1.1, 1.2, … (any speeds must do).
+fn rate_vanishes(
+    model: &DerivedModel,
+    y0: Vec<f64>,
+    (file, text): (&Path, &str),
+    steps: &str,
+) -> Result<Vec<f64>, SimError> {
+    let speeds: Vec<f64> = (0..model.speeds().len())
+        .map(|k| 1.0 + 0.1 * k as f64)
+        .collect();
+    match model.constraint_rate(0.0, &y0, &speeds) {
+        Some((rate, scale)) if rate > 1e-9 * scale => {
+            let line = line_of_field(text, "derivation.dependent")
+                .or_else(|| line_of_field(text, "derivation.holonomic"))
+                .map_or(String::new(), |n| format!("line {n}: "));
+            Err(SimError::BadField {
+                file: file.to_path_buf(),
+                field: "derivation.dependent".into(),
+                message: format!(
+                    "{line}the rate of the configuration constraint(s) {steps} does not vanish with \
+                     the dependent speeds of these equations (|df/dt| = {rate:.3e} against terms of \
+                     {scale:.3e} at the initial configuration, with the speeds {}): name as \
+                     `dependent` a step that solves the constraints' rates for the dependent speeds, \
+                     e.g. solve(list(in_speeds(dt(f)), …), [u…])",
+                    model
+                        .speeds()
+                        .iter()
+                        .zip(&speeds)
+                        .map(|(u, v)| format!("{u} = {v}"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            })
+        }
+        _ => Ok(y0),
+    }
 }
 
 /// The derivation's declared bodies, each with the frame fixed in it

@@ -293,6 +293,31 @@ impl DerivedModel {
         })
     }
 
+    /// The constraints' rate ḟ = (∂f/∂q) q̇ at `y` with its speeds
+    /// replaced by `speeds` (the state's own independent speeds held
+    /// elsewhere): the largest |ḟ_i| and the scale Σ_j |∂f_i/∂q_j q̇_j| it
+    /// is measured against; `None` when the rates cannot be evaluated.
+    /// It vanishes when the dependent speeds come from the constraints'
+    /// rates (implicit differentiation), whatever the speeds.
+    pub fn constraint_rate(&self, t: f64, y: &[f64], speeds: &[f64]) -> Option<(f64, f64)> {
+        let h = self.holonomic.as_ref()?;
+        let (m, n) = (h.dependent.len(), self.coordinates.len());
+        let mut z = y.to_vec();
+        z[n..n + speeds.len()].copy_from_slice(speeds);
+        let mut dz = vec![0.0; z.len()];
+        self.rates(t, &z, &mut dz)?;
+        let mut out = vec![0.0; h.tape.tape.outputs()];
+        self.eval(&h.tape, t, &z, &mut out);
+        let jac = &out[m + m * m..];
+        let (mut rate, mut scale) = (0.0_f64, 0.0_f64);
+        for i in 0..m {
+            let terms = (0..n).map(|j| jac[i * n + j] * dz[j]);
+            rate = rate.max(terms.clone().sum::<f64>().abs());
+            scale = scale.max(terms.map(f64::abs).sum::<f64>());
+        }
+        Some((rate, scale))
+    }
+
     /// Starts a new record of the constraints' residual and corrections.
     pub fn reset_constraint_monitor(&self) {
         if let Some(h) = &self.holonomic {
