@@ -1,6 +1,7 @@
 //! More meanings and conditions on constants (issue 20, item 4): ∂T/∂q
 //! measured on the particles, abbreviations that carry a meaning and are
-//! verified like steps, and a step's `given` fixing a constant (`s = 0`).
+//! verified like steps, and a step's `given` fixing a constant (`s = 0`),
+//! printed beside the step in every output format.
 //! The file, written for these tests: an axisymmetric body about a fixed
 //! point, turned by φ about the vertical and tilted by θ; and the bundled
 //! rolling disk's contact (issue 24, item 7).
@@ -121,6 +122,36 @@ fn a_condition_may_fix_a_constant_for_a_special_case() {
     let msg = e.to_string();
     assert!(msg.contains("measured on the particles"), "{msg}");
     assert!(msg.contains("t.toml:"), "{msg}");
+}
+
+/// A step that holds only under its conditions prints them beside its
+/// result, in every output format, and a step without conditions prints
+/// none: a constant fixed (`s = 0`), a rate (`φ̇ = s`), an angle
+/// (`θ = π/2`).
+#[test]
+fn a_steps_conditions_print_beside_it_in_every_format() {
+    let text = tilted(
+        "",
+        "[[step]]\nname = \"dTdtheta_0\"\nvalue = \"subst(dTdtheta, phi' = s, s = 0, theta = pi/2)\"\n\
+         means = \"kinetic_energy_partial(body, theta)\"\ngiven = [\"s = 0\", \"phi' = s\", \"theta = pi/2\"]\n",
+    );
+    let d = load(&text);
+    let section = hdot_sym::document::Section::of(&d, None);
+    let conditions: Vec<&str> = section.steps.iter().map(|s| s.condition.as_str()).collect();
+    assert_eq!(conditions, ["", "", "$s = 0$, $φ̇ = s$, $θ = π/2$"]);
+    for b in hdot_sym::notes::BACKENDS {
+        let out = b.section(&section);
+        assert_eq!(out.matches("(for ").count(), 1, "{}:\n{out}", b.name());
+    }
+    let unicode = hdot_sym::notes::backend("unicode")
+        .unwrap()
+        .section(&section);
+    assert!(unicode.contains("(for s = 0, φ̇ = s, θ = π/2)"), "{unicode}");
+    let latex = hdot_sym::notes::backend("latex").unwrap().section(&section);
+    assert!(
+        latex.contains(r"(for $s = 0$, $\dot{\phi} = s$, $\theta = \pi/2$)"),
+        "{latex}"
+    );
 }
 
 /// Issue 24, item 7: the rolling disk's constraint measured on the
