@@ -118,7 +118,8 @@ fn lowest(cx: &Context<'_>, c: &RawContact, frame: usize, down: &Vec3) -> R<()> 
     Ok(())
 }
 
-fn one(cx: &Context<'_>, c: &RawContact, earlier: &[Point]) -> R<(Contact, Point)> {
+/// The contact point's name (not taken), the wheel's index and its centre.
+fn wheel_and_centre(cx: &Context<'_>, c: &RawContact, earlier: &[Point]) -> R<(usize, String)> {
     let name = c.name.get_ref();
     let taken = cx
         .physics
@@ -188,24 +189,11 @@ fn one(cx: &Context<'_>, c: &RawContact, earlier: &[Point]) -> R<(Contact, Point
             ),
         ));
     }
-    let frame = match &c.frame {
-        Some(s) => cx
-            .frame_index(s.get_ref())
-            .ok_or_else(|| whole(cx, s, format!("`{}` is not a declared frame", s.get_ref())))?,
-        None => match &cx.frames[body.frame].parent {
-            Some((p, _)) => cx.frame_index(p).expect("the parent exists"),
-            None => body.frame,
-        },
-    };
-    let axle = axis(cx, frame, &c.axle, "axle")?;
-    let d = axis(cx, frame, &c.down, "down")?;
-    if !axle.dot(&d).is_zero() {
-        return Err(whole(
-            cx,
-            &c.down,
-            "`down` is square to the axle: the direction from the centre to the rim in the wheel's plane",
-        ));
-    }
+    Ok((wheel, centre))
+}
+
+/// The radius: a positive constant expression.
+fn radius(cx: &Context<'_>, c: &RawContact) -> R<Poly> {
     let radius = cx.unfold(&cx.scalar_in(&c.radius)?);
     if radius.is_zero() {
         return Err(whole(cx, &c.radius, "the wheel's radius is zero"));
@@ -223,6 +211,11 @@ fn one(cx: &Context<'_>, c: &RawContact, earlier: &[Point]) -> R<(Contact, Point
     {
         return Err(whole(cx, &c.radius, "the wheel's radius must be positive"));
     }
+    Ok(radius)
+}
+
+/// The frame of the rolling constraints' components: its z is N's.
+fn plane(cx: &Context<'_>, c: &RawContact) -> R<usize> {
     let plane = match &c.plane {
         Some(s) => cx
             .frame_index(s.get_ref())
@@ -243,6 +236,19 @@ fn one(cx: &Context<'_>, c: &RawContact, earlier: &[Point]) -> R<(Contact, Point
             ),
         ));
     }
+    Ok(plane)
+}
+
+/// g, from the centre to the contact, in `frame`'s components, and the
+/// auxiliary angle it is written in (if any).
+fn direction(
+    cx: &Context<'_>,
+    c: &RawContact,
+    frame: usize,
+    axle: &Vec3,
+    d: Vec3,
+) -> R<(Vec3, Option<Atom>)> {
+    let up = Vec3::unit(2);
     let Some(n) = express_in(cx, up, 0, frame) else {
         return Err(whole(
             cx,
@@ -254,7 +260,7 @@ fn one(cx: &Context<'_>, c: &RawContact, earlier: &[Point]) -> R<(Contact, Point
         ));
     };
     let side = axle.cross(&d);
-    let (down, angle) = match &c.angle {
+    Ok(match &c.angle {
         None => {
             let tilt = side.dot(&n);
             if !tilt.is_zero() {
@@ -289,7 +295,34 @@ fn one(cx: &Context<'_>, c: &RawContact, earlier: &[Point]) -> R<(Contact, Point
             let sin = Poly::atom(Atom::sin(chi).expect("an angle"));
             (d.scale(&cos).add(&side.scale(&sin)), Some(chi))
         }
+    })
+}
+
+fn one(cx: &Context<'_>, c: &RawContact, earlier: &[Point]) -> R<(Contact, Point)> {
+    let name = c.name.get_ref();
+    let (wheel, centre) = wheel_and_centre(cx, c, earlier)?;
+    let body = &cx.physics.bodies[wheel];
+    let frame = match &c.frame {
+        Some(s) => cx
+            .frame_index(s.get_ref())
+            .ok_or_else(|| whole(cx, s, format!("`{}` is not a declared frame", s.get_ref())))?,
+        None => match &cx.frames[body.frame].parent {
+            Some((p, _)) => cx.frame_index(p).expect("the parent exists"),
+            None => body.frame,
+        },
     };
+    let axle = axis(cx, frame, &c.axle, "axle")?;
+    let d = axis(cx, frame, &c.down, "down")?;
+    if !axle.dot(&d).is_zero() {
+        return Err(whole(
+            cx,
+            &c.down,
+            "`down` must be square to the axle: the direction from the centre to the rim in the wheel's plane",
+        ));
+    }
+    let radius = radius(cx, c)?;
+    let plane = plane(cx, c)?;
+    let (down, angle) = direction(cx, c, frame, &axle, d)?;
     lowest(cx, c, frame, &down)?;
     let point = Point {
         name: name.clone(),
