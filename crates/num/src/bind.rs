@@ -91,6 +91,19 @@ impl Values {
         out
     }
 
+    /// Every value and size by its bits, ordered by atom: equal keys mean
+    /// that every computation from these values gives the same bits
+    /// (`0.0` and `-0.0` differ here).
+    pub(crate) fn bits(&self) -> Vec<(Atom, u64, u64)> {
+        let mut out: Vec<(Atom, u64, u64)> = self
+            .map
+            .iter()
+            .map(|(a, (v, s))| (*a, v.to_bits(), s.to_bits()))
+            .collect();
+        out.sort_unstable_by_key(|x| x.0);
+        out
+    }
+
     pub(crate) fn unset(&mut self, a: Atom) {
         self.map.remove(&a);
     }

@@ -368,9 +368,10 @@ fn at<'a>(
     x: &'a Meaning,
 ) -> impl Fn(&Values) -> Result<(Vec<f64>, f64), VerifyError> + 'a {
     move |values: &Values| {
-        let w2 = w.at(values)?;
-        let (v, s) = meaning_value(&w2, x)?;
-        Ok((v.components(&w2, None), s))
+        w.measured_at(values, x, |w2| {
+            let (v, s) = meaning_value(w2, x)?;
+            Ok((v.components(w2, None), s))
+        })
     }
 }
 

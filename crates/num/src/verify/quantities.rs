@@ -316,24 +316,27 @@ fn force(w: &World<'_>, a: &[Arg]) -> Out {
     Ok((Measured::Vector(v), s))
 }
 
-fn about(w: &World<'_>, a: &[Arg], order: usize) -> Out {
+/// `Σ m (r − r_O) × r⁽ᴼᴿᴰᴱᴿ⁾`, the order fixed at compile time so that
+/// the sum places only the orders it reads (a linearisation measures the
+/// moment on tens of thousands of worlds).
+fn about<const ORDER: usize>(w: &World<'_>, a: &[Arg]) -> Out {
     let o = point(w, &a[1]);
     let (v, s) = sum_vec(w, bodies(&a[0]), |p| {
         let rho = p.r[0] - o.r[0];
         (
-            rho.cross(&p.r[order]) * p.m,
-            p.m * (p.mag[0] + o.mag[0]) * p.mag[order],
+            rho.cross(&p.r[ORDER]) * p.m,
+            p.m * (p.mag[0] + o.mag[0]) * p.mag[ORDER],
         )
     });
     Ok((Measured::Vector(v), s))
 }
 
 fn angular_momentum(w: &World<'_>, a: &[Arg]) -> Out {
-    about(w, a, 1)
+    about::<1>(w, a)
 }
 
 fn moment(w: &World<'_>, a: &[Arg]) -> Out {
-    about(w, a, 2)
+    about::<2>(w, a)
 }
 
 fn kinetic_energy(w: &World<'_>, a: &[Arg]) -> Out {

@@ -4,11 +4,13 @@
 //! a derived ω, the transport theorem or `express`), points as jets
 //! (position and three derivatives), particles as `r = r_P + R q`.
 
+use std::cell::RefCell;
 use std::collections::HashMap;
+use std::rc::Rc;
 
 use hdot_sym::atom::Atom;
 use hdot_sym::derivation::Derivation;
-use hdot_sym::derivation::physics::{Bodies, FrameMotion, PointKind, Rule, RuleValue};
+use hdot_sym::derivation::physics::{Bodies, FrameMotion, Meaning, PointKind, Rule, RuleValue};
 use hdot_sym::poly::Poly;
 use hdot_sym::vector::Vec3;
 use nalgebra::{Matrix3, Vector3};
@@ -146,6 +148,56 @@ impl<'w> Iterator for Particles<'w> {
     }
 }
 
+/// A meaning measured at other values of the symbols: its components (N's
+/// axes for a vector) and the magnitudes of the terms summed into them.
+pub(crate) type Measurement = (Vec<f64>, f64);
+
+/// The measurements made by the worlds of one step (one draw, one set of
+/// coordinates), by the bits of the values they were made at. The
+/// first-order parts of a linearisation measure the same perturbed worlds
+/// again and again: `rate` measures X at zero disturbance whatever the
+/// disturbance it is given, so `coefficient(rate(e'', X), e)` would
+/// measure the same 25 worlds four times. A measurement is a function of
+/// the draw, the coordinates, the values and the meaning, so a repeat is
+/// looked up, and its bits are those a new world would give.
+/// Keyed by a fingerprint of the values' bits; each entry holds the bits
+/// themselves, compared in full.
+#[derive(Default)]
+struct Memo(RefCell<HashMap<u64, Vec<MemoEntry>>>);
+
+/// The bits of the values, the meaning, and what it measured.
+type MemoEntry = (Vec<(Atom, u64, u64)>, Meaning, Measurement);
+
+/// A fingerprint of `bits`: a multiplicative mix per word (the values of
+/// one step differ in a few words, and a full comparison follows), where
+/// the standard hasher would cost a tenth of the whole verification.
+fn fingerprint(bits: &[(Atom, u64, u64)]) -> u64 {
+    use std::hash::{Hash, Hasher};
+    struct Mix(u64);
+    impl Hasher for Mix {
+        fn finish(&self) -> u64 {
+            self.0
+        }
+        fn write(&mut self, bytes: &[u8]) {
+            for b in bytes {
+                self.write_u64(u64::from(*b));
+            }
+        }
+        fn write_u32(&mut self, w: u32) {
+            self.write_u64(u64::from(w));
+        }
+        fn write_u64(&mut self, w: u64) {
+            self.0 = (self.0.rotate_left(5) ^ w).wrapping_mul(0x517c_c1b7_2722_0a95);
+        }
+        fn write_usize(&mut self, w: usize) {
+            self.write_u64(w as u64);
+        }
+    }
+    let mut h = Mix(0);
+    bits.hash(&mut h);
+    h.finish()
+}
+
 /// The model at one instant.
 pub struct World<'d> {
     pub(crate) d: &'d Derivation,
@@ -165,6 +217,9 @@ pub struct World<'d> {
     pub coordinates: Vec<Atom>,
     /// The symbols' values it was built from.
     pub values: Values,
+    /// The measurements at other values made so far, shared with the
+    /// worlds [`World::at`] builds from this one.
+    memo: Rc<Memo>,
 }
 
 /// The jet of a polynomial's value (`p, ṗ, p̈, p⃛`) under `values`.
@@ -220,6 +275,64 @@ fn vec_jet(v: &Vec3, values: &Values) -> Result<VecJet, VerifyError> {
     Ok(std::array::from_fn(|n| {
         Vector3::new(c[0][n], c[1][n], c[2][n])
     }))
+}
+
+/// The jet `q, q̇, q̈, q⃛` of a frame's angle (a constant angle, a fixed
+/// tilt, has no rates).
+fn angle_jet(d: &Derivation, values: &Values, angle: Atom) -> Result<[f64; ORDERS], VerifyError> {
+    let mut q = [0.0; ORDERS];
+    for (n, x) in q.iter_mut().enumerate() {
+        *x = match n {
+            0 => values.get(angle).map(|(v, _)| v),
+            _ if !angle.is_time_dependent() => Some(0.0),
+            _ => values.time(angle, n as u32).map(|(v, _)| v),
+        }
+        .ok_or_else(|| VerifyError::unbound(d, "frame", angle))?;
+    }
+    Ok(q)
+}
+
+/// A frame turned from its parent (attitude jet `parent`, partial `∂R/∂q`
+/// of the parent in the world's coordinate) by `(rot, g, moves)`: the
+/// elementary rotation's jet, its generator, and whether its angle is the
+/// coordinate. Its attitude jet and its own `∂R/∂q`.
+fn turned(
+    parent: &MatJet,
+    parent_partial: &Matrix3<f64>,
+    (rot, g, moves): (MatJet, Matrix3<f64>, bool),
+) -> (MatJet, Matrix3<f64>) {
+    let jet = mat_mat(parent, &rot);
+    let mut partial = parent_partial * rot[0];
+    if moves {
+        partial += parent[0] * rot[0] * g;
+    }
+    (jet, partial)
+}
+
+/// The point at the offset `a` (a jet, in the axes of a frame given by its
+/// attitude jet and its `∂R/∂q`) from `base` (its jet and its `∂r/∂q`):
+/// `r = r_base + R a` by the product rule, the magnitudes of the terms of
+/// each order, and `∂r/∂q = ∂r_base/∂q + ∂R/∂q a (+ R ∂a/∂q)`, `da` the
+/// offset's own partial when it depends on the coordinate.
+fn offset(
+    (base, base_partial): (&PointJet, Vector3<f64>),
+    (rj, frame_partial): (&MatJet, &Matrix3<f64>),
+    a: &VecJet,
+    da: Option<Vector3<f64>>,
+) -> (PointJet, Vector3<f64>) {
+    let r = mat_vec(rj, a);
+    let mag = std::array::from_fn(|n| {
+        base.mag[n]
+            + (0..=n)
+                .map(|k| BINOMIAL[n][k] * fro(&rj[k]) * a[n - k].norm())
+                .sum::<f64>()
+    });
+    let mut partial = base_partial + frame_partial * a[0];
+    if let Some(da) = da {
+        partial += rj[0] * da;
+    }
+    let r = std::array::from_fn(|n| base.r[n] + r[n]);
+    (PointJet { r, mag }, partial)
 }
 
 /// The virtual displacement of coordinate `q` as coefficients of the
@@ -378,45 +491,25 @@ impl<'d> World<'d> {
                     axis,
                     angle,
                 } => {
-                    // A constant angle (a fixed tilt) has no rates.
-                    let q = (0..ORDERS as u32)
-                        .map(|n| match n {
-                            0 => values.get(*angle).map(|(v, _)| v),
-                            _ if !angle.is_time_dependent() => Some(0.0),
-                            _ => values.time(*angle, n).map(|(v, _)| v),
-                        })
-                        .collect::<Option<Vec<f64>>>();
-                    let q = q.ok_or_else(|| VerifyError::unbound(d, "frame", *angle))?;
-                    let rot = rotation_jet(*axis, [q[0], q[1], q[2], q[3]]);
-                    let jet = mat_mat(&frames[*parent], &rot);
-                    let mut partial = partials[*parent] * rot[0];
-                    if Some(angle.base()) == coordinate {
-                        partial += frames[*parent][0] * rot[0] * generator(*axis);
-                    }
-                    (jet, partial)
+                    let q = angle_jet(d, values, *angle)?;
+                    let g = generator(*axis);
+                    let turn = (rotation_jet(*axis, q), g, Some(angle.base()) == coordinate);
+                    turned(&frames[*parent], &partials[*parent], turn)
                 }
                 FrameMotion::Hinge {
                     parent,
                     axis,
                     angle,
                 } => {
-                    let q = (0..ORDERS as u32)
-                        .map(|n| match n {
-                            0 => values.get(*angle).map(|(v, _)| v),
-                            _ if !angle.is_time_dependent() => Some(0.0),
-                            _ => values.time(*angle, n).map(|(v, _)| v),
-                        })
-                        .collect::<Option<Vec<f64>>>();
-                    let q = q.ok_or_else(|| VerifyError::unbound(d, "frame", *angle))?;
+                    let q = angle_jet(d, values, *angle)?;
                     // The axis is constant: its jet's value.
                     let k = vec_jet(axis, values)?[0];
-                    let rot = hinge_jet(k, [q[0], q[1], q[2], q[3]]);
-                    let jet = mat_mat(&frames[*parent], &rot);
-                    let mut partial = partials[*parent] * rot[0];
-                    if Some(angle.base()) == coordinate {
-                        partial += frames[*parent][0] * rot[0] * k.cross_matrix();
-                    }
-                    (jet, partial)
+                    let turn = (
+                        hinge_jet(k, q),
+                        k.cross_matrix(),
+                        Some(angle.base()) == coordinate,
+                    );
+                    turned(&frames[*parent], &partials[*parent], turn)
                 }
                 FrameMotion::AngularVelocity => {
                     let w = vec_jet(&d.frames[i].omega, values)?;
@@ -445,6 +538,7 @@ impl<'d> World<'d> {
             coordinate,
             coordinates: Vec::new(),
             values: values.clone(),
+            memo: Rc::default(),
         };
         if let Some((g, f)) = &ph.gravity {
             let fi = d.frames.iter().position(|x| &x.name == f).expect("frame");
@@ -483,7 +577,36 @@ impl<'d> World<'d> {
     /// The same model at the instant `values` describe (the same draw and
     /// coordinates).
     pub(crate) fn at(&self, values: &Values) -> Result<World<'d>, VerifyError> {
-        World::build(self.d, self.draw, values, &self.coordinates)
+        let mut w = World::build(self.d, self.draw, values, &self.coordinates)?;
+        w.memo = self.memo.clone();
+        Ok(w)
+    }
+
+    /// `x` measured by `measure` on the world [`World::at`] `values`, or
+    /// the same measurement made before by a world of this step.
+    pub(crate) fn measured_at(
+        &self,
+        values: &Values,
+        x: &Meaning,
+        measure: impl FnOnce(&World<'d>) -> Result<Measurement, VerifyError>,
+    ) -> Result<Measurement, VerifyError> {
+        let bits = values.bits();
+        let key = fingerprint(&bits);
+        if let Some(found) = self.memo.0.borrow().get(&key).and_then(|e| {
+            e.iter()
+                .find(|(b, m, _)| *b == bits && m == x)
+                .map(|(_, _, measured)| measured.clone())
+        }) {
+            return Ok(found);
+        }
+        let measured = measure(&self.at(values)?)?;
+        self.memo
+            .0
+            .borrow_mut()
+            .entry(key)
+            .or_default()
+            .push((bits, x.clone(), measured.clone()));
+        Ok(measured)
     }
 
     /// The jet of point `name`, computed once.
@@ -529,30 +652,15 @@ impl<'d> World<'d> {
                 PointKind::From { from, at, frame } => {
                     let base = self.point(from, draw, values, partials, dp, depth + 1)?;
                     let fi = frame_of(frame);
-                    let a = vec_jet(at, values)?;
-                    let rj = self.frames[fi];
-                    let r = mat_vec(&rj, &a);
-                    let mag = std::array::from_fn(|n| {
-                        base.mag[n]
-                            + (0..=n)
-                                .map(|k| BINOMIAL[n][k] * fro(&rj[k]) * a[n - k].norm())
-                                .sum::<f64>()
-                    });
-                    let mut partial = dp[from] + partials[fi] * a[0];
-                    if let Some(q) = self.coordinate {
-                        let da = Vector3::from_iterator(
+                    // The offset's own partial in the coordinate.
+                    let da = self.coordinate.map(|q| {
+                        Vector3::from_iterator(
                             at.0.iter()
                                 .map(|c| values.eval(&c.partial(q)).map(|x| x.0).unwrap_or(0.0)),
-                        );
-                        partial += rj[0] * da;
-                    }
-                    (
-                        PointJet {
-                            r: std::array::from_fn(|n| base.r[n] + r[n]),
-                            mag,
-                        },
-                        partial,
-                    )
+                        )
+                    });
+                    let frame = (&self.frames[fi], &partials[fi]);
+                    offset((&base, dp[from]), frame, &vec_jet(at, values)?, da)
                 }
             }
         } else {
@@ -567,15 +675,9 @@ impl<'d> World<'d> {
             } else {
                 let base = self.point(&b.point, draw, values, partials, dp, depth + 1)?;
                 let c = draw.centre(bi);
-                let rj = self.frames[b.frame];
-                let mag = std::array::from_fn(|n| base.mag[n] + fro(&rj[n]) * c.norm());
-                (
-                    PointJet {
-                        r: std::array::from_fn(|n| base.r[n] + rj[n] * c),
-                        mag,
-                    },
-                    dp[&b.point] + partials[b.frame] * c,
-                )
+                let zero = Vector3::zeros();
+                let frame = (&self.frames[b.frame], &partials[b.frame]);
+                offset((&base, dp[&b.point]), frame, &[c, zero, zero, zero], None)
             }
         };
         self.points.insert(name.to_owned(), jet);
