@@ -305,3 +305,158 @@ fn the_nonlinear_bicycle_linearizes_to_the_benchmark_matrices() {
     };
     assert!(e.terms().len() > 50, "{e}");
 }
+
+/// The nonlinear bicycle's equations in multiplier form — M u̇ − f = A_cᵀ λ,
+/// A_c u̇ + b = 0 and the kinematic equations — at the benchmark's
+/// parameters (docs/examples/stability-bicycle.toml), linearized by
+/// central differences about upright running: their eigenvalues away from
+/// zero (the ignorable coordinates and the constraints' invariants give
+/// zeros) are the benchmark's at 0 and 5 m/s (Table 2's digits, as in
+/// tests/sim/bicycle.rs), so the nonlinear equations are those of the
+/// bicycle, not only their linearization.
+#[test]
+fn the_nonlinear_bicycle_in_multiplier_form_has_the_benchmark_eigenvalues() {
+    use hdot_sim::nalgebra::{Complex, DMatrix, DVector};
+    use hdot_sym::{Atom, AtomKind};
+    let d = bundled("docs/examples/derivations/bicycle-nonlinear.toml");
+    let scene: toml::Table = toml::from_str(
+        &std::fs::read_to_string(repo_root().join("docs/examples/stability-bicycle.toml")).unwrap(),
+    )
+    .unwrap();
+    let constants = scene["constants"].as_table().unwrap();
+    let names: Vec<&str> = d
+        .kinematic_equations()
+        .iter()
+        .map(|(q, _)| q.name())
+        .chain(d.speeds().iter().map(|u| u.name()))
+        .collect();
+    assert_eq!(names.len(), 18);
+    let polys = |s: &str| -> Vec<hdot_sym::Poly> {
+        step(&d, s)
+            .components()
+            .into_iter()
+            .map(|p| d.unfold(p))
+            .collect()
+    };
+    let (m_all, f_all, a_c, b) = (
+        polys("M_all"),
+        polys("f_all"),
+        polys("A_c"),
+        polys("A_c_rate"),
+    );
+    let kin: Vec<hdot_sym::Poly> = d
+        .kinematic_equations()
+        .iter()
+        .map(|(_, f)| f.clone())
+        .collect();
+    let (n, k) = (9, 6);
+    let eval = |p: &hdot_sym::Poly, x: &[f64]| -> f64 {
+        fn value(a: Atom, x: &[f64], names: &[&str], c: &toml::Table) -> f64 {
+            match a.kind() {
+                AtomKind::Sin(q) => value(q, x, names, c).sin(),
+                AtomKind::Cos(q) => value(q, x, names, c).cos(),
+                AtomKind::Var {
+                    name, time: false, ..
+                } => c[name].as_float().unwrap(),
+                AtomKind::Var { name, order: 0, .. } => {
+                    x[names.iter().position(|s| *s == name).unwrap()]
+                }
+                _ => panic!("a rate in the equations: {a}"),
+            }
+        }
+        p.eval(&mut |a| value(a, x, &names, constants))
+    };
+    // ẋ = (q̇, u̇): u̇ and λ from [M A_cᵀ; A_c 0] [u̇; λ] = [f; −b].
+    let rhs = |x: &[f64]| -> Vec<f64> {
+        let mut sys = DMatrix::zeros(n + k, n + k);
+        let mut r = DVector::zeros(n + k);
+        for i in 0..8 {
+            for j in 0..8 {
+                sys[(i, j)] = eval(&m_all[8 * i + j], x);
+            }
+            r[i] = eval(&f_all[i], x);
+        }
+        for i in 0..k {
+            for j in 0..n {
+                let a = eval(&a_c[n * i + j], x);
+                sys[(n + i, j)] = a;
+                sys[(j, n + i)] = a;
+            }
+            r[n + i] = -eval(&b[i], x);
+        }
+        let s = sys
+            .lu()
+            .solve(&r)
+            .expect("the constrained system is regular");
+        kin.iter()
+            .map(|f| eval(f, x))
+            .chain(s.iter().take(n).copied())
+            .collect()
+    };
+    let cases: [(f64, Vec<Complex<f64>>); 2] = [
+        (
+            0.0,
+            vec![
+                Complex::new(-5.53094371765393, 0.0),
+                Complex::new(-3.13164324790656, 0.0),
+                Complex::new(3.13164324790656, 0.0),
+                Complex::new(5.53094371765393, 0.0),
+            ],
+        ),
+        (
+            5.0,
+            vec![
+                Complex::new(-14.07838969279822, 0.0),
+                Complex::new(-0.77534188219585, -4.46486771378823),
+                Complex::new(-0.77534188219585, 4.46486771378823),
+                Complex::new(-0.32286642900409, 0.0),
+            ],
+        ),
+    ];
+    for (v, want) in cases {
+        // Upright straight running: every angle 0, the rear wheel turning
+        // at −v/r_R, the dependent speeds from A_c u = 0.
+        let mut x = vec![0.0; 18];
+        x[9 + 5] = -v / constants["r_R"].as_float().unwrap();
+        let dep = [0, 1, 2, 4, 7, 8];
+        let mut ad = DMatrix::zeros(k, k);
+        let mut rhs0 = DVector::zeros(k);
+        for i in 0..k {
+            for (c, &j) in dep.iter().enumerate() {
+                ad[(i, c)] = eval(&a_c[n * i + j], &x);
+            }
+            rhs0[i] = -eval(&a_c[n * i + 5], &x) * x[9 + 5];
+        }
+        let ud = ad.lu().solve(&rhs0).expect("the dependent speeds");
+        for (c, &j) in dep.iter().enumerate() {
+            x[9 + j] = ud[c];
+        }
+        let still = rhs(&x);
+        let scale = v.max(1.0);
+        for (i, r) in still.iter().enumerate().skip(9) {
+            assert!(
+                r.abs() <= 1e-9 * scale,
+                "v = {v}: u̇ {i} = {r} in steady running"
+            );
+        }
+        let h = 1e-6;
+        let mut jac = DMatrix::zeros(18, 18);
+        for j in 0..18 {
+            let (mut up, mut dn) = (x.clone(), x.clone());
+            up[j] += h;
+            dn[j] -= h;
+            let (fu, fd) = (rhs(&up), rhs(&dn));
+            for i in 0..18 {
+                jac[(i, j)] = (fu[i] - fd[i]) / (2.0 * h);
+            }
+        }
+        let ev = jac.complex_eigenvalues();
+        for z in &want {
+            let nearest = ev.iter().map(|e| (e - z).norm()).fold(f64::MAX, f64::min);
+            assert!(nearest <= 1e-6 * z.norm(), "v = {v}: {z} not among {ev:?}");
+        }
+        // Every other eigenvalue is (numerically) zero.
+        let away = ev.iter().filter(|e| e.norm() > 1e-3).count();
+        assert_eq!(away, want.len(), "v = {v}: {ev:?}");
+    }
+}
