@@ -89,10 +89,123 @@ fn newest_source() -> Option<std::time::SystemTime> {
     newest
 }
 
-/// Reading what hdot wrote as LaTeX, Markdown or HTML, for the tests that
-/// feed hostile strings to every field (`tests/sym/injection.rs`,
-/// `tests/fuzz/hostile.rs`).
+/// Hostile strings, and reading what hdot wrote for them as LaTeX,
+/// Markdown or HTML, for the tests that feed them to every field
+/// (`tests/sym/injection.rs`, `tests/fuzz/hostile.rs`): one table of
+/// strings, one TOML quoting, one pdflatex run.
 pub mod markup {
+    use std::path::Path;
+    use std::process::Command;
+
+    /// Strings of issue 21 that mean something to TeX, HTML or Markdown:
+    /// control words that read files or loop, unbalanced braces, `^^`
+    /// character codes, tags, entities, code fences.
+    pub const TEX_HTML: &[&str] = &[
+        r"\input\x",
+        r"\end{document}",
+        r"\immediate\write18{id}",
+        r"\def\x{\x}\x",
+        r"{{{ unbalanced \x",
+        r"}} unbalanced \x{",
+        r"100% # $ & ~ ^ _ ^^5c ^^M \\ \x",
+        r"$\input{x}$ and $x^^5cinput$ and $x_$",
+        "</math></mi><script>alert(1)</script>",
+        "&amp; &lt;b onload=\"x\"> <img src=x onerror=alert(1)> 'single' \"double\"",
+        "``` \\x ` <!-- [link](javascript:x) *em* _u_",
+        r"``` \x <script>alert(1)</script> ` %% & # ~ ^ _",
+    ];
+
+    /// Strings that mean something to a terminal or to a text's direction:
+    /// bidirectional overrides, escape sequences, NUL, line separators.
+    pub const TERMINAL: &[&str] = &[
+        "bidi \u{202E}\\input\\x\u{202C} \u{2066}iso\u{2069} \u{200F}rtl",
+        "control \u{1b}[31m red \u{7} bell \u{0} nul \u{8} \r carriage \u{85} \u{2028} end",
+    ];
+
+    /// Strings that would end a Python comment or string literal early.
+    pub const PYTHON: &[&str] = &[
+        "x\nimport os; os.system('id')",
+        "it's \"quoted\" ''' \"\"\" \\",
+        "back\\slash\\\nnew line\\",
+        "\r\n# carriage\u{2028}separator\u{85}next\u{b}\u{c}",
+        "\u{0}nul and \u{1b}[31m escape",
+    ];
+
+    /// [`TEX_HTML`] and [`TERMINAL`], and one long string of unbalanced
+    /// control words (past TeX's grouping and input stacks).
+    pub fn hostile() -> Vec<String> {
+        let mut v: Vec<String> = TEX_HTML
+            .iter()
+            .chain(TERMINAL)
+            .map(|s| (*s).to_owned())
+            .collect();
+        v.push(r"\input\x{".repeat(1500) + "$ </math>");
+        v
+    }
+
+    /// A TOML basic string holding `s` (control characters as `\uXXXX`).
+    pub fn toml_str(s: &str) -> String {
+        let mut o = String::from('"');
+        for c in s.chars() {
+            match c {
+                '"' => o.push_str("\\\""),
+                '\\' => o.push_str("\\\\"),
+                c if c.is_control() => o.push_str(&format!("\\u{:04X}", c as u32)),
+                c => o.push(c),
+            }
+        }
+        o.push('"');
+        o
+    }
+
+    /// Whether a command runs; when it does not, the test says so and goes
+    /// on (unless `CI=true`, where a missing tool fails).
+    pub fn have(cmd: &str, args: &[&str], why: &str) -> bool {
+        let ok = Command::new(cmd)
+            .args(args)
+            .output()
+            .is_ok_and(|o| o.status.success());
+        if !ok {
+            assert!(
+                std::env::var("CI").as_deref() != Ok("true"),
+                "{cmd} is needed on CI: {why}"
+            );
+            eprintln!("{cmd} not usable: {why} skipped");
+        }
+        ok
+    }
+
+    /// `tex` (what was written for `what`) compiles with pdflatex in
+    /// `dir`, shell escape off.
+    pub fn compile(what: &str, dir: &Path, tex: &str) {
+        std::fs::write(dir.join("n.tex"), tex).unwrap();
+        let out = Command::new("pdflatex")
+            .args([
+                "-no-shell-escape",
+                "-interaction=nonstopmode",
+                "-halt-on-error",
+                "n.tex",
+            ])
+            .current_dir(dir)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{what} does not compile:\n{}",
+            String::from_utf8_lossy(&out.stdout)
+        );
+    }
+
+    /// Only ASCII and Latin-1 letters reach pdflatex (comments aside).
+    pub fn assert_pdflatex_characters(h: &str, tex: &str) {
+        for l in uncommented(tex).lines() {
+            assert!(
+                l.chars().all(|c| c.is_ascii() || matches!(c, 'À'..='ÿ')),
+                "LaTeX of {h:?}: a character pdflatex cannot set, written raw:\n{l}"
+            );
+        }
+    }
+
     /// Control words hdot never writes of its own.
     pub const FORBIDDEN: &[&str] = &[
         "input",

@@ -124,3 +124,12 @@ fn an_input_that_is_a_coordinate_names_the_input() {
         "`m` is not a time symbol",
     );
 }
+
+/// Item 8 on a derived scene: a huge initial rate names its own field and
+/// line, not the end time it makes too long to resolve.
+#[test]
+fn a_huge_initial_rate_names_its_field() {
+    let scene = SCENE.replace("psi = 60.0", "psi = 1e200");
+    let line = line_starting(&scene, "rates = ");
+    assert_located(&scene, "initial.rates.psi", line, "|ω| = 1e200");
+}

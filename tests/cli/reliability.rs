@@ -438,3 +438,39 @@ fn an_installed_binary_needs_no_source_tree() {
     ]);
     assert!(out.status.success(), "{}", text(&out.stderr));
 }
+
+/// A CSV cloud a scene reads is an input too: neither `--output` nor
+/// `--html` may replace it (issue 21 item 4), exit 2, the file unchanged.
+#[test]
+fn a_scene_s_cloud_is_never_overwritten() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let cloud_text = "x,y,z,m\n0,0,0.05,0.01\n";
+    let cloud = d.join("c.csv");
+    std::fs::write(&cloud, cloud_text).unwrap();
+    let heavy_top = repo_root().join("derivations/heavy-top.toml");
+    let scene = std::fs::read_to_string(example("sim-derived-heavy-top.toml"))
+        .unwrap()
+        .replace(
+            "file = \"heavy-top\"",
+            &format!("file = {:?}", heavy_top.to_str().unwrap()),
+        )
+        .replace("[initial]", "[[cloud]]\nfile = \"c.csv\"\n\n[initial]");
+    assert!(scene.contains("[[cloud]]"));
+    let s = d.join("s.toml");
+    std::fs::write(&s, scene).unwrap();
+    for flag in ["--output", "--html"] {
+        let out = hdot(&[
+            "simulate",
+            s.to_str().unwrap(),
+            "--t-end",
+            "0.01",
+            flag,
+            cloud.to_str().unwrap(),
+        ]);
+        let err = text(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{flag}: {err}");
+        assert!(err.contains("is an input of this command"), "{flag}: {err}");
+        assert_eq!(std::fs::read_to_string(&cloud).unwrap(), cloud_text);
+    }
+}

@@ -19,55 +19,16 @@
 //! into random fields.
 
 use std::collections::BTreeSet;
-use std::path::Path;
 use std::process::Command;
 
 use hdot_sym::derivation::{Derivation, load_str};
 use hdot_sym::notes;
 use hdot_sym::render::{Format, render};
 use hdot_tests::markup::{
-    FORBIDDEN, assert_no_html, assert_safe, control_words, html_tags, without_code,
+    FORBIDDEN, assert_no_html, assert_pdflatex_characters, assert_safe, compile, control_words,
+    have, hostile, html_tags, toml_str, without_code,
 };
 use proptest::prelude::*;
-
-/// The strings of the issue, each meaning something to TeX, HTML,
-/// Markdown, Python or a terminal.
-fn hostile() -> Vec<String> {
-    let mut v: Vec<String> = [
-        r"\input\x",
-        r"\end{document}",
-        r"\immediate\write18{id}",
-        r"\def\x{\x}\x",
-        r"{{{ unbalanced \x",
-        r"}} unbalanced \x{",
-        r"100% # $ & ~ ^ _ ^^5c ^^M \\ \x",
-        r"$\input{x}$ and $x^^5cinput$ and $x_$",
-        "</math></mi><script>alert(1)</script>",
-        "&amp; &lt;b onload=\"x\"> <img src=x onerror=alert(1)> 'single' \"double\"",
-        "``` \\x ` <!-- [link](javascript:x) *em* _u_",
-        "bidi \u{202E}\\input\\x\u{202C} \u{2066}iso\u{2069} \u{200F}rtl",
-        "control \u{1b}[31m red \u{7} bell \u{0} nul \u{8} \r carriage \u{85} \u{2028} end",
-    ]
-    .map(str::to_owned)
-    .to_vec();
-    v.push(r"\input\x{".repeat(1500) + "$ </math>");
-    v
-}
-
-/// A TOML basic string holding `s` (control characters as `\uXXXX`).
-fn toml_str(s: &str) -> String {
-    let mut o = String::from('"');
-    for c in s.chars() {
-        match c {
-            '"' => o.push_str("\\\""),
-            '\\' => o.push_str("\\\\"),
-            c if c.is_control() => o.push_str(&format!("\\u{:04X}", c as u32)),
-            c => o.push(c),
-        }
-    }
-    o.push('"');
-    o
-}
 
 /// The text fields of [`TEMPLATE`]: `@NAME@` and its value when the field
 /// is not the one under test.
@@ -238,16 +199,6 @@ fn assert_derive_safe(h: &str, d: &Derivation) {
     }
 }
 
-/// Only ASCII and Latin-1 letters reach pdflatex (comments aside).
-fn assert_pdflatex_characters(h: &str, tex: &str) {
-    for l in hdot_tests::markup::uncommented(tex).lines() {
-        assert!(
-            l.chars().all(|c| c.is_ascii() || matches!(c, 'À'..='ÿ')),
-            "LaTeX of {h:?}: a character pdflatex cannot set, written raw:\n{l}"
-        );
-    }
-}
-
 /// Loads the template with `h` in `fields`; an error must be located.
 fn load(fields: &[&str], h: &str) -> Option<Derivation> {
     let path = if fields.contains(&"FILE") {
@@ -266,23 +217,6 @@ fn load(fields: &[&str], h: &str) -> Option<Derivation> {
             None
         }
     }
-}
-
-/// Whether a command runs; when it does not, the test says so and goes on
-/// (unless `CI=true`, where a missing tool fails).
-fn have(cmd: &str, args: &[&str], why: &str) -> bool {
-    let ok = Command::new(cmd)
-        .args(args)
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !ok {
-        assert!(
-            std::env::var("CI").as_deref() != Ok("true"),
-            "{cmd} is needed on CI: {why}"
-        );
-        eprintln!("{cmd} not usable: {why} skipped");
-    }
-    ok
 }
 
 /// The tags and attributes an HTML page of the notes may hold: those of a
@@ -408,7 +342,7 @@ fn hostile_strings_in_every_field_are_refused_or_escaped_and_the_notes_compile()
     }
     tex.push_str("\\end{document}\n");
     if pdflatex {
-        compile(dir.path(), &tex);
+        compile("the hostile notes", dir.path(), &tex);
     }
     if python {
         let check = "import ast, sys\nfor f in sys.argv[1:]:\n    tree = ast.parse(open(f, encoding='utf-8').read())\n    kinds = {type(s).__name__ for s in tree.body}\n    assert kinds <= {'ImportFrom', 'Assign'}, (f, kinds)\n";
@@ -423,26 +357,6 @@ fn hostile_strings_in_every_field_are_refused_or_escaped_and_the_notes_compile()
             String::from_utf8_lossy(&out.stderr)
         );
     }
-}
-
-/// `tex` compiles with pdflatex, shell escape off.
-fn compile(dir: &Path, tex: &str) {
-    std::fs::write(dir.join("n.tex"), tex).unwrap();
-    let out = Command::new("pdflatex")
-        .args([
-            "-no-shell-escape",
-            "-interaction=nonstopmode",
-            "-halt-on-error",
-            "n.tex",
-        ])
-        .current_dir(dir)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "the hostile notes do not compile:\n{}",
-        String::from_utf8_lossy(&out.stdout)
-    );
 }
 
 // ------------------------------------------------------------ scenes --

@@ -137,3 +137,35 @@ fn a_file_in_the_wrong_encoding_is_a_located_error() {
         "{e}"
     );
 }
+
+/// Issue 21 item 10: a caret stays under its column after tabs — the
+/// snippet's lead copies each tab of the line (a terminal widens both
+/// alike) and a space for every other character.
+#[test]
+fn the_caret_stays_under_its_column_after_tabs() {
+    let text = "title = \"t\"\nsource = \"s\"\n[symbols]\nconstants = [\"m\"]\n[[step]]\nname = \"x\"\n\tvalue\t=\t\"m * q\"\n";
+    let err = load_str("d.toml", text).unwrap_err();
+    assert_eq!(err.line, 7, "{err}");
+    let shown = err.to_string();
+    let lines: Vec<&str> = shown.lines().collect();
+    let source = lines
+        .iter()
+        .find(|l| l.starts_with("7 | "))
+        .unwrap_or_else(|| panic!("no source line:\n{shown}"));
+    let caret = lines
+        .iter()
+        .find(|l| l.contains('^'))
+        .unwrap_or_else(|| panic!("no caret:\n{shown}"));
+    let source = &source["7 | ".len()..];
+    let caret = &caret["  | ".len()..];
+    let lead: String = caret.chars().take_while(|&c| c != '^').collect();
+    // The lead is the source line up to `q` with every character but a
+    // tab turned into a space.
+    let at = source.find('q').expect("q on the line");
+    let expected: String = source[..at]
+        .chars()
+        .map(|c| if c == '\t' { '\t' } else { ' ' })
+        .collect();
+    assert_eq!(lead, expected, "{shown}");
+    assert_eq!(lead.matches('\t').count(), 3, "{shown}");
+}

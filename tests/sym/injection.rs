@@ -2,42 +2,35 @@
 //! 21, item 3): control words (`\input`, `\end{document}`,
 //! `\immediate\write18`, `\def`), unbalanced braces, `^^` character codes,
 //! HTML and Markdown code fences, in the title, source, summary,
-//! assumptions, docs, frame names and axes, step names and labels and the
-//! notes' own title, author and chapters. Every format is derived and the
-//! notes, slides and fragment are written; no control word of the input
-//! survives as a command, braces balance, and when pdflatex is installed
-//! the notes compile.
+//! assumptions, docs, frame axes, labels and the notes' own title, author
+//! and chapters. Every format is derived and the notes, slides and
+//! fragment are written; no control word of the input survives as a
+//! command, braces balance, and when pdflatex is installed the notes
+//! compile. Names (of symbols, frames and steps) are what expressions
+//! refer to: such a string there is refused at the name.
 
 use hdot_sym::derivation::{Derivation, load_str};
 use hdot_sym::document::Course;
 use hdot_sym::notes;
 use hdot_sym::render::{Format, render};
-use hdot_tests::markup::{FORBIDDEN, assert_no_html, assert_safe, control_words, without_code};
+use hdot_tests::markup::{
+    FORBIDDEN, PYTHON, TEX_HTML, assert_no_html, assert_safe, compile, control_words, have,
+    toml_str, without_code,
+};
 
-/// The hostile strings.
-const HOSTILE: &[&str] = &[
-    r"\input\x",
-    r"\end{document}",
-    r"\immediate\write18{id}",
-    r"\def\x{\x}\x",
-    r"{{{ unbalanced",
-    r"}} unbalanced \x",
-    r"$\input{x}$ and $x^^5cinput$ and $x_$",
-    r"``` \x <script>alert(1)</script> ` %% & # ~ ^ _",
-];
-
-/// A TOML string holding `s`.
-fn toml(s: &str) -> String {
-    format!("{s:?}")
+/// `h` as a label of words: a label with `*`, `/` or `^`, or one that
+/// starts with a number, is mathematics and must parse (a file whose
+/// label does not is refused at the label, see `broken`).
+fn text_label(h: &str) -> String {
+    h.replace(['*', '/', '^'], "")
+        .trim_start_matches(|c: char| c.is_ascii_digit())
+        .to_owned()
 }
 
 /// A derivation with `h` in every text field.
 fn file(h: &str) -> String {
-    let t = toml(h);
-    let frame = toml(&format!("{h} F"));
-    // A label with `*`, `/` or `^` is mathematics and must parse (a file
-    // whose label does not is refused at the label, see `broken`).
-    let label = toml(&h.replace(['*', '/', '^'], ""));
+    let t = toml_str(h);
+    let label = toml_str(&text_label(h));
     format!(
         r#"
 title = {t}
@@ -52,7 +45,7 @@ name = "s"
 value = "w_x + w_y"
 doc = {t}
 [[frame]]
-name = {frame}
+name = "F"
 doc = {t}
 angular_velocity = "[w_x, w_y, w_z]"
 [[frame]]
@@ -67,7 +60,7 @@ doc = {t}
 value = "m*angvel(B)"
 expect = ["m*w_x", "m*w_y", "m*w_z"]
 [[step]]
-name = {t}
+name = "W"
 doc = {t}
 value = "m*w_x"
 expect = "m*w_y"
@@ -81,7 +74,7 @@ fn derivation(h: &str) -> Derivation {
 
 #[test]
 fn hostile_strings_in_every_field_reach_latex_and_markdown_escaped() {
-    for h in HOSTILE {
+    for h in TEX_HTML {
         let d = derivation(h);
         let fragment = render(&d, Format::Latex);
         assert_safe("derive --format latex", h, &fragment, 0);
@@ -113,68 +106,52 @@ fn hostile_strings_in_every_field_reach_latex_and_markdown_escaped() {
     }
 }
 
+/// A symbol, frame or step named by a hostile string is refused with an
+/// error at that name's line, saying what a name may be.
+#[test]
+fn hostile_names_are_refused_at_the_name() {
+    for h in TEX_HTML.iter().chain(PYTHON) {
+        let good = file("a doc");
+        let t = toml_str(h);
+        for (what, from, to) in [
+            (
+                "symbol",
+                "constants = [\"m\"]",
+                format!("constants = [\"m\", {t}]"),
+            ),
+            ("frame", "name = \"F\"", format!("name = {t}")),
+            ("step", "name = \"W\"", format!("name = {t}")),
+        ] {
+            let line = good.lines().position(|l| l == from).expect("the field") + 1;
+            let text = good.replacen(from, &to, 1);
+            let e = load_str("n.toml", &text).expect_err(&format!("{what} named {h:?}"));
+            assert_eq!(e.line, line, "{what} named {h:?}: {e}");
+            assert!(
+                e.message
+                    .contains(&format!("is not a valid {what} name (a letter, then")),
+                "{what} named {h:?}: {e}"
+            );
+        }
+    }
+}
+
 /// The notes compile with pdflatex (shell escape off), when it is
 /// installed; the test says so and goes on when it is not.
 fn compiles(h: &str, tex: &str) {
-    let found = std::process::Command::new("pdflatex")
-        .arg("--version")
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !found {
-        eprintln!("pdflatex not installed: hostile notes not compiled (scripts/setup installs it)");
-        return;
+    if have("pdflatex", &["--version"], "compiling the hostile notes") {
+        let dir = tempfile::tempdir().unwrap();
+        compile(&format!("the notes of {h:?}"), dir.path(), tex);
     }
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("n.tex"), tex).unwrap();
-    let out = std::process::Command::new("pdflatex")
-        .args([
-            "-no-shell-escape",
-            "-interaction=nonstopmode",
-            "-halt-on-error",
-            "n.tex",
-        ])
-        .current_dir(dir.path())
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "notes of {h:?} do not compile:\n{}",
-        String::from_utf8_lossy(&out.stdout)
-    );
 }
 
 // ------------------------------------------------------ SymPy export --
-
-/// Strings that would end a Python comment or string literal early.
-const PY_HOSTILE: &[&str] = &[
-    "x\nimport os; os.system('id')",
-    "it's \"quoted\" ''' \"\"\" \\",
-    "back\\slash\\\nnew line\\",
-    "\r\n# carriage\u{2028}separator\u{85}next\u{b}\u{c}",
-    "\u{0}nul and \u{1b}[31m escape",
-];
-
-/// A TOML basic string holding `s`: control characters as `\uXXXX`.
-fn toml_str(s: &str) -> String {
-    let mut o = String::from('"');
-    for c in s.chars() {
-        match c {
-            '"' => o.push_str("\\\""),
-            '\\' => o.push_str("\\\\"),
-            c if c.is_control() => o.push_str(&format!("\\u{:04X}", c as u32)),
-            c => o.push(c),
-        }
-    }
-    o.push('"');
-    o
-}
 
 /// A derivation with `h` in every text field, symbols whose names are not
 /// Python identifiers or are Python's own (`x²`, `é`, `ω`, `日本`,
 /// `lambda`, `equations`, `Symbol`, `t_`), and solved steps kept as variables.
 fn python_file(h: &str) -> String {
     let t = toml_str(h);
-    let label = toml_str(&h.replace(['*', '/', '^'], ""));
+    let label = toml_str(&text_label(h));
     format!(
         r#"
 title = {t}
@@ -199,7 +176,7 @@ doc = {t}
 value = "m*é*angvel(B)"
 expect = ["m*é*ω", "m*é*equations", "m*é*x²"]
 [[step]]
-name = {t}
+name = "solved"
 doc = {t}
 value = "solve(lambda*x²'' - Symbol*t_ + 日本*equations', x²'')"
 [[step]]
@@ -210,28 +187,11 @@ value = "mass_matrix(list(lambda*x²'' - Symbol*t_ + m*ω'', é*ω'' + x²), [x�
     )
 }
 
-/// Whether a command runs; when it does not, the test says so and goes on
-/// (unless `CI=true`, where a missing tool fails).
-fn have(cmd: &str, args: &[&str], why: &str) -> bool {
-    let ok = std::process::Command::new(cmd)
-        .args(args)
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !ok {
-        assert!(
-            std::env::var("CI").as_deref() != Ok("true"),
-            "{cmd} is needed on CI: {why}"
-        );
-        eprintln!("{cmd} not usable: {why} skipped");
-    }
-    ok
-}
-
 #[test]
 fn hostile_strings_and_names_reach_python_as_one_valid_program() {
     let python = have("python3", &["-c", "import ast"], "the SymPy export's parse");
     let sympy = python && have("python3", &["-c", "import sympy"], "the SymPy export's run");
-    for h in PY_HOSTILE.iter().chain(HOSTILE) {
+    for h in PYTHON.iter().chain(TEX_HTML) {
         let d = load_str(h, &python_file(h)).unwrap_or_else(|e| panic!("{h:?}: {e}"));
         let py = render(&d, Format::Sympy);
         // Outside string literals no line of the input appears: every line

@@ -43,6 +43,9 @@ pub(crate) struct Context<'a> {
     pub loads: Vec<super::multibody::Load>,
     /// Rolling contacts (`[[contact]]`, `contact.rs`).
     pub contacts: Vec<super::contact::Contact>,
+    /// What the file's steps solve for (`presentation.rs`): their terms
+    /// are printed first.
+    pub unknowns: Vec<Atom>,
 }
 
 /// A result whose error is located in the file.
@@ -66,6 +69,7 @@ impl<'a> Context<'a> {
             physics: Default::default(),
             loads: Vec::new(),
             contacts: Vec::new(),
+            unknowns: Vec::new(),
         }
     }
 }
@@ -148,18 +152,27 @@ impl Context<'_> {
         unfold(&self.abbrevs, p)
     }
 
-    pub fn declare(&mut self, s: &Spanned<String>, decl: Decl) -> R<()> {
+    /// Refuses, located, a name that expressions could not refer to: a
+    /// name is a letter, then letters, digits and `_` (`what` says what it
+    /// names: "symbol", "frame", "step").
+    pub fn valid_name(&self, s: &Spanned<String>, what: &str) -> R<()> {
         let name = s.get_ref();
         let valid = name.chars().next().is_some_and(|c| c.is_alphabetic())
             && name.chars().all(|c| c.is_alphanumeric() || c == '_');
-        if !valid {
-            return Err(self.diag_string(
-                s,
-                0,
-                name.len(),
-                format!("`{name}` is not a valid symbol name (letters, digits, _)"),
-            ));
+        if valid {
+            return Ok(());
         }
+        Err(self.diag_string(
+            s,
+            0,
+            name.len(),
+            format!("`{name}` is not a valid {what} name (a letter, then letters, digits, _)"),
+        ))
+    }
+
+    pub fn declare(&mut self, s: &Spanned<String>, decl: Decl) -> R<()> {
+        let name = s.get_ref();
+        self.valid_name(s, "symbol")?;
         if matches!(name.as_str(), "sin" | "cos" | "in" | "pi" | "t") {
             return Err(self.diag_string(
                 s,

@@ -42,6 +42,7 @@ impl Context<'_> {
     /// Builds the frame a `[[frame]]` table declares (not yet added).
     pub fn frame_of(&self, f: &RawFrame) -> R<Frame> {
         let name = f.name.get_ref();
+        self.valid_name(&f.name, "frame")?;
         if self.frame_index(name).is_some() || self.symbols.get(name).is_some() {
             return Err(self.diag_string(
                 &f.name,

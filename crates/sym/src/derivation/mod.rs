@@ -393,6 +393,7 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
             ));
         }
         let n = s.name.get_ref();
+        cx.valid_name(&s.name, "step")?;
         if cx.frame_index(n) == Some(0) {
             return Err(cx.diag_string(
                 &s.name,
