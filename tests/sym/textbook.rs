@@ -1,7 +1,8 @@
 //! Printed forms a textbook would use, each on a file written for it
 //! (`tests/sym/textbook/*.toml`): an abbreviation's own component prints
-//! its definition, a constant ratio prints one way in every solve, and
-//! like terms are grouped. The files' printed forms are insta snapshots,
+//! its definition, a constant ratio prints one way in every solve, like
+//! terms are grouped, and the terms of what the file solves for come
+//! first. The files' printed forms are insta snapshots,
 //! and every presented component expands back to its derived value.
 
 use hdot_sym::derivation::{Derivation, load_str};
@@ -84,6 +85,27 @@ fn like_terms_are_grouped() {
     let d = derived("rod.toml");
     assert_eq!(
         printed(&d, "moment"),
-        ["I′ φ\u{307}² sin β cos β + a (A_x − B_x) + (1/2) m g L sin β"]
+        ["a (A_x − B_x) + I′ φ\u{307}² sin β cos β + (1/2) m g L sin β"]
+    );
+}
+
+/// Issue 21 item 13: the terms of what the file solves for come first in
+/// every step that holds them, even in an equation written before its
+/// `solve` (the rod's reactions A_x and B_x); a file that solves for
+/// nothing keeps the order of the other rules.
+#[test]
+fn unknowns_come_first() {
+    let d = derived("rod.toml");
+    assert_eq!(
+        printed(&d, "force"),
+        ["A_x + B_x + (1/2) m L φ\u{307}² sin β"]
+    );
+    let path = hdot_tests::repo_root().join("tests/sym/textbook/rod.toml");
+    let text = std::fs::read_to_string(path).unwrap();
+    let (unsolved, _) = text.split_once("[[step]]\nname = \"reactions\"").unwrap();
+    let d = load_str("rod.toml", unsolved).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(
+        printed(&d, "force"),
+        ["(1/2) m L φ\u{307}² sin β + A_x + B_x"]
     );
 }

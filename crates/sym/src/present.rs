@@ -98,6 +98,9 @@ pub struct Presentation {
     /// The file's order of constant factors (`[symbols] order`): the names
     /// listed come first, in this order, before the conventional one.
     pub constant_order: Vec<String>,
+    /// Unknowns (what the file solves for): the terms of the sum that hold
+    /// one come first, in their order otherwise, a (A_x − B_x) + … = 0.
+    pub unknowns: Vec<Atom>,
 }
 
 /// Presents `p` in textbook form (see the module doc).
@@ -173,11 +176,31 @@ pub fn present(p: &Poly, pres: &Presentation) -> Expr {
     }
     if ids.len() > 1 {
         ids = splice_sums(&mut e, ids);
+        if !pres.unknowns.is_empty() {
+            ids = unknowns_first(&e, ids, &pres.unknowns);
+        }
     }
     e.add(ids);
     e.shrink_to_fit();
     crate::work::presented(e.len());
     e
+}
+
+/// The terms `ids` with those holding one of `unknowns` first, each part
+/// in its own order.
+fn unknowns_first(e: &Expr, ids: Vec<Id>, unknowns: &[Atom]) -> Vec<Id> {
+    fn holds(e: &Expr, id: Id, unknowns: &[Atom]) -> bool {
+        match e.node(id) {
+            Node::Num(_) => false,
+            Node::Atom(a) => unknowns.contains(a),
+            Node::Add(ts) | Node::Mul(ts) => ts.iter().any(|&t| holds(e, t, unknowns)),
+            Node::Neg(x) | Node::Pow(x, _) => holds(e, *x, unknowns),
+        }
+    }
+    let (mut first, rest): (Vec<Id>, Vec<Id>) =
+        ids.into_iter().partition(|&id| holds(e, id, unknowns));
+    first.extend(rest);
+    first
 }
 
 /// The terms grouped by their time-dependent part (rates, sin and cos of

@@ -380,7 +380,8 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
     }
     cx.physics = physics.clone();
     cx.loads = loads::declare(&cx, &raw)?;
-    // Steps.
+    // Steps, each printing the terms of what the file solves for first.
+    cx.unknowns = cx.solve_targets(&raw.steps);
     let mut steps = Vec::new();
     let mut seen: HashMap<String, ()> = HashMap::new();
     for s in &raw.steps {
