@@ -400,3 +400,35 @@ fn a_page_is_refused_at_a_directory_an_input_or_another_output() {
         before
     );
 }
+
+/// Issue 23 item 5: a run whose state stops being finite writes no page
+/// (nor a temporary file beside it), exits 1 and says when and at which
+/// step — the page's own refusal of a non-finite sample
+/// (`a_non_finite_sample_is_refused_and_located`) is the last guard
+/// behind this one.
+#[test]
+fn a_run_that_is_not_finite_writes_no_page_and_says_where() {
+    let dir = tempfile::tempdir().unwrap();
+    let page = dir.path().join("top.html");
+    let top = repo_root().join("docs/examples/sim-heavy-top.toml");
+    let out = hdot(&[
+        "simulate",
+        top.to_str().unwrap(),
+        "--method",
+        "rk4",
+        "--dt",
+        "0.5",
+        "--t-end",
+        "2000",
+        "--html",
+        page.to_str().unwrap(),
+    ]);
+    let err = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("state not finite at t = 1.5 (step 3)"),
+        "{err}"
+    );
+    assert!(!page.exists(), "a page was written: {err}");
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+}

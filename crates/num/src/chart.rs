@@ -28,6 +28,7 @@ use crate::fsio::Batch;
 use std::path::{Path, PathBuf};
 use std::sync::Once;
 
+use plotters::chart::MeshStyle;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
@@ -36,8 +37,22 @@ static FONT: &[u8] = include_bytes!("../assets/fonts/DejaVuSans.ttf");
 /// Family name under which the vendored font is registered with plotters.
 const FAMILY: &str = "sans-serif";
 
-/// Size of the PNG in pixels (the SVG uses the same user units).
-pub const CHART_SIZE: (u32, u32) = (900, 600);
+/// Size of the PNG in pixels (the SVG uses the same user units). A page
+/// shows the SVG at most this wide (1:1 on a desktop) and scales it down
+/// to a phone's column, so the text sizes below are chosen for a 400 px
+/// screen: a tick label there is still 10 px high.
+pub const CHART_SIZE: (u32, u32) = (640, 440);
+
+/// Text sizes as plotters takes them (its SVG writes a size s as s/1.24
+/// px): tick labels, axis descriptions, legend entries, the title.
+const TICK: u32 = 21;
+const DESC: u32 = 22;
+const LEGEND: u32 = 21;
+const TITLE: u32 = 26;
+
+/// Room right of the plot for half of the last x tick label, which is
+/// centred on its tick and would otherwise be cut at the chart's edge.
+const RIGHT: u32 = 36;
 
 /// One line of a chart: a legend label and its `(x, y)` points.
 ///
@@ -191,29 +206,79 @@ pub fn loglog_chart_into(
         y1 *= 10.0;
     }
     let ranges = (x0..x1, y0..y1);
+    let chart = LogLog {
+        title,
+        x_label,
+        y_label,
+        series: &clean,
+        ranges,
+    };
+    stage_both(batch, path_stem, &chart)
+}
 
-    // SVG
+/// A chart that can draw itself on any plotters backend (the SVG and the
+/// PNG are drawn by the same code).
+trait Drawing {
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String>;
+}
+
+/// Draws `chart` as `<stem>.svg` and `<stem>.png`, staged in `batch`.
+fn stage_both(batch: &mut Batch, path_stem: &Path, chart: &impl Drawing) -> Result<(), ChartError> {
     let svg_path = path_stem.with_extension("svg");
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, CHART_SIZE).into_drawing_area();
-        draw(&root, title, x_label, y_label, &clean, ranges.clone()).map_err(|message| {
-            ChartError::Draw {
-                path: svg_path.clone(),
-                message,
-            }
+        chart.draw(&root).map_err(|message| ChartError::Draw {
+            path: svg_path.clone(),
+            message,
         })?;
     }
     stage(batch, &svg_path, svg.as_bytes())?;
-
-    // PNG
     let png_path = path_stem.with_extension("png");
-    let rgb = render_rgb(|root| draw(root, title, x_label, y_label, &clean, ranges.clone()))
-        .map_err(|message| ChartError::Draw {
-            path: png_path.clone(),
-            message,
-        })?;
+    let rgb = render_rgb(|root| chart.draw(root)).map_err(|message| ChartError::Draw {
+        path: png_path.clone(),
+        message,
+    })?;
     stage_png(batch, &png_path, &rgb)
+}
+
+/// The plot area of a chart on `area`: its margins (room on the right for
+/// the last x tick label) and the label areas left and below.
+fn plot_area<'a, 'b, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, Shift>,
+    margin: u32,
+    x_area: u32,
+) -> ChartBuilder<'a, 'b, DB> {
+    let mut b = ChartBuilder::on(area);
+    b.margin(margin)
+        .margin_right(RIGHT.max(margin))
+        .x_label_area_size(x_area)
+        .y_label_area_size(90);
+    b
+}
+
+/// The axes' one style: text sizes, the font, grid lines.
+fn styled<'m, 'a, 'b, X: Ranged, Y: Ranged, DB: DrawingBackend>(
+    mesh: &'m mut MeshStyle<'a, 'b, X, Y, DB>,
+) -> &'m mut MeshStyle<'a, 'b, X, Y, DB> {
+    mesh.label_style((FAMILY, TICK))
+        .axis_desc_style((FAMILY, DESC))
+        .light_line_style(RGBColor(235, 235, 235))
+        .bold_line_style(RGBColor(200, 200, 200))
+}
+
+/// The legend's one style, in the upper right corner.
+fn legend<'a, 'b, DB: DrawingBackend + 'a, CT: CoordTranslate>(
+    chart: &'b mut ChartContext<'a, DB, CT>,
+) -> Result<(), String> {
+    chart
+        .configure_series_labels()
+        .label_font((FAMILY, LEGEND))
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .position(SeriesLabelPosition::UpperRight)
+        .draw()
+        .map_err(|e| e.to_string())
 }
 
 /// Draws a chart of [`CHART_SIZE`] into an RGB buffer with `draw`.
@@ -247,73 +312,63 @@ fn stage_png(batch: &mut Batch, png_path: &Path, rgb: &[u8]) -> Result<(), Chart
     stage(batch, png_path, &bytes)
 }
 
-fn draw<DB: DrawingBackend>(
-    root: &DrawingArea<DB, Shift>,
-    title: &str,
-    x_label: &str,
-    y_label: &str,
-    series: &[Series],
-    (xr, yr): (std::ops::Range<f64>, std::ops::Range<f64>),
-) -> Result<(), String> {
-    let e = |err: DrawingAreaErrorKind<DB::ErrorType>| err.to_string();
-    root.fill(&WHITE).map_err(e)?;
-    let mut chart = ChartBuilder::on(root)
-        .caption(title, (FAMILY, 26))
-        .margin(16)
-        .x_label_area_size(50)
-        .y_label_area_size(80)
-        .build_cartesian_2d(xr.log_scale(), yr.log_scale())
-        .map_err(e)?;
-    chart
-        .configure_mesh()
-        .x_desc(x_label)
-        .y_desc(y_label)
-        .label_style((FAMILY, 16))
-        .axis_desc_style((FAMILY, 18))
-        .x_label_formatter(&|v| format!("{v:.0e}"))
-        .y_label_formatter(&|v| format!("{v:.0e}"))
-        .light_line_style(RGBColor(235, 235, 235))
-        .bold_line_style(RGBColor(200, 200, 200))
-        .draw()
-        .map_err(e)?;
-    for (i, s) in series.iter().enumerate() {
-        if s.points.is_empty() {
-            continue;
-        }
-        let colour = COLOURS[i % COLOURS.len()];
-        let style = ShapeStyle::from(&colour).stroke_width(2);
-        chart
-            .draw_series(LineSeries::new(s.points.iter().copied(), style))
-            .map_err(e)?
-            .label(s.label.clone())
-            .legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 24, y)], colour.stroke_width(2))
-            });
-        let marker = i % 3;
-        chart
-            .draw_series(
-                s.points
-                    .iter()
-                    .map(move |&p| -> DynElement<DB, (f64, f64)> {
-                        match marker {
-                            0 => Circle::new(p, 4, colour.filled()).into_dyn(),
-                            1 => TriangleMarker::new(p, 5, colour.filled()).into_dyn(),
-                            _ => Cross::new(p, 4, colour.stroke_width(2)).into_dyn(),
-                        }
-                    }),
-            )
+/// A log–log chart of series (see [`loglog_chart`]).
+struct LogLog<'s> {
+    title: &'s str,
+    x_label: &'s str,
+    y_label: &'s str,
+    series: &'s [Series],
+    ranges: (std::ops::Range<f64>, std::ops::Range<f64>),
+}
+
+impl Drawing for LogLog<'_> {
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
+        let e = |err: DrawingAreaErrorKind<DB::ErrorType>| err.to_string();
+        let (xr, yr) = self.ranges.clone();
+        root.fill(&WHITE).map_err(e)?;
+        let mut chart = plot_area(root, 16, 55)
+            .caption(self.title, (FAMILY, TITLE))
+            .build_cartesian_2d(xr.log_scale(), yr.log_scale())
             .map_err(e)?;
+        styled(&mut chart.configure_mesh())
+            .x_desc(self.x_label)
+            .y_desc(self.y_label)
+            .x_label_formatter(&|v| format!("{v:.0e}"))
+            .y_label_formatter(&|v| format!("{v:.0e}"))
+            .draw()
+            .map_err(e)?;
+        for (i, s) in self.series.iter().enumerate() {
+            if s.points.is_empty() {
+                continue;
+            }
+            let colour = COLOURS[i % COLOURS.len()];
+            let style = ShapeStyle::from(&colour).stroke_width(2);
+            chart
+                .draw_series(LineSeries::new(s.points.iter().copied(), style))
+                .map_err(e)?
+                .label(s.label.clone())
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 24, y)], colour.stroke_width(2))
+                });
+            let marker = i % 3;
+            chart
+                .draw_series(
+                    s.points
+                        .iter()
+                        .map(move |&p| -> DynElement<DB, (f64, f64)> {
+                            match marker {
+                                0 => Circle::new(p, 4, colour.filled()).into_dyn(),
+                                1 => TriangleMarker::new(p, 5, colour.filled()).into_dyn(),
+                                _ => Cross::new(p, 4, colour.stroke_width(2)).into_dyn(),
+                            }
+                        }),
+                )
+                .map_err(e)?;
+        }
+        legend(&mut chart)?;
+        root.present().map_err(e)?;
+        Ok(())
     }
-    chart
-        .configure_series_labels()
-        .label_font((FAMILY, 16))
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .position(SeriesLabelPosition::UpperRight)
-        .draw()
-        .map_err(e)?;
-    root.present().map_err(e)?;
-    Ok(())
 }
 
 fn stage(batch: &mut Batch, path: &Path, bytes: &[u8]) -> Result<(), ChartError> {
@@ -372,26 +427,14 @@ pub fn panels_chart_into(
             padded(span(&mut it), 0.05)
         })
         .collect();
-    let svg_path = path_stem.with_extension("svg");
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, CHART_SIZE).into_drawing_area();
-        draw_panels(&root, title, x_label, panels, &x, &ys).map_err(|message| {
-            ChartError::Draw {
-                path: svg_path.clone(),
-                message,
-            }
-        })?;
-    }
-    stage(batch, &svg_path, svg.as_bytes())?;
-    let png_path = path_stem.with_extension("png");
-    let rgb = render_rgb(|root| draw_panels(root, title, x_label, panels, &x, &ys)).map_err(
-        |message| ChartError::Draw {
-            path: png_path.clone(),
-            message,
-        },
-    )?;
-    stage_png(batch, &png_path, &rgb)
+    let chart = Panels {
+        title,
+        x_label,
+        panels,
+        xr: x,
+        yrs: ys,
+    };
+    stage_both(batch, path_stem, &chart)
 }
 
 /// The most lines a panel chart labels in a legend.
@@ -411,76 +454,161 @@ fn padded((lo, hi): (f64, f64), pad: f64) -> std::ops::Range<f64> {
     (lo - pad * w)..(hi + pad * w)
 }
 
-fn draw_panels<DB: DrawingBackend>(
-    root: &DrawingArea<DB, Shift>,
-    title: &str,
-    x_label: &str,
-    panels: &[Panel],
-    xr: &std::ops::Range<f64>,
-    yrs: &[std::ops::Range<f64>],
-) -> Result<(), String> {
-    let e = |err: DrawingAreaErrorKind<DB::ErrorType>| err.to_string();
-    root.fill(&WHITE).map_err(e)?;
-    let root = root.titled(title, (FAMILY, 24)).map_err(e)?;
-    let areas = root.split_evenly((panels.len().max(1), 1));
-    for (k, (panel, area)) in panels.iter().zip(&areas).enumerate() {
-        let yr = yrs[k].clone();
-        let last = k + 1 == panels.len();
-        let mut chart = ChartBuilder::on(area)
-            .margin(10)
-            .x_label_area_size(if last { 45 } else { 20 })
-            .y_label_area_size(80)
-            .build_cartesian_2d(xr.clone(), yr.clone())
-            .map_err(e)?;
-        let mut mesh = chart.configure_mesh();
-        mesh.y_desc(panel.y_label.as_str())
-            .label_style((FAMILY, 15))
-            .axis_desc_style((FAMILY, 17))
-            .light_line_style(RGBColor(235, 235, 235))
-            .bold_line_style(RGBColor(200, 200, 200));
-        if last {
-            mesh.x_desc(x_label);
-        }
-        mesh.draw().map_err(e)?;
-        if yr.start < 0.0 && yr.end > 0.0 {
-            chart
-                .draw_series(LineSeries::new(
-                    [(xr.start, 0.0), (xr.end, 0.0)],
-                    BLACK.stroke_width(1),
-                ))
+/// Panels over one x axis (see [`panels_chart_into`]).
+struct Panels<'s> {
+    title: &'s str,
+    x_label: &'s str,
+    panels: &'s [Panel],
+    xr: std::ops::Range<f64>,
+    yrs: Vec<std::ops::Range<f64>>,
+}
+
+impl Drawing for Panels<'_> {
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
+        let e = |err: DrawingAreaErrorKind<DB::ErrorType>| err.to_string();
+        let xr = &self.xr;
+        root.fill(&WHITE).map_err(e)?;
+        let root = root.titled(self.title, (FAMILY, TITLE)).map_err(e)?;
+        let areas = root.split_evenly((self.panels.len().max(1), 1));
+        for (k, (panel, area)) in self.panels.iter().zip(&areas).enumerate() {
+            let yr = self.yrs[k].clone();
+            let last = k + 1 == self.panels.len();
+            let mut chart = plot_area(area, 10, if last { 50 } else { 24 })
+                .build_cartesian_2d(xr.clone(), yr.clone())
                 .map_err(e)?;
-        }
-        let legend = k == 0 && panel.series.len() <= LEGEND_MAX;
-        for (i, s) in panel.series.iter().enumerate() {
-            let colour = COLOURS[i % COLOURS.len()];
-            // Runs of finite points, so that a gap is not drawn across.
-            let mut drawn = false;
-            for run in s.points.split(|p| !(p.0.is_finite() && p.1.is_finite())) {
-                if run.is_empty() {
-                    continue;
-                }
-                let a = chart
-                    .draw_series(LineSeries::new(run.iter().copied(), colour.stroke_width(2)))
+            let mut mesh = chart.configure_mesh();
+            styled(&mut mesh).y_desc(panel.y_label.as_str());
+            if last {
+                mesh.x_desc(self.x_label);
+            }
+            mesh.draw().map_err(e)?;
+            if yr.start < 0.0 && yr.end > 0.0 {
+                chart
+                    .draw_series(LineSeries::new(
+                        [(xr.start, 0.0), (xr.end, 0.0)],
+                        BLACK.stroke_width(1),
+                    ))
                     .map_err(e)?;
-                if legend && !drawn {
-                    a.label(s.label.clone()).legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 24, y)], colour.stroke_width(2))
-                    });
+            }
+            let labelled = k == 0 && panel.series.len() <= LEGEND_MAX;
+            for (i, s) in panel.series.iter().enumerate() {
+                let colour = COLOURS[i % COLOURS.len()];
+                // Runs of finite points, so that a gap is not drawn across.
+                let mut drawn = false;
+                for run in s.points.split(|p| !(p.0.is_finite() && p.1.is_finite())) {
+                    if run.is_empty() {
+                        continue;
+                    }
+                    let a = chart
+                        .draw_series(LineSeries::new(run.iter().copied(), colour.stroke_width(2)))
+                        .map_err(e)?;
+                    if labelled && !drawn {
+                        a.label(s.label.clone()).legend(move |(x, y)| {
+                            PathElement::new(vec![(x, y), (x + 24, y)], colour.stroke_width(2))
+                        });
+                    }
+                    drawn = true;
                 }
-                drawn = true;
+            }
+            if labelled && !panel.series.is_empty() {
+                legend(&mut chart)?;
             }
         }
-        if legend && !panel.series.is_empty() {
-            chart
-                .configure_series_labels()
-                .label_font((FAMILY, 14))
-                .background_style(WHITE.mix(0.85))
-                .border_style(BLACK)
-                .position(SeriesLabelPosition::UpperRight)
-                .draw()
-                .map_err(e)?;
+        root.present().map_err(e)?;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The `<text>` elements of an SVG: x, anchor, font size, whether it is
+    /// turned, and the text.
+    fn texts(svg: &str) -> Vec<(f64, String, f64, bool, String)> {
+        let attr = |tag: &str, name: &str| {
+            tag.split_once(&format!(" {name}=\""))
+                .and_then(|(_, r)| r.split_once('"'))
+                .map(|(v, _)| v.to_owned())
+        };
+        svg.split("<text")
+            .skip(1)
+            .map(|t| {
+                let (tag, rest) = t.split_once('>').expect("a tag");
+                let text = rest.split_once("</text>").expect("closed").0.to_owned();
+                let x = attr(tag, "x").and_then(|v| v.parse().ok()).unwrap_or(0.0);
+                let size = attr(tag, "font-size")
+                    .and_then(|v| v.trim_end_matches("px").parse().ok())
+                    .unwrap_or(0.0);
+                let anchor = attr(tag, "text-anchor").unwrap_or_else(|| "start".into());
+                (x, anchor, size, tag.contains("transform"), text)
+            })
+            .collect()
+    }
+
+    /// Every label lies inside the chart — the last x tick label of a
+    /// linear axis, centred on the plot's right edge, was cut in half —
+    /// and reads at 10 px or more on a 400 px phone, where a page scales
+    /// the chart to a 384 px column.
+    #[test]
+    fn every_label_fits_inside_the_chart_and_reads_on_a_phone() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut batch = Batch::new();
+        let line = |k: f64| {
+            Series::new(
+                format!("λ{k}"),
+                (0..=50)
+                    .map(|i| {
+                        let x = 1.25 * f64::from(i);
+                        (x, (x * k).sin())
+                    })
+                    .collect(),
+            )
+        };
+        let panels = [
+            Panel {
+                y_label: "Re λ".into(),
+                series: vec![line(0.1), line(0.2)],
+            },
+            Panel {
+                y_label: "Im λ".into(),
+                series: vec![line(0.3)],
+            },
+        ];
+        let stem = dir.path().join("panels");
+        panels_chart_into(&mut batch, &stem, "Eigenvalues", "speed v (m/s)", &panels).unwrap();
+        let log = dir.path().join("log");
+        let s = Series::new("rk4", vec![(10.0, 1e-3), (1000.0, 1e-9)]);
+        loglog_chart_into(&mut batch, &log, "Work", "evaluations", "error", &[s]).unwrap();
+        batch.commit().unwrap();
+        let width = f64::from(CHART_SIZE.0);
+        for stem in [stem, log] {
+            let svg = std::fs::read_to_string(stem.with_extension("svg")).unwrap();
+            let texts = texts(&svg);
+            assert!(texts.len() > 10, "{svg}");
+            let right = texts
+                .iter()
+                .filter(|t| !t.3)
+                .map(|t| t.0)
+                .fold(0.0, f64::max);
+            for (x, anchor, size, turned, text) in &texts {
+                assert!(size * 384.0 / width >= 10.0, "{text:?} at {size} px");
+                if *turned {
+                    continue;
+                }
+                // DejaVu Sans averages under 0.62 em per character.
+                let w = 0.62 * size * text.chars().count() as f64;
+                let (l, r) = match anchor.as_str() {
+                    "middle" => (x - w / 2.0, x + w / 2.0),
+                    "end" => (x - w, *x),
+                    _ => (*x, x + w),
+                };
+                assert!(
+                    l >= 0.0 && r <= width,
+                    "{text:?} from {l} to {r} in {width}"
+                );
+            }
+            assert!(right > 0.8 * width, "no label near the right edge");
         }
     }
-    root.present().map_err(e)?;
-    Ok(())
 }
