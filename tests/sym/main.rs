@@ -8,6 +8,7 @@
 //! - `textbook`: printed forms a textbook would use, on files written for
 //!   them (`textbook/*.toml`, insta);
 //! - `broken`: broken derivation files, each asserting its error's location;
+//! - `subst`: substitution in a derivation, angles set to 0 among them;
 //! - `work_budget`: deterministic work of reference workloads against the
 //!   committed budget (`work_budget.toml`).
 
@@ -29,5 +30,6 @@ mod presentation;
 mod snapshots;
 mod speeds;
 mod strategies;
+mod subst;
 mod textbook;
 mod work_budget;

@@ -99,8 +99,11 @@ fn eval(c: &Call<'_, '_>) -> R<Value> {
             continue;
         }
         // A rate or angle: the symbol's derivatives of order ≥ `primes`
-        // follow by differentiating the value.
+        // follow by differentiating the value. An angle set to another
+        // angle symbol carries its sin/cos over; an angle set to 0 (a
+        // multiple of pi/2 written without pi) has sin 0 and cos 1.
         let angle = val.as_atom().filter(|a| a.is_angle());
+        let zero = val.is_zero();
         let mut failed = false;
         v = v.map(&mut |p| {
             p.subst(&mut |a| match a.kind() {
@@ -114,6 +117,11 @@ fn eval(c: &Call<'_, '_>) -> R<Value> {
                             if is_sin { Atom::sin(w) } else { Atom::cos(w) }.expect("angle"),
                         ))
                     }
+                    None if zero => Some(if matches!(a.kind(), AtomKind::Sin(_)) {
+                        Poly::zero()
+                    } else {
+                        Poly::one()
+                    }),
                     None => {
                         failed = true;
                         None
@@ -122,6 +130,17 @@ fn eval(c: &Call<'_, '_>) -> R<Value> {
                 _ => None,
             })
         });
+        // A sin that becomes 0 cannot leave a denominator (the substitution
+        // keeps it there, see `Poly::subst`).
+        if zero && !failed && v.components().iter().any(|p| mentions_symbol(p, target)) {
+            return c.err(
+                value.span,
+                format!(
+                    "this value makes `{name}` or sin({name}) zero where it divides; \
+                     multiply through before substituting"
+                ),
+            );
+        }
         if failed {
             return c.err(
                 value.span,
