@@ -9,13 +9,19 @@ generated Python, and checks with sympy that
   2. the main results equal the textbook forms of docs/equations.md, written
      here independently in sympy (sections 1, 5 and 6);
   3. where a file exports both solved accelerations and a mass-matrix form,
-     M.LUsolve(f) equals the accelerations.
+     M.LUsolve(f) equals the accelerations;
+  4. every matrix, array and list of the JSON export (`hdot derive NAME
+     --format json`, a step's `value.rows`: an array of rows in source
+     syntax) equals, entry by entry, the SymPy export's equations of that
+     step and, for an array or a list, its `Matrix` of the same shape.
 
 Usage: scripts/check_sympy.py [path/to/hdot] [NAME ...]
 Exit status: 0 when everything holds, 1 otherwise.
 """
 
+import json
 import pathlib
+import re
 import subprocess
 import sys
 
@@ -33,6 +39,81 @@ def export(hdot, name):
     ns = {}
     exec(compile(out.stdout, f"<{name} sympy export>", "exec"), ns)
     return ns
+
+
+def json_export(hdot, name):
+    out = subprocess.run([hdot, "derive", name, "--format", "json"], cwd=ROOT,
+                         capture_output=True, text=True)
+    if out.returncode != 0:
+        raise SystemExit(f"hdot derive {name} --format json failed ({out.returncode}):\n{out.stderr}")
+    return json.loads(out.stdout)
+
+
+# A name with its primes, an integer, `^`, or any other character.
+TOKEN = re.compile(r"([A-Za-z_][A-Za-z0-9_]*)('*)|([0-9]+)|(\^)|(.)", re.S)
+
+
+def symbol_table(ns):
+    """The SymPy objects of an export by the names of the derivation file:
+    a constant is Symbol(name), a function of time Function(name)(t)."""
+    table = {}
+    for v in ns.values():
+        if isinstance(v, sympy.Symbol):
+            table[v.name] = v
+        elif isinstance(v, sympy.core.function.AppliedUndef):
+            table[v.func.__name__] = v
+    return table
+
+
+def from_source(text, table):
+    """An expression in hdot's source syntax (`I_x*omega_x' - sin(theta)^2`,
+    `1/2*m`) as SymPy: names looked up in `table`, primes as derivatives in
+    t, integers exact (so `1/2` is a Rational)."""
+    out = []
+    for name, primes, num, caret, other in TOKEN.findall(text):
+        if name in ("sin", "cos") and not primes:
+            out.append(name)
+        elif name:
+            if name not in table:
+                raise ValueError(f"unknown name {name!r} in {text!r}")
+            out.append(f"S[{name!r}]" + (f".diff(t, {len(primes)})" if primes else ""))
+        elif num:
+            out.append(f"Integer({num})")
+        elif caret:
+            out.append("**")
+        else:
+            out.append(other)
+    return eval("".join(out), {"__builtins__": {}, "S": table, "sin": sin, "cos": cos,
+                                "Integer": sympy.Integer, "t": Symbol("t")})
+
+
+def step_matrix(ns, name, shape):
+    """The export's Matrix of step `name` (`K`, or `K_` when the name was
+    taken by a symbol) with the given shape, or None."""
+    v = name
+    while v in ns:
+        if isinstance(ns[v], sympy.MatrixBase) and ns[v].shape == shape:
+            return ns[v]
+        v += "_"
+    return None
+
+
+def compare_matrices(step, rows, equations, matrix, table, abbreviations):
+    """The failures (messages) among a step's JSON rows against its SymPy
+    equations (flattened in row order) and, when given, its Matrix."""
+    failures = []
+    flat = [from_source(e, table) for r in rows for e in r]
+    if len(flat) != len(equations):
+        return [f"{step}: {len(flat)} JSON entries, {len(equations)} SymPy equations"]
+    for k, (a, eq) in enumerate(zip(flat, equations)):
+        if not is_zero(a - eq.rhs, abbreviations):
+            failures.append(f"{step}[{k}]: JSON {a} != SymPy {eq.rhs}")
+    if matrix is not None:
+        for i, r in enumerate(rows):
+            for j, e in enumerate(r):
+                if not is_zero(from_source(e, table) - matrix[i, j], abbreviations):
+                    failures.append(f"{step}[{i + 1},{j + 1}]: JSON {e} != Matrix {matrix[i, j]}")
+    return failures
 
 
 def is_zero(expr, abbreviations):
@@ -111,6 +192,20 @@ def main():
                     if not is_zero(qdd[k] - value, abbreviations):
                         failures += 1
                         print(f"FAIL {name} {key}: M⁻¹f gives {qdd[k]} for {q}, the export {value}")
+        # Matrices of the JSON export, entry by entry.
+        table = symbol_table(ns)
+        for step in json_export(hdot, name)["steps"]:
+            rows = step["value"].get("rows")
+            if not step["show"] or rows is None:
+                continue
+            prefix = step["name"] + "."
+            eqs = [eq for eq, label in zip(ns["equations"], ns["labels"]) if label.startswith(prefix)]
+            shape = (len(rows), len(rows[0]) if rows else 0)
+            matrix = step_matrix(ns, step["name"], shape) if step["value"]["kind"] != "matrix" else None
+            checked += 1
+            for msg in compare_matrices(step["name"], rows, eqs, matrix, table, abbreviations):
+                failures += 1
+                print(f"FAIL {name} {msg}")
         print(f"ok   {name}: {len(ns['equations'])} equations rebuilt by sympy {sympy.__version__}")
     print(f"sympy: {checked} comparisons, {failures} failed")
     return 1 if failures else 0

@@ -6,6 +6,7 @@ use hdot_tests::{hdot_bin, repo_root};
 
 mod budgets;
 mod derived_errors;
+mod exports;
 mod html;
 mod notes_html;
 mod reliability;

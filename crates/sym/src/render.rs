@@ -15,6 +15,7 @@ use crate::derivation::{Derivation, Value};
 use crate::document::Section;
 use crate::escape;
 use crate::expr::Expr;
+use crate::poly::Poly;
 use crate::print::{self, Latex, Sympy, Unicode};
 use crate::symbols::Decl;
 
@@ -375,6 +376,11 @@ struct JsonKind<'a> {
     #[serde(skip_serializing_if = "Option::is_none")]
     frame: Option<&'a str>,
     kind: &'static str,
+    /// A matrix, array or list as an array of rows (a list is a column:
+    /// rows of one), each entry the value in source syntax (abbreviations
+    /// expanded).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    rows: Option<Vec<Vec<String>>>,
 }
 
 #[derive(serde::Serialize)]
@@ -400,28 +406,31 @@ fn json(d: &Derivation) -> JsonDerivation<'_> {
         .steps
         .iter()
         .map(|s| {
-            let value = match &s.value {
-                Value::Scalar(_) => JsonKind {
-                    frame: None,
-                    kind: "scalar",
-                },
-                Value::Vector(_, f) => JsonKind {
-                    frame: Some(f.as_str()),
-                    kind: "vector",
-                },
-                Value::Matrix(_) => JsonKind {
-                    frame: None,
-                    kind: "matrix",
-                },
-                Value::List { .. } => JsonKind {
-                    frame: None,
-                    kind: "list",
-                },
-                Value::Array(_) => JsonKind {
-                    frame: None,
-                    kind: "array",
-                },
+            let rows = |rows: Vec<Vec<&Poly>>| {
+                Some(
+                    rows.into_iter()
+                        .map(|r| r.into_iter().map(Poly::to_source).collect())
+                        .collect(),
+                )
             };
+            let (frame, kind, rows) = match &s.value {
+                Value::Scalar(_) => (None, "scalar", None),
+                Value::Vector(_, f) => (Some(f.as_str()), "vector", None),
+                Value::Matrix(m) => (
+                    None,
+                    "matrix",
+                    rows(m.0.iter().map(|r| r.iter().collect()).collect()),
+                ),
+                Value::List { items, .. } => {
+                    (None, "list", rows(items.iter().map(|p| vec![p]).collect()))
+                }
+                Value::Array(a) => (
+                    None,
+                    "array",
+                    rows(a.iter().map(|r| r.iter().collect()).collect()),
+                ),
+            };
+            let value = JsonKind { frame, kind, rows };
             let values = s.values();
             let components = s
                 .presented()
