@@ -304,12 +304,16 @@ fn write_under_neg(e: &Expr, id: Id, style: &Cached, out: &mut String) {
 /// the printer in `style`: the top-level terms of a sum, each with the
 /// sign that joins it to the one before (`a`, `+ b`, `- c`); and, inside a
 /// term for which `too_long` holds and that is a bracketed sum (−(a + b))
-/// or a product with a bracketed
-/// sum among its factors, the terms of that (first) bracket — the factors
-/// before it and the opening parenthesis go with its first term, the
-/// closing parenthesis and the factors after it with its last. Each piece
-/// says whether a break before it falls inside that bracket. Joined by
-/// single spaces the pieces are exactly [`print()`]'s text, so a line break
+/// or a product with a bracketed sum among its factors, the terms of that
+/// bracket (the longest when there are several) — the factors before it
+/// and the opening parenthesis go with its first term, the closing
+/// parenthesis and the factors after it with its last; a fraction with a
+/// bracket in its numerator, which cannot be broken, is written with that
+/// bracket after it, `c/(a b) (x + y + …)`. A term of that
+/// bracket that is itself too long is split the same way, inside its own
+/// bracket, to any depth. Each piece says whether a break before it falls
+/// inside a bracket. Joined by single spaces the pieces are exactly
+/// [`print()`]'s text (but for a fraction so rewritten), so a line break
 /// only ever replaces a space.
 ///
 /// # Example
@@ -330,25 +334,29 @@ pub fn break_pieces(
 ) -> Vec<(String, bool)> {
     measured_pieces(e, style, too_long, &|long| long)
         .into_iter()
-        .map(|(text, inside, _)| (text, inside))
+        .map(|(text, depth, _)| (text, depth > 0))
         .collect()
 }
 
-/// [`break_pieces`] with each piece's measure: `measure` is taken of every
-/// piece once (a term that is not split is measured as a whole, and that
-/// measure is the piece's), and a term is split when `too_long` holds of
-/// its measure. A line breaker that adds up widths so measures each piece
-/// once, not once to decide the split and again to fill the line.
+/// [`break_pieces`]' pieces with the number of brackets a break before
+/// each would fall inside (0 between top-level terms, 1 inside a bracket,
+/// 2 inside a bracket in a bracket, …) and each piece's measure: `measure`
+/// is taken of every piece once (a term that is not split is measured as a
+/// whole, and that measure is the piece's), and a term is split when
+/// `too_long` holds of its measure. A line breaker that adds up widths so
+/// measures each piece once, not once to decide the split and again to
+/// fill the line; it closes a line broken at depth d with d `\right.` and
+/// opens the next with d `\left.`.
 pub fn measured_pieces<W: Copy>(
     e: &Expr,
     style: &dyn Style,
     measure: &dyn Fn(&str) -> W,
     too_long: &dyn Fn(W) -> bool,
-) -> Vec<(String, bool, W)> {
+) -> Vec<(String, usize, W)> {
     if e.is_empty() {
         let zero = style.num(&Rational::ZERO);
         let w = measure(&zero);
-        return vec![(zero, false, w)];
+        return vec![(zero, 0, w)];
     }
     let cached = Cached {
         inner: style,
@@ -356,32 +364,17 @@ pub fn measured_pieces<W: Copy>(
         pows: Default::default(),
         nums: Default::default(),
     };
-    let root = e.root();
+    let splitter = Splitter {
+        e,
+        style: &cached,
+        measure,
+        too_long,
+    };
     let mut out = Vec::new();
-    // Each piece is written into one scratch buffer and copied out at its
-    // length: no string grows by doubling, once per piece.
-    let mut scratch = String::new();
-    for (prefix, id, bracketed) in sum_terms(e, root, &cached) {
-        scratch.clear();
-        prefix.write(&mut scratch);
-        if bracketed {
-            paren(e, id, &cached, &mut scratch)
-        } else {
-            write(e, id, &cached, &mut scratch)
-        }
-        let w = measure(&scratch);
-        let split = if too_long(w) {
-            bracket_split(e, id, prefix, &cached)
-        } else {
-            None
-        };
-        match split {
-            Some(pieces) => out.extend(pieces.into_iter().map(|(text, inside)| {
-                let w = measure(&text);
-                (text, inside, w)
-            })),
-            None => out.push((scratch.as_str().to_owned(), false, w)),
-        }
+    for (prefix, id, bracketed) in sum_terms(e, e.root(), &cached) {
+        let mut lead = String::new();
+        prefix.write(&mut lead);
+        splitter.term(id, bracketed, lead, "", 0, 1, &mut out);
     }
     out
 }
@@ -432,70 +425,169 @@ fn sum_terms(e: &Expr, id: Id, style: &Cached) -> Vec<(Prefix, Id, bool)> {
     }
 }
 
-/// A product term broken inside its first bracketed sum (see
-/// [`break_pieces`]); `None` when the term has no such bracket.
-fn bracket_split(e: &Expr, id: Id, prefix: Prefix, style: &Cached) -> Option<Vec<(String, bool)>> {
-    let factors: &[Id] = match e.node(id) {
-        Node::Mul(factors) => factors,
-        // A bracketed sum alone (after a minus sign: −(a + b + …)).
-        Node::Add(_) => std::slice::from_ref(&id),
-        _ => return None,
-    };
-    if factors
-        .iter()
-        .any(|f| matches!(e.node(*f), Node::Pow(_, k) if *k < 0))
-    {
-        return None; // a fraction: its numerator cannot be broken
+/// Splits terms into pieces (see [`measured_pieces`]).
+struct Splitter<'a, 's, W> {
+    e: &'a Expr,
+    style: &'a Cached<'s>,
+    measure: &'a dyn Fn(&str) -> W,
+    too_long: &'a dyn Fn(W) -> bool,
+}
+
+impl<W: Copy> Splitter<'_, '_, W> {
+    /// Pushes the pieces of one term, `lead`, then node `id` (bracketed or
+    /// not), then `trail`: the whole as one piece at depth `first`, or, when it is
+    /// too long and has a bracket to break inside, the pieces of that
+    /// bracket — the first at depth `first`, the others at `inner`.
+    #[allow(clippy::too_many_arguments)]
+    fn term(
+        &self,
+        id: Id,
+        bracketed: bool,
+        lead: String,
+        trail: &str,
+        first: usize,
+        inner: usize,
+        out: &mut Vec<(String, usize, W)>,
+    ) {
+        let mut text = lead;
+        let lead_len = text.len();
+        if bracketed {
+            paren(self.e, id, self.style, &mut text);
+        } else {
+            write(self.e, id, self.style, &mut text);
+        }
+        text.push_str(trail);
+        let w = (self.measure)(&text);
+        if (self.too_long)(w) {
+            text.truncate(lead_len);
+            match self.split(id, text, trail, first, inner, out) {
+                Ok(()) => return,
+                Err(lead) => {
+                    text = lead;
+                    if bracketed {
+                        paren(self.e, id, self.style, &mut text);
+                    } else {
+                        write(self.e, id, self.style, &mut text);
+                    }
+                    text.push_str(trail);
+                }
+            }
+        }
+        out.push((text, first, w));
     }
-    let j = factors
-        .iter()
-        .position(|f| matches!(e.node(*f), Node::Add(_)))?;
-    let inner = sum_terms(e, factors[j], style);
-    let (l, r) = style.inner.parens();
-    let mut before = String::new();
-    prefix.write(&mut before);
-    if j > 0 {
-        write_product(e, &factors[..j], style, &mut before);
-        before.push_str(
-            style
-                .inner
-                .mul_sep(e.node(factors[j - 1]), e.node(factors[j])),
-        );
-    }
-    before.push_str(l);
-    let mut after = r.to_owned();
-    if j + 1 < factors.len() {
-        after.push_str(
-            style
-                .inner
-                .mul_sep(e.node(factors[j]), e.node(factors[j + 1])),
-        );
-        write_product(e, &factors[j + 1..], style, &mut after);
-    }
-    let last = inner.len() - 1;
-    Some(
-        inner
-            .into_iter()
+
+    /// A product term broken inside its longest bracketed sum (see
+    /// [`break_pieces`]); `Err(lead)` (the lead handed back) when the term
+    /// has no such bracket.
+    fn split(
+        &self,
+        id: Id,
+        lead: String,
+        trail: &str,
+        first: usize,
+        inner: usize,
+        out: &mut Vec<(String, usize, W)>,
+    ) -> Result<(), String> {
+        let (e, style) = (self.e, self.style);
+        let factors: &[Id] = match e.node(id) {
+            Node::Mul(factors) => factors,
+            // A bracketed sum alone (after a minus sign: −(a + b + …)).
+            Node::Add(_) => std::slice::from_ref(&id),
+            _ => return Err(lead),
+        };
+        let is_den = |f: &Id| matches!(e.node(*f), Node::Pow(_, k) if *k < 0);
+        let (dens, factors): (Vec<Id>, Vec<Id>) = factors.iter().partition(|f| is_den(f));
+        // The longest bracket: the one a break helps most (the first of
+        // equals).
+        let Some(j) = factors
+            .iter()
             .enumerate()
-            .map(|(k, (sign, t, bracketed))| {
-                let mut piece = if k == 0 {
-                    before.clone()
-                } else {
-                    String::new()
-                };
-                sign.write(&mut piece);
-                if bracketed {
-                    paren(e, t, style, &mut piece);
-                } else {
-                    write(e, t, style, &mut piece);
-                }
-                if k == last {
-                    piece.push_str(&after);
-                }
-                (piece, k > 0)
+            .filter(|(_, f)| matches!(e.node(**f), Node::Add(_)))
+            .map(|(k, &f)| {
+                let mut text = String::new();
+                write(e, f, style, &mut text);
+                (k, text.len())
             })
-            .collect(),
-    )
+            .fold(None, |best: Option<(usize, usize)>, (k, n)| match best {
+                Some((_, m)) if m >= n => best,
+                _ => Some((k, n)),
+            })
+            .map(|(k, _)| k)
+        else {
+            return Err(lead);
+        };
+        let terms = sum_terms(e, factors[j], style);
+        let (l, r) = style.inner.parens();
+        let mut before = lead;
+        if !dens.is_empty() {
+            // A fraction's numerator cannot be broken: the bracket is
+            // written after the rest of the fraction, (c/(a b)) (x + y + …).
+            let rest: Vec<Id> = factors
+                .iter()
+                .enumerate()
+                .filter(|&(k, _)| k != j)
+                .map(|(_, &f)| f)
+                .collect();
+            let bracket_paren = style.inner.paren_fraction_factor();
+            if bracket_paren {
+                before.push_str(l);
+            }
+            write_fraction(e, &rest, &dens, style, &mut before);
+            if bracket_paren {
+                before.push_str(r);
+            }
+            before.push_str(style.inner.mul_sep(e.node(factors[j]), e.node(factors[j])));
+            before.push_str(l);
+            let mut after = r.to_owned();
+            after.push_str(trail);
+            self.bracket_terms(terms, before, after, first, inner, out);
+            return Ok(());
+        }
+        if j > 0 {
+            write_product(e, &factors[..j], style, &mut before);
+            before.push_str(
+                style
+                    .inner
+                    .mul_sep(e.node(factors[j - 1]), e.node(factors[j])),
+            );
+        }
+        before.push_str(l);
+        let mut after = r.to_owned();
+        if j + 1 < factors.len() {
+            after.push_str(
+                style
+                    .inner
+                    .mul_sep(e.node(factors[j]), e.node(factors[j + 1])),
+            );
+            write_product(e, &factors[j + 1..], style, &mut after);
+        }
+        after.push_str(trail);
+        self.bracket_terms(terms, before, after, first, inner, out);
+        Ok(())
+    }
+
+    /// The pieces of a bracket's terms: `before` (up to the opening
+    /// parenthesis) leads the first, `after` (from the closing one) ends
+    /// the last.
+    fn bracket_terms(
+        &self,
+        terms: Vec<(Prefix, Id, bool)>,
+        before: String,
+        after: String,
+        first: usize,
+        inner: usize,
+        out: &mut Vec<(String, usize, W)>,
+    ) {
+        let last = terms.len() - 1;
+        let mut before = Some(before);
+        for (k, (sign, t, bracketed)) in terms.into_iter().enumerate() {
+            let mut lead = before.take().unwrap_or_default();
+            sign.write(&mut lead);
+            let trail = if k == last { after.as_str() } else { "" };
+            let depth = if k == 0 { first } else { inner };
+            self.term(t, bracketed, lead, trail, depth, inner + 1, out);
+        }
+    }
 }
 
 mod names;

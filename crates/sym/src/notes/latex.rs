@@ -139,6 +139,10 @@ fn fragment(s: &Section) -> String {
     o
 }
 
+/// Lines of an `align*` block from which a fragment lets it break across
+/// pages (`\allowdisplaybreaks` in a group around it): about half a page.
+const TALL_BLOCK: usize = 24;
+
 pub(super) const LEVELS: [&str; 3] = ["section", "subsection", "subsubsection"];
 
 pub(super) fn latex_section(o: &mut String, s: &Section, level: usize, target: Target) {
@@ -229,9 +233,20 @@ pub(super) fn latex_section(o: &mut String, s: &Section, level: usize, target: T
         if st.vanishes() {
             let _ = writeln!(o, "{}\n", vanishes_text(false));
         } else {
+            let mut lines = String::new();
+            write_step_lines(&mut lines, st, LINE_BUDGET);
+            // A block taller than a page may break across pages (the
+            // article allows it everywhere; a fragment, in its own group).
+            let tall = target == Target::Fragment && lines.matches(" \\\\\n").count() >= TALL_BLOCK;
+            if tall {
+                o.push_str("\\begingroup\\allowdisplaybreaks\n");
+            }
             o.push_str("\\begin{align*}\n");
-            write_step_lines(o, st, LINE_BUDGET);
+            o.push_str(&lines);
             o.push_str("\n\\end{align*}\n");
+            if tall {
+                o.push_str("\\endgroup\n");
+            }
         }
         if !st.condition.is_empty() {
             let _ = writeln!(o, "(for {})\n", prose::latex(&st.condition));

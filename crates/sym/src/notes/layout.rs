@@ -106,10 +106,10 @@ fn printed_if_fits(rhs: &Expr, budget: f32) -> Option<String> {
 /// the first `lhs &= …`, continuation lines `&\quad + …`. The right side
 /// is broken on its expression tree ([`print::measured_pieces`]): between its
 /// top-level terms, and inside the bracket of a product term that is
-/// itself too long; each piece is printed by the printer and its width
-/// estimated on its own. A break inside the bracket closes the line with
-/// `\right.` and opens the next with `\left.`, so that every line is
-/// balanced.
+/// itself too long, and inside a bracket in that bracket, to any depth;
+/// each piece is printed by the printer and its width estimated on its
+/// own. A break inside d brackets closes the line with d `\right.` and
+/// opens the next with d `\left.`, so that every line is balanced.
 pub(super) fn equation_lines(lhs: &str, rhs: &Expr, width: f32) -> Vec<String> {
     let budget = (width - math_width(lhs)).max(24.0);
     if let Some(printed) = printed_if_fits(rhs, budget) {
@@ -118,22 +118,25 @@ pub(super) fn equation_lines(lhs: &str, rhs: &Expr, width: f32) -> Vec<String> {
     // Each piece is measured once; a line's width is the running sum of
     // its pieces' (see [`width_units`]), never re-measured.
     let budget_units = budget * 100.0;
-    const REOPEN: &str = r"\left. {} ";
+    const REOPEN: &str = r"\left. ";
     let mut lines: Vec<String> = Vec::new();
     let mut current = String::new();
     let mut current_units = 0u32;
     let pieces = print::measured_pieces(rhs, &print::Latex, &width_units, &|units| {
         units as f32 / 100.0 > budget
     });
-    for (piece, inside, units) in pieces {
+    for (piece, depth, units) in pieces {
         if !current.is_empty() && (current_units + units) as f32 > budget_units {
             let mut line = std::mem::take(&mut current);
             current_units = 0;
-            if inside {
-                line.push_str(r" \right.");
+            if depth > 0 {
+                for _ in 0..depth {
+                    line.push_str(r" \right.");
+                    current.push_str(REOPEN);
+                }
                 // `{}` keeps the sign that follows binary.
-                current.push_str(REOPEN);
-                current_units = width_units(REOPEN);
+                current.push_str("{} ");
+                current_units = width_units(&current);
             }
             lines.push(line);
         }

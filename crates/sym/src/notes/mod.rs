@@ -224,6 +224,48 @@ mod tests {
         assert!(lines.last().unwrap().ends_with(r"\right)"), "{lines:?}");
     }
 
+    /// Every line of every bundled derivation's steps, in the notes and on
+    /// slides, is within the printer's measure (the budget, plus the `&=`
+    /// or `&\quad` that opens it and the `\left.`/`\right.` that balance
+    /// it, which count nothing): long sums are broken between their terms,
+    /// inside brackets and brackets in brackets. A matrix is measured by
+    /// its columns ([`super::layout::matrix_groups`]), not here.
+    #[test]
+    fn no_line_of_a_bundled_derivation_is_wider_than_the_measure() {
+        use crate::document::Section;
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../derivations");
+        let mut files: Vec<_> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.extension().is_some_and(|x| x == "toml") && !p.ends_with("notes.toml"))
+            .collect();
+        files.sort();
+        assert!(files.iter().any(|p| p.ends_with("bicycle.toml")));
+        let mut lines = 0;
+        for path in &files {
+            let d = crate::derivation::load(path).unwrap_or_else(|e| panic!("{e}"));
+            let section = Section::of(&d, None);
+            for st in section.steps.iter().filter(|s| !s.vanishes()) {
+                for width in [LINE_BUDGET, SLIDE_BUDGET] {
+                    for line in super::layout::step_groups(st, width).concat() {
+                        if line.contains(r"\begin{bmatrix}") {
+                            continue;
+                        }
+                        let w = math_width(&line);
+                        assert!(
+                            w <= width + 4.0,
+                            "{}: step {}: a line {w} wide, beyond {width}: {line}",
+                            path.display(),
+                            st.name
+                        );
+                        lines += 1;
+                    }
+                }
+            }
+        }
+        assert!(lines > 500, "only {lines} lines measured");
+    }
+
     #[test]
     fn sentences_keep_a_leading_function_name() {
         assert_eq!(sentence("tan γ = −ω_x/ω_z"), "tan γ = −ω_x/ω_z.");

@@ -184,7 +184,9 @@ pub(super) fn slides_intro(o: &mut String, s: &Section) {
 }
 
 /// The estimated height of one line of an `align*` block: a line with a
-/// fraction is taller (display style), a matrix counts its rows.
+/// fraction is taller (display style), a matrix counts its rows, and a
+/// line whose sized brackets hold a superscript (`\left(c^{2} - r^{2}\right)`)
+/// a little taller than one of plain math.
 pub(super) fn line_height(l: &str) -> f32 {
     let frac = |t: &str| t.contains(r"\frac");
     if let Some(k) = l.find(r"\begin{bmatrix}") {
@@ -195,7 +197,13 @@ pub(super) fn line_height(l: &str) -> f32 {
                 .map(|row| if frac(row) { 1.25 } else { 0.75 })
                 .sum::<f32>();
     }
-    if frac(l) { 1.6 } else { 1.0 }
+    if frac(l) {
+        1.6
+    } else if l.contains(r"\left(") && l.contains("^{") {
+        1.1
+    } else {
+        1.0
+    }
 }
 
 /// Lines of `chars` characters a text of `n` characters takes.
