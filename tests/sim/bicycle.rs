@@ -1,4 +1,4 @@
-//! The Whipple bicycle: docs/examples/derivations/bicycle.toml through the stability
+//! The Whipple bicycle: derivations/bicycle.toml through the stability
 //! scene docs/examples/stability-bicycle.toml against the published
 //! benchmark (Meijaard, Papadopoulos, Ruina & Schwab, Proc. R. Soc. A 463
 //! (2007)): M, C₁, K₀ and K₂ (§5 / appendix A), the eigenvalues at 0 and
