@@ -274,7 +274,7 @@ fn bad_contacts_are_located_errors() {
 #[test]
 fn the_nonlinear_bicycle_linearizes_to_the_benchmark_matrices() {
     let exact = bundled("docs/examples/derivations/bicycle-nonlinear.toml");
-    let linear = bundled("docs/examples/derivations/bicycle.toml");
+    let linear = bundled("derivations/bicycle.toml");
     assert!(exact.all_hold(), "{:?}", exact.failures());
     for m in ["M", "C_1", "K_0", "K_2"] {
         assert_eq!(step(&exact, m), step(&linear, m), "{m}");

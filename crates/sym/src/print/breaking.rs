@@ -1,0 +1,301 @@
+//! Line breaking on the expression tree: the pieces a long expression may
+//! be broken between — top-level terms, and the terms of a bracket (or of
+//! a bracket in a bracket, to any depth) in a term too long for a line —
+//! each printed by the shared walk of [`super`].
+
+use super::{Cached, paren, write, write_fraction, write_product};
+use crate::expr::{Expr, Id, Node};
+use crate::print::Style;
+use crate::rational::Rational;
+
+// ------------------------------------------------------- line breaking --
+
+/// The pieces a long expression may be broken between, each printed by
+/// the printer in `style`: the top-level terms of a sum, each with the
+/// sign that joins it to the one before (`a`, `+ b`, `- c`); and, inside a
+/// term for which `too_long` holds and that is a bracketed sum (−(a + b))
+/// or a product with a bracketed sum among its factors, the terms of that
+/// bracket (the longest when there are several) — the factors before it
+/// and the opening parenthesis go with its first term, the closing
+/// parenthesis and the factors after it with its last; a fraction with a
+/// bracket in its numerator, which cannot be broken, is written with that
+/// bracket after it, `c/(a b) (x + y + …)`. A term of that
+/// bracket that is itself too long is split the same way, inside its own
+/// bracket, to any depth. Each piece says whether a break before it falls
+/// inside a bracket. Joined by single spaces the pieces are exactly
+/// [`super::print()`]'s text (but for a fraction so rewritten), so a line break
+/// only ever replaces a space.
+///
+/// # Example
+/// ```
+/// use hdot_sym::{print, Symbols};
+/// let s = Symbols::parse_decl(&["m", "a", "b"], &["x"]);
+/// let e = s.expr("m*x'' - (a + b)*x + 1/2*a*x'").unwrap();
+/// let pieces = print::break_pieces(&e, &print::Unicode, &|t| t.contains('('));
+/// let texts: Vec<&str> = pieces.iter().map(|p| p.0.as_str()).collect();
+/// assert_eq!(texts, ["m x\u{308}", "− (a", "+ b) x", "+ (1/2) a x\u{307}"]);
+/// assert_eq!(texts.join(" "), print::unicode(&e));
+/// assert_eq!(pieces[2].1, true);
+/// ```
+pub fn break_pieces(
+    e: &Expr,
+    style: &dyn Style,
+    too_long: &dyn Fn(&str) -> bool,
+) -> Vec<(String, bool)> {
+    measured_pieces(e, style, too_long, &|long| long)
+        .into_iter()
+        .map(|(text, depth, _)| (text, depth > 0))
+        .collect()
+}
+
+/// [`break_pieces`]' pieces with the number of brackets a break before
+/// each would fall inside (0 between top-level terms, 1 inside a bracket,
+/// 2 inside a bracket in a bracket, …) and each piece's measure: `measure`
+/// is taken of every piece once (a term that is not split is measured as a
+/// whole, and that measure is the piece's), and a term is split when
+/// `too_long` holds of its measure. A line breaker that adds up widths so
+/// measures each piece once, not once to decide the split and again to
+/// fill the line; it closes a line broken at depth d with d `\right.` and
+/// opens the next with d `\left.`.
+pub fn measured_pieces<W: Copy>(
+    e: &Expr,
+    style: &dyn Style,
+    measure: &dyn Fn(&str) -> W,
+    too_long: &dyn Fn(W) -> bool,
+) -> Vec<(String, usize, W)> {
+    if e.is_empty() {
+        let zero = style.num(&Rational::ZERO);
+        let w = measure(&zero);
+        return vec![(zero, 0, w)];
+    }
+    let cached = Cached {
+        inner: style,
+        atoms: Default::default(),
+        pows: Default::default(),
+        nums: Default::default(),
+    };
+    let splitter = Splitter {
+        e,
+        style: &cached,
+        measure,
+        too_long,
+    };
+    let mut out = Vec::new();
+    for (prefix, id, bracketed) in sum_terms(e, e.root(), &cached) {
+        let mut lead = String::new();
+        prefix.write(&mut lead);
+        splitter.term(id, bracketed, lead, "", 0, 1, &mut out);
+    }
+    out
+}
+
+/// The text that joins a term to the one before it: a sign (empty for
+/// the first term unless it is negated) and whether a space follows it.
+#[derive(Clone, Copy)]
+struct Prefix(&'static str, bool);
+
+impl Prefix {
+    fn write(self, out: &mut String) {
+        out.push_str(self.0);
+        if self.1 {
+            out.push(' ');
+        }
+    }
+}
+
+/// The terms of the sum at `id` as [`write`] prints them: the sign text
+/// that precedes each (empty, `+ `, `- `, or the minus of a leading
+/// negation), the node written after it, and whether that node is put in
+/// parentheses. A node that is not a sum is one term.
+fn sum_terms(e: &Expr, id: Id, style: &Cached) -> Vec<(Prefix, Id, bool)> {
+    let minus = style.inner.minus();
+    let plus = style.inner.plus();
+    let one = |k: usize, t: Id| -> (Prefix, Id, bool) {
+        match e.node(t) {
+            Node::Neg(inner) => {
+                let under = matches!(e.node(*inner), Node::Add(_) | Node::Neg(_));
+                (Prefix(minus, k > 0), *inner, under)
+            }
+            Node::Add(_) => (
+                if k > 0 {
+                    Prefix(plus, true)
+                } else {
+                    Prefix("", false)
+                },
+                t,
+                true,
+            ),
+            _ if k > 0 => (Prefix(plus, true), t, false),
+            _ => (Prefix("", false), t, false),
+        }
+    };
+    match e.node(id) {
+        Node::Add(terms) => terms.iter().enumerate().map(|(k, &t)| one(k, t)).collect(),
+        _ => vec![one(0, id)],
+    }
+}
+
+/// Splits terms into pieces (see [`measured_pieces`]).
+struct Splitter<'a, 's, W> {
+    e: &'a Expr,
+    style: &'a Cached<'s>,
+    measure: &'a dyn Fn(&str) -> W,
+    too_long: &'a dyn Fn(W) -> bool,
+}
+
+impl<W: Copy> Splitter<'_, '_, W> {
+    /// Pushes the pieces of one term, `lead`, then node `id` (bracketed or
+    /// not), then `trail`: the whole as one piece at depth `first`, or, when it is
+    /// too long and has a bracket to break inside, the pieces of that
+    /// bracket — the first at depth `first`, the others at `inner`.
+    #[allow(clippy::too_many_arguments)]
+    fn term(
+        &self,
+        id: Id,
+        bracketed: bool,
+        lead: String,
+        trail: &str,
+        first: usize,
+        inner: usize,
+        out: &mut Vec<(String, usize, W)>,
+    ) {
+        let mut text = lead;
+        let lead_len = text.len();
+        if bracketed {
+            paren(self.e, id, self.style, &mut text);
+        } else {
+            write(self.e, id, self.style, &mut text);
+        }
+        text.push_str(trail);
+        let w = (self.measure)(&text);
+        if (self.too_long)(w) {
+            text.truncate(lead_len);
+            match self.split(id, text, trail, first, inner, out) {
+                Ok(()) => return,
+                Err(lead) => {
+                    text = lead;
+                    if bracketed {
+                        paren(self.e, id, self.style, &mut text);
+                    } else {
+                        write(self.e, id, self.style, &mut text);
+                    }
+                    text.push_str(trail);
+                }
+            }
+        }
+        out.push((text, first, w));
+    }
+
+    /// A product term broken inside its longest bracketed sum (see
+    /// [`break_pieces`]); `Err(lead)` (the lead handed back) when the term
+    /// has no such bracket.
+    fn split(
+        &self,
+        id: Id,
+        lead: String,
+        trail: &str,
+        first: usize,
+        inner: usize,
+        out: &mut Vec<(String, usize, W)>,
+    ) -> Result<(), String> {
+        let (e, style) = (self.e, self.style);
+        let factors: &[Id] = match e.node(id) {
+            Node::Mul(factors) => factors,
+            // A bracketed sum alone (after a minus sign: −(a + b + …)).
+            Node::Add(_) => std::slice::from_ref(&id),
+            _ => return Err(lead),
+        };
+        let is_den = |f: &Id| matches!(e.node(*f), Node::Pow(_, k) if *k < 0);
+        let (dens, factors): (Vec<Id>, Vec<Id>) = factors.iter().partition(|f| is_den(f));
+        // The longest bracket: the one a break helps most (the first of
+        // equals).
+        let Some(j) = factors
+            .iter()
+            .enumerate()
+            .filter(|(_, f)| matches!(e.node(**f), Node::Add(_)))
+            .map(|(k, &f)| {
+                let mut text = String::new();
+                write(e, f, style, &mut text);
+                (k, text.len())
+            })
+            .fold(None, |best: Option<(usize, usize)>, (k, n)| match best {
+                Some((_, m)) if m >= n => best,
+                _ => Some((k, n)),
+            })
+            .map(|(k, _)| k)
+        else {
+            return Err(lead);
+        };
+        let terms = sum_terms(e, factors[j], style);
+        let (l, r) = style.inner.parens();
+        let mut before = lead;
+        if !dens.is_empty() {
+            // A fraction's numerator cannot be broken: the bracket is
+            // written after the rest of the fraction, (c/(a b)) (x + y + …).
+            let rest: Vec<Id> = factors
+                .iter()
+                .enumerate()
+                .filter(|&(k, _)| k != j)
+                .map(|(_, &f)| f)
+                .collect();
+            let bracket_paren = style.inner.paren_fraction_factor();
+            if bracket_paren {
+                before.push_str(l);
+            }
+            write_fraction(e, &rest, &dens, style, &mut before);
+            if bracket_paren {
+                before.push_str(r);
+            }
+            before.push_str(style.inner.mul_sep(e.node(factors[j]), e.node(factors[j])));
+            before.push_str(l);
+            let mut after = r.to_owned();
+            after.push_str(trail);
+            self.bracket_terms(terms, before, after, first, inner, out);
+            return Ok(());
+        }
+        if j > 0 {
+            write_product(e, &factors[..j], style, &mut before);
+            before.push_str(
+                style
+                    .inner
+                    .mul_sep(e.node(factors[j - 1]), e.node(factors[j])),
+            );
+        }
+        before.push_str(l);
+        let mut after = r.to_owned();
+        if j + 1 < factors.len() {
+            after.push_str(
+                style
+                    .inner
+                    .mul_sep(e.node(factors[j]), e.node(factors[j + 1])),
+            );
+            write_product(e, &factors[j + 1..], style, &mut after);
+        }
+        after.push_str(trail);
+        self.bracket_terms(terms, before, after, first, inner, out);
+        Ok(())
+    }
+
+    /// The pieces of a bracket's terms: `before` (up to the opening
+    /// parenthesis) leads the first, `after` (from the closing one) ends
+    /// the last.
+    fn bracket_terms(
+        &self,
+        terms: Vec<(Prefix, Id, bool)>,
+        before: String,
+        after: String,
+        first: usize,
+        inner: usize,
+        out: &mut Vec<(String, usize, W)>,
+    ) {
+        let last = terms.len() - 1;
+        let mut before = Some(before);
+        for (k, (sign, t, bracketed)) in terms.into_iter().enumerate() {
+            let mut lead = before.take().unwrap_or_default();
+            sign.write(&mut lead);
+            let trail = if k == last { after.as_str() } else { "" };
+            let depth = if k == 0 { first } else { inner };
+            self.term(t, bracketed, lead, trail, depth, inner + 1, out);
+        }
+    }
+}
