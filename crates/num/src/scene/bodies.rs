@@ -17,18 +17,20 @@ use crate::inertia::Inertia;
 
 /// The part of every scene that says what moves: gravity, `[[body]]` and
 /// `[[cloud]]` (unknown keys are left to the scene's own reader).
+/// A worked problem's reader reads these fields in its own table
+/// ([`from_raw`]), so that a scene of many tables is parsed once.
 #[derive(Debug, Deserialize)]
-struct RawBodies {
-    g: Option<RV>,
+pub(super) struct RawBodies {
+    pub(super) g: Option<RV>,
     #[serde(default)]
-    body: Vec<Spanned<RawBody>>,
+    pub(super) body: Vec<Spanned<RawBody>>,
     #[serde(default)]
-    cloud: Vec<Spanned<RawCloud>>,
+    pub(super) cloud: Vec<Spanned<RawCloud>>,
 }
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct RawBody {
+pub(super) struct RawBody {
     name: Option<String>,
     of: Option<Spanned<String>>,
     shape: Option<String>,
@@ -61,7 +63,7 @@ struct RawRotation {
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct RawCloud {
+pub(super) struct RawCloud {
     file: String,
     of: Option<Spanned<String>>,
 }
@@ -121,13 +123,24 @@ impl Bodies {
 /// scene in errors and anchors relative cloud paths.
 pub fn bodies(file: &Path, text: &str) -> Result<Bodies, SceneError> {
     let cx = Cx::new(file, text);
-    let raw: RawBodies = toml::from_str(text).map_err(|e| {
-        let line = e.span().map(|s| cx.lines.of(s.start)).unwrap_or(0);
-        if let Some(err) = old_body_table(&cx) {
-            return err;
-        }
-        cx.err(line, "-", e.message().to_string())
-    })?;
+    let raw: RawBodies = toml::from_str(text).map_err(|e| parse_error(&cx, &e))?;
+    from_raw(&cx, raw)
+}
+
+/// The error of a scene's text that does not parse into its tables: the
+/// former `[body]` table named as such, otherwise the parser's message at
+/// its line.
+pub(super) fn parse_error(cx: &Cx<'_>, e: &toml::de::Error) -> SceneError {
+    if let Some(err) = old_body_table(cx) {
+        return err;
+    }
+    let line = e.span().map(|s| cx.lines.of(s.start)).unwrap_or(0);
+    cx.err(line, "-", e.message().to_string())
+}
+
+/// [`bodies`] from the tables as parsed.
+pub(super) fn from_raw(cx: &Cx<'_>, raw: RawBodies) -> Result<Bodies, SceneError> {
+    let file = cx.file;
     let g = raw.g.as_ref().map(|g| cx.vec3("g", g)).transpose()?;
     let g_line = raw.g.as_ref().map_or(0, |g| cx.line(g));
     let g = g.map(v3);
@@ -144,7 +157,7 @@ pub fn bodies(file: &Path, text: &str) -> Result<Bodies, SceneError> {
             ),
             None => (None, format!("body[{i}]"), line),
         });
-        parts.push(part_of(&cx, i, sb, g)?);
+        parts.push(part_of(cx, i, sb, g)?);
     }
     for (i, sc) in raw.cloud.iter().enumerate() {
         let line = cx.lines.of(sc.span().start);
@@ -178,7 +191,7 @@ pub fn bodies(file: &Path, text: &str) -> Result<Bodies, SceneError> {
         }
         Err(_) => {}
     }
-    let groups = groups_of(&cx, &parts, &owners)?;
+    let groups = groups_of(cx, &parts, &owners)?;
     let body = if parts.is_empty() {
         None
     } else {

@@ -39,7 +39,7 @@ pub(super) fn v3(a: V3) -> Vector3<f64> {
 
 /// The file being read, for errors that name a line and a field.
 pub(super) struct Cx<'a> {
-    file: &'a Path,
+    pub(super) file: &'a Path,
     pub(super) text: &'a str,
     pub(super) lines: Lines,
 }
