@@ -48,7 +48,7 @@ pub const CHART_SIZE: (u32, u32) = (640, 440);
 const TICK: u32 = 21;
 const DESC: u32 = 22;
 const LEGEND: u32 = 21;
-const TITLE: u32 = 26;
+const TITLE: u32 = 21;
 
 /// Room right of the plot for half of the last x tick label, which is
 /// centred on its tick and would otherwise be cut at the chart's edge.
@@ -261,7 +261,11 @@ fn plot_area<'a, 'b, DB: DrawingBackend>(
 fn styled<'m, 'a, 'b, X: Ranged, Y: Ranged, DB: DrawingBackend>(
     mesh: &'m mut MeshStyle<'a, 'b, X, Y, DB>,
 ) -> &'m mut MeshStyle<'a, 'b, X, Y, DB> {
-    mesh.label_style((FAMILY, TICK))
+    // At most six labels on an axis: at this size more would run into
+    // each other (100.0120.0140.0 on a 640-unit axis).
+    mesh.x_labels(6)
+        .y_labels(6)
+        .label_style((FAMILY, TICK))
         .axis_desc_style((FAMILY, DESC))
         .light_line_style(RGBColor(235, 235, 235))
         .bold_line_style(RGBColor(200, 200, 200))
