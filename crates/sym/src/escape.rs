@@ -332,10 +332,17 @@ pub(crate) fn precomposed_accent(c: char) -> Option<(&'static str, char)> {
     const DOT: &str = "ḂBḃbĊCċcḊDḋdĖEėeḞFḟfĠGġgḢHḣhİIṀMṁmṄNṅnȮOȯoṖPṗpṘRṙrṠSṡsṪTṫtẆWẇwẊXẋxẎYẏyŻZżz";
     const DDOT: &str = "ḦHḧhẗtẄWẅwẌXẍx";
     const BAR: &str = "ĀAāaĒEēeĪIīiŌOōoŪUūuȲYȳy";
+    // Asked of every character of prose: ASCII is never in the tables, and
+    // the tables are read in pairs where they are (no copy).
+    if c.is_ascii() {
+        return None;
+    }
     for (table, acc) in [(DOT, r"\dot"), (DDOT, r"\ddot"), (BAR, r"\bar")] {
-        let cs: Vec<char> = table.chars().collect();
-        if let Some(p) = cs.chunks(2).find(|p| p[0] == c) {
-            return Some((acc, p[1]));
+        let mut cs = table.chars();
+        while let (Some(accented), Some(base)) = (cs.next(), cs.next()) {
+            if accented == c {
+                return Some((acc, base));
+            }
         }
     }
     None

@@ -174,6 +174,7 @@ pub(crate) fn print_sorted(
     atoms.sort_by_cached_key(|a| a.sort_key());
     // The rank of an atom, read by its id (a table as long as the largest
     // id, not a hash map: looked up for every factor of every term).
+    let trig: Vec<crate::poly::Trig> = atoms.iter().map(|&a| crate::poly::trig_of(a)).collect();
     let mut rank = vec![u32::MAX; atoms.iter().map(|a| a.id() as usize + 1).max().unwrap_or(0)];
     for (k, a) in atoms.iter().enumerate() {
         rank[a.id() as usize] = k as u32;
@@ -203,7 +204,8 @@ pub(crate) fn print_sorted(
     keyed
         .iter()
         .map(|k| {
-            let mut factors: SmallVec<[(Atom, i32); 12]> = key(k)[1..]
+            let codes = &key(k)[1..];
+            let mut factors: SmallVec<[(Atom, i32); 12]> = codes
                 .iter()
                 .map(|&c| {
                     let atom = atoms[(c >> 32) as usize];
@@ -211,7 +213,9 @@ pub(crate) fn print_sorted(
                     (atom, x as i32)
                 })
                 .collect();
-            crate::poly::trig_by_angle(&mut factors);
+            let mut kinds: SmallVec<[crate::poly::Trig; 16]> =
+                codes.iter().map(|&c| trig[(c >> 32) as usize]).collect();
+            crate::poly::trig_by_angle_of(&mut factors, &mut kinds);
             let i = k.2 as usize;
             (factors, &terms[i].0, &terms[i].1)
         })

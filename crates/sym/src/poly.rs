@@ -52,8 +52,8 @@ use crate::rational::Rational;
 mod monomial;
 mod ops;
 mod trig;
-pub(crate) use monomial::trig_by_angle;
 pub use monomial::{Exp, Monomial};
+pub(crate) use monomial::{Trig, trig_by_angle_of, trig_of};
 use trig::divide_by_sin;
 
 /// What may be divided by, for error messages.

@@ -205,6 +205,14 @@ impl Rational {
     /// Greatest common divisor of two rationals: gcd of numerators over lcm
     /// of denominators (always non-negative).
     pub fn gcd(&self, other: &Rational) -> Rational {
+        // Two integers (the coefficients of most results): in u64, no
+        // i128 division; 2⁶³ does not fit an i64 and takes the path below.
+        if let (Rational::Small(n1, 1), Rational::Small(n2, 1)) = (self, other) {
+            let g = n1.unsigned_abs().gcd(&n2.unsigned_abs());
+            if let Ok(g) = i64::try_from(g) {
+                return Rational::Small(g, 1);
+            }
+        }
         if let (Rational::Small(n1, d1), Rational::Small(n2, d2)) = (self, other) {
             // gcd of numerators over lcm of denominators, in i128 (cannot
             // overflow: |n| ≤ 2⁶³ and lcm ≤ 2¹²⁶).

@@ -225,16 +225,28 @@ impl Monomial {
 /// `sin θ cos θ cos² λ`, `sin ψ cos ψ sin θ`; a cosine whose sine is
 /// absent keeps its place after the sines (`sin θ cos ψ`).
 pub(crate) fn trig_by_angle<E>(fs: &mut [(Atom, E)]) {
-    // Each factor's kind is read once: (is a cosine, its angle) for sin
-    // and cos, None for the others; nothing moves without a sine.
-    let mut trig: SmallVec<[Option<(bool, Atom)>; 16]> = fs
-        .iter()
-        .map(|f| match f.0.kind() {
-            AtomKind::Sin(q) => Some((false, q)),
-            AtomKind::Cos(q) => Some((true, q)),
-            AtomKind::Var { .. } => None,
-        })
-        .collect();
+    // Each factor's kind is read once.
+    let mut trig: SmallVec<[Trig; 16]> = fs.iter().map(|f| trig_of(f.0)).collect();
+    trig_by_angle_of(fs, &mut trig);
+}
+
+/// An atom as [`trig_by_angle`] sees it: (is a cosine, its angle) for sin
+/// and cos, `None` for the others.
+pub(crate) type Trig = Option<(bool, Atom)>;
+
+/// The [`Trig`] of an atom.
+pub(crate) fn trig_of(a: Atom) -> Trig {
+    match a.kind() {
+        AtomKind::Sin(q) => Some((false, q)),
+        AtomKind::Cos(q) => Some((true, q)),
+        AtomKind::Var { .. } => None,
+    }
+}
+
+/// [`trig_by_angle`] with each factor's [`Trig`] given (`trig[k]` of
+/// `fs[k]`, moved with it), for a caller that knows them already.
+pub(crate) fn trig_by_angle_of<E>(fs: &mut [(Atom, E)], trig: &mut [Trig]) {
+    // Nothing moves without a sine.
     if !trig.iter().any(|t| matches!(t, Some((false, _)))) {
         return;
     }
