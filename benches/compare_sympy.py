@@ -641,6 +641,13 @@ def machine():
     return model, os.cpu_count(), os.getloadavg()
 
 
+# Derivation files timed by `--bench` beside the bundled names: the first
+# path that exists (a file may move between the two places).
+BENCH_FILES = {
+    "bicycle": ["derivations/bicycle.toml", "docs/examples/derivations/bicycle.toml"],
+}
+
+
 def bench(args):
     exe = args.hdot
     hdot_workloads = ["gyroscope", "heavy-top"] + [f"chain-{k}" for k in args.bench_chains]
@@ -657,6 +664,15 @@ def bench(args):
     print(f"{started}; {model}, {cores} cores; load {load0[0]:.2f} {load0[1]:.2f} {load0[2]:.2f}")
     hd = {}
     targets = {name: name for name in hdot_workloads}
+    # The linearised Whipple bicycle (Kane's equations, derived and
+    # linearised about upright running): a file, where it is bundled.
+    for name, paths in BENCH_FILES.items():
+        found = next((p for p in paths if (ROOT / p).is_file()), None)
+        if found is None:
+            print(f"({name}: none of {', '.join(paths)} exists — skipped)")
+            continue
+        hdot_workloads.append(name)
+        targets[name] = found
     if args.bench_sum:
         name = f"sum-{args.bench_sum}"
         hdot_workloads.append(name)
@@ -703,7 +719,8 @@ def bench(args):
         f"CPU time, median of up to {args.peer_runs} runs: SymPy as `benches/compare_sympy.py` "
         "writes the workloads (sympy.physics.mechanics, expand), SymEngine and Symbolica "
         "chain-K's expansion and d/dt on plain symbols only (no trigonometric reduction, no "
-        "printing). sum-N: N distinct constants summed in one step. "
+        "printing). bicycle: the Whipple bicycle's Kane equations derived and linearised "
+        "about upright running (`bicycle.toml`). sum-N: N distinct constants summed in one step. "
         "Ratio = peer CPU time / hdot CPU time (above 1: hdot faster).",
         "",
         "| workload | hdot CPU (process) | hdot wall | hdot peak memory | peer | peer CPU | ratio |",
