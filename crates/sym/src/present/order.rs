@@ -101,10 +101,13 @@ pub(super) fn constant_next(a: Atom, b: Atom) -> bool {
 /// they were, two rates of one cyclic family in cyclic order.
 pub(super) fn conventional(fs: &mut [(Atom, i32)], order: &[String]) {
     let constant = leading_constant;
-    let constants = fs.iter().filter(|f| constant(f.0)).count();
-    if constants <= 1 {
+    // One look at each factor: the first constant and whether there is a
+    // second.
+    let mut constants = fs.iter().enumerate().filter(|(_, f)| constant(f.0));
+    let first = constants.next().map(|(k, _)| k);
+    if constants.next().is_none() {
         // The sort below would only move the one constant to the front.
-        if let Some(k) = fs.iter().position(|f| constant(f.0)) {
+        if let Some(k) = first {
             fs[..=k].rotate_right(1);
         }
         cyclic_pair(fs);
@@ -124,31 +127,29 @@ pub(super) fn conventional(fs: &mut [(Atom, i32)], order: &[String]) {
 /// (the order Euler's equations write them in).
 pub(super) fn cyclic_pair(fs: &mut [(Atom, i32)]) {
     // Each factor's place is looked up once (names are compared as
-    // strings), and a swap moves two factors of one family, so the places
-    // move with them.
-    let mut places: SmallVec<[Option<Place>; 16]> = fs.iter().map(|f| cyclic_place(f.0)).collect();
-    if places.iter().filter(|p| p.is_some()).count() < 2 {
+    // strings), and only the factors that have one are visited. A family
+    // of exactly two factors is looked at once, from its first member; a
+    // swap exchanges those two, so no other family's members move.
+    let placed: SmallVec<[(usize, Place); 16]> = fs
+        .iter()
+        .enumerate()
+        .filter_map(|(k, f)| cyclic_place(f.0).map(|p| (k, p)))
+        .collect();
+    if placed.len() < 2 {
         return;
     }
     let next = |a: Place, b: Place| a.0 == b.0 && a.2 == b.2 && (a.1 + 1) % 3 == b.1;
-    for i in 0..fs.len() {
-        let Some((family, _, _)) = places[i] else {
+    for (j, &(p, pp)) in placed.iter().enumerate() {
+        let family = pp.0;
+        if placed[..j].iter().any(|e| e.1.0 == family) {
+            continue;
+        }
+        let mut rest = placed[j + 1..].iter().filter(|e| e.1.0 == family);
+        let (Some(&(q, pq)), None) = (rest.next(), rest.next()) else {
             continue;
         };
-        let mut same = (0..fs.len()).filter(|&k| places[k].is_some_and(|(f, _, _)| f == family));
-        // Only the first factor of its family moves (p == i below).
-        let Some(p) = same.next().filter(|&p| p == i) else {
-            continue;
-        };
-        let (Some(q), None) = (same.next(), same.next()) else {
-            continue;
-        };
-        let (Some(pp), Some(pq)) = (places[p], places[q]) else {
-            continue;
-        };
-        if p == i && fs[p].1 == 1 && fs[q].1 == 1 && next(pq, pp) && !next(pp, pq) {
+        if fs[p].1 == 1 && fs[q].1 == 1 && next(pq, pp) && !next(pp, pq) {
             fs.swap(p, q);
-            places.swap(p, q);
         }
     }
 }
