@@ -560,31 +560,36 @@ def main():
 
 
 def run_process(argv):
-    """CPU time (user + system, seconds), peak resident memory (bytes) and
-    wall time of one process.
+    """CPU time (user + system, seconds) and wall time of one process.
 
     CPU time is the figure to compare on a shared machine: wall time also
-    counts the time the process waits for a core. The memory is measured
-    by `/usr/bin/time` when it is there: a child forked from this Python
-    process would report the parent's resident memory at the fork as its
-    peak (`wait4` counts the copy before exec)."""
-    gnu_time = Path("/usr/bin/time")
-    wrapped = [str(gnu_time), "-f", "%M"] + argv if gnu_time.exists() else argv
+    counts the time the process waits for a core. The process runs on its
+    own, not under `/usr/bin/time` (whose own start-up, about 1 ms, would
+    count as hdot's: a third of a small derivation's time)."""
     t0 = time.perf_counter()
-    p = subprocess.Popen(wrapped, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    p = subprocess.Popen(argv, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     _, status, usage = os.wait4(p.pid, 0)
     dt = time.perf_counter() - t0
-    # The rusage of the child includes the children it waited for (hdot
-    # under /usr/bin/time).
-    cpu = usage.ru_utime + usage.ru_stime
     code = os.waitstatus_to_exitcode(status)
     err = p.stderr.read().decode(errors="replace")
     p.stderr.close()
     if code != 0:
         sys.exit(f"bench: {' '.join(argv)} failed ({code}): {err[:400]}")
-    if wrapped is argv:
-        return cpu, usage.ru_maxrss * 1024, dt
-    return cpu, int(err.strip().splitlines()[-1]) * 1024, dt
+    return usage.ru_utime + usage.ru_stime, dt
+
+
+def peak_memory(argv):
+    """Peak resident memory (bytes) of one process, measured by
+    `/usr/bin/time` when it is there: a child forked from this Python
+    process would report the parent's resident memory at the fork as its
+    peak (`wait4` counts the copy before exec)."""
+    gnu_time = Path("/usr/bin/time")
+    if not gnu_time.exists():
+        p = subprocess.Popen(argv, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        return os.wait4(p.pid, 0)[2].ru_maxrss * 1024
+    out = subprocess.run([str(gnu_time), "-f", "%M"] + argv, cwd=ROOT,
+                         stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, check=True)
+    return int(out.stderr.decode().strip().splitlines()[-1]) * 1024
 
 
 def cpu_time(fn):
@@ -678,9 +683,9 @@ def bench(args):
         hdot_workloads.append(name)
         targets[name] = str(sum_file(args.bench_sum))
     for name in hdot_workloads:
-        (t, rss, wall), n = median_runs(
-            lambda: run_process([exe, "derive", targets[name], "--format", "latex"]),
-            args.runs, 10.0)
+        argv = [exe, "derive", targets[name], "--format", "latex"]
+        (t, wall), n = median_runs(lambda: run_process(argv), args.runs, 10.0)
+        rss = peak_memory(argv)
         hd[name] = (t, rss, wall)
         print(f"hdot {name:<10} CPU {fmt_time(t):>10}  wall {fmt_time(wall):>10}  "
               f"peak {rss / 1e6:7.1f} MB  (median of {n})", flush=True)
@@ -715,7 +720,7 @@ def bench(args):
         f"{load1[0]:.2f} at the end (a shared machine: the ratios of one run are what count). "
         f"hdot: median CPU time (user + system) of {args.runs} runs of the whole "
         "process `hdot derive NAME --format latex` (start-up, parse, derive, check, present, "
-        "print), its wall time, peak resident memory by `/usr/bin/time`. Peers in process, "
+        "print) run on its own, its wall time; peak resident memory by `/usr/bin/time` (one more run). Peers in process, "
         f"CPU time, median of up to {args.peer_runs} runs: SymPy as `benches/compare_sympy.py` "
         "writes the workloads (sympy.physics.mechanics, expand), SymEngine and Symbolica "
         "chain-K's expansion and d/dt on plain symbols only (no trigonometric reduction, no "
