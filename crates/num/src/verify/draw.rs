@@ -196,6 +196,9 @@ pub(crate) fn draw(
         }
     }
     bind_all(d, &mut values, eqs)?;
+    // The coordinates' rates from the speeds, the dependent speeds from
+    // the constraints.
+    super::speeds::draw_consistent(d, &mut values)?;
     let mut bodies = Vec::new();
     let mut centres = Vec::new();
     for (b, base) in ph.bodies.iter().zip(&bases) {

@@ -39,6 +39,7 @@ pub mod means;
 pub mod motion;
 pub mod quantities;
 mod reactions;
+mod speeds;
 #[cfg(feature = "proptest")]
 pub mod strategy;
 pub mod world;
