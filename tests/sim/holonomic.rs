@@ -42,13 +42,13 @@ fn run_scene(scene: &Scene, tol: f64) -> run::Report {
 }
 
 /// The scene's constants and start.
-const G: f64 = 9.81;
-const L: f64 = 1.0;
-const X0: f64 = 0.6;
+pub(crate) const G: f64 = 9.81;
+pub(crate) const L: f64 = 1.0;
+pub(crate) const X0: f64 = 0.6;
 
 /// The simple pendulum θ̈ = −(g/L) sin θ from rest at θ₀ = asin(x₀/L),
 /// by the classical Runge–Kutta method: (θ, θ̇) at `t_end`.
-fn simple_pendulum(t_end: f64, steps: usize) -> (f64, f64) {
+pub(crate) fn simple_pendulum(t_end: f64, steps: usize) -> (f64, f64) {
     let f = |th: f64, w: f64| (w, -(G / L) * th.sin());
     let h = t_end / steps as f64;
     let (mut th, mut w) = ((X0 / L).asin(), 0.0);

@@ -6,7 +6,7 @@
 //! The state has `2 × dof` components (or the coordinates and speeds of a
 //! first-order model), a number known only when the scene is read, while
 //! the integrators take fixed-size arrays; `with_len` dispatches on it
-//! once, up to `2 ×` [`MAX_DOF`] components.
+//! once, up to [`MAX_STATE`] components.
 
 use nalgebra::Matrix3;
 
@@ -17,10 +17,10 @@ use crate::model::{
 };
 use crate::record::{Recorder, integrate_recorded, time_and_state, timed};
 use crate::scene::{DerivedScene, Scene};
-use crate::systems::derived::{Conserved, DerivedModel, DerivedSystem, MAX_DOF};
+use crate::systems::derived::{Conserved, DerivedModel, DerivedSystem, MAX_STATE};
 use crate::{Limits, Method, SimError, Stats, Step, integrate};
 
-/// Calls `$f::<N>(args)` for the state length `$len` (2 to 2·MAX_DOF).
+/// Calls `$f::<N>(args)` for the state length `$len` (2 to MAX_STATE).
 macro_rules! with_len {
     ($len:expr, $f:ident ( $($arg:expr),* )) => {
         match $len {
@@ -35,10 +35,15 @@ macro_rules! with_len {
             10 => $f::<10>($($arg),*),
             11 => $f::<11>($($arg),*),
             12 => $f::<12>($($arg),*),
+            13 => $f::<13>($($arg),*),
+            14 => $f::<14>($($arg),*),
+            15 => $f::<15>($($arg),*),
+            16 => $f::<16>($($arg),*),
+            17 => $f::<17>($($arg),*),
+            18 => $f::<18>($($arg),*),
             n => Err(SimError::Derived {
                 message: format!(
-                    "a state of {n} components; derived models have 2 to {} components",
-                    2 * MAX_DOF
+                    "a state of {n} components; derived models have 2 to {MAX_STATE} components"
                 ),
             }),
         }

@@ -50,8 +50,8 @@ use super::raw::{RawDerivation, RawInitial};
 use super::text::line_of_field;
 use crate::SimError;
 use crate::systems::derived::{
-    DerivedModel, DerivedSpec, EquationsSpec, HolonomicSpec, NewtonFailure, SpeedRates,
-    TimeFunction,
+    DerivedModel, DerivedSpec, EquationsSpec, HolonomicSpec, MultiplierSpec, NewtonFailure,
+    SpeedRates, TimeFunction,
 };
 
 /// The `[initial]` values of a derived scene.
@@ -293,6 +293,15 @@ fn parse(
             holonomic: None,
         };
     }
+    multiplier_form(
+        (
+            &raw.constraint_matrix,
+            &raw.constraint_bias,
+            &raw.dependent_speeds,
+        ),
+        &mut equations,
+    )
+    .map_err(|(f, m)| bad(f, m))?;
     if let EquationsSpec::MassMatrix {
         mass_matrix,
         coordinates,
@@ -390,6 +399,7 @@ fn parse(
         e => e,
     })?;
     let y0 = solve_holonomic(&model, y0, (file, scene_text))?;
+    let y0 = solve_dependent_speeds(&model, y0, (file, scene_text))?;
     if let Some(f) = &raw.frame
         && let Err(why) = model
             .attitude(f, 0.0, &y0)
@@ -414,6 +424,84 @@ fn parse(
         y0,
         frame: raw.frame,
         body_frames,
+    })
+}
+
+/// A first-order mass-matrix form turned into a multiplier form when the
+/// `[derivation]` table names a `constraint_matrix` (with its
+/// `constraint_bias` and `dependent_speeds`), or the field and why not.
+fn multiplier_form(
+    (a, b, u): (&Option<String>, &Option<String>, &Option<Vec<String>>),
+    equations: &mut EquationsSpec,
+) -> Result<(), (&'static str, String)> {
+    let (Some(a), Some(b), Some(u)) = (a, b, u) else {
+        return match (a, b, u) {
+            (None, None, None) => Ok(()),
+            _ => Err((
+                if a.is_none() {
+                    "derivation.constraint_matrix"
+                } else if b.is_none() {
+                    "derivation.constraint_bias"
+                } else {
+                    "derivation.dependent_speeds"
+                },
+                "a multiplier form names all three of `constraint_matrix` (A_c), \
+                 `constraint_bias` (b) and `dependent_speeds`"
+                    .into(),
+            )),
+        };
+    };
+    let EquationsSpec::FirstOrder {
+        rates: SpeedRates::MassMatrix {
+            mass_matrix,
+            forcing,
+        },
+        dependent: None,
+        ..
+    } = equations
+    else {
+        return Err((
+            "derivation.constraint_matrix",
+            "a multiplier form needs `mass_matrix` and `forcing` in the speeds' rates \
+             (mass_matrix(eqs, [u1', …])) and no `dependent` step"
+                .into(),
+        ));
+    };
+    *equations = EquationsSpec::FirstOrder {
+        rates: SpeedRates::Multiplier(MultiplierSpec {
+            mass_matrix: mass_matrix.clone(),
+            forcing: forcing.clone(),
+            constraint_matrix: a.clone(),
+            constraint_bias: b.clone(),
+            dependent_speeds: u.clone(),
+        }),
+        dependent: None,
+        holonomic: None,
+    };
+    Ok(())
+}
+
+/// The initial state with a multiplier form's dependent speeds solved
+/// from its velocity constraints A_c u = 0 (unchanged without).
+fn solve_dependent_speeds(
+    model: &DerivedModel,
+    mut y0: Vec<f64>,
+    (file, text): (&Path, &str),
+) -> Result<Vec<f64>, SimError> {
+    if model.solve_dependent_speeds(0.0, &mut y0).is_some() {
+        return Ok(y0);
+    }
+    let line = line_of_field(text, "derivation.dependent_speeds")
+        .map_or(String::new(), |n| format!("line {n}: "));
+    Err(SimError::BadField {
+        file: file.to_path_buf(),
+        field: "derivation.dependent_speeds".into(),
+        message: format!(
+            "{line}the velocity constraints cannot be solved for the dependent speeds {} at the \
+             initial configuration: the constraint matrix's columns of these speeds are singular \
+             there (choose other dependent speeds)",
+            model.dependent_speeds().join(", ")
+        ),
     })
 }
 

@@ -101,4 +101,10 @@ pub(super) struct RawDerivation {
     pub(super) dependent_coordinates: Option<Vec<String>>,
     /// Whether to project onto f = 0 after each step (default true).
     pub(super) project: Option<bool>,
+    /// A multiplier form's constraint matrix A_c (A_c u = 0).
+    pub(super) constraint_matrix: Option<String>,
+    /// Its bias b (A_c u̇ + b = 0).
+    pub(super) constraint_bias: Option<String>,
+    /// The speeds solved from A_c u = 0, one per constraint.
+    pub(super) dependent_speeds: Option<Vec<String>>,
 }

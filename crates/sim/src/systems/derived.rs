@@ -39,11 +39,13 @@ mod carried;
 mod compile;
 mod first_order;
 mod holonomic;
+mod multiplier;
 mod small_solve;
 
 pub use build::{in_speed_rates, step_coordinates};
 use compile::{Compiled, Source};
 pub use holonomic::{ConstraintMonitor, NewtonFailure};
+pub use multiplier::MultiplierSpec;
 use small_solve::solve_small;
 
 /// Which steps of the derivation hold the equations of motion.
@@ -110,6 +112,9 @@ pub enum SpeedRates {
         /// The step holding f.
         forcing: String,
     },
+    /// The multiplier form M u̇ − f = A_cᵀ λ, A_c u̇ + b = 0, solved for
+    /// u̇ and λ at each evaluation (`derived/multiplier.rs`).
+    Multiplier(MultiplierSpec),
 }
 
 /// Everything a scene says about a derived model.
@@ -169,6 +174,8 @@ enum Form {
     Explicit(Compiled),
     /// M (row-major) and f, the outputs of one tape; then q̇ in a first-order model.
     MassMatrix(Compiled),
+    /// M, f, A_c and b of a multiplier form, then q̇.
+    Multiplier(Compiled, multiplier::Layout),
 }
 
 /// A trigonometric atom the equations divide by.
@@ -266,8 +273,14 @@ fn in_steps(steps: &[&str], e: SimError) -> SimError {
 /// singularity.
 const DIVISOR_BOUND: f64 = 1e-9;
 
-/// The largest number of coordinates a derived model takes.
+/// The largest number of coordinates a derived model takes (of speeds in
+/// a first-order model with the speeds' rates solved for or in
+/// mass-matrix form).
 pub const MAX_DOF: usize = 6;
+
+/// The largest number of components of a derived model's state (a
+/// multiplier form's coordinates and speeds, the carried angles).
+pub const MAX_STATE: usize = 18;
 
 /// # Queries
 impl DerivedModel {
@@ -360,7 +373,18 @@ impl DerivedModel {
         let base = self.carried_base();
         for (k, (slot, key)) in y.iter_mut().zip(&names).enumerate() {
             // A carried angle starts at 0 unless given.
-            let v = values.get(key).copied().or((k >= base).then_some(0.0));
+            // So does a dependent speed, solved from the constraints.
+            let dependent = self.dependent_speeds().contains(key);
+            if dependent && values.contains_key(key) {
+                return Err(err(format!(
+                    "`{key}` is a dependent speed, solved from the velocity constraints A_c u = 0: \
+                     give the independent speeds only"
+                )));
+            }
+            let v = values
+                .get(key)
+                .copied()
+                .or((k >= base || dependent).then_some(0.0));
             let v = v.ok_or_else(|| {
                 err(format!(
                     "the initial value of `{key}` is missing (give every component of the state: {})",
@@ -453,6 +477,7 @@ impl DerivedModel {
                 self.eval(mf, t, y, out);
                 solve_small(n, out, qdd)
             }
+            Form::Multiplier(..) => None,
         }
     }
 
@@ -488,6 +513,9 @@ impl DerivedModel {
                     if dv.sin { "sin" } else { "cos" }
                 ));
             }
+        }
+        if let Some(why) = self.multiplier_singularity(t, y) {
+            return Some(why);
         }
         if let Form::MassMatrix(mf) = &self.form {
             // M is over the speeds' rates in a first-order model.
@@ -594,8 +622,14 @@ impl<const N: usize> System<N> for DerivedSystem<'_, N> {
     /// The configuration constraints' residual recorded and, when the
     /// scene asks for it (the default), q_d projected back onto f = 0.
     fn project(&self, y: &mut [f64; N]) -> bool {
-        // f(q) has no applied input (refused when compiled): t is not read.
-        self.0.keep_constraints(0.0, y)
+        // f(q) has no applied input (refused when compiled): t is not read;
+        // nor has A_c (a multiplier form with inputs is refused).
+        let q = self.0.keep_constraints(0.0, y);
+        let u = self
+            .0
+            .solve_dependent_speeds(0.0, y)
+            .is_some_and(|c| c > 0.0);
+        q || u
     }
 
     fn check(&self, t: f64, y: &[f64; N]) -> Result<(), SimError> {

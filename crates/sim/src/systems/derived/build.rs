@@ -13,8 +13,8 @@ use nalgebra::Vector3;
 use super::compile::{Resolver, Source};
 use super::{
     Conserved, DIVISOR_BOUND, DerivedModel, DerivedSpec, Divisor, EquationsSpec, Form,
-    FrameAttitude, FrameChain, MAX_DOF, SpeedRates, TimeFunction, at, carried, energy_reason, err,
-    first_order, holonomic, in_steps,
+    FrameAttitude, FrameChain, MAX_DOF, MAX_STATE, SpeedRates, TimeFunction, at, carried,
+    energy_reason, err, first_order, holonomic, in_steps,
 };
 use crate::SimError;
 
@@ -45,19 +45,41 @@ impl DerivedModel {
                 rates: SpeedRates::Explicit { step },
                 ..
             } => ("derivation.rates", vec![step.as_str()]),
+            EquationsSpec::FirstOrder {
+                rates: SpeedRates::Multiplier(m),
+                ..
+            } => (
+                "derivation.constraint_matrix",
+                vec![
+                    m.mass_matrix.as_str(),
+                    m.forcing.as_str(),
+                    m.constraint_matrix.as_str(),
+                    m.constraint_bias.as_str(),
+                ],
+            ),
         };
-        let (coordinates, speeds, mut replace, outputs) = match &spec.equations {
+        let (coordinates, speeds, mut replace, outputs, layout) = match &spec.equations {
             EquationsSpec::FirstOrder {
                 rates, dependent, ..
             } => {
                 let e = first_order::equations(d, rates, dependent.as_deref())?;
-                (e.coordinates, e.speeds, e.replace, e.outputs)
+                (e.coordinates, e.speeds, e.replace, e.outputs, e.layout)
             }
             e => {
                 let (q, out) = equations(d, e).map_err(|e| at(field, e))?;
-                (q, Vec::new(), Vec::new(), out)
+                (q, Vec::new(), Vec::new(), out, None)
             }
         };
+        if layout.is_some() && !spec.inputs.is_empty() {
+            return Err(at(
+                field,
+                err(format!(
+                    "{}: a multiplier form with applied inputs is not simulated (its constraints are \
+                     kept after each step, where the time is not known): remove the scene's [inputs]",
+                    d.path
+                )),
+            ));
+        }
         let n = coordinates.len();
         if n == 0 || (speeds.is_empty() && n > MAX_DOF) {
             let field = match &spec.equations {
@@ -99,7 +121,7 @@ impl DerivedModel {
             };
             carried.iter().map(|(_, rate)| cx.replaced(rate)).collect()
         };
-        if carried_base + carried.len() > 2 * MAX_DOF {
+        if carried_base + carried.len() > MAX_STATE {
             return Err(at(
                 field,
                 err(format!(
@@ -107,7 +129,7 @@ impl DerivedModel {
                      model has at most {}",
                     d.path,
                     carried_base + carried.len(),
-                    2 * MAX_DOF
+                    MAX_STATE
                 )),
             ));
         }
@@ -138,7 +160,10 @@ impl DerivedModel {
                 rates: SpeedRates::Explicit { .. },
                 ..
             } => Form::Explicit(compiled),
-            _ => Form::MassMatrix(compiled),
+            _ => match layout {
+                Some(l) => Form::Multiplier(compiled, l),
+                None => Form::MassMatrix(compiled),
+            },
         };
         let conserved = conserved(d, spec, &cx)?;
         let holonomic = match &spec.equations {

@@ -14,7 +14,7 @@ use hdot_sym::poly::Poly;
 
 use super::build::{mass_matrix_and_forcing, step, step_unknowns};
 use super::small_solve::solve_small;
-use super::{DerivedModel, Form, MAX_DOF, SpeedRates, at, err};
+use super::{DerivedModel, Form, MAX_DOF, MAX_STATE, SpeedRates, at, err, multiplier};
 use crate::SimError;
 
 /// What a first-order model compiles: its state's coordinates and
@@ -25,6 +25,8 @@ pub(super) struct FirstOrderEquations {
     pub(super) speeds: Vec<Atom>,
     pub(super) replace: Vec<(Atom, Poly)>,
     pub(super) outputs: Vec<Poly>,
+    /// Where a multiplier form's outputs go.
+    pub(super) layout: Option<multiplier::Layout>,
 }
 
 /// Reads the kinematic equations, the dependent speeds and the speeds'
@@ -36,7 +38,7 @@ pub(super) fn equations(
 ) -> Result<FirstOrderEquations, SimError> {
     let rates_field = match rates {
         SpeedRates::Explicit { .. } => "derivation.rates",
-        SpeedRates::MassMatrix { .. } => "derivation.mass_matrix",
+        SpeedRates::MassMatrix { .. } | SpeedRates::Multiplier(_) => "derivation.mass_matrix",
     };
     let declared = d.speeds();
     if declared.is_empty() {
@@ -64,8 +66,17 @@ pub(super) fn equations(
         Some(name) => dependent_speeds(d, name).map_err(|e| at("derivation.dependent", e))?,
         None => Vec::new(),
     };
-    let (speeds, rate_outputs) =
-        speed_rates(d, rates, &dependent).map_err(|e| at(rates_field, e))?;
+    let (speeds, rate_outputs, layout) = match rates {
+        SpeedRates::Multiplier(spec) => {
+            let (speeds, outputs, layout) = multiplier::outputs(d, spec)?;
+            (speeds, outputs, Some(layout))
+        }
+        _ => {
+            let (speeds, outputs) =
+                speed_rates(d, rates, &dependent).map_err(|e| at(rates_field, e))?;
+            (speeds, outputs, None)
+        }
+    };
     // Every declared speed is in the state or given by the constraints.
     if let Some(u) = declared
         .iter()
@@ -109,26 +120,31 @@ pub(super) fn equations(
         .collect();
     replace.extend(dependent.iter().cloned());
     let (nq, nu) = (coordinates.len(), speeds.len());
-    if nu > MAX_DOF || nq + nu > 2 * MAX_DOF {
+    // A multiplier form solves its system in the heap; the others on the
+    // stack, up to MAX_DOF speeds.
+    let most = if layout.is_some() { MAX_STATE } else { MAX_DOF };
+    if nu > most || nq + nu > MAX_STATE {
         return Err(at(
             rates_field,
             err(format!(
-                "{}: {nq} coordinates and {nu} independent speeds; a first-order derived model has at \
-                 most {MAX_DOF} speeds and {} components in all",
+                "{}: {nq} coordinates and {nu} speeds in the state; a first-order derived model of this \
+                 form has at most {most} speeds and {MAX_STATE} components in all",
                 d.path,
-                2 * MAX_DOF
             )),
         ));
     }
     let outputs = match rates {
         SpeedRates::Explicit { .. } => qdot.into_iter().chain(rate_outputs).collect(),
-        SpeedRates::MassMatrix { .. } => rate_outputs.into_iter().chain(qdot).collect(),
+        SpeedRates::MassMatrix { .. } | SpeedRates::Multiplier(_) => {
+            rate_outputs.into_iter().chain(qdot).collect()
+        }
     };
     Ok(FirstOrderEquations {
         coordinates,
         speeds,
         replace,
         outputs,
+        layout,
     })
 }
 
@@ -242,6 +258,7 @@ fn speed_rates(
             let mf = mass_matrix_and_forcing(d, mass_matrix, forcing, speeds.len())?;
             Ok((speeds, mf.iter().map(|p| d.unfold(p)).collect()))
         }
+        SpeedRates::Multiplier(_) => unreachable!("read by multiplier::outputs"),
     }
 }
 
@@ -264,6 +281,7 @@ impl DerivedModel {
                 dy[..nq].copy_from_slice(&out[nu * nu + nu..]);
                 solve_small(nu, &out[..nu * nu + nu], &mut dy[nq..nq + nu])
             }
+            Form::Multiplier(c, l) => self.multiplier_rates(c, l, t, y, dy),
         }
     }
 }

@@ -304,6 +304,8 @@ impl DerivedModel {
         let (m, n) = (h.dependent.len(), self.coordinates.len());
         let mut z = y.to_vec();
         z[n..n + speeds.len()].copy_from_slice(speeds);
+        // A multiplier form's dependent speeds from its velocity constraints.
+        self.solve_dependent_speeds(t, &mut z)?;
         let mut dz = vec![0.0; z.len()];
         self.rates(t, &z, &mut dz)?;
         let mut out = vec![0.0; h.tape.tape.outputs()];
