@@ -95,16 +95,7 @@ pub(crate) fn declarations(cx: &Context<'_>, raw: &RawFile) -> R<Physics> {
     let mut names: HashSet<String> = HashSet::new();
     let taken = |names: &mut HashSet<String>, s: &Spanned<String>, what: &str| -> R<()> {
         let n = s.get_ref();
-        let valid = n.chars().next().is_some_and(char::is_alphabetic)
-            && n.chars().all(|c| c.is_alphanumeric() || c == '_');
-        if !valid {
-            return Err(cx.diag_string(
-                s,
-                0,
-                n.len(),
-                format!("`{n}` is not a valid {what} name (letters, digits, _)"),
-            ));
-        }
+        cx.valid_name(s, what)?;
         if n == "system" || !names.insert(n.clone()) || cx.frame_index(n).is_some() {
             return Err(cx.diag_string(
                 s,

@@ -69,15 +69,7 @@ fn whole(
 
 fn support(cx: &Context<'_>, ph: &Physics, s: &RawSupport) -> R<Support> {
     let name = s.name.get_ref();
-    let valid = name.chars().next().is_some_and(char::is_alphabetic)
-        && name.chars().all(|c| c.is_alphanumeric() || c == '_');
-    if !valid {
-        return Err(whole(
-            cx,
-            &s.name,
-            format!("`{name}` is not a valid support name (letters, digits, _)"),
-        ));
-    }
+    cx.valid_name(&s.name, "support")?;
     let body = match &s.body {
         Some(b) => ph
             .bodies
