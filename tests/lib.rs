@@ -3,6 +3,32 @@
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
+/// The eigenvalues (re, im) of the Whipple bicycle's linearized lean–steer
+/// equations at rest and at 5 m/s: Table 2 of Meijaard, Papadopoulos, Ruina
+/// & Schwab, *Proc. R. Soc. A* 463 (2007). Expectations only — the
+/// derivations compute them; the linear and the nonlinear bicycle's tests
+/// both compare with this one table.
+pub const WHIPPLE_EIGENVALUES: [(f64, [(f64, f64); 4]); 2] = [
+    (
+        0.0,
+        [
+            (-5.53094371765393, 0.0),
+            (-3.13164324790656, 0.0),
+            (3.13164324790656, 0.0),
+            (5.53094371765393, 0.0),
+        ],
+    ),
+    (
+        5.0,
+        [
+            (-14.07838969279822, 0.0),
+            (-0.77534188219585, -4.46486771378823),
+            (-0.77534188219585, 4.46486771378823),
+            (-0.32286642900409, 0.0),
+        ],
+    ),
+];
+
 /// The repository root.
 pub fn repo_root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))

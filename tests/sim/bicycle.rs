@@ -7,7 +7,7 @@
 
 use hdot_sim::nalgebra::Complex;
 use hdot_sim::stability::{Edge, StabilityScene, spectrum, sweep};
-use hdot_tests::repo_root;
+use hdot_tests::{WHIPPLE_EIGENVALUES, repo_root};
 
 const G: f64 = 9.81;
 
@@ -84,27 +84,8 @@ fn the_bicycle_matrices_are_the_benchmark() {
 #[test]
 fn the_bicycle_eigenvalues_are_the_benchmark() {
     let s = scene();
-    let cases: [(f64, Vec<Complex<f64>>); 2] = [
-        (
-            0.0,
-            vec![
-                Complex::new(-5.53094371765393, 0.0),
-                Complex::new(-3.13164324790656, 0.0),
-                Complex::new(3.13164324790656, 0.0),
-                Complex::new(5.53094371765393, 0.0),
-            ],
-        ),
-        (
-            5.0,
-            vec![
-                Complex::new(-14.07838969279822, 0.0),
-                Complex::new(-0.77534188219585, -4.46486771378823),
-                Complex::new(-0.77534188219585, 4.46486771378823),
-                Complex::new(-0.32286642900409, 0.0),
-            ],
-        ),
-    ];
-    for (v, want) in cases {
+    for &(v, table) in &WHIPPLE_EIGENVALUES {
+        let want: Vec<Complex<f64>> = table.iter().map(|&(re, im)| Complex::new(re, im)).collect();
         let (ev, _) = spectrum(&s.matrices, v, &mut Vec::new()).unwrap();
         for z in &want {
             let nearest = ev.iter().map(|e| (e - z).norm()).fold(f64::MAX, f64::min);

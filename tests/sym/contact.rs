@@ -7,7 +7,7 @@
 //! linear bicycle's; bad declarations are located errors.
 
 use hdot_sym::derivation::{Derivation, Value, load, load_str};
-use hdot_tests::repo_root;
+use hdot_tests::{WHIPPLE_EIGENVALUES, repo_root};
 
 fn step<'d>(d: &'d Derivation, name: &str) -> &'d Value {
     &d.steps
@@ -393,27 +393,8 @@ fn the_nonlinear_bicycle_in_multiplier_form_has_the_benchmark_eigenvalues() {
             .chain(s.iter().take(n).copied())
             .collect()
     };
-    let cases: [(f64, Vec<Complex<f64>>); 2] = [
-        (
-            0.0,
-            vec![
-                Complex::new(-5.53094371765393, 0.0),
-                Complex::new(-3.13164324790656, 0.0),
-                Complex::new(3.13164324790656, 0.0),
-                Complex::new(5.53094371765393, 0.0),
-            ],
-        ),
-        (
-            5.0,
-            vec![
-                Complex::new(-14.07838969279822, 0.0),
-                Complex::new(-0.77534188219585, -4.46486771378823),
-                Complex::new(-0.77534188219585, 4.46486771378823),
-                Complex::new(-0.32286642900409, 0.0),
-            ],
-        ),
-    ];
-    for (v, want) in cases {
+    for &(v, table) in &WHIPPLE_EIGENVALUES {
+        let want: Vec<Complex<f64>> = table.iter().map(|&(re, im)| Complex::new(re, im)).collect();
         // Upright straight running: every angle 0, the rear wheel turning
         // at −v/r_R, the dependent speeds from A_c u = 0.
         let mut x = vec![0.0; 18];

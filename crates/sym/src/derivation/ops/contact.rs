@@ -8,6 +8,7 @@
 //! as `kane` takes them.
 
 use super::express_in;
+use super::position::chain;
 use super::velocity::Speedmap;
 use super::{Call, Op};
 use crate::derivation::contact::Contact;
@@ -120,36 +121,20 @@ fn up_in(c: &Call<'_, '_>, f: usize) -> R<Vec3> {
 }
 
 /// The contact point's height: the `at` vectors from it back to a fixed
-/// point and that point's place, along N's z.
+/// point (the chain `position` walks) and that point's place, along N's z.
 fn height_of(c: &Call<'_, '_>, k: &Contact) -> R<Poly> {
     let cx = c.cx;
+    let (pieces, fixed) = chain(c, &k.name)?;
     let mut h = Poly::zero();
-    let mut at = k.name.clone();
-    for _ in 0..=cx.physics.points.len() {
-        let p = cx
-            .physics
-            .points
-            .iter()
-            .find(|p| p.name == at)
-            .expect("a declared point");
-        let (v, frame) = match &p.kind {
-            PointKind::Fixed(v, f) => (v, f),
-            PointKind::From { at, frame, .. } => (at, frame),
-            PointKind::Free => {
-                return c.err(
-                    c.span,
-                    format!("point `{at}` moves freely: the contact's height is not declared"),
-                );
-            }
-        };
+    for (v, f) in &pieces {
+        h = &h + &cx.unfold(&v.dot(&up_in(c, *f)?));
+    }
+    let place = cx.physics.points.iter().find(|p| p.name == fixed);
+    if let Some(PointKind::Fixed(v, frame)) = place.map(|p| &p.kind) {
         let f = cx.frame_index(frame).expect("the point's frame exists");
         h = &h + &cx.unfold(&v.dot(&up_in(c, f)?));
-        match &p.kind {
-            PointKind::From { from, .. } => at = from.clone(),
-            _ => return Ok(h),
-        }
     }
-    c.err(c.span, format!("point `{}` leads back to itself", k.name))
+    Ok(h)
 }
 
 fn tangent_of(c: &Call<'_, '_>, k: &Contact) -> R<Poly> {

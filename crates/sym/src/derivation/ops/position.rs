@@ -20,7 +20,7 @@ pub(crate) const POSITION: Op = Op {
 
 /// The pieces (vector, frame index) from the fixed point at the root of
 /// `name`'s chain to `name`, and that root.
-type Chain = (Vec<(Vec3, usize)>, String);
+pub(super) type Chain = (Vec<(Vec3, usize)>, String);
 
 fn eval(c: &Call<'_, '_>) -> R<Value> {
     c.arity(2)?;
@@ -73,7 +73,9 @@ fn point(c: &Call<'_, '_>, i: usize) -> R<String> {
     )
 }
 
-fn chain(c: &Call<'_, '_>, name: &str) -> R<Chain> {
+/// The `at` vectors from point `name` back to the fixed point it hangs
+/// from, each with its frame index, and that fixed point's name.
+pub(super) fn chain(c: &Call<'_, '_>, name: &str) -> R<Chain> {
     let cx = c.cx;
     let mut pieces = Vec::new();
     let mut at = name.to_string();
