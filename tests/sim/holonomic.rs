@@ -159,7 +159,7 @@ fn the_projection_keeps_the_constraint_and_without_it_it_drifts() {
 }
 
 /// The field and line of a refused scene, and its message.
-fn refusal(e: SimError) -> (String, String) {
+pub(crate) fn refusal(e: SimError) -> (String, String) {
     match e {
         SimError::BadField { field, message, .. } => (field, message),
         e => panic!("not a field's error: {e}"),

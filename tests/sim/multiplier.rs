@@ -16,7 +16,7 @@ use hdot_sim::scene::{Scene, SceneKind};
 use hdot_sim::{Method, SimError, Step};
 use hdot_tests::repo_root;
 
-use super::holonomic::{G, L, X0, simple_pendulum};
+use super::holonomic::{G, L, X0, refusal, simple_pendulum};
 
 fn scene_path() -> PathBuf {
     repo_root().join("tests/sim/holonomic/sim-pendulum-xy-multiplier.toml")
@@ -107,14 +107,6 @@ fn the_multiplier_form_moves_as_the_simple_pendulum() {
         "u_1 = {} vs {u1}",
         y[2]
     );
-}
-
-/// The field of a refused scene and its message.
-fn refusal(e: SimError) -> (String, String) {
-    match e {
-        SimError::BadField { field, message, .. } => (field, message),
-        e => panic!("not a field's error: {e}"),
-    }
 }
 
 /// A dependent speed given a start value, a constraint matrix without its

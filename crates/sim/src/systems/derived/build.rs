@@ -469,13 +469,28 @@ pub fn step_coordinates(d: &Derivation, step: &str) -> Option<Vec<String>> {
 /// columns; `None` when the step's formula is not such a call with its
 /// unknowns in brackets.
 pub(super) fn step_unknowns(d: &Derivation, step: &str) -> Option<Vec<(String, u32)>> {
+    let names = bracket_names(d, step, &["mass_matrix", "forcing"])?;
+    names
+        .into_iter()
+        .map(|(n, p)| (p > 0).then_some((n, p)))
+        .collect()
+}
+
+/// The names in the bracket of a step written `f(x, [a, b', …])` with `f`
+/// one of `funcs`: each name with its number of primes, in order; `None`
+/// when the step's formula is not such a call or an item is not a name.
+pub(super) fn bracket_names(
+    d: &Derivation,
+    step: &str,
+    funcs: &[&str],
+) -> Option<Vec<(String, u32)>> {
     use hdot_sym::parse::{AstKind, parse};
     let s = d.steps.iter().find(|s| s.name == step)?;
     let ast = parse(&s.formula).ok()?;
     let AstKind::Call { func, args } = &ast.kind else {
         return None;
     };
-    if !matches!(func.as_str(), "mass_matrix" | "forcing") || args.len() != 2 {
+    if !funcs.contains(&func.as_str()) || args.len() != 2 {
         return None;
     }
     let AstKind::Vector { items, frame: None } = &args[1].kind else {
@@ -484,7 +499,7 @@ pub(super) fn step_unknowns(d: &Derivation, step: &str) -> Option<Vec<(String, u
     items
         .iter()
         .map(|a| match &a.kind {
-            AstKind::Name { name, primes } if *primes > 0 => Some((name.clone(), *primes)),
+            AstKind::Name { name, primes } => Some((name.clone(), *primes)),
             _ => None,
         })
         .collect()

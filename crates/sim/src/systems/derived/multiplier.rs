@@ -16,7 +16,7 @@ use hdot_sym::derivation::{Derivation, Value};
 use hdot_sym::poly::Poly;
 use nalgebra::{DMatrix, DVector};
 
-use super::build::{mass_matrix_and_forcing, step, step_unknowns};
+use super::build::{bracket_names, mass_matrix_and_forcing, step, step_unknowns};
 use super::compile::Compiled;
 use super::{DerivedModel, Form, at, err};
 use crate::SimError;
@@ -184,24 +184,10 @@ pub(super) fn outputs(
 
 /// The speeds in the brackets of a step `jacobian(x, [u1, u2, …])`.
 fn jacobian_columns(d: &Derivation, name: &str) -> Option<Vec<Atom>> {
-    use hdot_sym::parse::{AstKind, parse};
-    let s = d.steps.iter().find(|s| s.name == name)?;
-    let ast = parse(&s.formula).ok()?;
-    let AstKind::Call { func, args } = &ast.kind else {
-        return None;
-    };
-    if func != "jacobian" || args.len() != 2 {
-        return None;
-    }
-    let AstKind::Vector { items, frame: None } = &args[1].kind else {
-        return None;
-    };
-    items
-        .iter()
-        .map(|a| match &a.kind {
-            AstKind::Name { name, primes: 0 } => Some(Atom::time(name, 0)),
-            _ => None,
-        })
+    let names = bracket_names(d, name, &["jacobian"])?;
+    names
+        .into_iter()
+        .map(|(n, p)| (p == 0).then(|| Atom::time(&n, 0)))
         .collect()
 }
 
