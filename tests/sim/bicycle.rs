@@ -155,7 +155,7 @@ fn linear_lean_steer(s: &StabilityScene, v: f64, lean_rate: f64, t_end: f64) -> 
     [x[0], x[1]]
 }
 
-/// The nonlinear bicycle (docs/examples/sim-bicycle-nonlinear.toml: the
+/// The nonlinear bicycle (docs/examples/multibody/sim-bicycle-nonlinear.toml: the
 /// multiplier form of derivations in docs/examples/derivations/
 /// bicycle-nonlinear.toml, both contacts exact) simulated from upright
 /// straight running with a small lean rate follows its linearization: at
@@ -168,7 +168,7 @@ fn the_nonlinear_bicycle_decays_at_5_and_grows_at_2_m_per_s() {
     use hdot_sim::run::{self, Output, Request};
     use hdot_sim::scene::Scene;
     let linear = scene();
-    let path = repo_root().join("docs/examples/sim-bicycle-nonlinear.toml");
+    let path = repo_root().join("docs/examples/multibody/sim-bicycle-nonlinear.toml");
     let text = std::fs::read_to_string(&path).unwrap();
     // A lean rate small enough that the second-order terms (relative size
     // ~ the lean-steer amplitude, below 1e-4 here) stay under the tolerance.
