@@ -5,6 +5,7 @@
 use super::context::{Context, R};
 use super::raw::RawFrame;
 use super::value::Value;
+use crate::atom::Atom;
 use crate::frame::Frame;
 use crate::parse::{Ast, AstKind, Span};
 use crate::poly::Poly;
@@ -142,17 +143,7 @@ impl Context<'_> {
                             "a hinge is written about([k_x, k_y, k_z], angle): a unit axis in the parent's components and the angle",
                         ));
                     };
-                    let AstKind::Name { name: q, primes: 0 } = &arg.kind else {
-                        return Err(self.at(
-                            base,
-                            arg.span,
-                            "the rotation angle must be a declared symbol",
-                        ));
-                    };
-                    let q = self
-                        .symbols
-                        .atom(q, 0, arg.span)
-                        .map_err(|e| self.at(base, e.span, e.message))?;
+                    let q = self.rotation_angle(arg, base)?;
                     let (r, k) = super::joints::hinge(self, axis, q, base)?;
                     // Ω_child = Rᵀ Ω_parent + q̇ k (R k = k).
                     let mut omega = r.transpose().mul_vec(&parent_frame.omega);
@@ -188,17 +179,7 @@ impl Context<'_> {
                     };
                     (k, arg.clone(), base)
                 };
-                let AstKind::Name { name: q, primes: 0 } = &arg.kind else {
-                    return Err(self.at(
-                        base,
-                        arg.span,
-                        "the rotation angle must be a declared symbol",
-                    ));
-                };
-                let q = self
-                    .symbols
-                    .atom(q, 0, arg.span)
-                    .map_err(|e| self.at(base, e.span, e.message))?;
+                let q = self.rotation_angle(&arg, base)?;
                 let r = Mat3::rotation(k, q);
                 // Ω_child = Rᵀ Ω_parent + q̇ e_k (e_k is shared by parent and child).
                 let mut omega = r.transpose().mul_vec(&parent_frame.omega);
@@ -256,6 +237,21 @@ impl Context<'_> {
             v = rot(i).transpose().mul_vec(&v);
         }
         Some(v)
+    }
+
+    /// The angle of a frame's rotation: a declared symbol (`x(theta)`,
+    /// `about([…], delta)`), located at `base` in the file.
+    fn rotation_angle(&self, arg: &Ast, base: usize) -> R<Atom> {
+        let AstKind::Name { name: q, primes: 0 } = &arg.kind else {
+            return Err(self.at(
+                base,
+                arg.span,
+                "the rotation angle must be a declared symbol",
+            ));
+        };
+        self.symbols
+            .atom(q, 0, arg.span)
+            .map_err(|e| self.at(base, e.span, e.message))
     }
 
     pub fn axes_of(&self, v: &Value) -> [String; 3] {
