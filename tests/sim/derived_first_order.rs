@@ -21,6 +21,18 @@ fn run_scene(scene: &Scene, req: Request) -> run::Report {
     run::run(scene, &plan, &mut Output::default()).expect("run")
 }
 
+/// The scene run by DOP853 at tolerance `tol`.
+fn run_dop853(scene: &Scene, tol: f64) -> run::Report {
+    run_scene(
+        scene,
+        Request {
+            method: Some(Method::Dop853),
+            step: Some(Step::Tolerance(tol)),
+            ..Request::default()
+        },
+    )
+}
+
 /// The gyrostat's constants and start, as the bundled scene gives them.
 const MOMENTS: [f64; 3] = [0.6, 0.8, 1.0];
 const ROTOR: f64 = 0.3;
@@ -79,14 +91,7 @@ fn gyrostat_in_body_rates_runs_with_its_attitude() {
     );
     let tol = 1e-12;
     let t_end = scene.t_end;
-    let report = run_scene(
-        &scene,
-        Request {
-            method: Some(Method::Dop853),
-            step: Some(Step::Tolerance(tol)),
-            ..Request::default()
-        },
-    );
+    let report = run_dop853(&scene, tol);
     let names: Vec<&str> = report.drifts.iter().map(|d| d.name.as_str()).collect();
     assert_eq!(names, ["T", "H2"]);
     for d in &report.drifts {
@@ -241,14 +246,7 @@ fn rolling_disk_runs_with_its_contact_and_energy() {
         ["x", "y", "theta", "psi", "phi", "u_1", "u_2", "u_3"]
     );
     let tol = 1e-12;
-    let report = run_scene(
-        &scene,
-        Request {
-            method: Some(Method::Dop853),
-            step: Some(Step::Tolerance(tol)),
-            ..Request::default()
-        },
-    );
+    let report = run_dop853(&scene, tol);
     let names: Vec<&str> = report.drifts.iter().map(|d| d.name.as_str()).collect();
     assert_eq!(names, ["E"]);
     assert!(
@@ -351,14 +349,7 @@ fn steady_rolling_stays_steady() {
     );
     let scene = Scene::parse(&text, &example("steady.toml")).expect("steady scene");
     let tol = 1e-12;
-    let report = run_scene(
-        &scene,
-        Request {
-            method: Some(Method::Dop853),
-            step: Some(Step::Tolerance(tol)),
-            ..Request::default()
-        },
-    );
+    let report = run_dop853(&scene, tol);
     let y = &report.final_state;
     let scale = u2.abs();
     assert!((y[2] - theta0).abs() < 1e3 * tol, "θ moved to {}", y[2]);
@@ -385,14 +376,7 @@ fn a_frame_turned_by_a_motion_rule_is_reported() {
     };
     assert_eq!(ds.state_names(), ["phi", "phi'", "psi"]);
     let tol = 1e-12;
-    let report = run_scene(
-        &scene,
-        Request {
-            method: Some(Method::Dop853),
-            step: Some(Step::Tolerance(tol)),
-            ..Request::default()
-        },
-    );
+    let report = run_dop853(&scene, tol);
     let y = &report.final_state;
     let (phi, dphi, psi) = (y[0], y[1], y[2]);
     // L = 0.3 m (bound from the body table), r = 0.1 m.
