@@ -13,6 +13,7 @@
 //!   committed budget (`work_budget.toml`).
 
 mod algebra;
+mod attitude;
 mod broken;
 mod chain;
 mod contact;

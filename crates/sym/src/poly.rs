@@ -51,11 +51,9 @@ use crate::rational::Rational;
 
 mod monomial;
 mod ops;
-mod sort;
 mod trig;
 pub use monomial::{Exp, Monomial};
 pub(crate) use monomial::{Trig, trig_by_angle_of, trig_of};
-use sort::sort_terms;
 use trig::divide_by_sin;
 
 /// What may be divided by, for error messages.
@@ -149,7 +147,7 @@ impl Accum {
         if self.trig_den {
             return Poly::reduce_trig(terms);
         }
-        sort_terms(&mut terms);
+        terms.sort_unstable_by(|a, b| a.0.cmp(&b.0));
         Poly {
             terms,
             trig_den: false,

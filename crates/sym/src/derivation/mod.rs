@@ -29,6 +29,7 @@
 //! assert!(d.all_hold());
 //! ```
 
+mod attitude;
 mod checks;
 mod contact;
 mod context;

@@ -37,8 +37,9 @@ pub(crate) struct RawFile {
     pub supports: Vec<RawSupport>,
     pub motion: Option<RawMotion>,
     /// `[kinematics]`: each coordinate's rate in the coordinates and the
-    /// speeds (`speeds.rs`).
-    pub kinematics: Option<std::collections::BTreeMap<Spanned<String>, Spanned<String>>>,
+    /// speeds (`speeds.rs`), or a table from which a frame's angles' rates
+    /// are derived (`attitude.rs`).
+    pub kinematics: Option<std::collections::BTreeMap<Spanned<String>, Spanned<toml::Value>>>,
     /// `[[load]]`: forces at points and torques on frames (`loads.rs`).
     #[serde(default, rename = "load")]
     pub loads: Vec<RawLoad>,
