@@ -1,5 +1,7 @@
 //! Shared helpers of the integration tests.
 
+pub mod fixtures;
+
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 

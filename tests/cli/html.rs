@@ -142,6 +142,7 @@ fn every_bundled_scene_writes_a_page_the_browser_accepts() {
         "sim-derived-heavy-top.toml",
         "sim-gimballed-gyroscope.toml",
         "sim-rolling-disk.toml",
+        "sim-bicycle-nonlinear.toml",
     ] {
         assert!(
             scenes.iter().any(|p| p.ends_with(must)),

@@ -6,6 +6,7 @@
 //! coordinates), a gear train (a chain of rules in the rates, two steps
 //! long, two bodies), and a cone rolling with its apex fixed.
 
+use hdot_tests::{fixed_point, frame, point, top_frames};
 use crate::load;
 use hdot_num::verify::{Options, Report, check};
 
@@ -24,32 +25,24 @@ fn failed(r: &Report) -> Vec<&str> {
 
 /// x = r θ: the centre's position is a rule in the coordinates, so δθ
 /// moves G by r along the incline.
-const INCLINE: &str = r#"
+const INCLINE: &str = concat!(
+    r#"
 title = "A disk rolling down an incline"
 source = "test"
 gravity = "[g*sin(beta), 0, -g*cos(beta)] in N"
 [symbols]
 constants = ["m", "g", "r", "beta", "A", "B"]
 time = ["x", "theta"]
-[[frame]]
-name = "D"
-parent = "N"
-rotation = "y(theta)"
-[motion]
+"#,
+    frame!("D", "N", "y(theta)"),
+    r#"[motion]
 given = ["x = r*theta"]
 vanishes = ["point_velocity(disk, C)"]
-[[point]]
-name = "O"
-fixed = true
-[[point]]
-name = "G"
-from = "O"
-at = "[x, 0, r] in N"
-[[point]]
-name = "C"
-from = "G"
-at = "[0, 0, -r] in N"
-[[body]]
+"#,
+    fixed_point!("O"),
+    point!("G", "O", "[x, 0, r] in N"),
+    point!("C", "G", "[0, 0, -r] in N"),
+    r#"[[body]]
 name = "disk"
 frame = "D"
 point = "G"
@@ -73,7 +66,8 @@ means = "generalized_momentum(disk, theta)"
 name = "L"
 value = "lagrange(T, V, [theta])"
 means = "list(generalized_force(disk, theta) - generalized_weight(disk, theta))"
-"#;
+"#,
+);
 
 #[test]
 fn a_disk_rolling_down_an_incline_passes_with_the_natural_declaration() {
@@ -103,30 +97,22 @@ fn lagrange_without_the_rolling_rule_fails_naming_the_step() {
 
 /// Three gears on fixed axes: ψ̇ = −k φ̇ and χ̇ = −j ψ̇, so δφ turns ψ by
 /// −k and χ by j k; a motor torque drives φ.
-const GEARS: &str = r#"
+const GEARS: &str = concat!(
+    r#"
 title = "A gear train"
 source = "test"
 [symbols]
 constants = ["A", "B", "C", "P_1", "P_2", "P_3", "k", "j", "a", "b"]
 time = ["phi", "psi", "chi", "M_a"]
-[[frame]]
-name = "P"
-parent = "N"
-rotation = "z(phi)"
-[[frame]]
-name = "Q"
-parent = "N"
-rotation = "z(psi)"
-[[frame]]
-name = "S"
-parent = "N"
-rotation = "z(chi)"
-[motion]
+"#,
+    frame!("P", "N", "z(phi)"),
+    frame!("Q", "N", "z(psi)"),
+    frame!("S", "N", "z(chi)"),
+    r#"[motion]
 given = ["psi' = -k*phi'", "chi' = -j*psi'"]
-[[point]]
-name = "O_1"
-fixed = true
-[[point]]
+"#,
+    fixed_point!("O_1"),
+    r#"[[point]]
 name = "O_2"
 fixed = true
 at = "[a, 0, 0] in N"
@@ -178,7 +164,8 @@ means = "mass_matrix(list(generalized_force(system, phi) - applied(M_a)), [phi''
 name = "f"
 value = "forcing(L, [phi''])"
 means = "forcing(list(generalized_force(system, phi) - applied(M_a)), [phi''])"
-"#;
+"#,
+);
 
 #[test]
 fn a_gear_train_passes_through_a_chain_of_rules() {
@@ -232,36 +219,23 @@ fn mutants_of_the_gear_train_fail_at_the_mutated_step() {
 /// A cone rolling on the floor with its apex fixed: rolling ties ψ̇ to φ̇
 /// through the tilt γ, and Lagrange's equation of φ means the generalized
 /// force of φ, as written most naturally.
-const CONE: &str = r#"
+const CONE: &str = concat!(
+    r#"
 title = "A cone rolling with its apex fixed"
 source = "test"
 gravity = "[0, 0, -g] in N"
 [symbols]
 constants = ["m", "g", "c", "I", "Ip", "gamma", "s"]
 time = ["phi", "psi"]
-[[frame]]
-name = "P"
-parent = "N"
-rotation = "z(phi)"
-[[frame]]
-name = "F"
-parent = "P"
-rotation = "y(gamma)"
-[[frame]]
-name = "R"
-parent = "F"
-rotation = "z(psi)"
-[motion]
+"#,
+    top_frames!("gamma"),
+    r#"[motion]
 given = ["psi' = -phi'/cos(gamma)"]
 vanishes = ["point_velocity(cone, C)"]
-[[point]]
-name = "O"
-fixed = true
-[[point]]
-name = "C"
-from = "O"
-at = "[s, 0, 0] in P"
-[[body]]
+"#,
+    fixed_point!("O"),
+    point!("C", "O", "[s, 0, 0] in P"),
+    r#"[[body]]
 name = "cone"
 frame = "R"
 point = "O"
@@ -301,7 +275,8 @@ means = "mass_matrix(list(generalized_force(cone, phi)), [phi''])"
 name = "p_phi"
 value = "partial(T, phi')"
 means = "generalized_momentum(cone, phi)"
-"#;
+"#,
+);
 
 #[test]
 fn a_rolling_cone_passes_with_the_generalized_force_of_phi() {

@@ -155,7 +155,109 @@ fn linear_lean_steer(s: &StabilityScene, v: f64, lean_rate: f64, t_end: f64) -> 
     [x[0], x[1]]
 }
 
-/// The nonlinear bicycle (docs/examples/multibody/sim-bicycle-nonlinear.toml: the
+/// The bundled scene of the nonlinear bicycle.
+const NONLINEAR: &str = "docs/examples/sim-bicycle-nonlinear.toml";
+
+/// The nonlinear scene's four `[[body]]` tables bind the derivation's mass
+/// properties to the benchmark's (Table 1), as the linear scene gives them
+/// under `[constants]`: every constant of the linear scene is the nonlinear
+/// scene's, given or bound, to round-off.
+#[test]
+fn the_nonlinear_bicycle_s_bodies_are_the_benchmark_s() {
+    use hdot_sim::scene::Scene;
+    let s = Scene::from_file(&repo_root().join(NONLINEAR)).unwrap_or_else(|e| panic!("{e}"));
+    let bound = &s.derivation().expect("a derived scene").spec.constants;
+    let text =
+        std::fs::read_to_string(repo_root().join("docs/examples/stability-bicycle.toml")).unwrap();
+    let table: toml::Table = toml::from_str(&text).unwrap();
+    let linear = table["constants"].as_table().expect("[constants]");
+    // Every mass property of the four bodies, and the geometry besides.
+    assert!(linear.len() >= 26, "{} constants", linear.len());
+    let text = std::fs::read_to_string(repo_root().join(NONLINEAR)).unwrap();
+    for (name, want) in linear {
+        let want = want.as_float().unwrap();
+        let got = *bound
+            .get(name)
+            .unwrap_or_else(|| panic!("`{name}` is neither given nor bound"));
+        assert!(
+            (got - want).abs() <= 1e-12 * want.abs().max(1.0),
+            "{name}: bound {got:e}, the benchmark's {want:e}"
+        );
+        // The masses and inertias come from the tables, not constants.
+        if name.starts_with("m_") || name.starts_with("I_") {
+            assert!(
+                !text.contains(&format!("\n{name} =")),
+                "{name} given as a constant"
+            );
+        }
+    }
+}
+
+/// The nonlinear scene's text with each `from` replaced by its `to`, read:
+/// the error's text, which must name the scene and `where` (the table's
+/// line and field).
+fn refused(edits: &[(&str, &str)], want: &[&str]) {
+    use hdot_sim::scene::Scene;
+    let path = repo_root().join(NONLINEAR);
+    let mut text = std::fs::read_to_string(&path).unwrap();
+    for (from, to) in edits {
+        assert!(text.contains(from), "the scene has no `{from}`");
+        text = text.replace(from, to);
+    }
+    let e = Scene::parse(&text, &path).expect_err("refused").to_string();
+    assert!(e.contains("sim-bicycle-nonlinear.toml"), "{e}");
+    for w in want {
+        assert!(e.contains(w), "`{w}` not in: {e}");
+    }
+}
+
+/// Bad body tables of the bicycle's scene, each refused at its table: a
+/// body with no table whose symbols are no constants either, an `of` the
+/// derivation does not declare, a table without `of`, an inertia tensor
+/// that is not 3 × 3 or not a body's, and two ways of giving one part.
+#[test]
+fn bad_bicycle_body_tables_are_refused_at_their_table() {
+    let front_wheel = "[[body]]\nof = \"front_wheel\"\n";
+    refused(
+        &[(front_wheel, "[[body]]\n")],
+        &["body[3]", "several bodies", "of = "],
+    );
+    let wheel = "principal_moments = [0.1405, 0.28, 0.1405]\nmass = 3.0\n";
+    refused(
+        &[(front_wheel, ""), (wheel, "")],
+        &[
+            "body[0].of",
+            "`front_wheel`",
+            "I_Fxx, I_Fyy, m_F",
+            "[constants]",
+        ],
+    );
+    refused(
+        &[("of = \"front_wheel\"", "of = \"front_whee\"")],
+        &["body[3].of", "no body `front_whee`", "`front_wheel`"],
+    );
+    let tensor = "inertia = [[9.2, 0.0, 2.4], [0.0, 11.0, 0.0], [2.4, 0.0, 2.8]]";
+    refused(
+        &[(tensor, "inertia = [[9.2, 0.0, 2.4], [0.0, 11.0, 0.0]]")],
+        &["body[1].inertia", "3 rows of 3"],
+    );
+    refused(
+        &[(
+            tensor,
+            "inertia = [[9.2, 0.0, 2.4], [0.0, 11.0, 0.0], [2.4, 0.0, 20.8]]",
+        )],
+        &["body[1].inertia"],
+    );
+    refused(
+        &[(
+            tensor,
+            &format!("{tensor}\nshape = \"sphere\"\nradius = 0.3"),
+        )],
+        &["body[1].inertia", "not several"],
+    );
+}
+
+/// The nonlinear bicycle (docs/examples/sim-bicycle-nonlinear.toml: the
 /// multiplier form of derivations in docs/examples/derivations/
 /// bicycle-nonlinear.toml, both contacts exact) simulated from upright
 /// straight running with a small lean rate follows its linearization: at
@@ -168,7 +270,7 @@ fn the_nonlinear_bicycle_decays_at_5_and_grows_at_2_m_per_s() {
     use hdot_sim::run::{self, Output, Request};
     use hdot_sim::scene::Scene;
     let linear = scene();
-    let path = repo_root().join("docs/examples/multibody/sim-bicycle-nonlinear.toml");
+    let path = repo_root().join(NONLINEAR);
     let text = std::fs::read_to_string(&path).unwrap();
     // A lean rate small enough that the second-order terms (relative size
     // ~ the lean-steer amplitude, below 1e-4 here) stay under the tolerance.
@@ -221,5 +323,28 @@ fn the_nonlinear_bicycle_decays_at_5_and_grows_at_2_m_per_s() {
         );
         let drift = r.drifts.iter().map(|d| d.relative).fold(0.0, f64::max);
         assert!(drift < 1e-8, "v = {v}: energy drift {drift:e}");
+        // The velocity constraints: held to round-off after each step's
+        // solve of the dependent speeds, which corrected a drift the
+        // steps left (of the order of the tolerance, not zero).
+        let vc = r
+            .velocity_constraints
+            .as_ref()
+            .expect("max |A_c u| reported");
+        assert_eq!(vc.dependent, ["u_1", "u_2", "u_3", "u_5", "u_8", "u_9"]);
+        assert!(
+            vc.max_residual <= 1e-13 * v,
+            "v = {v}: max |A_c u| = {:e}",
+            vc.max_residual
+        );
+        assert!(
+            vc.max_correction > 0.0 && vc.max_correction <= 1e-8 * v,
+            "v = {v}: largest correction {:e}",
+            vc.max_correction
+        );
+        let text = r.to_string();
+        assert!(
+            text.contains("max |A_c u| = ") && text.contains("max |f(q)| = "),
+            "{text}"
+        );
     }
 }

@@ -4,6 +4,7 @@
 //! driven at a given rate), work-precision on a derived scene, and bad
 //! scenes, each refused naming its field.
 
+use hdot_tests::{fixed_point, frame};
 use std::path::PathBuf;
 
 use hdot_sim::run::{self, Model, Output, Request};
@@ -92,21 +93,17 @@ fn derived_heavy_top_scene_agrees_with_the_built_in_one() {
 /// rate, so the Jacobi integral T₂ − T₀ + V (here T − 2 T₀ + V, T₀ the part
 /// of T without θ̇, as T has no part linear in θ̇) is conserved and must be
 /// reported as such.
-const TURNTABLE: &str = r#"
+const TURNTABLE: &str = concat!(
+    r#"
 title = "pendulum on a turntable"
 source = "written for the test"
 [symbols]
 constants = ["m", "g", "l", "a"]
 time = ["theta", "Omega", "beta"]
-[[frame]]
-name = "T"
-parent = "N"
-rotation = "z(beta)"
-[[frame]]
-name = "P"
-parent = "T"
-rotation = "y(theta)"
-[[step]]
+"#,
+    frame!("T", "N", "z(beta)"),
+    frame!("P", "T", "y(theta)"),
+    r#"[[step]]
 name = "r"
 value = "[a, 0, 0] in T + express([0, 0, -l] in P, T)"
 [[step]]
@@ -131,7 +128,8 @@ value = "subst(T_kin, theta' = 0)"
 name = "jacobi"
 value = "T_kin - 2*T0 + V"
 conserved = true
-"#;
+"#,
+);
 
 const TURNTABLE_SCENE: &str = r#"
 name = "pendulum on a turntable"
@@ -261,25 +259,19 @@ fn work_precision_sweeps_a_derived_scene() {
 /// freely turning shaft (ψ the shaft, χ the swing), in mass-matrix form.
 /// The step `W` is an energy only by its meaning (its name, label and doc
 /// do not say so); `h`, the momentum of the shaft, is conserved too.
-const SWING: &str = r#"
+const SWING: &str = concat!(
+    r#"
 title = "a plate swinging from a hinge on a free turntable"
 source = "written for the test"
 gravity = "[0, 0, -g] in N"
 [symbols]
 constants = ["m", "g", "c", "A", "C"]
 time = ["psi", "chi"]
-[[frame]]
-name = "D"
-parent = "N"
-rotation = "z(psi)"
-[[frame]]
-name = "B"
-parent = "D"
-rotation = "x(chi)"
-[[point]]
-name = "O"
-fixed = true
-[[body]]
+"#,
+    frame!("D", "N", "z(psi)"),
+    frame!("B", "D", "x(chi)"),
+    fixed_point!("O"),
+    r#"[[body]]
 name = "plate"
 frame = "B"
 point = "O"
@@ -315,7 +307,8 @@ value = "mass_matrix(eqs, [psi'', chi''])"
 [[step]]
 name = "f"
 value = "forcing(eqs, [psi'', chi''])"
-"#;
+"#,
+);
 
 const SWING_SCENE: &str = r#"
 name = "swinging plate on a free turntable"
@@ -535,7 +528,8 @@ fn a_requested_error_is_met_by_a_tolerance_fitted_on_the_scene() {
 /// latitude λ), `P` hangs from it turned by θ about z (a pendulum whose
 /// equation does not involve E), `S` turns at a rate `w` that is an input
 /// and `Q` hangs from S.
-const SPINNING: &str = r#"
+const SPINNING: &str = concat!(
+    r#"
 title = "frames given by their angular velocity"
 source = "written for the test"
 [symbols]
@@ -544,24 +538,21 @@ time = ["theta", "w"]
 [[frame]]
 name = "E"
 angular_velocity = "[Omega*cos(lambda), 0, Omega*sin(lambda)]"
-[[frame]]
-name = "P"
-parent = "E"
-rotation = "z(theta)"
-[[frame]]
+"#,
+    frame!("P", "E", "z(theta)"),
+    r#"[[frame]]
 name = "S"
 angular_velocity = "[0, 0, w]"
-[[frame]]
-name = "Q"
-parent = "S"
-rotation = "x(theta)"
-[[step]]
+"#,
+    frame!("Q", "S", "x(theta)"),
+    r#"[[step]]
 name = "eq"
 value = "theta'' + k*sin(theta)"
 [[step]]
 name = "acc"
 value = "solve(list(eq), [theta''])"
-"#;
+"#,
+);
 
 const SPINNING_SCENE: &str = r#"
 name = "pendulum on the turning Earth"
@@ -881,21 +872,17 @@ fn a_constant_angle_the_equations_divide_by_is_checked() {
 /// tilted by the constant angle γ; at γ = π/2, cos γ is 6e-17, and the
 /// attitude's entries cos γ cos φ, cos γ sin φ round to zero with a minus
 /// sign for φ(T) = 3. They print as 0, never `-0.000000000`.
-const TILTED: &str = r#"
+const TILTED: &str = concat!(
+    r#"
 title = "a disk spinning on a tilted axle"
 source = "written for the test"
 [symbols]
 constants = ["C", "gamma"]
 time = ["phi"]
-[[frame]]
-name = "A"
-parent = "N"
-rotation = "y(gamma)"
-[[frame]]
-name = "D"
-parent = "A"
-rotation = "z(phi)"
-[[step]]
+"#,
+    frame!("A", "N", "y(gamma)"),
+    frame!("D", "A", "z(phi)"),
+    r#"[[step]]
 name = "T"
 value = "C*phi'^2/2"
 [[step]]
@@ -904,7 +891,8 @@ value = "lagrange(T, 0, phi)"
 [[step]]
 name = "acc"
 value = "solve(list(eq), [phi''])"
-"#;
+"#,
+);
 
 #[test]
 fn a_value_that_rounds_to_zero_prints_without_a_sign() {

@@ -6,6 +6,7 @@
 //! the nonlinear bicycle's linearized lean and steer matrices are the
 //! linear bicycle's; bad declarations are located errors.
 
+use hdot_tests::{disk_frames, fixed_point, point};
 use hdot_sym::derivation::{Derivation, Value, load, load_str};
 use hdot_tests::{WHIPPLE_EIGENVALUES, repo_root};
 
@@ -24,7 +25,8 @@ fn bundled(path: &str) -> Derivation {
 /// The rolling disk (yaw ψ, lean θ, spin φ; the wheel's place (x, y) on
 /// the ground) declared with a `[[contact]]`; `SPEEDS`, `KINEMATICS`,
 /// `CONTACT` and `STEPS` are spliced in.
-const DISK: &str = r#"
+const DISK: &str = concat!(
+    r#"
 title = "a disk rolling on a plane, its contact declared"
 source = "written for the test"
 gravity = "[0, 0, -g] in N"
@@ -39,30 +41,12 @@ theta = "u_1"
 psi = "u_3/cos(theta)"
 phi = "u_2 - u_3*sin(theta)/cos(theta)"
 KINEMATICS
-[[frame]]
-name = "A"
-parent = "N"
-rotation = "z(psi)"
-[[frame]]
-name = "L"
-parent = "A"
-rotation = "x(theta)"
-[[frame]]
-name = "D"
-parent = "L"
-rotation = "y(phi)"
-[[point]]
-name = "O"
-fixed = true
-[[point]]
-name = "P"
-from = "O"
-at = "[x, y, 0] in N"
-[[point]]
-name = "G"
-from = "P"
-at = "[0, 0, r] in L"
-[[body]]
+"#,
+    disk_frames!(),
+    fixed_point!("O"),
+    point!("P", "O", "[x, y, 0] in N"),
+    point!("G", "P", "[0, 0, r] in L"),
+    r#"[[body]]
 name = "disk"
 frame = "D"
 point = "G"
@@ -78,7 +62,8 @@ down = "-z"
 radius = "r"
 CONTACT
 STEPS
-"#;
+"#,
+);
 
 fn disk(time: &str, speeds: &str, kinematics: &str, contact: &str, steps: &str) -> Derivation {
     let text = DISK

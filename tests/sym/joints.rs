@@ -3,25 +3,26 @@
 //! the angular velocity is q̇ k; a zero, non-unit or moving axis is a
 //! located error.
 
+use hdot_tests::{frame};
 use hdot_sym::derivation::{Diagnostic, Value, load_str};
 
-const FILE: &str = r#"
+const FILE: &str = concat!(
+    r#"
 title = "a hinge"
 source = "written for the test"
 [symbols]
 constants = ["lambda"]
 time = ["q"]
-[[frame]]
-name = "A"
-parent = "N"
-rotation = "ROTATION"
-[[step]]
+"#,
+    frame!("A", "N", "ROTATION"),
+    r#"[[step]]
 name = "w"
 value = "express(angvel(A), N)"
 [[step]]
 name = "e"
 value = "express([1, 0, 0] in A, N)"
-"#;
+"#,
+);
 
 fn load(rotation: &str) -> Result<hdot_sym::derivation::Derivation, Diagnostic> {
     load_str("hinge.toml", &FILE.replace("ROTATION", rotation))

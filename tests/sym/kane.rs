@@ -3,11 +3,13 @@
 //! body rates as speeds — equal by canonical equality; and the located
 //! errors of what Kane's method cannot take.
 
+use hdot_tests::{disk_frames, fixed_point, point, top_frames};
 use hdot_sym::derivation::{Value, load_str};
 
 /// The heavy top with fixed tip O, G at l on the axis, inertia about O;
 /// `SPEEDS` and `KINEMATICS` are spliced in.
-const TOP: &str = r#"
+const TOP: &str = concat!(
+    r#"
 title = "heavy top"
 source = "test"
 gravity = "[0, 0, -g] in N"
@@ -17,22 +19,10 @@ time = ["phi", "theta", "psi"]
 SPEEDS
 [kinematics]
 KINEMATICS
-[[frame]]
-name = "P"
-parent = "N"
-rotation = "z(phi)"
-[[frame]]
-name = "F"
-parent = "P"
-rotation = "y(theta)"
-[[frame]]
-name = "R"
-parent = "F"
-rotation = "z(psi)"
-[[point]]
-name = "O"
-fixed = true
-[[body]]
+"#,
+    top_frames!("theta"),
+    fixed_point!("O"),
+    r#"[[body]]
 name = "top"
 frame = "R"
 point = "O"
@@ -51,7 +41,8 @@ value = "dot(angvel(R), principal(Ip, Ip, I) * angvel(R))/2"
 [[step]]
 name = "L"
 value = "lagrange(T, m*g*l*cos(theta), [phi, theta, psi])"
-"#;
+"#,
+);
 
 fn top(speeds: &str, kinematics: &str, steps: &str) -> hdot_sym::derivation::Derivation {
     let text = TOP
@@ -184,7 +175,8 @@ fn what_kane_cannot_take_is_a_located_error() {
 /// spin φ and the contact point (x, y); speeds u1–u3 the disk's angular
 /// velocity in the lean frame L, u4, u5 the contact point's rates,
 /// dependent through the no-slip constraint.
-const DISK: &str = r#"
+const DISK: &str = concat!(
+    r#"
 title = "A disk rolling on a plane: Kane's equations"
 source = "test"
 gravity = "[0, 0, -g] in N"
@@ -201,35 +193,12 @@ theta = "u1"
 psi = "u3/cos(theta)"
 phi = "u2 - u3*sin(theta)/cos(theta)"
 
-[[frame]]
-name = "A"
-parent = "N"
-rotation = "z(psi)"
-
-[[frame]]
-name = "L"
-parent = "A"
-rotation = "x(theta)"
-
-[[frame]]
-name = "D"
-parent = "L"
-rotation = "y(phi)"
-
-[[point]]
-name = "O"
-fixed = true
-
-[[point]]
-name = "C"
-from = "O"
-at = "[x, y, 0] in N"
-
-[[point]]
-name = "G"
-from = "C"
-at = "[0, 0, r] in L"
-
+"#,
+    disk_frames!(),
+    fixed_point!("O"),
+    point!("C", "O", "[x, y, 0] in N"),
+    point!("G", "C", "[0, 0, r] in L"),
+    r#"
 [[body]]
 name = "disk"
 frame = "D"
@@ -280,7 +249,8 @@ value = "m*dot(v_G, v_G)/2 + dot(omega, principal(m*r^2/4, m*r^2/2, m*r^2/4)*ome
 name = "dE"
 value = "subst(in_speeds(dt(E)), u1' = rates.1, u2' = rates.2, u3' = rates.3)"
 expect = "0"
-"#;
+"#,
+);
 
 #[test]
 fn the_rolling_disk_eliminates_its_dependent_speeds_and_conserves_energy() {

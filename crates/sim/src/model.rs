@@ -340,6 +340,19 @@ pub struct ConstraintDrift {
     pub max_correction: f64,
 }
 
+/// What a multiplier form's velocity constraints A_c u = 0 met along the
+/// run: the dependent speeds are solved from them after every step.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct VelocityConstraintDrift {
+    /// The dependent speeds solved for.
+    pub dependent: Vec<String>,
+    /// The largest |(A_c u)_i| over the start and the accepted steps
+    /// (after the dependent speeds are solved).
+    pub max_residual: f64,
+    /// The largest change the solve made to a dependent speed in one step.
+    pub max_correction: f64,
+}
+
 /// §7 check of a simulated steady precession.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct PrecessionCheck {
@@ -405,6 +418,8 @@ pub struct Outcome {
     pub fitted: Option<(Step, String)>,
     /// A derived scene's configuration constraints along the run.
     pub constraints: Option<ConstraintDrift>,
+    /// A multiplier form's velocity constraints along the run.
+    pub velocity_constraints: Option<VelocityConstraintDrift>,
 }
 
 /// What one timed run of the work-precision sweep measured.

@@ -46,7 +46,8 @@ use serde::Serialize;
 pub use crate::estimate::{CHECK_TOL, CLOSED_FORM_BOUND, closed_form_estimate};
 pub use crate::model::{
     Check, ConstraintDrift, Cover, DEFAULT_DT, DEFAULT_TOL, Drift, DriftColumns, FrameState,
-    Integration, Model, ModelEntry, Plan, PrecessionCheck, REFERENCE_TOL, Request, step_label,
+    Integration, Model, ModelEntry, Plan, PrecessionCheck, REFERENCE_TOL, Request,
+    VelocityConstraintDrift, step_label,
 };
 use crate::model::{not_applicable, requested_step};
 pub use crate::models::rigid_body::{PILOT_SAFETY, pilot_choice};
@@ -266,6 +267,10 @@ pub struct Report {
     /// largest |f(q)| and the projection's largest correction.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub constraints: Option<ConstraintDrift>,
+    /// A multiplier form's velocity constraints along the run: the
+    /// largest |A_c u| and the largest correction of a dependent speed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub velocity_constraints: Option<VelocityConstraintDrift>,
 }
 
 /// Refuses `model` on `scene` when its entry says it does not apply.
@@ -309,6 +314,7 @@ pub fn run(scene: &Scene, plan: &Plan, out: &mut Output<'_>) -> Result<Report, S
         state_names: o.state_names,
         frame: o.frame,
         constraints: o.constraints,
+        velocity_constraints: o.velocity_constraints,
     };
     refuse_non_finite(&report)?;
     Ok(report)
@@ -370,6 +376,11 @@ fn refuse_non_finite(r: &Report) -> Result<(), SimError> {
             "residual of the constraint(s) {}",
             c.steps.join(", ")
         ));
+    }
+    if let Some(c) = &r.velocity_constraints
+        && !(c.max_residual.is_finite() && c.max_correction.is_finite())
+    {
+        return bad("residual of the velocity constraints A_c u".into());
     }
     if let Some(re) = &r.reactions {
         const RN: [&str; 7] = ["A_x", "A_y", "B_x", "B_y", "M_x", "M_y", "M_z"];
@@ -449,6 +460,16 @@ impl fmt::Display for Report {
                 f,
                 "constraint:  max |f(q)| = {:.3e} over the run (step(s) {steps}); {kept}",
                 c.max_residual
+            )?;
+        }
+        if let Some(c) = &self.velocity_constraints {
+            writeln!(
+                f,
+                "velocity:    max |A_c u| = {:.3e} over the run; {} solved from A_c u = 0 after each \
+                 step (largest correction {:.3e})",
+                c.max_residual,
+                c.dependent.join(", "),
+                c.max_correction
             )?;
         }
         writeln!(

@@ -51,9 +51,11 @@ use crate::rational::Rational;
 
 mod monomial;
 mod ops;
+mod sort;
 mod trig;
 pub use monomial::{Exp, Monomial};
 pub(crate) use monomial::{Trig, trig_by_angle_of, trig_of};
+use sort::sort_terms;
 use trig::divide_by_sin;
 
 /// What may be divided by, for error messages.
@@ -147,7 +149,7 @@ impl Accum {
         if self.trig_den {
             return Poly::reduce_trig(terms);
         }
-        terms.sort_unstable_by(|a, b| a.0.cmp(&b.0));
+        sort_terms(&mut terms);
         Poly {
             terms,
             trig_den: false,

@@ -1,7 +1,8 @@
 //! The shapes a simulation page draws, from a scene's `[[body]]` and
 //! `[[cloud]]` tables: each primitive with its dimensions and pose, and a
-//! body known only by its principal moments (or a cloud of points) as the
-//! box of the same moments.
+//! body known only by its moments (or a cloud of points) as the box of the
+//! same moments — or, when two of them are equal (a wheel given by its
+//! moments), the cylinder of the same moments.
 
 use hdot_num::nalgebra::{Matrix3, Vector3};
 use hdot_num::{Composite, MassProperties, Part, Primitive};
@@ -106,11 +107,39 @@ fn primitive(p: &Primitive) -> (&'static str, Vec<f64>) {
 }
 
 /// The homogeneous box with the mass and principal moments of `props`,
-/// along its principal axes: `a² = 6 (I₂ + I₃ − I₁) / m`, and so on.
+/// along its principal axes: `a² = 6 (I₂ + I₃ − I₁) / m`, and so on; when
+/// exactly two moments are equal, the homogeneous cylinder with them,
+/// along the third axis: `r² = 2 I_a / m`, `L² = (12 I_d − 6 I_a) / m`
+/// (I_a about the axis, I_d across it; `I_a ≤ 2 I_d` for a real body).
 fn moments_box(props: &MassProperties, origin: &Vector3<f64>) -> Shape {
     let p = props.principal();
     let i = p.moments;
     let m = props.mass;
+    // The distinct moment's index, when the other two are a repeated pair.
+    let axial = match p.multiplicity {
+        [1, 2, 2] => Some(0),
+        [2, 2, 1] => Some(2),
+        _ => None,
+    };
+    if let Some(k) = axial {
+        let (a, d) = (i[k], i[(k + 1) % 3]);
+        let c = p.axes.matrix();
+        // Columns turned cyclically (a proper rotation) so the axis is z.
+        let axes = Matrix3::from_columns(&[
+            c.column((k + 1) % 3).into_owned(),
+            c.column((k + 2) % 3).into_owned(),
+            c.column(k).into_owned(),
+        ]);
+        return Shape {
+            kind: "cylinder",
+            dims: vec![
+                (2.0 * a / m).max(0.0).sqrt(),
+                ((12.0 * d - 6.0 * a) / m).max(0.0).sqrt(),
+            ],
+            position: props.center - origin,
+            axes,
+        };
+    }
     let side = |a: f64, b: f64, c: f64| (6.0 * (b + c - a) / m).max(0.0).sqrt();
     Shape {
         kind: "box",
@@ -158,6 +187,39 @@ mod tests {
                 p.moments
             );
         }
+    }
+
+    /// A cloud with two equal moments (a wheel's six equivalent points)
+    /// is drawn as the cylinder of its moments, along its distinct axis.
+    #[test]
+    fn the_cylinder_of_axisymmetric_moments_has_the_moments() {
+        let (m, r, h) = (2.0, 0.3, 0.05);
+        let pts = [
+            (Vector3::new(r, 0.0, 0.0), m / 6.0),
+            (Vector3::new(-r, 0.0, 0.0), m / 6.0),
+            (Vector3::new(0.0, h, 0.0), m / 6.0),
+            (Vector3::new(0.0, -h, 0.0), m / 6.0),
+            (Vector3::new(0.0, 0.0, r), m / 6.0),
+            (Vector3::new(0.0, 0.0, -r), m / 6.0),
+        ];
+        let props = ParticleCloud::try_from_particles(pts)
+            .unwrap()
+            .mass_properties();
+        let s = moments_box(&props, &Vector3::zeros());
+        assert_eq!(s.kind, "cylinder");
+        let [rad, len] = [s.dims[0], s.dims[1]];
+        let axial = m * rad * rad / 2.0;
+        let across = m * (3.0 * rad * rad + len * len) / 12.0;
+        let i = props.inertia_g.matrix();
+        let scale = i.trace();
+        assert!((axial - i[(1, 1)]).abs() <= 1e-12 * scale, "{axial} vs {i}");
+        assert!(
+            (across - i[(0, 0)]).abs() <= 1e-12 * scale,
+            "{across} vs {i}"
+        );
+        // Along the distinct axis, y, and a proper rotation.
+        assert!((s.axes.column(2).dot(&Vector3::y()).abs() - 1.0).abs() < 1e-12);
+        assert!((s.axes.determinant() - 1.0).abs() < 1e-12);
     }
 
     #[test]

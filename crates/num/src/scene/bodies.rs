@@ -1,5 +1,6 @@
 //! What moves in a scene, the schema every scene shares: gravity `g`,
-//! the `[[body]]` tables (primitives, points, principal moments) and the
+//! the `[[body]]` tables (primitives, points, principal moments or an
+//! inertia tensor) and the
 //! `[[cloud]]` tables, grouped by the derivation body they make up.
 
 use std::path::Path;
@@ -35,6 +36,7 @@ pub(super) struct RawBody {
     of: Option<Spanned<String>>,
     shape: Option<String>,
     principal_moments: Option<RV>,
+    inertia: Option<Spanned<Vec<Vec<f64>>>>,
     mass: Option<RF>,
     weight: Option<RF>,
     position: Option<RV>,
@@ -255,28 +257,45 @@ fn part_of(
         position: v3(position),
         rotation,
     };
-    let shape_name = match (&b.shape, &b.principal_moments) {
-        (Some(s), None) => s.as_str(),
-        (None, Some(pm)) => {
-            let m = check_part_mass(cx, &f("mass"), mass_field, mass)?;
-            return Ok(Part::Cloud(equivalent_points(
-                cx,
-                &f("principal_moments"),
-                pm,
-                m,
-                &pose,
-            )?));
-        }
-        (Some(_), Some(pm)) => {
-            return Err(cx.err(
-                cx.line(pm),
-                &f("principal_moments"),
-                "give `shape` or `principal_moments`, not both".into(),
-            ));
-        }
-        (None, None) => {
-            return Err(cx.err(line, &f("shape"), "missing (or `principal_moments`)".into()));
-        }
+    let given = [
+        b.shape.is_some(),
+        b.principal_moments.is_some(),
+        b.inertia.is_some(),
+    ];
+    if given.iter().filter(|g| **g).count() > 1 {
+        let (key, at) = match (&b.principal_moments, &b.inertia) {
+            (Some(pm), None) => ("principal_moments", cx.line(pm)),
+            (_, Some(t)) => ("inertia", cx.line(t)),
+            (None, None) => ("shape", line),
+        };
+        return Err(cx.err(
+            at,
+            &f(key),
+            "give one of `shape`, `principal_moments` or `inertia`, not several".into(),
+        ));
+    }
+    if let Some(pm) = &b.principal_moments {
+        let m = check_part_mass(cx, &f("mass"), mass_field, mass)?;
+        let field = f("principal_moments");
+        let moments = cx.vec3(&field, pm)?;
+        return Ok(Part::Cloud(equivalent_points(
+            cx,
+            (&field, cx.line(pm)),
+            moments,
+            m,
+            &pose,
+        )?));
+    }
+    if let Some(t) = &b.inertia {
+        let m = check_part_mass(cx, &f("mass"), mass_field, mass)?;
+        return Ok(Part::Cloud(tensor_points(cx, &f("inertia"), t, m, &pose)?));
+    }
+    let Some(shape_name) = b.shape.as_deref() else {
+        return Err(cx.err(
+            line,
+            &f("shape"),
+            "missing (or `principal_moments`, or `inertia`)".into(),
+        ));
     };
     if shape_name == "point" {
         let m = check_part_mass(cx, &f("mass"), mass_field, mass)?;
@@ -421,20 +440,53 @@ fn check_part_mass(cx: &Cx<'_>, field: &str, at: &RF, mass: f64) -> Result<f64, 
     Ok(mass)
 }
 
+/// A part known by its mass and inertia tensor about its G, in its local
+/// axes (`inertia = [[I_xx, -P_xy, …], …]`, the tensor's entries): the six
+/// points of [`equivalent_points`] along its principal axes.
+fn tensor_points(
+    cx: &Cx<'_>,
+    field: &str,
+    t: &Spanned<Vec<Vec<f64>>>,
+    mass: f64,
+    pose: &Pose,
+) -> Result<ParticleCloud, SceneError> {
+    let line = cx.line(t);
+    let bad = |message: String| cx.err(line, field, message);
+    let rows = t.get_ref();
+    if rows.len() != 3 || rows.iter().any(|r| r.len() != 3) {
+        return Err(bad(
+            "an inertia tensor is 3 rows of 3 numbers, [[I_xx, I_xy, I_xz], [I_xy, I_yy, I_yz],              [I_xz, I_yz, I_zz]]"
+                .into(),
+        ));
+    }
+    if let Some(x) = rows.iter().flatten().find(|x| !x.is_finite()) {
+        return Err(bad(format!("not finite: {x}")));
+    }
+    let m = nalgebra::Matrix3::from_fn(|r, c| rows[r][c]);
+    let i = Inertia::try_new(m).map_err(|e| bad(e.to_string()))?;
+    let p = i.principal();
+    let along = Pose {
+        position: pose.position,
+        rotation: pose.rotation * UnitQuaternion::from_rotation_matrix(&p.axes),
+    };
+    equivalent_points(cx, (field, line), p.moments.into(), mass, &along)
+}
+
 /// A part known by its mass and principal moments about its G (in its
 /// local axes): six particles of mass m/6 at ±a, ±b, ±c on the local axes,
 /// with the same mass, centre and inertia, `I_x = (m/3)(b² + c²)` and so on
 /// (a real body exists for these moments exactly when the triangle
-/// inequalities hold, and then a², b², c² ≥ 0).
+/// inequalities hold, and then a², b², c² ≥ 0). `at` is the field and line
+/// the moments were given at.
 fn equivalent_points(
     cx: &Cx<'_>,
-    field: &str,
-    v: &RV,
+    at: (&str, usize),
+    moments: [f64; 3],
     mass: f64,
     pose: &Pose,
 ) -> Result<ParticleCloud, SceneError> {
-    let [ix, iy, iz] = cx.vec3(field, v)?;
-    let bad = |message: String| cx.err(cx.line(v), field, message);
+    let [ix, iy, iz] = moments;
+    let bad = |message: String| cx.err(at.1, at.0, message);
     Inertia::try_new(nalgebra::Matrix3::from_diagonal(&Vector3::new(ix, iy, iz)))
         .map_err(|e| bad(e.to_string()))?;
     let k = 1.5 / mass;

@@ -41,6 +41,26 @@ pub(super) fn refuse_non_body(scene: &Scene) -> Option<&'static str> {
     }
 }
 
+/// Whether the scene's free rigid body (no pivot) moves by the elliptic
+/// closed form (three distinct moments, not a permanent rotation) rather
+/// than a steady precession: the one question `elliptic` and
+/// `steady-precession` both ask of a free body. `None` when the scene is
+/// not a free rigid body (a heavy top, a fixed axis, a derived scene).
+pub(super) fn free_body_is_elliptic(scene: &Scene) -> Result<Option<bool>, SimError> {
+    Ok(match scene.rigid_body() {
+        Some(Rigid {
+            moments,
+            q0,
+            w0,
+            pivot: None,
+        }) => Some(matches!(
+            TorqueFree::new(moments.get(), *q0, *w0)?,
+            TorqueFree::Elliptic(_)
+        )),
+        _ => None,
+    })
+}
+
 /// The quaternion system and initial state of a free body or heavy top.
 pub(super) fn free_body(scene: &Scene) -> Option<(FreeBody, [f64; 7])> {
     let b = scene.rigid_body()?;

@@ -12,8 +12,8 @@ use nalgebra::Matrix3;
 
 use crate::model::{
     ConstraintDrift, DEFAULT_TOL, Descriptor, Drift, DriftColumns, FrameState, Integration,
-    Measured, Model, ModelEntry, Outcome, Plan, REFERENCE_TOL, Request, not_a_splitting,
-    not_applicable,
+    Measured, Model, ModelEntry, Outcome, Plan, REFERENCE_TOL, Request, VelocityConstraintDrift,
+    not_a_splitting, not_applicable,
 };
 use crate::record::{Recorder, integrate_recorded, time_and_state, timed};
 use crate::scene::{DerivedScene, Scene};
@@ -338,6 +338,7 @@ fn run_n<const N: usize>(
         report.fitted = Some((step, why));
     }
     ds.model.reset_constraint_monitor();
+    ds.model.reset_velocity_monitor(&y0);
     let (y, stats, wall) = integrate_recorded(
         &DerivedSystem::<N>(&ds.model),
         (method, step),
@@ -355,6 +356,14 @@ fn run_n<const N: usize>(
     report.state_names = ds.state_names();
     report.frame = frame_state(ds, plan.t_end, &y);
     report.constraints = constraint_drift(ds, &y0);
+    report.velocity_constraints = ds
+        .model
+        .velocity_monitor()
+        .map(|v| VelocityConstraintDrift {
+            dependent: ds.model.dependent_speeds(),
+            max_residual: v.max_residual,
+            max_correction: v.max_correction,
+        });
     report.stats = stats;
     Ok(report)
 }

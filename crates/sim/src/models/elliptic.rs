@@ -2,13 +2,12 @@
 //! body through Jacobi elliptic functions.
 
 use super::body::{
-    HEAVY_TOP_DOF, QUATERNION_HEADER, closed_form_meets_bound, refuse_non_body, run_closed_form,
-    untrusted_closed_form,
+    HEAVY_TOP_DOF, QUATERNION_HEADER, closed_form_meets_bound, free_body_is_elliptic,
+    refuse_non_body, run_closed_form, untrusted_closed_form,
 };
-use crate::exact::TorqueFree;
 use crate::model::{Cover, Descriptor, ModelEntry, Outcome, Plan};
 use crate::record::Recorder;
-use crate::scene::{Rigid, Scene};
+use crate::scene::Scene;
 use crate::{Method, SimError};
 
 /// The entry.
@@ -31,20 +30,13 @@ impl ModelEntry for Elliptic {
         &DESCRIPTOR
     }
     fn refusal(&self, scene: &Scene) -> Result<Option<&'static str>, SimError> {
-        Ok(match scene.rigid_body() {
-            Some(Rigid {
-                moments,
-                q0,
-                w0,
-                pivot: None,
-            }) => match TorqueFree::new(moments.get(), *q0, *w0)? {
-                TorqueFree::Elliptic(_) => None,
-                _ => Some(
-                    "the elliptic form needs three distinct moments and a motion that is not a permanent rotation; \
-                     use steady-precession",
-                ),
-            },
-            Some(_) => Some(HEAVY_TOP_DOF),
+        Ok(match free_body_is_elliptic(scene)? {
+            Some(true) => None,
+            Some(false) => Some(
+                "the elliptic form needs three distinct moments and a motion that is not a permanent rotation; \
+                 use steady-precession",
+            ),
+            None if scene.rigid_body().is_some() => Some(HEAVY_TOP_DOF),
             None => refuse_non_body(scene),
         })
     }

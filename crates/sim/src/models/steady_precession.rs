@@ -3,8 +3,8 @@
 //! in steady precession (§7).
 
 use super::body::{
-    QUATERNION_HEADER, closed_form_meets_bound, refuse_non_body, run_closed_form,
-    untrusted_closed_form,
+    QUATERNION_HEADER, closed_form_meets_bound, free_body_is_elliptic, refuse_non_body,
+    run_closed_form, untrusted_closed_form,
 };
 use crate::exact::TorqueFree;
 use crate::model::{Cover, Descriptor, ModelEntry, Outcome, Plan};
@@ -32,26 +32,21 @@ impl ModelEntry for SteadyPrecession {
         &DESCRIPTOR
     }
     fn refusal(&self, scene: &Scene) -> Result<Option<&'static str>, SimError> {
-        Ok(match scene.rigid_body() {
-            Some(Rigid {
-                moments,
-                q0,
-                w0,
-                pivot: None,
-            }) => match TorqueFree::new(moments.get(), *q0, *w0)? {
-                TorqueFree::Elliptic(_) => Some(
-                    "the body is not axisymmetric (three distinct moments): its motion is not a steady precession",
-                ),
-                _ => None,
-            },
-            Some(Rigid {
-                pivot: Some(Pivot { steady: None, .. }),
-                ..
-            }) => Some(
-                "the initial state does not satisfy §7's steady-precession relation (or θ̇ ≠ 0)",
+        Ok(match free_body_is_elliptic(scene)? {
+            Some(true) => Some(
+                "the body is not axisymmetric (three distinct moments): its motion is not a steady precession",
             ),
-            Some(_) => None,
-            None => refuse_non_body(scene),
+            Some(false) => None,
+            None => match scene.rigid_body() {
+                Some(Rigid {
+                    pivot: Some(Pivot { steady: None, .. }),
+                    ..
+                }) => Some(
+                    "the initial state does not satisfy §7's steady-precession relation (or θ̇ ≠ 0)",
+                ),
+                Some(_) => None,
+                None => refuse_non_body(scene),
+            },
         })
     }
     fn covers(&self, scene: &Scene, t_end: f64) -> Option<Result<Cover, SimError>> {

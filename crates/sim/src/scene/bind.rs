@@ -9,6 +9,7 @@ use hdot_num::bind::{MeasuredBody, bind_bodies};
 use hdot_num::scene::{Bodies, Group};
 use hdot_sym::derivation::Derivation;
 use hdot_sym::derivation::physics::{Body, Symmetry};
+use hdot_sym::poly::Poly;
 use nalgebra::{Matrix3, Vector3};
 
 use crate::SimError;
@@ -118,17 +119,30 @@ pub(super) fn bind_scene_bodies(
         measured[k] = Some(m);
         given_by[k] = Some(g);
     }
-    // A symbol given under [constants] and bound by a body: given twice.
+    check_unbound(declared, &given_by, constants).map_err(|(b, missing)| {
+        let first = given_by.iter().flatten().next().expect("a table was given");
+        bad(
+            first,
+            format!(
+                "the body `{b}` of {} has no `[[body]]` table (`of = \"{b}\"`) and its symbols \
+                 {missing} are not under `[constants]`: give its tables, or its parameters as \
+                 constants",
+                path.display()
+            ),
+        )
+    })?;
+    // A symbol given under [constants] that a body's entry binds alone
+    // (`mass = "m"`): given twice. A constant beside a bound symbol in one
+    // entry (`z_B + r_R`) is what the entry binds the other from.
     for (k, b) in declared.iter().enumerate() {
         let Some(g) = given_by[k] else { continue };
-        let mut atoms = b.mass.as_ref().map(|p| p.atoms()).unwrap_or_default();
-        atoms.extend(
-            b.mass_centre
-                .iter()
-                .flat_map(|c| c.0.iter().flat_map(|p| p.atoms())),
-        );
-        atoms.extend(b.inertia.0.iter().flatten().flat_map(|p| p.atoms()));
-        if let Some(a) = atoms.iter().find(|a| constants.contains_key(a.name())) {
+        let alone = body_entries(b)
+            .into_iter()
+            .filter_map(|p| match p.atoms()[..] {
+                [a] => Some(a),
+                _ => None,
+            });
+        if let Some(a) = alone.into_iter().find(|a| constants.contains_key(a.name())) {
             return Err(SimError::BadField {
                 file: file.to_path_buf(),
                 field: format!("constants.{}", a.name()),
@@ -154,6 +168,55 @@ pub(super) fn bind_scene_bodies(
             },
         }
     })
+}
+
+/// The entries of a body's declaration: its mass, the components of its
+/// mass centre, its inertia's entries.
+fn body_entries(b: &Body) -> Vec<&Poly> {
+    b.mass
+        .iter()
+        .chain(b.mass_centre.iter().flat_map(|c| c.0.iter()))
+        .chain(b.inertia.0.iter().flatten())
+        .collect()
+}
+
+/// The symbols of a body's declaration.
+fn body_symbols(b: &Body) -> Vec<hdot_sym::atom::Atom> {
+    body_entries(b).iter().flat_map(|p| p.atoms()).collect()
+}
+
+/// When the scene's tables bind some bodies (`given_by`), a body they do
+/// not bind must have its symbols under `[constants]` (or bound by another
+/// body's tables): `Err` names the first body left unbound and its missing
+/// symbols.
+fn check_unbound(
+    declared: &[Body],
+    given_by: &[Option<&Group>],
+    constants: &BTreeMap<String, f64>,
+) -> Result<(), (String, String)> {
+    if given_by.iter().all(Option::is_none) {
+        return Ok(());
+    }
+    let bound: Vec<String> = declared
+        .iter()
+        .zip(given_by)
+        .filter(|(_, g)| g.is_some())
+        .flat_map(|(b, _)| body_symbols(b))
+        .map(|a| a.name().to_string())
+        .collect();
+    for (b, _) in declared.iter().zip(given_by).filter(|(_, g)| g.is_none()) {
+        let mut missing: Vec<String> = body_symbols(b)
+            .iter()
+            .map(|a| a.name().to_string())
+            .filter(|n| !constants.contains_key(n) && !bound.contains(n))
+            .collect();
+        missing.sort();
+        missing.dedup();
+        if !missing.is_empty() {
+            return Err((b.name.clone(), missing.join(", ")));
+        }
+    }
+    Ok(())
 }
 
 /// The scene's gravity vector `g` against the derivation's declaration

@@ -45,7 +45,7 @@ mod small_solve;
 pub use build::{in_speed_rates, step_coordinates};
 use compile::{Compiled, Source};
 pub use holonomic::{ConstraintMonitor, NewtonFailure};
-pub use multiplier::MultiplierSpec;
+pub use multiplier::{MultiplierSpec, VelocityMonitor};
 use small_solve::solve_small;
 
 /// Which steps of the derivation hold the equations of motion.
@@ -620,15 +620,14 @@ impl<const N: usize> System<N> for DerivedSystem<'_, N> {
     }
 
     /// The configuration constraints' residual recorded and, when the
-    /// scene asks for it (the default), q_d projected back onto f = 0.
+    /// scene asks for it (the default), q_d projected back onto f = 0; a
+    /// multiplier form's dependent speeds solved from A_c u = 0 and the
+    /// velocity constraints' residual recorded.
     fn project(&self, y: &mut [f64; N]) -> bool {
         // f(q) has no applied input (refused when compiled): t is not read;
         // nor has A_c (a multiplier form with inputs is refused).
         let q = self.0.keep_constraints(0.0, y);
-        let u = self
-            .0
-            .solve_dependent_speeds(0.0, y)
-            .is_some_and(|c| c > 0.0);
+        let u = self.0.keep_velocity_constraints(0.0, y);
         q || u
     }
 

@@ -3,7 +3,7 @@
 
 use std::fmt;
 
-use super::{Accum, Monomial, Poly, variable};
+use super::{Accum, Monomial, Poly, sort_terms, variable};
 use crate::atom::{Atom, AtomKind};
 use crate::limits;
 use crate::rational::Rational;
@@ -118,7 +118,7 @@ impl std::ops::Mul for &Poly {
                     .iter()
                     .map(|(m2, c2)| (m2.mul(m), c2 * c))
                     .collect();
-                terms.sort_unstable_by(|a, b| a.0.cmp(&b.0));
+                sort_terms(&mut terms);
                 return Poly {
                     terms,
                     trig_den: false,
@@ -147,7 +147,7 @@ impl std::ops::Mul for &Poly {
                         terms.push((m1.mul(m2), c1 * c2));
                     }
                 }
-                terms.sort_unstable_by(|a, b| a.0.cmp(&b.0));
+                sort_terms(&mut terms);
                 return Poly {
                     terms,
                     trig_den: false,

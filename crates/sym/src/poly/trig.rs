@@ -5,7 +5,7 @@
 
 use rustc_hash::FxHashMap;
 
-use super::{Accum, Exp, Monomial, Poly, is_trig};
+use super::{Accum, Exp, Monomial, Poly, is_trig, sort_terms};
 use crate::atom::{Atom, AtomKind};
 use crate::rational::Rational;
 
@@ -56,7 +56,7 @@ impl Poly {
         let rest = Monomial::from_factors(den.iter().map(|&(a, k)| (a, -k)));
         let trig_den = !rest.is_one();
         let mut terms: Vec<_> = n.into_iter().map(|(m, c)| (m.mul(&rest), c)).collect();
-        terms.sort_unstable_by(|a, b| a.0.cmp(&b.0));
+        sort_terms(&mut terms);
         Poly { terms, trig_den }
     }
 }

@@ -11,6 +11,8 @@
 //! bicycle's χ̇) has a zero row and column in M: its rate comes from the
 //! constraints alone.
 
+use std::cell::Cell;
+
 use hdot_sym::atom::Atom;
 use hdot_sym::derivation::{Derivation, Value};
 use hdot_sym::poly::Poly;
@@ -30,6 +32,19 @@ pub(super) struct Layout {
     pub(super) rows: usize,
     /// The state index (among the speeds) of each dependent speed.
     pub(super) dependent: Vec<usize>,
+    /// What the velocity constraints met since the last reset.
+    pub(super) monitor: Cell<VelocityMonitor>,
+}
+
+/// What the velocity constraints A_c u = 0 met along a run: the largest
+/// |A_c u| after each step's solve of the dependent speeds, and the
+/// largest change that solve made to a dependent speed.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct VelocityMonitor {
+    /// max over the start and the accepted steps of max_i |(A_c u)_i|.
+    pub max_residual: f64,
+    /// max over the accepted steps of max_i |Δu_d,i|.
+    pub max_correction: f64,
 }
 
 /// The steps of a multiplier form, as the scene names them.
@@ -178,6 +193,7 @@ pub(super) fn outputs(
             mass,
             rows: m,
             dependent,
+            monitor: Cell::default(),
         },
     ))
 }
@@ -300,6 +316,37 @@ impl DerivedModel {
             .collect()
     }
 
+    /// Starts a new record of the velocity constraints' residual, with
+    /// the residual of the initial state `y0`.
+    pub fn reset_velocity_monitor(&self, y0: &[f64]) {
+        if let Some((_, l)) = self.multiplier() {
+            l.monitor.set(VelocityMonitor {
+                max_residual: max_abs(&self.velocity_residual(0.0, y0)),
+                max_correction: 0.0,
+            });
+        }
+    }
+
+    /// What the velocity constraints met since the last reset (`None`
+    /// without a multiplier form).
+    pub fn velocity_monitor(&self) -> Option<VelocityMonitor> {
+        self.multiplier().map(|(_, l)| l.monitor.get())
+    }
+
+    /// After an accepted step: the dependent speeds solved from A_c u = 0
+    /// and what that met recorded. Returns whether `y` changed.
+    pub(super) fn keep_velocity_constraints(&self, t: f64, y: &mut [f64]) -> bool {
+        let Some((_, l)) = self.multiplier() else {
+            return false;
+        };
+        let change = self.solve_dependent_speeds(t, y);
+        let mut rec = l.monitor.get();
+        rec.max_correction = rec.max_correction.max(change.unwrap_or(0.0));
+        rec.max_residual = rec.max_residual.max(max_abs(&self.velocity_residual(t, y)));
+        l.monitor.set(rec);
+        change.is_some_and(|c| c > 0.0)
+    }
+
     /// Solves A_c u = 0 for the dependent speeds of `y`, the independent
     /// ones held: the largest change made, or `None` when A_c restricted
     /// to the dependent speeds is singular (`y` unchanged). Without a
@@ -333,4 +380,15 @@ impl DerivedModel {
         }
         Some(change)
     }
+}
+
+/// The largest magnitude of `v` (NaN kept: a NaN residual is reported).
+fn max_abs(v: &[f64]) -> f64 {
+    v.iter().fold(0.0_f64, |a, x| {
+        if a.is_nan() || x.is_nan() {
+            f64::NAN
+        } else {
+            a.max(x.abs())
+        }
+    })
 }
