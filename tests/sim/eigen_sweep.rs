@@ -356,3 +356,51 @@ fn extreme_constants_give_finite_eigenvalues_or_an_error() {
         }
     }
 }
+
+/// A cyclic coordinate (the yaw of a hoop rolling upright, in no
+/// equation) gives an exact zero eigenvalue, double with its conserved
+/// momentum: "not unstable" is one interval on each side, |Ω| above the
+/// closed form Ω² = m g r J / (I (I + m r²)) to 1e-8 — not fragments
+/// broken wherever round-off split the double zero (a scene written for
+/// this test).
+#[test]
+fn a_cyclic_coordinate_is_neutral_not_fragments() {
+    let (m, r, i, j, g) = (1.0_f64, 0.5_f64, 0.25_f64, 0.125_f64, 9.81_f64);
+    let text = format!(
+        r#"name = "hoop"
+kind = "stability"
+[derivation]
+file = "hoop-upright.toml"
+mass = "ML"
+damping = "CL"
+stiffness = "KqL"
+[constants]
+m = {m:?}
+r = {r:?}
+I = {i:?}
+J = {j:?}
+g = {g:?}
+[sweep]
+parameter = "Omega"
+from = -10.0
+to = 10.0
+count = 1001
+"#
+    );
+    let file = hdot_tests::repo_root().join("tests/sim/cyclic/scene.toml");
+    let scene = StabilityScene::parse_with(&text, &file, &|name| {
+        hdot_sim::scene::resolve_near(&file, name)
+    })
+    .unwrap();
+    let s = sweep(&scene, &mut |_, _| {}).unwrap();
+    let edge = (m * g * r * j / (i * (i + m * r * r))).sqrt();
+    assert_eq!(s.not_unstable.len(), 2, "{:?}", s.not_unstable);
+    let (lo, hi) = (&s.not_unstable[0], &s.not_unstable[1]);
+    assert_eq!((lo.lo_edge, hi.hi_edge), (Edge::SweepEnd, Edge::SweepEnd));
+    assert!((lo.hi + edge).abs() < 1e-8 * edge, "{} vs {}", lo.hi, -edge);
+    assert!((hi.lo - edge).abs() < 1e-8 * edge, "{} vs {edge}", hi.lo);
+    // The exact zero is reported as exactly zero at every value.
+    for ev in &s.eigenvalues {
+        assert!(ev.iter().any(|z| z.re == 0.0 && z.im == 0.0));
+    }
+}

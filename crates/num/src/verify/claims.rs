@@ -269,8 +269,11 @@ pub(crate) fn compare_conserved(
         for (a, (x, s)) in e.unknowns().iter().zip(acc) {
             v.set(*a, x, s);
         }
-        // The accelerations the rules tie to the solved ones follow them.
+        // The accelerations the rules tie to the solved ones follow them,
+        // and so do those of the other kind, through the kinematic
+        // equations.
         constrain(d, &mut v, &[])?;
+        complete_rates(d, e.unknowns(), &mut v)?;
         along.push((e, v));
     }
     conserved
@@ -299,6 +302,71 @@ pub(crate) fn compare_conserved(
             Ok(out)
         })
         .collect()
+}
+
+/// After a law of motion's unknowns are set, the rates of the other kind
+/// follow from the kinematic equations q̇ = f(q, u): with the speeds'
+/// rates solved, each q̈ = ḟ; with the coordinates' second rates solved,
+/// the speeds' rates from ḟ = q̈, which is linear in them (least squares
+/// through the SVD when there are more equations than speeds). Without
+/// this the other kind keeps its random draw, and a conserved quantity
+/// written in it (the energy in q̇ along Kane's equations in u̇) fails.
+fn complete_rates(d: &Derivation, solved: &[Atom], v: &mut Values) -> Result<(), VerifyError> {
+    let kinematics = d.kinematic_equations();
+    if kinematics.is_empty() {
+        return Ok(());
+    }
+    let second: Vec<(Atom, Poly)> = kinematics
+        .iter()
+        .map(|(q, f)| (crate::bind::nth(q.base(), 2), d.unfold(f).dt()))
+        .collect();
+    let rates: Vec<Atom> = d
+        .speeds()
+        .iter()
+        .map(|u| crate::bind::nth(u.base(), 1))
+        .collect();
+    let solved_rates = solved.iter().any(|a| rates.contains(a));
+    let solved_second = solved.iter().any(|a| second.iter().any(|(q, _)| q == a));
+    if solved_rates && !solved_second {
+        for (q, fd) in &second {
+            let (x, s) = v.eval(fd).map_err(VerifyError::from)?;
+            v.set(*q, x, s);
+        }
+    } else if solved_second && !solved_rates {
+        let (m, n) = (second.len(), rates.len());
+        let at = |v: &mut Values, unit: Option<usize>| -> Result<Vec<(f64, f64)>, VerifyError> {
+            for (k, u) in rates.iter().enumerate() {
+                v.set(*u, if Some(k) == unit { 1.0 } else { 0.0 }, 1.0);
+            }
+            second
+                .iter()
+                .map(|(_, fd)| v.eval(fd).map_err(VerifyError::from))
+                .collect()
+        };
+        let base = at(v, None)?;
+        let mut a = DMatrix::zeros(m, n);
+        for k in 0..n {
+            for (i, (x, _)) in at(v, Some(k))?.into_iter().enumerate() {
+                a[(i, k)] = x - base[i].0;
+            }
+        }
+        let mut scale = 0.0_f64;
+        let b = DVector::from_iterator(
+            m,
+            second.iter().zip(&base).map(|((q, _), (x0, s0))| {
+                let (qdd, sq) = v.get(*q).unwrap_or((0.0, 0.0));
+                scale = scale.max(sq).max(*s0);
+                qdd - x0
+            }),
+        );
+        let Ok(x) = a.svd(true, true).solve(&b, 1e-12) else {
+            return Ok(());
+        };
+        for (u, x) in rates.iter().zip(x.iter()) {
+            v.set(*u, *x, scale.max(x.abs()));
+        }
+    }
+    Ok(())
 }
 
 /// Whether a meaning is a law of motion: every quantity in it is one the

@@ -83,19 +83,52 @@ pub fn spectrum(
 ) -> Result<(Vec<Complex<f64>>, f64), String> {
     let a = m.state_matrix(p, scratch)?;
     let norm = a.norm();
-    // faer's real Schur form (Hessenberg reduction, then Francis steps
-    // with aggressive early deflation): nalgebra's iteration can fail to
-    // deflate the purely imaginary pairs of a conservative system.
-    let f = faer::Mat::<f64>::from_fn(a.nrows(), a.ncols(), |i, j| a[(i, j)]);
-    let ev = f
-        .eigenvalues()
-        .map_err(|e| format!("the eigenvalue iteration did not converge ({e:?})"))?;
-    if !norm.is_finite() || ev.iter().any(|z| !(z.re.is_finite() && z.im.is_finite())) {
+    if !norm.is_finite() {
         return Err(format!(
             "the state matrix's eigenvalues are not finite (‖A‖ = {norm:e}): rescale the units"
         ));
     }
-    Ok((ev.iter().map(|z| Complex::new(z.re, z.im)).collect(), norm))
+    let (a, zeros) = deflate_exact_zeros(a);
+    let mut out = vec![Complex::new(0.0, 0.0); zeros];
+    if a.nrows() > 0 {
+        // faer's real Schur form (Hessenberg reduction, then Francis steps
+        // with aggressive early deflation): nalgebra's iteration can fail
+        // to deflate the purely imaginary pairs of a conservative system.
+        let f = faer::Mat::<f64>::from_fn(a.nrows(), a.ncols(), |i, j| a[(i, j)]);
+        let ev = f
+            .eigenvalues()
+            .map_err(|e| format!("the eigenvalue iteration did not converge ({e:?})"))?;
+        if ev.iter().any(|z| !(z.re.is_finite() && z.im.is_finite())) {
+            return Err(format!(
+                "the state matrix's eigenvalues are not finite (‖A‖ = {norm:e}): rescale the \
+                 units"
+            ));
+        }
+        out.extend(ev.iter().map(|z| Complex::new(z.re, z.im)));
+    }
+    Ok((out, norm))
+}
+
+/// `a` with every row and column removed whose entries are all exactly
+/// zero, one index at a time, and how many were removed: each is an exact
+/// zero eigenvalue (expand det(A − λI) along that column or row). A cyclic
+/// coordinate — absent from K, so its column of A is zero — is the common
+/// case: its zero eigenvalue, often double with its rate's conserved
+/// momentum, would otherwise come out of the Schur form as a pair
+/// ±√ε‖A‖ either side of zero (a Jordan block), more than the margin
+/// allows, and "not unstable" would break into fragments.
+fn deflate_exact_zeros(mut a: DMatrix<f64>) -> (DMatrix<f64>, usize) {
+    let mut zeros = 0;
+    loop {
+        let n = a.nrows();
+        let Some(j) =
+            (0..n).find(|&j| (0..n).all(|i| a[(i, j)] == 0.0) || (0..n).all(|i| a[(j, i)] == 0.0))
+        else {
+            return (a, zeros);
+        };
+        a = a.remove_row(j).remove_column(j);
+        zeros += 1;
+    }
 }
 
 /// The largest real part of `ev` (−∞ for none).
@@ -314,6 +347,35 @@ mod tests {
         let last = [z(-0.5), z(0.4)];
         let now = vec![z(0.3), z(1.0)];
         assert_eq!(follow(&last, &before, now), vec![z(1.0), z(0.3)]);
+    }
+
+    /// A cyclic coordinate's zero column and the zero row of a rate that
+    /// nothing drives are removed as exact zero eigenvalues; what is left
+    /// keeps its spectrum.
+    #[test]
+    fn exact_zero_rows_and_columns_are_exact_zero_eigenvalues() {
+        // State (θ, ψ, θ̇, ψ̇) of an upright rolling hoop: ψ is cyclic
+        // (column 1 zero), ψ̈ = −a θ̇.
+        let (k, c, d) = (2.0, 3.0, 0.5);
+        let a = DMatrix::from_row_slice(
+            4,
+            4,
+            &[
+                0.0, 0.0, 1.0, 0.0, //
+                0.0, 0.0, 0.0, 1.0, //
+                k, 0.0, 0.0, c, //
+                0.0, 0.0, -d, 0.0,
+            ],
+        );
+        let (rest, zeros) = deflate_exact_zeros(a);
+        assert_eq!(zeros, 1);
+        assert_eq!(rest.nrows(), 3);
+        // λ (λ² − k + c d) = 0 on what is left.
+        let ev = rest.complex_eigenvalues();
+        let mut re: Vec<f64> = ev.iter().map(|z| z.re).collect();
+        re.sort_by(f64::total_cmp);
+        let w = (k - c * d).sqrt();
+        assert!((re[0] + w).abs() < 1e-12 && re[1].abs() < 1e-12 && (re[2] - w).abs() < 1e-12);
     }
 
     /// A boundary between two grid values is found to the bisection's
