@@ -6,9 +6,9 @@
 //! coordinates), a gear train (a chain of rules in the rates, two steps
 //! long, two bodies), and a cone rolling with its apex fixed.
 
-use hdot_tests::{fixed_point, frame, point, top_frames};
 use crate::load;
 use hdot_num::verify::{Options, Report, check};
+use hdot_tests::{fixed_point, frame, point, top_frames};
 
 const OPTS: Options = Options {
     draws: 12,

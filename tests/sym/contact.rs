@@ -6,9 +6,9 @@
 //! the nonlinear bicycle's linearized lean and steer matrices are the
 //! linear bicycle's; bad declarations are located errors.
 
-use hdot_tests::{disk_frames, fixed_point, point};
 use hdot_sym::derivation::{Derivation, Value, load, load_str};
 use hdot_tests::{WHIPPLE_EIGENVALUES, repo_root};
+use hdot_tests::{disk_frames, fixed_point, point};
 
 fn step<'d>(d: &'d Derivation, name: &str) -> &'d Value {
     &d.steps

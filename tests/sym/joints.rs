@@ -3,8 +3,8 @@
 //! the angular velocity is q̇ k; a zero, non-unit or moving axis is a
 //! located error.
 
-use hdot_tests::{frame};
 use hdot_sym::derivation::{Diagnostic, Value, load_str};
+use hdot_tests::frame;
 
 const FILE: &str = concat!(
     r#"

@@ -3,8 +3,8 @@
 //! body rates as speeds — equal by canonical equality; and the located
 //! errors of what Kane's method cannot take.
 
-use hdot_tests::{disk_frames, fixed_point, point, top_frames};
 use hdot_sym::derivation::{Value, load_str};
+use hdot_tests::{disk_frames, fixed_point, point, top_frames};
 
 /// The heavy top with fixed tip O, G at l on the axis, inertia about O;
 /// `SPEEDS` and `KINEMATICS` are spliced in.
