@@ -165,17 +165,27 @@ pub(crate) fn print_sorted(
     terms: &[(Monomial, Rational)],
     derivative_first: bool,
 ) -> Vec<PrintTerm<'_>> {
-    let mut atoms: Vec<Atom> = terms
-        .iter()
-        .flat_map(|(m, _)| m.factors().iter().map(|f| f.0))
-        .collect();
-    atoms.sort_unstable();
-    atoms.dedup();
-    atoms.sort_by_cached_key(|a| a.sort_key());
     // The rank of an atom, read by its id (a table as long as the largest
-    // id, not a hash map: looked up for every factor of every term).
+    // id, not a hash map: looked up for every factor of every term). The
+    // distinct atoms are found by marking that table, in one pass over the
+    // factors (sorting all the factors to find them was n log n in them).
+    let mut rank: Vec<u32> = Vec::new();
+    let mut atoms: Vec<Atom> = Vec::new();
+    for (m, _) in terms {
+        for &(a, _) in m.factors() {
+            let i = a.id() as usize;
+            if i >= rank.len() {
+                rank.resize(i + 1, u32::MAX);
+            }
+            if rank[i] == u32::MAX {
+                rank[i] = 0;
+                atoms.push(a);
+            }
+        }
+    }
+    // Sort keys are distinct (names), so the order found is immaterial.
+    atoms.sort_by_cached_key(|a| a.sort_key());
     let trig: Vec<crate::poly::Trig> = atoms.iter().map(|&a| crate::poly::trig_of(a)).collect();
-    let mut rank = vec![u32::MAX; atoms.iter().map(|a| a.id() as usize + 1).max().unwrap_or(0)];
     for (k, a) in atoms.iter().enumerate() {
         rank[a.id() as usize] = k as u32;
     }

@@ -79,12 +79,14 @@ pub fn measured_pieces<W: Copy>(
         style: &cached,
         measure,
         too_long,
+        scratch: Default::default(),
     };
     let mut out = Vec::new();
+    let mut lead = String::new();
     for (prefix, id, bracketed) in sum_terms(e, e.root(), &cached) {
-        let mut lead = String::new();
+        lead.clear();
         prefix.write(&mut lead);
-        splitter.term(id, bracketed, lead, "", 0, 1, &mut out);
+        splitter.term(id, bracketed, &lead, "", 0, 1, &mut out);
     }
     out
 }
@@ -141,6 +143,10 @@ struct Splitter<'a, 's, W> {
     style: &'a Cached<'s>,
     measure: &'a dyn Fn(&str) -> W,
     too_long: &'a dyn Fn(W) -> bool,
+    /// The buffer each piece is written into before it is copied out at
+    /// its length: one buffer for all pieces, grown once, where a string
+    /// per piece grew by doubling (a chain-8 result has 10⁵ pieces).
+    scratch: std::cell::Cell<String>,
 }
 
 impl<W: Copy> Splitter<'_, '_, W> {
@@ -153,14 +159,15 @@ impl<W: Copy> Splitter<'_, '_, W> {
         &self,
         id: Id,
         bracketed: bool,
-        lead: String,
+        lead: &str,
         trail: &str,
         first: usize,
         inner: usize,
         out: &mut Vec<(String, usize, W)>,
     ) {
-        let mut text = lead;
-        let lead_len = text.len();
+        let mut text = self.scratch.take();
+        text.clear();
+        text.push_str(lead);
         if bracketed {
             paren(self.e, id, self.style, &mut text);
         } else {
@@ -168,42 +175,31 @@ impl<W: Copy> Splitter<'_, '_, W> {
         }
         text.push_str(trail);
         let w = (self.measure)(&text);
-        if (self.too_long)(w) {
-            text.truncate(lead_len);
-            match self.split(id, text, trail, first, inner, out) {
-                Ok(()) => return,
-                Err(lead) => {
-                    text = lead;
-                    if bracketed {
-                        paren(self.e, id, self.style, &mut text);
-                    } else {
-                        write(self.e, id, self.style, &mut text);
-                    }
-                    text.push_str(trail);
-                }
-            }
+        // A term too long with no bracket to break inside is one piece.
+        if !((self.too_long)(w) && self.split(id, lead, trail, first, inner, out)) {
+            out.push((text.as_str().to_owned(), first, w));
         }
-        out.push((text, first, w));
+        self.scratch.set(text);
     }
 
     /// A product term broken inside its longest bracketed sum (see
-    /// [`break_pieces`]); `Err(lead)` (the lead handed back) when the term
-    /// has no such bracket.
+    /// [`break_pieces`]); false (nothing pushed) when the term has no such
+    /// bracket.
     fn split(
         &self,
         id: Id,
-        lead: String,
+        lead: &str,
         trail: &str,
         first: usize,
         inner: usize,
         out: &mut Vec<(String, usize, W)>,
-    ) -> Result<(), String> {
+    ) -> bool {
         let (e, style) = (self.e, self.style);
         let factors: &[Id] = match e.node(id) {
             Node::Mul(factors) => factors,
             // A bracketed sum alone (after a minus sign: −(a + b + …)).
             Node::Add(_) => std::slice::from_ref(&id),
-            _ => return Err(lead),
+            _ => return false,
         };
         let is_den = |f: &Id| matches!(e.node(*f), Node::Pow(_, k) if *k < 0);
         let (dens, factors): (Vec<Id>, Vec<Id>) = factors.iter().partition(|f| is_den(f));
@@ -224,11 +220,11 @@ impl<W: Copy> Splitter<'_, '_, W> {
             })
             .map(|(k, _)| k)
         else {
-            return Err(lead);
+            return false;
         };
         let terms = sum_terms(e, factors[j], style);
         let (l, r) = style.inner.parens();
-        let mut before = lead;
+        let mut before = lead.to_owned();
         if !dens.is_empty() {
             // A fraction's numerator cannot be broken: the bracket is
             // written after the rest of the fraction, (c/(a b)) (x + y + …).
@@ -251,7 +247,7 @@ impl<W: Copy> Splitter<'_, '_, W> {
             let mut after = r.to_owned();
             after.push_str(trail);
             self.bracket_terms(terms, before, after, first, inner, out);
-            return Ok(());
+            return true;
         }
         if j > 0 {
             write_product(e, &factors[..j], style, &mut before);
@@ -273,7 +269,7 @@ impl<W: Copy> Splitter<'_, '_, W> {
         }
         after.push_str(trail);
         self.bracket_terms(terms, before, after, first, inner, out);
-        Ok(())
+        true
     }
 
     /// The pieces of a bracket's terms: `before` (up to the opening
@@ -295,7 +291,7 @@ impl<W: Copy> Splitter<'_, '_, W> {
             sign.write(&mut lead);
             let trail = if k == last { after.as_str() } else { "" };
             let depth = if k == 0 { first } else { inner };
-            self.term(t, bracketed, lead, trail, depth, inner + 1, out);
+            self.term(t, bracketed, &lead, trail, depth, inner + 1, out);
         }
     }
 }
