@@ -84,12 +84,7 @@ pub fn print(e: &Expr, style: &dyn Style) -> String {
     if e.is_empty() {
         return style.num(&Rational::ZERO);
     }
-    let cached = Cached {
-        inner: style,
-        atoms: Default::default(),
-        pows: Default::default(),
-        nums: Default::default(),
-    };
+    let cached = Cached::new(style, None);
     let mut out = String::new();
     write(e, e.root(), &cached, &mut out);
     out
@@ -99,14 +94,61 @@ pub fn print(e: &Expr, style: &dyn Style) -> String {
 /// atoms thousands of times. An atom's text is read from a table indexed
 /// by the atom's id (a hash lookup per atom written was a tenth of the
 /// printing).
+///
+/// With a `measure` (an additive one, see [`measured_pieces`]), every text
+/// written is measured as it is written: an atom's, a number's and a
+/// power's measure once, when it is first written, the signs and
+/// separators as they are written, and `written` holds the sum, so that a
+/// piece's width is known without reading it again.
 struct Cached<'a> {
     inner: &'a dyn Style,
-    atoms: std::cell::RefCell<Vec<Option<Box<str>>>>,
-    pows: std::cell::RefCell<rustc_hash::FxHashMap<(Atom, u32), String>>,
-    nums: std::cell::RefCell<rustc_hash::FxHashMap<Rational, String>>,
+    atoms: std::cell::RefCell<Vec<Option<Measured>>>,
+    pows: std::cell::RefCell<rustc_hash::FxHashMap<(Atom, u32), (String, u32)>>,
+    nums: std::cell::RefCell<rustc_hash::FxHashMap<Rational, (String, u32)>>,
+    measure: Option<&'a dyn Fn(&str) -> u32>,
+    written: std::cell::Cell<u32>,
 }
 
-impl Cached<'_> {
+/// A text and its measure.
+type Measured = (Box<str>, u32);
+
+impl<'a> Cached<'a> {
+    fn new(inner: &'a dyn Style, measure: Option<&'a dyn Fn(&str) -> u32>) -> Self {
+        Cached {
+            inner,
+            atoms: Default::default(),
+            pows: Default::default(),
+            nums: Default::default(),
+            measure,
+            written: Default::default(),
+        }
+    }
+
+    /// The measure of `text` (0 when nothing is measured).
+    fn measure_of(&self, text: &str) -> u32 {
+        self.measure.map_or(0, |m| m(text))
+    }
+
+    /// Appends `text` whose measure is `width`.
+    fn push_measured(&self, out: &mut String, text: &str, width: u32) {
+        out.push_str(text);
+        self.written.set(self.written.get() + width);
+    }
+
+    /// Appends `text` (a sign, a separator, a bracket), measured.
+    fn push(&self, out: &mut String, text: &str) {
+        self.push_measured(out, text, self.measure_of(text));
+    }
+
+    /// Appends the text of a composite (a fraction, a power of a bracket)
+    /// assembled from parts written to the side since `mark` (the measure
+    /// written then), measured as a whole: what the parts added to
+    /// `written` is taken back.
+    fn push_composite(&self, out: &mut String, text: &str, mark: u32) {
+        self.written.set(mark);
+        self.push(out, text);
+    }
+
     /// Appends the atom's text without copying it out of the cache.
     fn write_atom(&self, a: Atom, out: &mut String) {
         let mut atoms = self.atoms.borrow_mut();
@@ -114,38 +156,48 @@ impl Cached<'_> {
         if i >= atoms.len() {
             atoms.resize(i + 1, None);
         }
-        out.push_str(atoms[i].get_or_insert_with(|| self.inner.atom(a).into_boxed_str()));
+        let (text, width) = atoms[i].get_or_insert_with(|| {
+            let text = self.inner.atom(a);
+            let width = self.measure_of(&text);
+            (text.into_boxed_str(), width)
+        });
+        self.push_measured(out, text, *width);
     }
 
     /// Appends the number's text (a result repeats the same few numbers).
     fn write_num(&self, r: &Rational, out: &mut String) {
         let mut nums = self.nums.borrow_mut();
-        if let Some(text) = nums.get(r) {
-            out.push_str(text);
+        if let Some((text, width)) = nums.get(r) {
+            self.push_measured(out, text, *width);
         } else {
             let text = self.inner.num(r);
-            out.push_str(&text);
-            nums.insert(r.clone(), text);
+            let width = self.measure_of(&text);
+            self.push_measured(out, &text, width);
+            nums.insert(r.clone(), (text, width));
         }
     }
 
     /// Appends `a^exp` (an atom base needs no parentheses).
     fn write_atom_pow(&self, a: Atom, exp: u32, out: &mut String) {
         let mut pows = self.pows.borrow_mut();
-        let text = pows.entry((a, exp)).or_insert_with(|| {
+        let (text, width) = pows.entry((a, exp)).or_insert_with(|| {
+            let mark = self.written.get();
             let mut b = String::new();
             self.write_atom(a, &mut b);
-            self.inner.pow(&b, &Node::Atom(a), exp)
+            self.written.set(mark);
+            let text = self.inner.pow(&b, &Node::Atom(a), exp);
+            let width = self.measure_of(&text);
+            (text, width)
         });
-        out.push_str(text);
+        self.push_measured(out, text, *width);
     }
 }
 
 fn paren(e: &Expr, id: Id, style: &Cached, out: &mut String) {
     let (l, r) = style.inner.parens();
-    out.push_str(l);
+    style.push(out, l);
     write(e, id, style, out);
-    out.push_str(r);
+    style.push(out, r);
 }
 
 fn write(e: &Expr, id: Id, style: &Cached, out: &mut String) {
@@ -156,9 +208,9 @@ fn write(e: &Expr, id: Id, style: &Cached, out: &mut String) {
             for (k, &t) in terms.iter().enumerate() {
                 match e.node(t) {
                     Node::Neg(inner) if k > 0 => {
-                        out.push(' ');
-                        out.push_str(style.inner.minus());
-                        out.push(' ');
+                        style.push(out, " ");
+                        style.push(out, style.inner.minus());
+                        style.push(out, " ");
                         write_under_neg(e, *inner, style, out);
                     }
                     Node::Add(_) => {
@@ -188,7 +240,7 @@ fn write(e: &Expr, id: Id, style: &Cached, out: &mut String) {
         }
         Node::Pow(_, k) if *k < 0 => write_fraction(e, &[], &[id], style, out),
         Node::Neg(inner) => {
-            out.push_str(style.inner.minus());
+            style.push(out, style.inner.minus());
             write_under_neg(e, *inner, style, out);
         }
         Node::Pow(base, exp) if matches!(e.node(*base), Node::Atom(_)) => {
@@ -198,28 +250,30 @@ fn write(e: &Expr, id: Id, style: &Cached, out: &mut String) {
             style.write_atom_pow(*a, exp.unsigned_abs(), out);
         }
         Node::Pow(base, exp) => {
+            let mark = style.written.get();
             let mut b = String::new();
             match e.node(*base) {
                 Node::Atom(_) => write(e, *base, style, &mut b),
                 Node::Num(r) if r.is_integer() => write(e, *base, style, &mut b),
                 _ => paren(e, *base, style, &mut b),
             }
-            out.push_str(&style.inner.pow(&b, e.node(*base), exp.unsigned_abs()));
+            let text = style.inner.pow(&b, e.node(*base), exp.unsigned_abs());
+            style.push_composite(out, &text, mark);
         }
     }
 }
 
 /// ` + ` between two terms.
 fn write_plus(style: &Cached, out: &mut String) {
-    out.push(' ');
-    out.push_str(style.inner.plus());
-    out.push(' ');
+    style.push(out, " ");
+    style.push(out, style.inner.plus());
+    style.push(out, " ");
 }
 
 fn write_product(e: &Expr, factors: &[Id], style: &Cached, out: &mut String) {
     for (k, &f) in factors.iter().enumerate() {
         if k > 0 {
-            out.push_str(style.inner.mul_sep(e.node(factors[k - 1]), e.node(f)));
+            style.push(out, style.inner.mul_sep(e.node(factors[k - 1]), e.node(f)));
         }
         match e.node(f) {
             Node::Mul(fs)
@@ -241,6 +295,7 @@ fn write_product(e: &Expr, factors: &[Id], style: &Cached, out: &mut String) {
 /// number is split over the fraction (`7 F²/(2 m)`), and a built-up
 /// fraction's numerator that is a single sum loses its brackets.
 fn write_fraction(e: &Expr, nums: &[Id], dens: &[Id], style: &Cached, out: &mut String) {
+    let mark = style.written.get();
     let textbook = style.inner.textbook_fraction();
     let mut num = String::new();
     let mut nums = nums;
@@ -292,7 +347,7 @@ fn write_fraction(e: &Expr, nums: &[Id], dens: &[Id], style: &Cached, out: &mut 
             }
         }))
         .collect();
-    out.push_str(&style.inner.fraction(&num, &dens));
+    style.push_composite(out, &style.inner.fraction(&num, &dens), mark);
 }
 
 /// After a minus sign: sums and negations need parentheses, a bare number

@@ -42,7 +42,8 @@ pub fn break_pieces(
     style: &dyn Style,
     too_long: &dyn Fn(&str) -> bool,
 ) -> Vec<(String, bool)> {
-    measured_pieces(e, style, too_long, &|long| long)
+    let measure = |text: &str| u32::from(too_long(text));
+    pieces(e, style, &measure, &|long| long != 0, false)
         .into_iter()
         .map(|(text, depth, _)| (text, depth > 0))
         .collect()
@@ -50,35 +51,50 @@ pub fn break_pieces(
 
 /// [`break_pieces`]' pieces with the number of brackets a break before
 /// each would fall inside (0 between top-level terms, 1 inside a bracket,
-/// 2 inside a bracket in a bracket, …) and each piece's measure: `measure`
-/// is taken of every piece once (a term that is not split is measured as a
-/// whole, and that measure is the piece's), and a term is split when
-/// `too_long` holds of its measure. A line breaker that adds up widths so
-/// measures each piece once, not once to decide the split and again to
-/// fill the line; it closes a line broken at depth d with d `\right.` and
-/// opens the next with d `\left.`.
-pub fn measured_pieces<W: Copy>(
+/// 2 inside a bracket in a bracket, …) and each piece's measure, and a
+/// term is split when `too_long` holds of its measure. A line breaker that
+/// adds up widths so measures each piece once, not once to decide the
+/// split and again to fill the line; it closes a line broken at depth d
+/// with d `\right.` and opens the next with d `\left.`.
+///
+/// `measure` must be additive over what the printer writes: the measure
+/// of a text is the sum of the measures of the atoms, numbers, powers,
+/// signs and separators it is written from (as a width is, when every
+/// one of them is balanced: no brace or script open at its end). A piece
+/// is then measured while it is written, each atom's text measured once
+/// for all the pieces, not read again after it is printed. (Debug builds
+/// check the sum against the measure of the whole piece.)
+pub fn measured_pieces(
     e: &Expr,
     style: &dyn Style,
-    measure: &dyn Fn(&str) -> W,
-    too_long: &dyn Fn(W) -> bool,
-) -> Vec<(String, usize, W)> {
+    measure: &dyn Fn(&str) -> u32,
+    too_long: &dyn Fn(u32) -> bool,
+) -> Vec<(String, usize, u32)> {
+    pieces(e, style, measure, too_long, true)
+}
+
+/// The pieces of [`break_pieces`] and [`measured_pieces`]; `additive`:
+/// whether `measure` is additive, so that a piece is measured while it is
+/// written (otherwise each piece is measured whole).
+fn pieces(
+    e: &Expr,
+    style: &dyn Style,
+    measure: &dyn Fn(&str) -> u32,
+    too_long: &dyn Fn(u32) -> bool,
+    additive: bool,
+) -> Vec<(String, usize, u32)> {
     if e.is_empty() {
         let zero = style.num(&Rational::ZERO);
         let w = measure(&zero);
         return vec![(zero, 0, w)];
     }
-    let cached = Cached {
-        inner: style,
-        atoms: Default::default(),
-        pows: Default::default(),
-        nums: Default::default(),
-    };
+    let cached = Cached::new(style, additive.then_some(measure));
     let splitter = Splitter {
         e,
         style: &cached,
         measure,
         too_long,
+        additive,
         scratch: Default::default(),
     };
     let mut out = Vec::new();
@@ -138,18 +154,21 @@ fn sum_terms(e: &Expr, id: Id, style: &Cached) -> Vec<(Prefix, Id, bool)> {
 }
 
 /// Splits terms into pieces (see [`measured_pieces`]).
-struct Splitter<'a, 's, W> {
+struct Splitter<'a, 's> {
     e: &'a Expr,
     style: &'a Cached<'s>,
-    measure: &'a dyn Fn(&str) -> W,
-    too_long: &'a dyn Fn(W) -> bool,
+    measure: &'a dyn Fn(&str) -> u32,
+    too_long: &'a dyn Fn(u32) -> bool,
+    /// Whether `measure` is additive: a piece's measure is then summed
+    /// while it is written (`style.written`), not taken of the whole.
+    additive: bool,
     /// The buffer each piece is written into before it is copied out at
     /// its length: one buffer for all pieces, grown once, where a string
     /// per piece grew by doubling (a chain-8 result has 10⁵ pieces).
     scratch: std::cell::Cell<String>,
 }
 
-impl<W: Copy> Splitter<'_, '_, W> {
+impl Splitter<'_, '_> {
     /// Pushes the pieces of one term, `lead`, then node `id` (bracketed or
     /// not), then `trail`: the whole as one piece at depth `first`, or, when it is
     /// too long and has a bracket to break inside, the pieces of that
@@ -163,18 +182,25 @@ impl<W: Copy> Splitter<'_, '_, W> {
         trail: &str,
         first: usize,
         inner: usize,
-        out: &mut Vec<(String, usize, W)>,
+        out: &mut Vec<(String, usize, u32)>,
     ) {
         let mut text = self.scratch.take();
         text.clear();
         text.push_str(lead);
+        self.style.written.set(0);
         if bracketed {
             paren(self.e, id, self.style, &mut text);
         } else {
             write(self.e, id, self.style, &mut text);
         }
         text.push_str(trail);
-        let w = (self.measure)(&text);
+        let w = if self.additive {
+            let w = (self.measure)(lead) + self.style.written.get() + (self.measure)(trail);
+            debug_assert_eq!(w, (self.measure)(&text), "a measure not additive: {text}");
+            w
+        } else {
+            (self.measure)(&text)
+        };
         // A term too long with no bracket to break inside is one piece.
         if !((self.too_long)(w) && self.split(id, lead, trail, first, inner, out)) {
             out.push((text.as_str().to_owned(), first, w));
@@ -192,7 +218,7 @@ impl<W: Copy> Splitter<'_, '_, W> {
         trail: &str,
         first: usize,
         inner: usize,
-        out: &mut Vec<(String, usize, W)>,
+        out: &mut Vec<(String, usize, u32)>,
     ) -> bool {
         let (e, style) = (self.e, self.style);
         let factors: &[Id] = match e.node(id) {
@@ -282,7 +308,7 @@ impl<W: Copy> Splitter<'_, '_, W> {
         after: String,
         first: usize,
         inner: usize,
-        out: &mut Vec<(String, usize, W)>,
+        out: &mut Vec<(String, usize, u32)>,
     ) {
         let last = terms.len() - 1;
         let mut before = Some(before);
