@@ -85,7 +85,7 @@ fn like_terms_are_grouped() {
     let d = derived("rod.toml");
     assert_eq!(
         printed(&d, "moment"),
-        ["a (A_x − B_x) + I′ φ\u{307}² sin β cos β + (1/2) m g L sin β"]
+        ["a (A_x − B_x) + (1/2) m g L sin β + I′ φ\u{307}² sin β cos β"]
     );
 }
 

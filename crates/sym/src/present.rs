@@ -186,8 +186,9 @@ pub fn present(p: &Poly, pres: &Presentation) -> Expr {
     e
 }
 
-/// The terms `ids` with those holding one of `unknowns` first, each part
-/// in its own order.
+/// The terms `ids` with those holding one of `unknowns` first, in their
+/// own order, then the others from the lowest degree in the rates up
+/// ([`order::knowns_by_degree`]).
 fn unknowns_first(e: &Expr, ids: Vec<Id>, unknowns: &[Atom]) -> Vec<Id> {
     fn holds(e: &Expr, id: Id, unknowns: &[Atom]) -> bool {
         match e.node(id) {
@@ -197,8 +198,11 @@ fn unknowns_first(e: &Expr, ids: Vec<Id>, unknowns: &[Atom]) -> Vec<Id> {
             Node::Neg(x) | Node::Pow(x, _) => holds(e, *x, unknowns),
         }
     }
-    let (mut first, rest): (Vec<Id>, Vec<Id>) =
+    let (mut first, mut rest): (Vec<Id>, Vec<Id>) =
         ids.into_iter().partition(|&id| holds(e, id, unknowns));
+    if !first.is_empty() {
+        order::knowns_by_degree(e, &mut rest);
+    }
     first.extend(rest);
     first
 }

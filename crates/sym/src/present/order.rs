@@ -1,10 +1,42 @@
 //! The order of factors in a presented term: constant symbols first in
 //! the file's or the conventional order (m g l, I′ θ̇), and two members of
-//! one cyclic family (x → y → z, 1 → 2 → 3, A → B → C) in cyclic order.
+//! one cyclic family (x → y → z, 1 → 2 → 3, A → B → C) in cyclic order;
+//! and the order of the known terms of an equation after its unknowns
+//! (lowest degree in the rates first: ½ m g L sin β + I′ φ̇² sin β cos β).
 
 use smallvec::SmallVec;
 
 use crate::atom::{Atom, AtomKind, AtomMemo};
+use crate::expr::{Expr, Id, Node};
+
+/// The degree of a presented term in the rates: time-dependent symbols
+/// and constant rates named by Greek letters count, numbers, sin, cos and
+/// the constants that lead a product ([`leading_constant`]) do not; a
+/// bracket counts as its highest-degree term (`(I_3 − I_2) u_2 u_3` is of
+/// degree 2, `½ m g L sin β` of degree 0).
+pub(super) fn rate_degree(e: &Expr, id: Id) -> i32 {
+    match e.node(id) {
+        Node::Num(_) => 0,
+        Node::Atom(a) => {
+            i32::from(matches!(a.kind(), AtomKind::Var { .. }) && !leading_constant(*a))
+        }
+        Node::Add(ts) => ts.iter().map(|&t| rate_degree(e, t)).max().unwrap_or(0),
+        Node::Mul(ts) => ts.iter().map(|&t| rate_degree(e, t)).sum(),
+        Node::Neg(x) => rate_degree(e, *x),
+        Node::Pow(x, k) => rate_degree(e, *x).saturating_mul(*k),
+    }
+}
+
+/// The known terms of a sum that holds an unknown, in the order a
+/// textbook lists them after the unknowns: lowest degree in the rates
+/// first ([`rate_degree`]: the loads — a weight, an applied moment —
+/// before the terms in the rates), each degree in the order it had
+/// (`a (A_x − B_x) + ½ m g L sin β + I′ φ̇² sin β cos β = 0`).
+pub(super) fn knowns_by_degree(e: &Expr, knowns: &mut [Id]) {
+    if knowns.len() > 1 {
+        knowns.sort_by_cached_key(|&id| rate_degree(e, id));
+    }
+}
 
 /// A constant symbol that leads a product (`m g l`), as opposed to a rate,
 /// sin or cos, or a constant named by a Greek letter (a constant rate Ω),
