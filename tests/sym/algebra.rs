@@ -68,6 +68,7 @@ fn renamed(a: Atom) -> Atom {
         AtomKind::Var { name: n, order, .. } => Atom::time(&name(n), order),
         AtomKind::Sin(q) => Atom::sin(renamed(q)).expect("angle"),
         AtomKind::Cos(q) => Atom::cos(renamed(q)).expect("angle"),
+        AtomKind::Sum { .. } => unreachable!("the strategies draw no sum atoms"),
     }
 }
 

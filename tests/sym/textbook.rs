@@ -2,10 +2,15 @@
 //! (`tests/sym/textbook/*.toml`): an abbreviation's own component prints
 //! its definition, a constant ratio prints one way in every solve, like
 //! terms are grouped, and the terms of what the file solves for come
-//! first. The files' printed forms are insta snapshots,
+//! first, the known terms from the lowest degree in the rates; a
+//! coefficient that is a sum of positive constants is divided by and
+//! prints as a fraction over the sum. The files' printed forms are insta
+//! snapshots,
 //! and every presented component expands back to its derived value.
 
-use hdot_sym::derivation::{Derivation, load_str};
+use hdot_num::eval::Tape;
+use hdot_sym::atom::{Atom, AtomKind};
+use hdot_sym::derivation::{Derivation, Value, load_str};
 use hdot_sym::render::{Format, render};
 
 /// A file of `tests/sym/textbook/`, derived.
@@ -108,4 +113,87 @@ fn unknowns_come_first() {
         printed(&d, "force"),
         ["(1/2) m L φ\u{307}² sin β + A_x + B_x"]
     );
+}
+
+/// Issue 21 item 16: a coefficient that is a sum of constants whose terms
+/// are positive for the constants declared `positive` is divided by
+/// exactly; the result prints as a fraction over the sum, the sum's
+/// terms free of fractions (a = m g r² sin β/(I + m r²), the textbook's
+/// g sin β/(1 + I/(m r²)), which the file expects), and equals what
+/// another route gives.
+#[test]
+fn a_sum_of_positive_constants_is_divided_by() {
+    let d = derived("sums.toml");
+    assert_eq!(printed(&d, "a_disk"), ["m g r² sin β/(I + m r²)"]);
+    assert_eq!(
+        printed(&d, "a_pulley"),
+        ["g R² (m_1 − m_2)/(J + R² m_1 + R² m_2)"]
+    );
+    assert_eq!(printed(&d, "alpha"), ["M_a r²/(I L² + I′ r²)"]);
+    let checks: Vec<_> = d.steps.iter().flat_map(|s| &s.checks).collect();
+    assert_eq!(checks.len(), 3);
+    assert!(checks.iter().all(|c| c.holds()));
+    // The value, by the polynomial and by the compiled tape, is the
+    // textbook's g sin β/(1 + I/(m r²)).
+    let (m, g, r, i, beta) = (2.0, 9.81, 0.3, 0.05, 0.4f64);
+    let known = |a: Atom| match a.name() {
+        "m" => Some(m),
+        "g" => Some(g),
+        "r" => Some(r),
+        "I" => Some(i),
+        "beta" => Some(beta),
+        _ => None,
+    };
+    let Value::Scalar(a) = &d.steps.iter().find(|s| s.name == "a_disk").unwrap().value else {
+        panic!("a scalar")
+    };
+    let exact = g * beta.sin() / (1.0 + i / (m * r * r));
+    let by_poly = a.eval(&mut |x| match x.kind() {
+        AtomKind::Sin(q) => known(q).unwrap().sin(),
+        AtomKind::Cos(q) => known(q).unwrap().cos(),
+        _ => known(x).unwrap(),
+    });
+    let tape = Tape::compile_with(std::slice::from_ref(a), &mut |x| match x.kind() {
+        AtomKind::Sin(q) => known(q).map(f64::sin),
+        AtomKind::Cos(q) => known(q).map(f64::cos),
+        _ => known(x),
+    });
+    assert!(
+        tape.atoms().is_empty(),
+        "every atom folded: {:?}",
+        tape.atoms()
+    );
+    let mut by_tape = [0.0];
+    tape.eval(&[], &mut by_tape);
+    for v in [by_poly, by_tape[0]] {
+        assert!(
+            (v - exact).abs() <= 8.0 * f64::EPSILON * exact.abs(),
+            "{v} against {exact}"
+        );
+    }
+}
+
+/// Issue 21 item 16: a sum that could be zero is not divided by: the
+/// error is located at the `solve` and says which sum and why.
+#[test]
+fn a_sum_that_could_be_zero_is_a_located_error() {
+    let file = |positive: &str| {
+        format!(
+            "title = \"t\"\nsource = \"written for the test\"\n[symbols]\nconstants = [\"I\", \"J\", \"M\"]\n\
+             time = [\"phi\"]\npositive = [{positive}]\n[[step]]\nname = \"a\"\n\
+             value = \"solve(I*phi'' - J*phi'' - M, phi'')\"\n"
+        )
+    };
+    let e = load_str("t.toml", &file("\"I\", \"J\"")).unwrap_err();
+    assert_eq!((e.line, e.column), (9, 16), "{e}");
+    assert!(e.message.contains("could be zero"), "{e}");
+    assert!(e.message.contains("I - J"), "{e}");
+    // A sum whose sign is not known because nothing is declared positive.
+    let text = file("").replace("I*phi'' - J*phi''", "I*phi'' + J*phi''");
+    let e = load_str("t.toml", &text).unwrap_err();
+    assert!(e.message.contains("could be zero"), "{e}");
+    // Declared positive, the sum I + J divides.
+    let text = file("\"I\", \"J\"").replace("I*phi'' - J*phi''", "I*phi'' + J*phi''");
+    let d = load_str("t.toml", &text).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(printed(&d, "a"), ["M/(I + J)"]);
 }

@@ -59,6 +59,26 @@ impl Values {
             AtomKind::Var { .. } => self.map.get(&a).copied(),
             AtomKind::Sin(q) => self.map.get(&q).map(|v| (v.0.sin(), 1.0)),
             AtomKind::Cos(q) => self.map.get(&q).map(|v| (v.0.cos(), 1.0)),
+            // A sum of constants: its value, and the sum of its terms'
+            // magnitudes as its size.
+            AtomKind::Sum { sum, .. } => {
+                let mut known = true;
+                let (mut v, mut size) = (0.0, 0.0);
+                for (m, c) in sum.terms() {
+                    let (mut t, mut s) = (c.to_f64(), c.to_f64().abs());
+                    for &(b, e) in m.factors() {
+                        let (bv, bs) = self.get(b).unwrap_or_else(|| {
+                            known = false;
+                            (f64::NAN, f64::NAN)
+                        });
+                        t *= bv.powi(e);
+                        s *= bs.powi(e);
+                    }
+                    v += t;
+                    size += s.abs();
+                }
+                known.then_some((v, size))
+            }
         }
     }
 

@@ -38,7 +38,7 @@
 
 use std::collections::HashMap;
 
-use hdot_sym::atom::Atom;
+use hdot_sym::atom::{Atom, AtomKind};
 use hdot_sym::poly::Poly;
 
 /// One instruction; operands and destination are slot indices. Powers
@@ -86,6 +86,24 @@ fn power_slot(
     };
     powers.insert((a, e), s);
     s
+}
+
+/// The value `known` gives `a`; for a sum of constants, its terms'
+/// sum when `known` gives every atom of it.
+fn known_value(a: Atom, known: &mut dyn FnMut(Atom) -> Option<f64>) -> Option<f64> {
+    match a.kind() {
+        AtomKind::Sum { sum, .. } => {
+            let mut all = true;
+            let v = sum.eval(&mut |b| {
+                known(b).unwrap_or_else(|| {
+                    all = false;
+                    f64::NAN
+                })
+            });
+            all.then_some(v)
+        }
+        _ => known(a),
+    }
 }
 
 fn emit_mul(ops: &mut Vec<Op>, next: &mut u32, a: u32, b: u32) -> u32 {
@@ -150,7 +168,7 @@ impl Tape {
                     let mut coef = c.to_f64();
                     let mut rest = Vec::new();
                     for &(a, e) in m.factors() {
-                        match *value.entry(a).or_insert_with(|| known(a)) {
+                        match *value.entry(a).or_insert_with(|| known_value(a, known)) {
                             Some(v) => coef *= v.powi(e),
                             None => rest.push((a, e)),
                         }

@@ -9,7 +9,11 @@
 //!   (`theta` is order 0, θ̇ is `theta'` of order 1, θ̈ order 2, …). Each
 //!   derivative is an atom of its own: there is no unevaluated derivative
 //!   node anywhere in the core;
-//! * `sin` or `cos` of an angle symbol (order 0, constant or time-dependent).
+//! * `sin` or `cos` of an angle symbol (order 0, constant or time-dependent);
+//! * a *sum of constants* `s` standing as one factor, so that a division
+//!   by it is the factor's power −1 (`M_a/(I′ + I L²/r²)`): see
+//!   `poly/sums.rs` for its normal form and the reduction that keeps the
+//!   canonical form unique.
 //!
 //! Atom ids depend on the order of interning, so nothing that is printed
 //! or compared across processes may depend on them: printers sort by
@@ -36,6 +40,15 @@ pub enum AtomKind {
     Sin(Atom),
     /// `cos` of an angle (an order-0 [`AtomKind::Var`] atom).
     Cos(Atom),
+    /// A sum of constant symbols in its normal form (`poly/sums.rs`),
+    /// which occurs only to negative powers: `1/(m r² + I)`. `text` is
+    /// the sum in source syntax, its name for sorting and messages.
+    Sum {
+        /// The sum.
+        sum: &'static crate::poly::Poly,
+        /// The sum in source syntax (`I + m*r^2`).
+        text: &'static str,
+    },
 }
 
 /// A handle to an interned atom. Copy, compare and hash in O(1).
@@ -47,6 +60,8 @@ struct Interner {
     kinds: Vec<AtomKind>,
     ids: HashMap<AtomKind, Atom>,
     names: HashMap<String, &'static str>,
+    /// Sum atoms by their text, so that a sum is leaked once.
+    sums: HashMap<&'static str, Atom>,
 }
 
 fn interner() -> &'static RwLock<Interner> {
@@ -133,6 +148,28 @@ impl Atom {
     pub fn cos(angle: Atom) -> Option<Atom> {
         angle.is_angle().then(|| intern(AtomKind::Cos(angle)))
     }
+
+    /// The sum `s` as one factor; `s` must be in the normal form of
+    /// `poly/sums.rs` (the caller's duty: [`crate::poly::Poly::recip_sum`]).
+    pub(crate) fn sum(s: &crate::poly::Poly) -> Atom {
+        let text = intern_name(&s.to_string());
+        if let Some(a) = interner()
+            .read()
+            .expect("atom interner poisoned")
+            .sums
+            .get(text)
+        {
+            return *a;
+        }
+        let sum: &'static crate::poly::Poly = Box::leak(Box::new(s.clone()));
+        let a = intern(AtomKind::Sum { sum, text });
+        interner()
+            .write()
+            .expect("atom interner poisoned")
+            .sums
+            .insert(text, a);
+        a
+    }
 }
 
 /// Atom kinds in chunks that never move once written, so that reading a
@@ -192,6 +229,7 @@ impl Atom {
         match self.kind() {
             AtomKind::Var { name, .. } => name,
             AtomKind::Sin(a) | AtomKind::Cos(a) => a.name(),
+            AtomKind::Sum { text, .. } => text,
         }
     }
 
@@ -205,6 +243,7 @@ impl Atom {
         match self.kind() {
             AtomKind::Var { time, .. } => time,
             AtomKind::Sin(a) | AtomKind::Cos(a) => a.is_time_dependent(),
+            AtomKind::Sum { .. } => false,
         }
     }
 
@@ -241,13 +280,14 @@ impl Atom {
     }
 
     /// An order that depends only on names, for stable printing:
-    /// constants first, then time-dependent symbols by derivative order
-    /// and name, then `sin`, then `cos`.
+    /// constants first, then sums of constants, then time-dependent
+    /// symbols by derivative order and name, then `sin`, then `cos`.
     pub fn sort_key(self) -> (u8, u32, &'static str) {
         match self.kind() {
             AtomKind::Var {
                 name, time: false, ..
             } => (0, 0, name),
+            AtomKind::Sum { text, .. } => (0, 1, text),
             AtomKind::Var {
                 name,
                 time: true,
@@ -272,6 +312,7 @@ impl fmt::Display for Atom {
             }
             AtomKind::Sin(a) => write!(f, "sin({a})"),
             AtomKind::Cos(a) => write!(f, "cos({a})"),
+            AtomKind::Sum { text, .. } => write!(f, "({text})"),
         }
     }
 }

@@ -20,7 +20,7 @@ use crate::rational::Rational;
 /// The derivative of a single atom, as a list of `(monomial, coefficient)`.
 fn atom_dt(a: Atom) -> Vec<(Monomial, Rational)> {
     match a.kind() {
-        AtomKind::Var { time: false, .. } => vec![],
+        AtomKind::Var { time: false, .. } | AtomKind::Sum { .. } => vec![],
         AtomKind::Var { time: true, .. } => {
             vec![(
                 Monomial::atom(a.derivative().expect("time symbol"), 1),

@@ -13,7 +13,7 @@
 
 use smallvec::SmallVec;
 
-use crate::atom::Atom;
+use crate::atom::{Atom, AtomKind};
 use crate::poly::{Monomial, Poly};
 use crate::rational::Rational;
 
@@ -268,7 +268,11 @@ impl Expr {
         for n in &self.nodes {
             let v = match n {
                 Node::Num(r) => Poly::constant(r.clone()),
-                Node::Atom(a) => Poly::term(Monomial::atom(*a, 1), Rational::ONE),
+                Node::Atom(a) => match a.kind() {
+                    // A sum of constants stands for its terms.
+                    AtomKind::Sum { sum, .. } => sum.clone(),
+                    _ => Poly::term(Monomial::atom(*a, 1), Rational::ONE),
+                },
                 Node::Add(c) => c.iter().map(|i| vals[i.0 as usize].clone()).sum(),
                 Node::Mul(c) => c
                     .iter()
@@ -277,9 +281,12 @@ impl Expr {
                 Node::Pow(i, e) if *e >= 0 => vals[i.0 as usize].pow(e.unsigned_abs()),
                 // Negative powers are of divisors (the invariant); anything
                 // else has no polynomial value and expands to zero.
-                Node::Pow(i, e) => vals[i.0 as usize]
-                    .inverse_divisor()
-                    .map_or_else(Poly::zero, |p| p.pow(e.unsigned_abs())),
+                Node::Pow(i, e) => {
+                    let base = &vals[i.0 as usize];
+                    base.inverse_divisor()
+                        .or_else(|| base.inverse_with_sum())
+                        .map_or_else(Poly::zero, |p| p.pow(e.unsigned_abs()))
+                }
             };
             vals.push(v);
         }
@@ -292,7 +299,10 @@ impl Expr {
         for n in &self.nodes {
             let v = match n {
                 Node::Num(r) => r.to_f64(),
-                Node::Atom(a) => value(*a),
+                Node::Atom(a) => match a.kind() {
+                    AtomKind::Sum { sum, .. } => sum.eval(value),
+                    _ => value(*a),
+                },
                 Node::Add(c) => c.iter().map(|i| vals[i.0 as usize]).sum(),
                 Node::Mul(c) => c.iter().map(|i| vals[i.0 as usize]).product(),
                 Node::Neg(i) => -vals[i.0 as usize],

@@ -52,6 +52,7 @@ use crate::rational::Rational;
 mod monomial;
 mod ops;
 mod sort;
+mod sums;
 mod trig;
 pub use monomial::{Exp, Monomial};
 pub(crate) use monomial::{Trig, trig_by_angle_of, trig_of};
@@ -67,7 +68,7 @@ pub const DIVISOR_RULE: &str = "only division by a non-zero number and by produc
 fn variable(a: Atom) -> Atom {
     match a.kind() {
         AtomKind::Sin(angle) | AtomKind::Cos(angle) => angle,
-        AtomKind::Var { .. } => a,
+        AtomKind::Var { .. } | AtomKind::Sum { .. } => a,
     }
 }
 
@@ -75,12 +76,22 @@ fn is_trig(a: Atom) -> bool {
     matches!(a.kind(), AtomKind::Sin(_) | AtomKind::Cos(_))
 }
 
+/// An atom whose negative powers call for the reduction of denominators:
+/// `sin`, `cos` and a sum of constants (`poly/sums.rs`).
+fn reduces(a: Atom) -> bool {
+    matches!(
+        a.kind(),
+        AtomKind::Sin(_) | AtomKind::Cos(_) | AtomKind::Sum { .. }
+    )
+}
+
 /// A canonical polynomial: terms sorted by monomial, no zero coefficients.
 ///
 /// Invariant: canonical (see the module doc), so `==` is mathematical
 /// equality. `trig_den` records whether some term has a negative power of
-/// `sin` or `cos` (it is a function of `terms`, kept so that arithmetic
-/// on polynomials without trigonometric denominators skips the reduction).
+/// `sin`, `cos` or a sum of constants (it is a function of `terms`, kept
+/// so that arithmetic on polynomials without such denominators skips the
+/// reduction).
 #[derive(Clone, Default, PartialEq, Eq, Hash)]
 pub struct Poly {
     terms: Vec<(Monomial, Rational)>,
@@ -310,7 +321,7 @@ impl Poly {
             }
             let angles = rest.atoms().into_iter().filter_map(|a| match a.kind() {
                 AtomKind::Sin(q) | AtomKind::Cos(q) => Some(q),
-                AtomKind::Var { .. } => None,
+                AtomKind::Var { .. } | AtomKind::Sum { .. } => None,
             });
             let mut divided = false;
             for q in angles {
@@ -362,7 +373,8 @@ impl Poly {
         }))
     }
 
-    /// True when some term holds a negative power of `sin` or `cos`.
+    /// True when some term holds a negative power of `sin`, `cos` or a
+    /// sum of constants (`poly/sums.rs`).
     pub fn has_trig_denominator(&self) -> bool {
         self.trig_den
     }
@@ -393,7 +405,13 @@ impl Poly {
         for (m, c) in &self.terms {
             let mut p = c.to_f64();
             for &(a, e) in m.factors() {
-                p *= value(a).powi(e);
+                // A sum of constants (to a negative power) is its terms' sum.
+                let v = if e < 0 && sums::is_sum(a) {
+                    Poly::atom_value(a).eval(value)
+                } else {
+                    value(a)
+                };
+                p *= v.powi(e);
             }
             sum += p;
         }

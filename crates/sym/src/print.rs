@@ -329,6 +329,9 @@ fn write_fraction(e: &Expr, nums: &[Id], dens: &[Id], style: &Cached, out: &mut 
         }
         _ => write_product(e, nums, style, &mut num),
     }
+    // A built-up fraction over one sum of constants needs no brackets:
+    // the fraction bar groups it (`\frac{M_a}{I' + I L^2}`).
+    let alone = den_number.is_none() && dens.len() == 1 && !style.inner.paren_fraction_factor();
     let dens: Vec<String> = den_number
         .into_iter()
         .chain(dens.iter().map(|&d| {
@@ -337,6 +340,11 @@ fn write_fraction(e: &Expr, nums: &[Id], dens: &[Id], style: &Cached, out: &mut 
             };
             let mut b = String::new();
             match e.node(*base) {
+                Node::Atom(a) if alone && *k == -1 && matches!(a.kind(), AtomKind::Sum { .. }) => {
+                    if let AtomKind::Sum { sum, .. } = a.kind() {
+                        b = print(&Expr::from_poly(sum), style.inner);
+                    }
+                }
                 Node::Atom(_) => write(e, *base, style, &mut b),
                 _ => paren(e, *base, style, &mut b),
             }
@@ -366,6 +374,13 @@ pub use breaking::{break_pieces, measured_pieces};
 
 pub use names::{greek_names, latex_symbol, unicode_symbol};
 pub(crate) use names::{primed_base, split_name, superscript};
+
+/// A sum of constants standing as one factor (`poly/sums.rs`): its terms
+/// in the style's brackets, `(I′ r² + I L²)`.
+pub(crate) fn sum_atom(style: &dyn Style, sum: &crate::poly::Poly) -> String {
+    let (l, r) = style.parens();
+    format!("{l}{}{r}", print(&Expr::from_poly(sum), style))
+}
 
 fn is_trig(n: &Node) -> bool {
     matches!(n, Node::Atom(a) if matches!(a.kind(), AtomKind::Sin(_) | AtomKind::Cos(_)))
@@ -400,6 +415,7 @@ impl Style for Unicode {
             AtomKind::Var { name, order, .. } => unicode_symbol(name, order),
             AtomKind::Sin(q) => format!("sin {}", self.atom(q)),
             AtomKind::Cos(q) => format!("cos {}", self.atom(q)),
+            AtomKind::Sum { sum, .. } => sum_atom(self, sum),
         }
     }
     fn num(&self, r: &Rational) -> String {
@@ -450,6 +466,7 @@ impl Style for Latex {
             AtomKind::Var { name, order, .. } => latex_symbol(name, order),
             AtomKind::Sin(q) => format!(r"\sin{}", latex_fn_arg(&self.atom(q))),
             AtomKind::Cos(q) => format!(r"\cos{}", latex_fn_arg(&self.atom(q))),
+            AtomKind::Sum { sum, .. } => sum_atom(self, sum),
         }
     }
     fn num(&self, r: &Rational) -> String {
@@ -516,6 +533,7 @@ impl Style for Sympy<'_> {
             AtomKind::Var { name, order, .. } => format!("{}.diff(t, {order})", (self.var)(name)),
             AtomKind::Sin(q) => format!("sin({})", self.atom(q)),
             AtomKind::Cos(q) => format!("cos({})", self.atom(q)),
+            AtomKind::Sum { sum, .. } => sum_atom(self, sum),
         }
     }
     fn num(&self, r: &Rational) -> String {

@@ -24,7 +24,14 @@ impl Poly {
     pub fn subst(&self, rule: &mut dyn FnMut(Atom) -> Option<Poly>) -> Poly {
         let mut cache: FxHashMap<Atom, Option<Poly>> = FxHashMap::default();
         for a in self.atoms() {
-            cache.insert(a, rule(a));
+            let mut r = rule(a);
+            // A sum of constants is replaced by its terms, substituted.
+            if r.is_none()
+                && let AtomKind::Sum { sum, .. } = a.kind()
+            {
+                r = Some(sum.subst(rule)).filter(|s| s != sum);
+            }
+            cache.insert(a, r);
         }
         if cache.values().all(Option::is_none) {
             return self.clone();
@@ -41,7 +48,7 @@ impl Poly {
                     // A constant in a denominator: only an invertible
                     // replacement can stand there; otherwise the atom stays
                     // (callers detect it, e.g. "I occurs in a denominator").
-                    match r.inverse_divisor() {
+                    match r.inverse_divisor().or_else(|| r.inverse_with_sum()) {
                         Some(inv) => inv.pow(e.unsigned_abs()),
                         None => Poly::term(
                             crate::poly::Monomial::atom(a, e),
@@ -117,5 +124,6 @@ pub fn mentions_symbol(p: &Poly, sym: Atom) -> bool {
     p.atoms().into_iter().any(|a| match a.kind() {
         AtomKind::Var { .. } => a.base() == sym,
         AtomKind::Sin(q) | AtomKind::Cos(q) => q == sym,
+        AtomKind::Sum { sum, .. } => mentions_symbol(sum, sym),
     })
 }

@@ -422,7 +422,7 @@ impl LinearMatrices {
             .map(|&a| match a.kind() {
                 AtomKind::Sin(_) => Input::Sin,
                 AtomKind::Cos(_) => Input::Cos,
-                AtomKind::Var { .. } => Input::Value,
+                AtomKind::Var { .. } | AtomKind::Sum { .. } => Input::Value,
             })
             .collect();
         Ok(LinearMatrices {
@@ -439,6 +439,18 @@ fn check_atom(a: Atom, constants: &BTreeMap<String, f64>, parameter: &str) -> Re
     let q = match a.kind() {
         AtomKind::Sin(q) | AtomKind::Cos(q) => q,
         AtomKind::Var { .. } => a,
+        AtomKind::Sum { sum, .. } => {
+            if sum.atoms().iter().any(|b| b.name() == parameter) {
+                return Err(format!(
+                    "the parameter `{parameter}` occurs in the sum {a} that the matrices divide by: \
+                     sweep a parameter that is not in a denominator"
+                ));
+            }
+            return sum
+                .atoms()
+                .into_iter()
+                .try_for_each(|b| check_atom(b, constants, parameter));
+        }
     };
     if q.is_time_dependent() {
         return Err(format!(
@@ -463,6 +475,8 @@ fn value_of(a: Atom, constants: &BTreeMap<String, f64>) -> Option<f64> {
         AtomKind::Sin(q) => constants.get(q.name()).map(|v| v.sin()),
         AtomKind::Cos(q) => constants.get(q.name()).map(|v| v.cos()),
         AtomKind::Var { name, .. } => constants.get(name).copied(),
+        // Folded by the tape from its atoms' values.
+        AtomKind::Sum { .. } => None,
     }
 }
 

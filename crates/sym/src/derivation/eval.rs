@@ -235,7 +235,24 @@ impl Context<'_> {
         for it in items {
             if let AstKind::Recip(d) = &it.kind {
                 let p = self.scalar(d, base)?;
-                let Some(inv) = p.inverse_divisor() else {
+                // A sum of constants known not to be zero divides too.
+                let inv = match p.inverse_divisor() {
+                    Some(inv) => Some(inv),
+                    None => match super::ops::sum_inverse(&p, &self.positive) {
+                        Some(Ok(inv)) => Some(inv),
+                        Some(Err(why)) => {
+                            return err(
+                                d.span,
+                                format!(
+                                    "cannot divide by {}: {why}",
+                                    crate::expr::Expr::from_poly(&p)
+                                ),
+                            );
+                        }
+                        None => None,
+                    },
+                };
+                let Some(inv) = inv else {
                     let what = if p.is_zero() {
                         "division by zero".to_owned()
                     } else {

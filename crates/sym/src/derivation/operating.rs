@@ -119,7 +119,7 @@ impl OperatingPoint {
             AtomKind::Sin(q) | AtomKind::Cos(q) => {
                 q.is_time_dependent() && which(q) && self.value(q).is_some()
             }
-            AtomKind::Var { .. } => false,
+            AtomKind::Var { .. } | AtomKind::Sum { .. } => false,
         });
         match left {
             Some(a) => Err(match a.kind() {

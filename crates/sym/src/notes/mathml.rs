@@ -31,6 +31,7 @@ impl Style for MathMl {
             AtomKind::Var { name, order, .. } => symbol(name, order),
             AtomKind::Sin(q) => format!("<mrow><mi>sin</mi>{APPLY}{}</mrow>", self.atom(q)),
             AtomKind::Cos(q) => format!("<mrow><mi>cos</mi>{APPLY}{}</mrow>", self.atom(q)),
+            AtomKind::Sum { sum, .. } => format!("<mrow>{}</mrow>", print::sum_atom(self, sum)),
         }
     }
     fn num(&self, r: &Rational) -> String {

@@ -4,7 +4,7 @@
 
 use smallvec::SmallVec;
 
-use super::is_trig;
+use super::reduces;
 use crate::atom::{Atom, AtomKind};
 use crate::limits;
 
@@ -197,9 +197,9 @@ impl Monomial {
         self.mul(&Monomial(other.0.iter().map(|&(a, e)| (a, -e)).collect()))
     }
 
-    /// True when some `sin` or `cos` atom has a negative exponent.
+    /// True when some `sin`, `cos` or sum atom has a negative exponent.
     pub fn has_trig_denominator(&self) -> bool {
-        self.0.iter().any(|f| f.1 < 0 && is_trig(f.0))
+        self.0.iter().any(|f| f.1 < 0 && reduces(f.0))
     }
 
     /// The same monomial with every exponent negated.
@@ -239,7 +239,7 @@ pub(crate) fn trig_of(a: Atom) -> Trig {
     match a.kind() {
         AtomKind::Sin(q) => Some((false, q)),
         AtomKind::Cos(q) => Some((true, q)),
-        AtomKind::Var { .. } => None,
+        AtomKind::Var { .. } | AtomKind::Sum { .. } => None,
     }
 }
 

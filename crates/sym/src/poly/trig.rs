@@ -14,6 +14,9 @@ impl Poly {
     /// Canonical form of terms that may hold negative powers of `sin` and
     /// `cos`, each already free of `sin²` where its exponent is ≥ 2.
     pub(super) fn reduce_trig(terms: Vec<(Monomial, Rational)>) -> Poly {
+        if let Some(p) = Poly::reduce_sums(&terms) {
+            return p;
+        }
         // The denominator D: for every trig atom, its most negative exponent.
         let mut den: Vec<(Atom, Exp)> = Vec::new();
         for (m, _) in &terms {
@@ -41,7 +44,9 @@ impl Poly {
                 let divided = match a.kind() {
                     AtomKind::Cos(_) => divide_by_cos(&n, *a),
                     AtomKind::Sin(angle) => divide_by_sin(&n, *a, Atom::cos(angle).expect("angle")),
-                    AtomKind::Var { .. } => unreachable!("only trig atoms are in D"),
+                    AtomKind::Var { .. } | AtomKind::Sum { .. } => {
+                        unreachable!("only trig atoms are in D")
+                    }
                 };
                 match divided {
                     Some(q) => {

@@ -74,6 +74,7 @@ pub(super) fn eliminable(def: &Poly) -> Vec<(Atom, Monomial, Rational)> {
             .any(|(a, _)| match a.kind() {
                 AtomKind::Var { .. } => a.base() == v.base(),
                 AtomKind::Sin(q) | AtomKind::Cos(q) => q == v.base(),
+                AtomKind::Sum { .. } => false,
             });
         if !clash {
             found.push((*v, coef, c.clone()));

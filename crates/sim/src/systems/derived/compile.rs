@@ -170,6 +170,20 @@ impl Resolver<'_> {
         };
         Ok(match a.kind() {
             AtomKind::Var { time: false, .. } => Source::Value(constant(a)?),
+            // A sum of constants (a denominator I′ + I L²/r²): its value.
+            AtomKind::Sum { sum, .. } => {
+                let mut missing = None;
+                let v = sum.eval(&mut |b| {
+                    constant(b).unwrap_or_else(|e| {
+                        missing.get_or_insert(e);
+                        f64::NAN
+                    })
+                });
+                match missing {
+                    Some(e) => return Err(e),
+                    None => Source::Value(v),
+                }
+            }
             AtomKind::Var { order: 0, .. } if coord(a).is_some() => {
                 Source::Coordinate(coord(a).expect("checked"))
             }

@@ -188,7 +188,7 @@ fn moves(a: Atom, speeds: &[Atom]) -> bool {
         AtomKind::Var {
             order, time: true, ..
         } => order > 0 || speeds.contains(&a),
-        AtomKind::Var { .. } | AtomKind::Sin(_) | AtomKind::Cos(_) => false,
+        AtomKind::Var { .. } | AtomKind::Sin(_) | AtomKind::Cos(_) | AtomKind::Sum { .. } => false,
     }
 }
 

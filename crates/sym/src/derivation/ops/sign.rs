@@ -31,7 +31,7 @@ fn eval(c: &Call<'_, '_>) -> R<Value> {
 /// +1 or −1 when every term of `p` has that sign for positive values of
 /// the `positive` constants (even powers of any atom also count as
 /// positive); `None` otherwise.
-fn sign_of(p: &Poly, positive: &[Atom]) -> Option<i64> {
+pub(crate) fn sign_of(p: &Poly, positive: &[Atom]) -> Option<i64> {
     if p.is_zero() {
         return None;
     }

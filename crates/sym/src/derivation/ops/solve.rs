@@ -1,10 +1,13 @@
 //! `solve(eq, x)` and `solve(eqs, [x, y, …])`: linear equations solved
-//! exactly, dividing only by what the canonical form can divide by; and
+//! exactly, dividing only by what the canonical form can divide by (and by
+//! a sum of constants known not to be zero: φ̈ = M_a/(I′ + I L²/r²)); and
 //! `solve(eq, x^k)`, an equation in which x occurs only as x^k (the
 //! conical pendulum's φ̇²) solved for that power.
 
 use super::mass_matrix::system;
+use super::sign::sign_of;
 use super::{Call, Op};
+use crate::atom::Atom;
 use crate::derivation::context::R;
 use crate::derivation::value::Value;
 use crate::expr::Expr;
@@ -17,7 +20,9 @@ pub(crate) const SOLVE: Op = Op {
     names: &["solve"],
     signature: "solve(eq, x), solve(eqs, [x, y, …])",
     doc: "the values of the unknowns that make the equations (a scalar, a vector or a `list`) zero, when they occur \
-          linearly and the coefficient matrix's determinant can be divided by (numbers, constants, sin and cos: \
+          linearly and the coefficient matrix's determinant can be divided by (numbers, constants, sin and cos, \
+          and a sum of constants whose terms all have one sign for the constants declared `positive`, such as \
+          I′ + I L²/r²: \
           otherwise use `mass_matrix`/`forcing`); a factor common to all terms of an equation is divided out first. \
           A vector equation in three unknowns gives a vector; otherwise one unknown gives a scalar and several a \
           list labelled by the unknowns (θ̈ = …). `solve(eq, x^k)` solves one equation in which x occurs only as \
@@ -39,7 +44,8 @@ fn eval(c: &Call<'_, '_>) -> R<Value> {
     let mut m = m;
     let mut f = f;
     divide_common(&mut m, &mut f);
-    let x = solve_system(&m, &f).map_err(|msg| c.cx.at(c.base, c.args[0].span, msg))?;
+    let x =
+        solve_known(&m, &f, &c.cx.positive).map_err(|msg| c.cx.at(c.base, c.args[0].span, msg))?;
     Ok(match v {
         Value::Vector(_, frame)
             if unknowns.len() == 3 && unknowns.iter().all(|u| u.order() == 0) =>
@@ -100,7 +106,8 @@ fn solve_power(c: &Call<'_, '_>, base: &Ast, k: u32) -> R<Value> {
     let mut m = vec![vec![Poly::from_terms(coefficient)]];
     let mut f = vec![-&Poly::from_terms(rest)];
     divide_common(&mut m, &mut f);
-    let x = solve_system(&m, &f).map_err(|msg| c.cx.at(c.base, c.args[0].span, msg))?;
+    let x =
+        solve_known(&m, &f, &c.cx.positive).map_err(|msg| c.cx.at(c.base, c.args[0].span, msg))?;
     Ok(Value::Scalar(x.into_iter().next().expect("one unknown")))
 }
 
@@ -127,6 +134,29 @@ fn divide_common(m: &mut [Vec<Poly>], f: &mut [Poly]) {
 
 /// `M x = f` by Cramer's rule, when `det M` can be divided by.
 pub(crate) fn solve_system(m: &[Vec<Poly>], f: &[Poly]) -> Result<Vec<Poly>, String> {
+    solve_known(m, f, &[])
+}
+
+/// The inverse of `det` when it is a divisor times a sum of constants
+/// whose terms all have one sign for the `positive` constants (so that it
+/// cannot be zero): `1/(I′ + I L²/r²)` is `r²/(I′ r² + I L²)`. `Err` with
+/// the reason when it is such a sum whose sign is not known.
+pub(crate) fn sum_inverse(det: &Poly, positive: &[Atom]) -> Option<Result<Poly, String>> {
+    let (k, s) = det.sum_factor()?;
+    let k_inv = k.inverse_divisor()?;
+    Some(match sign_of(&s, positive) {
+        Some(_) => Ok(&k_inv * &Poly::recip_sum(&s)),
+        None => Err(format!(
+            "{} could be zero: a sum of constants is divided by only when every term has one sign for the \
+             constants declared positive (`[symbols] positive = [...]`; even powers count as positive)",
+            factored(&s)
+        )),
+    })
+}
+
+/// [`solve_system`], dividing also by a sum of constants that is known not
+/// to be zero for the `positive` constants ([`sum_inverse`]).
+fn solve_known(m: &[Vec<Poly>], f: &[Poly], positive: &[Atom]) -> Result<Vec<Poly>, String> {
     let n = m.len();
     if n > 16 {
         return Err(format!("{n} unknowns: at most 16 can be solved for"));
@@ -138,18 +168,30 @@ pub(crate) fn solve_system(m: &[Vec<Poly>], f: &[Poly]) -> Result<Vec<Poly>, Str
                 .into(),
         );
     }
-    let Some(inv) = det.inverse_divisor() else {
-        let what = if n == 1 {
-            "the coefficient"
-        } else {
-            "the determinant of the coefficients"
-        };
-        return Err(format!(
-            "{what} is {}, which cannot be divided by ({}); write the equations in mass-matrix form with \
-             mass_matrix(…) and forcing(…) instead",
-            factored(&det),
-            crate::poly::DIVISOR_RULE
-        ));
+    let what = if n == 1 {
+        "the coefficient"
+    } else {
+        "the determinant of the coefficients"
+    };
+    let inv = match det.inverse_divisor() {
+        Some(inv) => inv,
+        None => match sum_inverse(&det, positive) {
+            Some(Ok(inv)) => inv,
+            Some(Err(why)) => {
+                return Err(format!(
+                    "{what} is {}, which cannot be divided by: {why}",
+                    factored(&det)
+                ));
+            }
+            None => {
+                return Err(format!(
+                    "{what} is {}, which cannot be divided by ({}); write the equations in mass-matrix form \
+                     with mass_matrix(…) and forcing(…) instead",
+                    factored(&det),
+                    crate::poly::DIVISOR_RULE
+                ));
+            }
+        },
     };
     Ok((0..n)
         .map(|j| {
