@@ -32,6 +32,8 @@ mod verify_supports;
 mod verify_meanings;
 // Generalized quantities under [motion]'s rules (constrained partial velocities).
 mod constrained;
+// Kane's generalized active and inertia forces on the particles.
+mod verify_kane;
 // Line bodies and point masses: moments of inertia declared zero.
 mod line_bodies;
 // Mutated derivations rejected by verification (issue 9).

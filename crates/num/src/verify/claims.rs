@@ -370,18 +370,25 @@ fn complete_rates(d: &Derivation, solved: &[Atom], v: &mut Values) -> Result<(),
 }
 
 /// Whether a meaning is a law of motion: every quantity in it is one the
-/// motion requires (a force, moment or generalized force) or a load
-/// (weight, its moment or generalized weight, an applied value), and at
+/// motion requires (a force, moment, generalized force or Kane's
+/// generalized inertia force) or a load (weight, its moment, generalized
+/// weight or Kane's generalized active force, an applied value), and at
 /// least one is required by the motion.
 pub(crate) fn is_law(m: &Meaning) -> bool {
     fn walk(m: &Meaning, required: &mut bool) -> bool {
         match m {
             Meaning::Quantity(q, _) => match q {
-                Quantity::Force | Quantity::Moment | Quantity::GeneralizedForce => {
+                Quantity::Force
+                | Quantity::Moment
+                | Quantity::GeneralizedForce
+                | Quantity::GeneralizedInertiaForce => {
                     *required = true;
                     true
                 }
-                Quantity::Weight | Quantity::WeightMoment | Quantity::GeneralizedWeight => true,
+                Quantity::Weight
+                | Quantity::WeightMoment
+                | Quantity::GeneralizedWeight
+                | Quantity::GeneralizedActiveForce => true,
                 _ => false,
             },
             Meaning::Applied(_) => true,

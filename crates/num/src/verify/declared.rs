@@ -24,6 +24,7 @@ use rand_chacha::ChaCha8Rng;
 use super::draw::{Draw, apply, constrain, draw, for_step};
 use super::knowns::bind_knowns;
 use super::means::{against_of, frame_index, meaning_value};
+use super::speeds::draw_consistent;
 use super::world::World;
 use super::{Comparison, StepCheck, VerifyError, claims, declaration};
 use crate::bind::Values;
@@ -248,6 +249,7 @@ fn compare_step(
         for a in unknowns {
             zero.set(*a, 0.0, 0.0);
         }
+        draw_consistent(d, &mut zero)?;
         constrain(d, &mut zero, &c.meaning.given)?;
         let (x0, mut scale) = at(&zero)?;
         let direct: Vec<f64> = if matches!(c.meaning.meaning, Meaning::Forcing(..)) {
@@ -257,6 +259,7 @@ fn compare_step(
             for a in unknowns {
                 let mut unit = zero.clone();
                 unit.set(*a, 1.0, 1.0);
+                draw_consistent(d, &mut unit)?;
                 constrain(d, &mut unit, &c.meaning.given)?;
                 let (xj, sj) = at(&unit)?;
                 scale = scale.max(sj);

@@ -75,13 +75,13 @@ pub static COMBINATORS: &[Combinator] = &[
     Combinator {
         name: "mass_matrix",
         call: "mass_matrix(X, [q1'', …])",
-        doc: "of a step `mass_matrix(eq, [q1'', …])`: column j is X at q̈ = e_j minus X at q̈ = 0 (X a scalar or a `list(…)`)",
+        doc: "of a step `mass_matrix(eq, [q1'', …])`: column j is X at q̈ = e_j minus X at q̈ = 0 (X a scalar or a `list(…)`); for the rates of generalized speeds `[u1', …]`, the dependent speeds' rates and the coordinates' accelerations follow them through the constraint rows and `[kinematics]`",
         eval: inner,
     },
     Combinator {
         name: "forcing",
         call: "forcing(X, [q1'', …])",
-        doc: "of a step `forcing(eq, [q1'', …])`: −X at q̈ = 0",
+        doc: "of a step `forcing(eq, [q1'', …])`: −X at q̈ = 0 (at u̇ = 0 for speeds, as above)",
         eval: inner,
     },
     Combinator {

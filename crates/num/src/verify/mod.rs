@@ -37,6 +37,7 @@ mod knowns;
 mod linear;
 pub mod means;
 pub mod motion;
+mod partials;
 pub mod quantities;
 mod reactions;
 mod speeds;

@@ -7,7 +7,11 @@
 use hdot_sym::derivation::physics::{Arg, Bodies, Quantity};
 use nalgebra::{Matrix3, Vector3};
 
+use hdot_sym::derivation::Load;
+
 use super::VerifyError;
+use super::partials::partials;
+use super::reactions::{acts_on, load_vector};
 use super::world::{World, vee};
 
 /// A measured value: in N's axes for a vector, in the named frame's axes
@@ -172,6 +176,20 @@ pub static REGISTRY: &[Measure] = &[
         doc: "∂T/∂q with the other coordinates and every rate held: T = Σ ½ m v² measured at nine values of q spaced evenly around the circle, differentiated as the trigonometric polynomial through them (exact for an angle, which enters through sin and cos); for a coordinate that enters the points' places or a frame's angular velocity as itself (a length), central differences at q ± ½, q ± 1, Richardson-extrapolated (exact for T of degree ≤ 4 in q)",
         measured_as: "∂(Σ ½ m v²)/∂q from T at neighbouring q",
         compute: kinetic_energy_partial,
+    },
+    Measure {
+        quantity: Quantity::GeneralizedActiveForce,
+        call: "generalized_active_force(body, u)",
+        doc: "Kane's F_r for the independent speed u = u_r: Σ m g · v_r over the particles plus v_r · F of each `[[load]]` force at its point and ω_r · T of each torque on its frame (on the body's points and frame, or every load for `system`); v_r and ω_r are the *constrained* partial velocities — the velocities at the drawn state less those with u_r raised by one, the dependent speeds solved again from the `kane` step's constraint rows and the coordinates' rates from `[kinematics]` (the velocities are linear in the speeds, so the difference is exact up to rounding)",
+        measured_as: "Σ m g · v_r + Σ v_r · F + Σ ω_r · T",
+        compute: generalized_active_force,
+    },
+    Measure {
+        quantity: Quantity::GeneralizedInertiaForce,
+        call: "generalized_inertia_force(body, u)",
+        doc: "Kane's F_r* for the independent speed u = u_r: −Σ m a · v_r over the particles, v_r the constrained partial velocities as above; a `kane` step is −(F_r + F_r*) for each of its speeds",
+        measured_as: "−Σ m a · v_r",
+        compute: generalized_inertia_force,
     },
     Measure {
         quantity: Quantity::PointVelocity,
@@ -485,6 +503,51 @@ fn enters_as_itself(w: &World<'_>, q: hdot_sym::atom::Atom) -> bool {
         })
         .chain(w.d.frames.iter().flat_map(|f| f.omega.0.iter()));
     polys.map(|p| w.d.unfold(p)).any(|p| p.atoms().contains(&q))
+}
+
+/// The speed argument `a` of a Kane quantity.
+fn speed(a: &Arg) -> hdot_sym::atom::Atom {
+    match a {
+        Arg::Speed(u) => *u,
+        _ => unreachable!("validated by hdot-sym"),
+    }
+}
+
+fn generalized_active_force(w: &World<'_>, a: &[Arg]) -> Out {
+    let (b, pv) = (bodies(&a[0]), partials(w, speed(&a[1]))?);
+    let g = w.gravity;
+    let (mut v, mut s) = pv.particles(b).zip(w.particles(b)).fold(
+        (0.0, 0.0),
+        |(v, s), ((vr, mag), p)| (v + p.m * g.dot(&vr), s + p.m * g.norm() * mag),
+    );
+    for load in w.d.loads.iter().filter(|l| acts_on(w.d, l, b)) {
+        let (f, size, (vr, mag)) = match load {
+            Load::Force { point, force, frame } => {
+                let (f, size) = load_vector(w, force, *frame)?;
+                (f, size, pv.point(point))
+            }
+            Load::Torque {
+                on,
+                torque,
+                in_frame,
+            } => {
+                let (t, size) = load_vector(w, torque, *in_frame)?;
+                (t, size, pv.frame(*on))
+            }
+        };
+        v += f.dot(&vr);
+        s += size * mag;
+    }
+    Ok((Measured::Scalar(v), s))
+}
+
+fn generalized_inertia_force(w: &World<'_>, a: &[Arg]) -> Out {
+    let (b, pv) = (bodies(&a[0]), partials(w, speed(&a[1]))?);
+    let (v, s) = pv.particles(b).zip(w.particles(b)).fold(
+        (0.0, 0.0),
+        |(v, s), ((vr, mag), p)| (v - p.m * p.r[2].dot(&vr), s + p.m * p.mag[2] * mag),
+    );
+    Ok((Measured::Scalar(v), s))
 }
 
 /// The material point of one body at a point's place: `r = r_O + R q`

@@ -12,7 +12,7 @@
 //! (a direction no support holds) are errors that say so; no formula of
 //! the file enters.
 
-use hdot_sym::derivation::Load;
+use hdot_sym::derivation::{Derivation, Load};
 use hdot_sym::derivation::physics::{Bodies, SupportKind};
 use hdot_sym::vector::Vec3;
 use nalgebra::{DMatrix, DVector, Vector3};
@@ -104,6 +104,40 @@ fn components(w: &World<'_>, b: usize) -> Result<Vec<Component>, VerifyError> {
     Ok(out)
 }
 
+/// Whether a declared `[[load]]` acts on `bodies`: a force at one of the
+/// body's points (every point when the file has one body), a torque on its
+/// frame; every load acts on the `system`.
+pub(crate) fn acts_on(d: &Derivation, load: &Load, bodies: Bodies) -> bool {
+    let Bodies::One(b) = bodies else {
+        return true;
+    };
+    let body = &d.physics.bodies[b];
+    match load {
+        Load::Force { point, .. } => {
+            d.physics.bodies.len() == 1
+                || *point == body.point
+                || Some(point) == body.centre.as_ref()
+        }
+        Load::Torque { on, .. } => *on == body.frame,
+    }
+}
+
+/// A load's force or torque in N's axes at the world's instant (its
+/// components in frame `frame`), and the magnitude of its terms.
+pub(crate) fn load_vector(
+    w: &World<'_>,
+    v: &Vec3,
+    frame: usize,
+) -> Result<(Vector3<f64>, f64), VerifyError> {
+    let (mut local, mut size) = (Vector3::zeros(), 0.0);
+    for (k, c) in v.0.iter().enumerate() {
+        let (x, s) = w.values.eval(&w.d.unfold(c))?;
+        local[k] = x;
+        size += s;
+    }
+    Ok((w.frames[frame][0] * local, size))
+}
+
 /// The reaction of support `s`, from the equilibrium of all supports of
 /// its body.
 pub(crate) fn reaction(w: &World<'_>, s: usize) -> Result<Reaction, VerifyError> {
@@ -127,27 +161,10 @@ pub(crate) fn reaction(w: &World<'_>, s: usize) -> Result<Reaction, VerifyError>
     }
     // The declared loads on the body: forces at its points (every point
     // when the file has one body), torques on its frame.
-    let body_decl = &d.physics.bodies[b];
-    let vector = |v: &Vec3, frame: usize| -> Result<(Vector3<f64>, f64), VerifyError> {
-        let (mut local, mut size) = (Vector3::zeros(), 0.0);
-        for (k, c) in v.0.iter().enumerate() {
-            let (x, s) = w.values.eval(&d.unfold(c))?;
-            local[k] = x;
-            size += s;
-        }
-        Ok((w.frames[frame][0] * local, size))
-    };
-    for load in &d.loads {
+    for load in d.loads.iter().filter(|l| acts_on(d, l, Bodies::One(b))) {
         match load {
-            Load::Force {
-                point,
-                force,
-                frame,
-            } if d.physics.bodies.len() == 1
-                || *point == body_decl.point
-                || Some(point) == body_decl.centre.as_ref() =>
-            {
-                let (fv, size) = vector(force, *frame)?;
+            Load::Force { point, force, frame } => {
+                let (fv, size) = load_vector(w, force, *frame)?;
                 let at = &w.points[point];
                 f -= fv;
                 m -= (at.r[0] - o).cross(&fv);
@@ -155,15 +172,12 @@ pub(crate) fn reaction(w: &World<'_>, s: usize) -> Result<Reaction, VerifyError>
                 sm += size * (at.mag[0] + o_mag);
             }
             Load::Torque {
-                on,
-                torque,
-                in_frame,
-            } if *on == body_decl.frame => {
-                let (tv, size) = vector(torque, *in_frame)?;
+                torque, in_frame, ..
+            } => {
+                let (tv, size) = load_vector(w, torque, *in_frame)?;
                 m -= tv;
                 sm += size;
             }
-            _ => {}
         }
     }
     let comps = components(w, b)?;

@@ -518,6 +518,16 @@ impl MeaningParser<'_, '_> {
                     format!("`{name}` is not a coordinate: name a time symbol (without primes)"),
                 ),
             },
+            ArgKind::Speed => {
+                let u = Atom::time(name, 0);
+                if *primes == 0 && self.cx.speeds.speeds.contains(&u) {
+                    Ok(Arg::Speed(u))
+                } else {
+                    let known: Vec<String> =
+                        self.cx.speeds.speeds.iter().map(ToString::to_string).collect();
+                    self.err(a, unknown("generalized speed ([symbols] speeds)", name, &known))
+                }
+            }
         }
     }
 }
@@ -528,6 +538,7 @@ fn kind_name(k: ArgKind) -> &'static str {
         ArgKind::Point => "point",
         ArgKind::Frame => "frame",
         ArgKind::Coordinate => "coordinate",
+        ArgKind::Speed => "speed",
         ArgKind::Vector => "vector",
         ArgKind::Support => "support",
     }

@@ -29,6 +29,8 @@ pub enum Arg {
     Frame(usize),
     /// A coordinate (a time symbol).
     Coordinate(Atom),
+    /// A generalized speed (declared in `[symbols] speeds`).
+    Speed(Atom),
     /// A vector expression of the file's symbols (abbreviations unfolded)
     /// and the frame it is written in: an impulse F̂.
     Vector(Vec3, String),
@@ -47,6 +49,8 @@ pub enum ArgKind {
     Frame,
     /// A time symbol.
     Coordinate,
+    /// A declared generalized speed.
+    Speed,
     /// A vector expression (`[F_x, F_y, F_z] in N`, or a step's name).
     Vector,
     /// A declared support.
@@ -118,6 +122,12 @@ pub enum Quantity {
     GeneralizedWeight,
     /// ∂T/∂q with the rates held: T = Σ ½ m v² at neighbouring values of q.
     KineticEnergyPartial,
+    /// Kane's generalized active force F_r: Σ m g · v_r over the particles
+    /// and each `[[load]]`'s v_r · F or ω_r · T, with the constrained
+    /// partial velocities v_r = ∂v/∂u_r (dependent speeds eliminated).
+    GeneralizedActiveForce,
+    /// Kane's generalized inertia force F_r* = −Σ m a · v_r.
+    GeneralizedInertiaForce,
     /// ṙ of the body's material point at a point's place.
     PointVelocity,
     /// r̈ of the body's material point at a point's place.
@@ -179,6 +189,8 @@ pub static QUANTITIES: &[QuantitySig] = &[
     sig(Q::GeneralizedMomentum,         "generalized_momentum",           &[K::Body, K::Coordinate],       S::Scalar),
     sig(Q::GeneralizedWeight,           "generalized_weight",             &[K::Body, K::Coordinate],       S::Scalar),
     sig(Q::KineticEnergyPartial,        "kinetic_energy_partial",         &[K::Body, K::Coordinate],       S::Scalar),
+    sig(Q::GeneralizedActiveForce,      "generalized_active_force",       &[K::Body, K::Speed],            S::Scalar),
+    sig(Q::GeneralizedInertiaForce,     "generalized_inertia_force",      &[K::Body, K::Speed],            S::Scalar),
     sig(Q::PointVelocity,               "point_velocity",                 &[K::Body, K::Point],            S::Vector),
     sig(Q::PointAcceleration,           "point_acceleration",             &[K::Body, K::Point],            S::Vector),
     sig(Q::VelocityAfterImpulse,        "velocity_after_impulse",         &[K::Body, K::Point, K::Vector], S::Vector),

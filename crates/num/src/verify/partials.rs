@@ -1,0 +1,93 @@
+//! Kane's partial velocities measured at a drawn state, never taken from
+//! the engine: the model is built at the drawn speeds and again with one
+//! independent speed raised by one — the dependent speeds solved again
+//! from the constraint rows and the coordinates' rates again from the
+//! kinematic equations ([`super::speeds`]) — and, the velocities being
+//! linear in the speeds, each particle's, point's and frame's partial
+//! velocity for that speed is the difference of the two (exact up to
+//! rounding). These are the constrained partial velocities: the dependent
+//! speeds move with the independent one as the constraints require.
+
+use hdot_sym::atom::Atom;
+use hdot_sym::derivation::physics::Bodies;
+use nalgebra::Vector3;
+
+use super::speeds::Speeds;
+use super::world::{Particle, World, vee};
+use super::{VerifyError, declaration};
+
+/// The model at the drawn speeds (`base`) and with one speed raised by
+/// one (`raised`), velocities consistent with the constraints in both.
+pub(crate) struct Partials<'d> {
+    base: World<'d>,
+    raised: World<'d>,
+}
+
+/// The two models of [`Partials`] for speed `u` at the state of `w`.
+///
+/// # Errors
+/// A file without kinematic equations, a dependent speed named (its
+/// partial velocities are not those of Kane's equations), or constraints
+/// whose dependent speeds cannot be solved at the state.
+pub(crate) fn partials<'d>(w: &World<'d>, u: Atom) -> Result<Partials<'d>, VerifyError> {
+    let d = w.d;
+    let Some(speeds) = Speeds::of(d) else {
+        return Err(declaration(
+            d,
+            "a generalized active or inertia force needs the kinematic equations ([kinematics])"
+                .into(),
+        ));
+    };
+    if speeds.dependent.contains(&u) {
+        return Err(declaration(
+            d,
+            format!(
+                "`{u}` is a dependent speed of the `kane` step: Kane's generalized forces are taken for the \
+                 independent speeds"
+            ),
+        ));
+    }
+    let unbound = || {
+        declaration(
+            d,
+            "a symbol of the kinematic equations or of the constraints has no value".into(),
+        )
+    };
+    let mut base = w.values.clone();
+    speeds.fill(d, &mut base, 1)?.ok_or_else(unbound)?;
+    let (x, _) = base.get(u).ok_or_else(unbound)?;
+    let mut raised = base.with(u, x + 1.0);
+    speeds.fill(d, &mut raised, 1)?.ok_or_else(unbound)?;
+    Ok(Partials {
+        base: World::build(d, w.draw, &base, &[])?,
+        raised: World::build(d, w.draw, &raised, &[])?,
+    })
+}
+
+impl Partials<'_> {
+    /// Each particle of `b` with its partial velocity and the magnitude of
+    /// the terms of the two velocities it is the difference of.
+    pub(crate) fn particles(&self, b: Bodies) -> impl Iterator<Item = (Vector3<f64>, f64)> + '_ {
+        self.raised
+            .particles(b)
+            .zip(self.base.particles(b))
+            .map(|(p, q): (Particle<'_>, Particle<'_>)| (p.r[1] - q.r[1], p.mag[1] + q.mag[1]))
+    }
+
+    /// The partial velocity of point `name` and its magnitude.
+    pub(crate) fn point(&self, name: &str) -> (Vector3<f64>, f64) {
+        let (p, q) = (&self.raised.points[name], &self.base.points[name]);
+        (p.r[1] - q.r[1], p.mag[1] + q.mag[1])
+    }
+
+    /// The partial angular velocity of frame `f` (N's axes) and its
+    /// magnitude.
+    pub(crate) fn frame(&self, f: usize) -> (Vector3<f64>, f64) {
+        let omega = |w: &World<'_>| {
+            let r = &w.frames[f];
+            (vee(&(r[1] * r[0].transpose())), r[1].norm())
+        };
+        let ((p, ps), (q, qs)) = (omega(&self.raised), omega(&self.base));
+        (p - q, ps + qs)
+    }
+}
