@@ -58,14 +58,20 @@ fn a_flipped_sign_in_one_generalized_force_term_is_rejected() {
         "u_3), [F, 0, 0] in A) - dot(coeff(w, u_3), [0, 0, T] in A)",
     );
     let f = failed(&text);
-    assert!(f.contains(&"Fr_3".to_string()) && f.contains(&"by_hand".to_string()), "{f:?}");
+    assert!(
+        f.contains(&"Fr_3".to_string()) && f.contains(&"by_hand".to_string()),
+        "{f:?}"
+    );
     // The gravity's share of F_1.
     let text = mutate(
         "dot(coeff(v_G, u_1), m*express([0, -g, 0] in N, A))",
         "dot(coeff(v_G, u_1), m*express([0, g, 0] in N, A))",
     );
     let f = failed(&text);
-    assert!(f.contains(&"Fr_1".to_string()) && f.contains(&"by_hand".to_string()), "{f:?}");
+    assert!(
+        f.contains(&"Fr_1".to_string()) && f.contains(&"by_hand".to_string()),
+        "{f:?}"
+    );
     // The gyroscopic term of F*_3.
     let text = mutate(
         "-dot(coeff(v_G, u_3), m*a_G) - dot(coeff(w, u_3), principal(I_1, I_2, I_3)*alpha + cross",
@@ -79,15 +85,18 @@ fn a_flipped_sign_in_one_generalized_force_term_is_rejected() {
         "dot(coeff(v_G, u_3), m*a_G) -",
     );
     let f = failed(&text);
-    assert!(f.contains(&"Fs_3".to_string()) && f.contains(&"by_hand".to_string()), "{f:?}");
+    assert!(
+        f.contains(&"Fs_3".to_string()) && f.contains(&"by_hand".to_string()),
+        "{f:?}"
+    );
 }
 
 #[test]
 fn a_wrong_partial_velocity_is_rejected() {
-    // The thrust at C taken with G's partial velocity for u₃.
+    // The weight taken with C's partial velocity for u₃, not G's.
     let text = mutate(
-        "dot(coeff(v_Cc, u_3), [F, 0, 0] in A)",
-        "dot(coeff(v_G, u_3), [F, 0, 0] in A)",
+        "dot(coeff(v_G, u_3), m*express([0, -g, 0] in N, A))",
+        "dot(coeff(v_Cc, u_3), m*express([0, -g, 0] in N, A))",
     );
     let f = failed(&text);
     assert!(f.contains(&"Fr_3".to_string()), "{f:?}");
@@ -122,7 +131,10 @@ fn a_dependent_or_undeclared_speed_in_a_meaning_is_a_clear_error() {
     );
     let e = load_str("kane-sled.toml", &text).expect_err("u_9 is no speed");
     let msg = e.to_string();
-    assert!(msg.contains("u_9") && msg.contains("speed") && msg.contains("kane-sled.toml"), "{msg}");
+    assert!(
+        msg.contains("u_9") && msg.contains("speed") && msg.contains("kane-sled.toml"),
+        "{msg}"
+    );
     let text = mutate(
         "means = \"generalized_active_force(sled, u_1)\"",
         "means = \"generalized_active_force(sled, u_2)\"",

@@ -516,13 +516,19 @@ fn speed(a: &Arg) -> hdot_sym::atom::Atom {
 fn generalized_active_force(w: &World<'_>, a: &[Arg]) -> Out {
     let (b, pv) = (bodies(&a[0]), partials(w, speed(&a[1]))?);
     let g = w.gravity;
-    let (mut v, mut s) = pv.particles(b).zip(w.particles(b)).fold(
-        (0.0, 0.0),
-        |(v, s), ((vr, mag), p)| (v + p.m * g.dot(&vr), s + p.m * g.norm() * mag),
-    );
+    let (mut v, mut s) = pv
+        .particles(b)
+        .zip(w.particles(b))
+        .fold((0.0, 0.0), |(v, s), ((vr, mag), p)| {
+            (v + p.m * g.dot(&vr), s + p.m * g.norm() * mag)
+        });
     for load in w.d.loads.iter().filter(|l| acts_on(w.d, l, b)) {
         let (f, size, (vr, mag)) = match load {
-            Load::Force { point, force, frame } => {
+            Load::Force {
+                point,
+                force,
+                frame,
+            } => {
                 let (f, size) = load_vector(w, force, *frame)?;
                 (f, size, pv.point(point))
             }
@@ -543,10 +549,12 @@ fn generalized_active_force(w: &World<'_>, a: &[Arg]) -> Out {
 
 fn generalized_inertia_force(w: &World<'_>, a: &[Arg]) -> Out {
     let (b, pv) = (bodies(&a[0]), partials(w, speed(&a[1]))?);
-    let (v, s) = pv.particles(b).zip(w.particles(b)).fold(
-        (0.0, 0.0),
-        |(v, s), ((vr, mag), p)| (v - p.m * p.r[2].dot(&vr), s + p.m * p.mag[2] * mag),
-    );
+    let (v, s) = pv
+        .particles(b)
+        .zip(w.particles(b))
+        .fold((0.0, 0.0), |(v, s), ((vr, mag), p)| {
+            (v - p.m * p.r[2].dot(&vr), s + p.m * p.mag[2] * mag)
+        });
     Ok((Measured::Scalar(v), s))
 }
 

@@ -12,8 +12,8 @@
 //! (a direction no support holds) are errors that say so; no formula of
 //! the file enters.
 
-use hdot_sym::derivation::{Derivation, Load};
 use hdot_sym::derivation::physics::{Bodies, SupportKind};
+use hdot_sym::derivation::{Derivation, Load};
 use hdot_sym::vector::Vec3;
 use nalgebra::{DMatrix, DVector, Vector3};
 
@@ -163,7 +163,11 @@ pub(crate) fn reaction(w: &World<'_>, s: usize) -> Result<Reaction, VerifyError>
     // when the file has one body), torques on its frame.
     for load in d.loads.iter().filter(|l| acts_on(d, l, Bodies::One(b))) {
         match load {
-            Load::Force { point, force, frame } => {
+            Load::Force {
+                point,
+                force,
+                frame,
+            } => {
                 let (fv, size) = load_vector(w, force, *frame)?;
                 let at = &w.points[point];
                 f -= fv;

@@ -523,9 +523,17 @@ impl MeaningParser<'_, '_> {
                 if *primes == 0 && self.cx.speeds.speeds.contains(&u) {
                     Ok(Arg::Speed(u))
                 } else {
-                    let known: Vec<String> =
-                        self.cx.speeds.speeds.iter().map(ToString::to_string).collect();
-                    self.err(a, unknown("generalized speed ([symbols] speeds)", name, &known))
+                    let known: Vec<String> = self
+                        .cx
+                        .speeds
+                        .speeds
+                        .iter()
+                        .map(ToString::to_string)
+                        .collect();
+                    self.err(
+                        a,
+                        unknown("generalized speed ([symbols] speeds)", name, &known),
+                    )
                 }
             }
         }
