@@ -21,6 +21,7 @@ use rand_chacha::ChaCha8Rng;
 
 use super::bodies::{axisymmetric, map_particles, mirrored, random_body, random_rotation};
 use super::jet::{ORDERS, PointJet};
+use super::world::CloudMoments;
 use super::{VerifyError, declaration};
 use crate::bind::{MeasuredBody, Values, bind_all, declared_equations, nth};
 use crate::cloud::ParticleCloud;
@@ -39,6 +40,8 @@ pub struct Draw {
     /// The rotated copies an axisymmetric body is made of.
     folds: Vec<usize>,
     bodies: Vec<ParticleCloud>,
+    /// The sums over each body's particles a moment is formed from.
+    moments: Vec<CloudMoments>,
     centres: Vec<Vector3<f64>>,
     attitudes: HashMap<usize, Matrix3<f64>>,
     points: HashMap<String, PointJet>,
@@ -48,6 +51,11 @@ impl Draw {
     /// The particles of body `i` (body axes, about its reference point).
     pub fn body(&self, i: usize) -> &ParticleCloud {
         &self.bodies[i]
+    }
+
+    /// The particle sums of body `i` ([`CloudMoments`]).
+    pub(crate) fn moments(&self, i: usize) -> &CloudMoments {
+        &self.moments[i]
     }
 
     /// G of body `i` from its reference point, body axes.
@@ -200,9 +208,11 @@ pub(crate) fn draw(
     // the constraints.
     super::speeds::draw_consistent(d, &mut values)?;
     let mut bodies = Vec::new();
+    let mut moments = Vec::new();
     let mut centres = Vec::new();
     for (b, base) in ph.bodies.iter().zip(&bases) {
         let (cloud, c) = place(d, b, base, &values)?;
+        moments.push(CloudMoments::of(&cloud));
         bodies.push(cloud);
         centres.push(c);
     }
@@ -239,6 +249,7 @@ pub(crate) fn draw(
             bases,
             folds,
             bodies,
+            moments,
             centres,
             attitudes,
             points,
@@ -482,6 +493,7 @@ pub(crate) fn for_step(
         }
         for &i in &rebuilt {
             let (cloud, c) = place(d, &ph.bodies[i], &draw.bases[i], &values)?;
+            draw.moments[i] = CloudMoments::of(&cloud);
             draw.bodies[i] = cloud;
             draw.centres[i] = c;
         }

@@ -334,18 +334,11 @@ fn force(w: &World<'_>, a: &[Arg]) -> Out {
     Ok((Measured::Vector(v), s))
 }
 
-/// `Σ m (r − r_O) × r⁽ᴼᴿᴰᴱᴿ⁾`, the order fixed at compile time so that
-/// the sum places only the orders it reads (a linearisation measures the
-/// moment on tens of thousands of worlds).
+/// `Σ m (r − r_O) × r⁽ᴼᴿᴰᴱᴿ⁾`: the particles' sum regrouped by their
+/// moments ([`super::world::Placed::moment_about`]; a linearisation
+/// measures the moment on tens of thousands of worlds).
 fn about<const ORDER: usize>(w: &World<'_>, a: &[Arg]) -> Out {
-    let o = point(w, &a[1]);
-    let (v, s) = sum_vec(w, bodies(&a[0]), |p| {
-        let rho = p.r[0] - o.r[0];
-        (
-            rho.cross(&p.r[ORDER]) * p.m,
-            p.m * (p.mag[0] + o.mag[0]) * p.mag[ORDER],
-        )
-    });
+    let (v, s) = w.moment_about::<ORDER>(bodies(&a[0]), point(w, &a[1]));
     Ok((Measured::Vector(v), s))
 }
 

@@ -64,6 +64,8 @@ type DisplacementTerm = (f64, Vector3<f64>, Matrix3<f64>);
 #[derive(Debug)]
 pub struct Placed<'d> {
     cloud: &'d ParticleCloud,
+    /// Its particle sums (made once per draw).
+    moments: &'d CloudMoments,
     /// The reference point's jet.
     reference: PointJet,
     /// The frame's attitude jet.
@@ -84,6 +86,34 @@ impl<'d> Placed<'d> {
     /// Whether the body has no particles (never: a cloud is non-empty).
     pub fn is_empty(&self) -> bool {
         self.cloud.len() == 0
+    }
+
+    /// `Σ m (r − r_O) × r⁽ᴼᴿᴰᴱᴿ⁾` over the body's particles (the
+    /// moment about O of their momenta, ORDER 1, or of their mass times
+    /// acceleration, ORDER 2) and the sum of the magnitudes of its terms
+    /// `Σ m (|r|ₘ + |r_O|ₘ) |r⁽ᴼᴿᴰᴱᴿ⁾|ₘ`, each particle's magnitudes
+    /// those of [`Particle::mag`]. With `r = r_P + R q` and
+    /// `r⁽ⁿ⁾ = r_P⁽ⁿ⁾ + R⁽ⁿ⁾ q`, `d = r_P − r_O`:
+    /// `Σ m (d + R q) × (a + A q) = M d × a + d × A S + R S × a + Σ m (R q) × (A q)`,
+    /// the last term read off `K = R J Aᵀ` (`J = Σ m q qᵀ`) as
+    /// `(K_yz − K_zy, K_zx − K_xz, K_xy − K_yx)` — the particles' own sum,
+    /// regrouped ([`CloudMoments`]).
+    pub fn moment_about<const ORDER: usize>(&self, o: &PointJet) -> (Vector3<f64>, f64) {
+        let s = self.moments;
+        let d = self.reference.r[0] - o.r[0];
+        let a = self.reference.r[ORDER];
+        let (r, am) = (&self.frame[0], &self.frame[ORDER]);
+        let k = r * s.second * am.transpose();
+        let own = Vector3::new(
+            k[(1, 2)] - k[(2, 1)],
+            k[(2, 0)] - k[(0, 2)],
+            k[(0, 1)] - k[(1, 0)],
+        );
+        let v = d.cross(&a) * s.mass + d.cross(&(am * s.first)) + (r * s.first).cross(&a) + own;
+        let (c0, n0) = (self.reference.mag[0] + o.mag[0], self.norms[0]);
+        let (cn, nn) = (self.reference.mag[ORDER], self.norms[ORDER]);
+        let mag = c0 * cn * s.mass + (c0 * nn + n0 * cn) * s.distance[0] + n0 * nn * s.distance[1];
+        (v, mag)
     }
 
     /// The particles, placed at the instant.
@@ -107,6 +137,45 @@ impl<'d> Placed<'d> {
             q,
             body: self,
         }
+    }
+}
+
+/// The sums over a body's particles (its own axes, about its reference
+/// point) that a moment about a point is formed from: Σ m, Σ m q,
+/// Σ m q qᵀ, and the sums of the particles' distances Σ m |q|, Σ m |q|².
+/// A rigid body's particles are `r = r_P + R q`, so a sum bilinear in
+/// them (`Σ m (r − r_O) × r⁽ⁿ⁾`) is a function of these five sums and
+/// the motion: made once per draw, a moment on each of a linearisation's
+/// thousands of worlds is a few dozen products instead of a pass over the
+/// particles.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct CloudMoments {
+    mass: f64,
+    first: Vector3<f64>,
+    second: Matrix3<f64>,
+    /// Σ m |q|, Σ m |q|².
+    distance: [f64; 2],
+}
+
+impl CloudMoments {
+    /// The sums over `cloud`'s particles.
+    pub(crate) fn of(cloud: &ParticleCloud) -> CloudMoments {
+        let mut s = CloudMoments {
+            mass: 0.0,
+            first: Vector3::zeros(),
+            second: Matrix3::zeros(),
+            distance: [0.0; 2],
+        };
+        for k in 0..cloud.len() {
+            let (q, m) = cloud.particle(k);
+            let mq = q * m;
+            s.mass += m;
+            s.first += mq;
+            s.second += mq * q.transpose();
+            s.distance[0] += m * q.norm();
+            s.distance[1] += m * q.norm_squared();
+        }
+        s
     }
 }
 
@@ -561,6 +630,7 @@ impl<'d> World<'d> {
             let rj = w.frames[b.frame];
             w.bodies.push(Placed {
                 cloud: draw.body(bi),
+                moments: draw.moments(bi),
                 reference,
                 frame: rj,
                 norms: std::array::from_fn(|n| fro(&rj[n])),
@@ -685,15 +755,34 @@ impl<'d> World<'d> {
         Ok(jet)
     }
 
-    /// The particles of `bodies`, placed at the instant.
-    pub fn particles(&self, bodies: Bodies) -> Particles<'_> {
+    /// The bodies `bodies` names, placed at the instant.
+    fn placed(&self, bodies: Bodies) -> &[Placed<'d>] {
         let range = match bodies {
             Bodies::One(i) => i..i + 1,
             Bodies::System => 0..self.bodies.len(),
         };
+        &self.bodies[range]
+    }
+
+    /// The particles of `bodies`, placed at the instant.
+    pub fn particles(&self, bodies: Bodies) -> Particles<'_> {
         Particles {
-            bodies: &self.bodies[range],
+            bodies: self.placed(bodies),
             next: 0,
         }
+    }
+
+    /// [`Placed::moment_about`] summed over `bodies`.
+    pub fn moment_about<const ORDER: usize>(
+        &self,
+        bodies: Bodies,
+        o: &PointJet,
+    ) -> (Vector3<f64>, f64) {
+        self.placed(bodies)
+            .iter()
+            .fold((Vector3::zeros(), 0.0), |(v, m), b| {
+                let (bv, bm) = b.moment_about::<ORDER>(o);
+                (v + bv, m + bm)
+            })
     }
 }
