@@ -46,7 +46,7 @@ mod dynamics;
 mod problem;
 mod read;
 
-pub use bodies::{Bodies, Group, bodies};
+pub use bodies::{Bodies, Group, RawBodies, RawBody, RawCloud, bodies, bodies_from};
 pub use dynamics::{CHECK_DISCRETIZATION, DynamicsReport, InertiaReport};
 pub use read::unit_of;
 

@@ -1,7 +1,8 @@
 //! Scenes: TOML files describing a body, its supports and its initial
 //! motion. The format is documented in `docs/simulation.md`; what moves
 //! (`g`, `[[body]]`, `[[cloud]]`) is the schema every scene shares,
-//! `docs/scenes.md`, read by [`hdot_num::scene::bodies`]. Every scene
+//! `docs/scenes.md`, parsed with the rest of the scene and read by
+//! [`hdot_num::scene::bodies_from`]. Every scene
 //! bundled in `docs/examples/sim-*.toml` is an example of it.
 //!
 //! ```toml
@@ -34,7 +35,7 @@ mod text;
 
 pub use derived::{DerivedScene, Resolve, resolve_near};
 pub use holds::{Pivot, Rigid};
-use raw::RawScene;
+use raw::{OwnTables, RawScene};
 use text::{at_line_after, line_of};
 
 /// Relative residual of §7's relation under which a heavy top counts as
@@ -103,6 +104,24 @@ pub enum SceneKind {
     },
     /// The equations of motion a derivation file derived.
     Derived(Box<DerivedScene>),
+}
+
+/// The error of a scene's text that does not parse: an error of the
+/// scene's own tables as the parser's message, one of the shared tables
+/// (`g`, `[[body]]`, `[[cloud]]`) as the bodies reader reports it (with its
+/// line and field, and the former `[body]` table named).
+fn parse_failure(text: &str, file: &Path, e: toml::de::Error) -> SimError {
+    let parse = |e: toml::de::Error| SimError::Parse {
+        file: file.to_path_buf(),
+        message: e.to_string(),
+    };
+    if let Err(own) = toml::from_str::<OwnTables>(text) {
+        return parse(own);
+    }
+    match hdot_num::scene::bodies(file, text) {
+        Err(shared) => shared.into(),
+        Ok(_) => parse(e),
+    }
 }
 
 impl Scene {
@@ -181,10 +200,8 @@ impl Scene {
 
     /// [`Scene::parse`] with a resolver for a derived scene's derivation.
     pub fn parse_with(text: &str, file: &Path, resolve: Resolve<'_>) -> Result<Scene, SimError> {
-        let raw: RawScene = toml::from_str(text).map_err(|e| SimError::Parse {
-            file: file.to_path_buf(),
-            message: e.to_string(),
-        })?;
+        let mut raw: RawScene = toml::from_str(text).map_err(|e| parse_failure(text, file, e))?;
+        let shared = raw.shared();
         let bad = |field: &str, message: String| bad_field(file, field, message);
         if !(raw.t_end.is_finite() && raw.t_end > 0.0) {
             return Err(bad(
@@ -212,11 +229,11 @@ impl Scene {
         let kind = match raw.kind.as_str() {
             "free" | "heavy-top" => {
                 let heavy = raw.kind == "heavy-top";
-                let (kind, frame) = rigid::read(raw.top, &initial, heavy, file, text)?;
+                let (kind, frame) = rigid::read(raw.top, shared, &initial, heavy, file, text)?;
                 body_frame = Some(frame);
                 kind
             }
-            "fixed-axis" => shaft::read(raw.shaft, raw.motor, &initial, file, text)?,
+            "fixed-axis" => shaft::read(raw.shaft, raw.motor, shared, &initial, file, text)?,
             "derived" => SceneKind::Derived(Box::new(derived::read(
                 derived::Tables {
                     derivation: raw.derivation,
@@ -227,6 +244,7 @@ impl Scene {
                         ("shaft", raw.shaft.is_some()),
                         ("motor", raw.motor.is_some()),
                     ],
+                    shared,
                 },
                 initial,
                 file,

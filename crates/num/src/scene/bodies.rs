@@ -16,22 +16,27 @@ use crate::body::{Body, Composite, MassProperties, Part, Pose, Primitive, euleri
 use crate::cloud::ParticleCloud;
 use crate::inertia::Inertia;
 
-/// The part of every scene that says what moves: gravity, `[[body]]` and
-/// `[[cloud]]` (unknown keys are left to the scene's own reader).
-/// A worked problem's reader reads these fields in its own table
-/// ([`from_raw`]), so that a scene of many tables is parsed once.
+/// The part of every scene that says what moves, as written: gravity,
+/// `[[body]]` and `[[cloud]]` (unknown keys are left to the scene's own
+/// reader). A scene's own reader (a worked problem's, a simulation's)
+/// reads these fields in its own parse of the text and hands them to
+/// [`bodies_from`], so that a scene of many tables is parsed once.
 #[derive(Debug, Deserialize)]
-pub(super) struct RawBodies {
-    pub(super) g: Option<RV>,
+pub struct RawBodies {
+    /// `g`.
+    pub g: Option<Spanned<Vec<f64>>>,
+    /// The `[[body]]` tables.
     #[serde(default)]
-    pub(super) body: Vec<Spanned<RawBody>>,
+    pub body: Vec<Spanned<RawBody>>,
+    /// The `[[cloud]]` tables.
     #[serde(default)]
-    pub(super) cloud: Vec<Spanned<RawCloud>>,
+    pub cloud: Vec<Spanned<RawCloud>>,
 }
 
+/// One `[[body]]` table as written (read by [`bodies_from`]).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct RawBody {
+pub struct RawBody {
     name: Option<String>,
     of: Option<Spanned<String>>,
     shape: Option<String>,
@@ -63,9 +68,10 @@ struct RawRotation {
     euler_deg: Option<IgnoredAny>,
 }
 
+/// One `[[cloud]]` table as written (read by [`bodies_from`]).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct RawCloud {
+pub struct RawCloud {
     file: String,
     of: Option<Spanned<String>>,
 }
@@ -127,6 +133,12 @@ pub fn bodies(file: &Path, text: &str) -> Result<Bodies, SceneError> {
     let cx = Cx::new(file, text);
     let raw: RawBodies = toml::from_str(text).map_err(|e| parse_error(&cx, &e))?;
     from_raw(&cx, raw)
+}
+
+/// [`bodies`] from the tables a scene's own reader parsed (`text` is the
+/// scene's text, for the lines of errors).
+pub fn bodies_from(file: &Path, text: &str, raw: RawBodies) -> Result<Bodies, SceneError> {
+    from_raw(&Cx::new(file, text), raw)
 }
 
 /// The error of a scene's text that does not parse into its tables: the

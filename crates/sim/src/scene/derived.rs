@@ -41,7 +41,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
-use hdot_num::scene::{Bodies, bodies};
+use hdot_num::scene::{Bodies, RawBodies, bodies_from};
 use hdot_sym::derivation::Derivation;
 use hdot_sym::symbols::Decl;
 
@@ -129,10 +129,12 @@ pub(super) struct Tables {
     pub inputs: BTreeMap<String, String>,
     /// The built-in kinds' tables, and whether each is given.
     pub builtin: [(&'static str, bool); 3],
+    /// `g`, `[[body]]` and `[[cloud]]`, as parsed with the rest.
+    pub shared: RawBodies,
 }
 
 /// A derived scene from its tables, its `[initial]` table, and the shared
-/// `[[body]]` tables of `text`.
+/// `[[body]]` tables (parsed with the rest of `text`).
 pub(super) fn read(
     tables: Tables,
     initial: RawInitial,
@@ -177,7 +179,7 @@ pub(super) fn read(
     parse(
         tables.derivation,
         tables.constants,
-        bodies(file, text)?,
+        bodies_from(file, text, tables.shared)?,
         tables.inputs,
         start,
         (file, text),

@@ -3,25 +3,30 @@
 
 use std::collections::BTreeMap;
 
+use hdot_num::scene::{RawBodies, RawBody, RawCloud};
 use serde::Deserialize;
 use serde::de::IgnoredAny;
+use toml::Spanned;
 
+/// A scene's tables. `g`, `[[body]]` and `[[cloud]]` are the schema
+/// every scene shares (`hdot_num::scene::RawBodies`, read by
+/// `hdot_num::scene::bodies_from`): parsed here with the rest, so that the
+/// text is parsed once; [`OwnTables`] skips them.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct RawScene {
+pub(super) struct RawScene<
+    G = Spanned<Vec<f64>>,
+    B = Vec<Spanned<RawBody>>,
+    C = Vec<Spanned<RawCloud>>,
+> {
     pub(super) name: String,
     #[serde(default)]
     pub(super) description: String,
     pub(super) kind: String,
     pub(super) t_end: f64,
-    // `g`, `[[body]]` and `[[cloud]]`: the schema every scene shares, read
-    // by `hdot_num::scene::bodies`.
-    #[allow(dead_code)]
-    pub(super) g: Option<IgnoredAny>,
-    #[allow(dead_code)]
-    pub(super) body: Option<IgnoredAny>,
-    #[allow(dead_code)]
-    pub(super) cloud: Option<IgnoredAny>,
+    pub(super) g: Option<G>,
+    pub(super) body: Option<B>,
+    pub(super) cloud: Option<C>,
     pub(super) initial: Option<RawInitial>,
     pub(super) top: Option<RawTop>,
     pub(super) shaft: Option<RawShaft>,
@@ -29,6 +34,23 @@ pub(super) struct RawScene {
     pub(super) derivation: Option<RawDerivation>,
     pub(super) constants: Option<BTreeMap<String, f64>>,
     pub(super) inputs: Option<BTreeMap<String, String>>,
+}
+
+/// The scene's own tables, the shared ones skipped: what is read when
+/// the whole scene does not parse, so that an error of the scene's own
+/// tables is reported as the scene's parse error and one of the shared
+/// tables by the bodies reader (`hdot_num::scene::bodies`).
+pub(super) type OwnTables = RawScene<IgnoredAny, IgnoredAny, IgnoredAny>;
+
+impl RawScene {
+    /// Takes the shared tables out, for `hdot_num::scene::bodies_from`.
+    pub(super) fn shared(&mut self) -> RawBodies {
+        RawBodies {
+            g: self.g.take(),
+            body: self.body.take().unwrap_or_default(),
+            cloud: self.cloud.take().unwrap_or_default(),
+        }
+    }
 }
 
 #[derive(Debug, Deserialize, Default)]

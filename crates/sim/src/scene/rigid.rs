@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use hdot_num::scene::{Bodies, bodies};
+use hdot_num::scene::{Bodies, RawBodies, bodies_from};
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
 
 use super::raw::{RawInitial, RawSteady, RawTop};
@@ -22,13 +22,14 @@ type Start = (UnitQuaternion<f64>, Vector3<f64>, Option<SteadyTop>);
 /// frame in the tables' axes, and its initial state.
 pub(super) fn read(
     top: Option<RawTop>,
+    shared: RawBodies,
     initial: &RawInitial,
     heavy: bool,
     file: &Path,
     text: &str,
 ) -> Result<(SceneKind, BodyFrame), SimError> {
     let bad = |field: &str, message: String| bad_field(file, field, message);
-    let all = bodies(file, text)?;
+    let all = bodies_from(file, text, shared)?;
     all.refuse_of(file)?;
     let Bodies {
         g, g_line, body, ..

@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use hdot_num::scene::{Bodies, bodies};
+use hdot_num::scene::{Bodies, RawBodies, bodies_from};
 use nalgebra::Vector3;
 
 use super::raw::{RawInitial, RawMotor, RawShaft};
@@ -17,6 +17,7 @@ use crate::systems::Shaft;
 pub(super) fn read(
     shaft: Option<RawShaft>,
     motor: Option<RawMotor>,
+    shared: RawBodies,
     initial: &RawInitial,
     file: &Path,
     text: &str,
@@ -45,7 +46,7 @@ pub(super) fn read(
             "two distinct finite positions needed".into(),
         ));
     }
-    let all = bodies(file, text)?;
+    let all = bodies_from(file, text, shared)?;
     all.refuse_of(file)?;
     let Bodies { body, .. } = all;
     let body = body.ok_or_else(|| bad("body", NO_BODY.into()))?;
