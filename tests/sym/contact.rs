@@ -258,7 +258,7 @@ fn bad_contacts_are_located_errors() {
 /// checks against the benchmark's published values.
 #[test]
 fn the_nonlinear_bicycle_linearizes_to_the_benchmark_matrices() {
-    let exact = bundled("docs/examples/derivations/bicycle-nonlinear.toml");
+    let exact = bundled("derivations/bicycle-nonlinear.toml");
     let linear = bundled("derivations/bicycle.toml");
     assert!(exact.all_hold(), "{:?}", exact.failures());
     for m in ["M", "C_1", "K_0", "K_2"] {
@@ -303,7 +303,7 @@ fn the_nonlinear_bicycle_linearizes_to_the_benchmark_matrices() {
 fn the_nonlinear_bicycle_in_multiplier_form_has_the_benchmark_eigenvalues() {
     use hdot_sim::nalgebra::{Complex, DMatrix, DVector};
     use hdot_sym::{Atom, AtomKind};
-    let d = bundled("docs/examples/derivations/bicycle-nonlinear.toml");
+    let d = bundled("derivations/bicycle-nonlinear.toml");
     let scene: toml::Table = toml::from_str(
         &std::fs::read_to_string(repo_root().join("docs/examples/stability-bicycle.toml")).unwrap(),
     )

@@ -95,6 +95,24 @@ pub struct Section {
     pub steps: Vec<StepBlock>,
 }
 
+impl Section {
+    /// The equations printed by name in their steps ([`StepBlock::named`]),
+    /// in the order of the steps: what the section lists at its end under
+    /// *Coefficients*, each with its number of terms.
+    pub fn coefficients(&self) -> Vec<(&Equation, usize)> {
+        self.steps
+            .iter()
+            .flat_map(|st| {
+                st.equations
+                    .iter()
+                    .enumerate()
+                    .filter(|(k, _)| st.named(*k))
+                    .map(|(k, e)| (e, st.terms[k]))
+            })
+            .collect()
+    }
+}
+
 /// A frame with its angular velocity.
 #[derive(Clone, Debug)]
 pub struct FrameItem {
@@ -207,7 +225,24 @@ pub struct StepBlock {
     /// rest`; empty for a step without conditions. The backends print it
     /// beside the step as "for …".
     pub condition: String,
+    /// The number of terms of each equation's right side in canonical
+    /// form, in the order of `equations`: what
+    /// decides whether it is printed by name ([`StepBlock::named`]).
+    pub terms: Vec<usize>,
+    /// A square matrix equal to its transpose: an entry below the diagonal
+    /// is printed by the name of the one above it.
+    pub symmetric: bool,
 }
+
+/// The size above which a result is printed as a named coefficient: an
+/// equation of a step whose right side has more than this many terms in
+/// canonical form is written in its step by its name (M_{11}, f_{3}, E)
+/// and defined at the end of its derivation's section, under
+/// *Coefficients* (the LaTeX notes, fragments, Markdown and web pages; the
+/// slides name it and refer to the notes). An equation labelled 0 has no
+/// name and is printed whole. The one place of this rule; documented in
+/// docs/notes/README.md (*Long results as named coefficients*).
+pub const NAMED_ABOVE: usize = 120;
 
 /// True for the expression `0`.
 pub fn is_zero(e: &Expr) -> bool {
@@ -236,6 +271,26 @@ impl StepBlock {
     /// backends say so instead of printing `0 = 0`.
     pub fn vanishes(&self) -> bool {
         self.heading.is_zero() && self.equations.iter().all(|e| is_zero(&e.rhs))
+    }
+
+    /// True when equation `k` is printed by its name in the step and
+    /// defined under *Coefficients*: more than [`NAMED_ABOVE`] terms, and a
+    /// left side that names it (not `0`).
+    /// In a symmetric matrix only the entry above the diagonal is named;
+    /// the one below it shows that name.
+    pub fn named(&self, k: usize) -> bool {
+        let below = match self.shape {
+            Some((_, m)) if self.symmetric => k % m < k / m,
+            _ => false,
+        };
+        self.terms.get(k).is_some_and(|&t| t > NAMED_ABOVE)
+            && !self.equations[k].lhs.is_zero()
+            && !below
+    }
+
+    /// True when some equation of the step is printed by name.
+    pub fn has_named(&self) -> bool {
+        (0..self.equations.len()).any(|k| self.named(k))
     }
 
     /// The block of step `s`.
@@ -291,6 +346,23 @@ impl StepBlock {
                 _ => None,
             }
             .filter(|(n, m)| n * m == equations.len() && n * m > 0),
+            symmetric: match &s.value {
+                Value::Matrix(m) => (0..3).all(|i| (0..i).all(|j| m.0[i][j] == m.0[j][i])),
+                Value::Array(rows) => rows
+                    .iter()
+                    .enumerate()
+                    .all(|(i, r)| r.len() == rows.len() && (0..i).all(|j| r[j] == rows[j][i])),
+                _ => false,
+            },
+            terms: if s.show {
+                s.value
+                    .components()
+                    .iter()
+                    .map(|p| p.terms().len())
+                    .collect()
+            } else {
+                Vec::new()
+            },
             equations,
             verdict,
             condition: condition(s),

@@ -12,9 +12,9 @@
 
 use std::fmt::Write;
 
-use super::layout::{failure_lines, omega_inline, step_lines, symbol_list};
+use super::layout::{coefficient_groups, failure_lines, omega_inline, step_lines, symbol_list};
 use super::mathml::{self, Row};
-use super::words::{label_key, sentence};
+use super::words::{coefficients_intro, label_key, sentence};
 use super::{LINE_BUDGET, has_chapters};
 use crate::document::{Backend, Document, Lhs, Section, StepBlock, Verdict};
 use crate::escape;
@@ -317,11 +317,26 @@ pub fn section_math_count(s: &Section) -> usize {
         .iter()
         .map(|st| {
             usize::from(!st.heading.is_zero())
-                + usize::from(!st.vanishes())
+                + usize::from(!st.vanishes() && has_block(st))
                 + usize::from(matches!(st.verdict, Verdict::Fails(_)))
         })
         .sum();
-    lists + s.abbreviations.len() + s.frames.len() + steps
+    let coefficients = usize::from(defined_on_page(s));
+    lists + s.abbreviations.len() + s.frames.len() + steps + coefficients
+}
+
+/// The shape of a step's result set as a matrix: rows and columns.
+fn matrix_shape(st: &StepBlock) -> Option<(usize, usize)> {
+    st.shape.filter(|(n, m)| {
+        n * m == st.equations.len() && n * m > 1 && matches!(st.heading, Lhs::Label(..))
+    })
+}
+
+/// Whether a step that does not vanish shows its result: not when every
+/// equation is written by name and the result is not a matrix (whose
+/// names are shown).
+fn has_block(st: &StepBlock) -> bool {
+    !st.has_named() || matrix_shape(st).is_some() || (0..st.equations.len()).any(|k| !st.named(k))
 }
 
 /// A list of symbol names as inline math.
@@ -431,6 +446,7 @@ fn html_section(o: &mut String, number: &str, s: &Section, ids: &StepIds) {
     for (k, st) in s.steps.iter().enumerate() {
         step_html(o, k + 1, st, &ids.0[k]);
     }
+    coefficients_html(o, s, &id);
     o.push_str("</article>\n");
 }
 
@@ -468,7 +484,7 @@ fn step_html(o: &mut String, n: usize, st: &StepBlock, id: &str) {
             "<p><em>{}</em></p>",
             escape::html(&sentence(crate::document::VANISHES))
         );
-    } else {
+    } else if has_block(st) {
         let latex = format!(
             "\\begin{{aligned}}\n{}\n\\end{{aligned}}",
             step_lines(st, LINE_BUDGET)
@@ -478,6 +494,9 @@ fn step_html(o: &mut String, n: usize, st: &StepBlock, id: &str) {
             "<div class=\"equation\">{}</div>",
             mathml::math(&step_body(st), &latex, true)
         );
+    }
+    if let Some(text) = named_prose(st) {
+        let _ = writeln!(o, "<p class=\"named\">{}</p>", prose_html(&text));
     }
     if !st.condition.is_empty() {
         let _ = writeln!(
@@ -535,12 +554,23 @@ fn step_html(o: &mut String, n: usize, st: &StepBlock, id: &str) {
 /// The MathML of a step's result: a matrix as a matrix when its columns
 /// fit the line, else one equation per component, aligned at `=`.
 fn step_body(st: &StepBlock) -> String {
-    if let Some((n, m)) = st.shape
-        && n * m == st.equations.len()
-        && n * m > 1
-        && matches!(st.heading, Lhs::Label(..))
-    {
-        let entries: Vec<String> = st.equations.iter().map(|e| mathml::expr(&e.rhs)).collect();
+    if let Some((n, m)) = matrix_shape(st) {
+        // An entry written by name shows its name; below the diagonal of a
+        // symmetric matrix, the name of the entry above it.
+        let owner = |k: usize| {
+            let (i, j) = (k / m, k % m);
+            if st.symmetric && i > j { j * m + i } else { k }
+        };
+        let entries: Vec<String> = (0..n * m)
+            .map(|k| {
+                let o = owner(k);
+                if st.named(o) {
+                    mathml::lhs(&st.equations[o].lhs)
+                } else {
+                    mathml::expr(&st.equations[k].rhs)
+                }
+            })
+            .collect();
         let lhs = mathml::lhs(&st.heading);
         let columns: f32 = (0..m)
             .map(|j| {
@@ -550,16 +580,98 @@ fn step_body(st: &StepBlock) -> String {
             })
             .sum::<f32>()
             + 2.0 * m as f32;
-        if columns + mathml::width(&lhs) + 3.0 <= LINE_BUDGET {
+        // A matrix with entries written by name is set as a matrix (its
+        // box scrolls when it is wider than the line).
+        if st.has_named() || columns + mathml::width(&lhs) + 3.0 <= LINE_BUDGET {
             return mathml::table(&[(lhs, format!("<mo>=</mo>{}", mathml::matrix(&entries, m)))]);
         }
     }
     let rows: Vec<Row> = st
         .equations
         .iter()
-        .flat_map(|e| mathml::rows(e, LINE_BUDGET))
+        .enumerate()
+        .filter(|(k, _)| !st.named(*k))
+        .flat_map(|(_, e)| mathml::rows(e, LINE_BUDGET))
         .collect();
     mathml::table(&rows)
+}
+
+/// The sentence after a step some of whose equations are written by name
+/// (their names in Unicode, between `$` signs for [`prose_html`]); `None`
+/// when it names none.
+fn named_prose(st: &StepBlock) -> Option<String> {
+    let ks: Vec<usize> = (0..st.equations.len()).filter(|&k| st.named(k)).collect();
+    if ks.is_empty() {
+        return None;
+    }
+    let names: Vec<String> = ks
+        .iter()
+        .map(|&k| format!("${}$", st.equations[k].lhs.unicode()))
+        .collect();
+    let terms: usize = ks.iter().map(|&k| st.terms[k]).sum();
+    Some(format!(
+        "Too long to print here ({terms} terms in all), {} are written by name; see \
+         Coefficients at the end of this page.",
+        names.join(", ")
+    ))
+}
+
+/// The terms of the definitions of named coefficients a page holds at
+/// most: a term of MathML takes about 250 bytes, and a page of the notes
+/// must stay under 2 MB (`scripts/check_pages.py`). Beyond it, the page
+/// names each coefficient with its size and refers to the PDF notes and
+/// the exports, which define them.
+const PAGE_TERMS: usize = 2000;
+
+/// Whether the page of `s` defines its named coefficients: it has some,
+/// and they are within [`PAGE_TERMS`].
+fn defined_on_page(s: &Section) -> bool {
+    let coefficients = s.coefficients();
+    !coefficients.is_empty() && coefficients.iter().map(|(_, t)| t).sum::<usize>() <= PAGE_TERMS
+}
+
+/// A section's *Coefficients*: the definitions of the results its steps
+/// write by name, as one aligned block; or, above [`PAGE_TERMS`], their
+/// names and sizes and where they are defined.
+fn coefficients_html(o: &mut String, s: &Section, id: &str) {
+    let coefficients = s.coefficients();
+    if coefficients.is_empty() {
+        return;
+    }
+    let _ = writeln!(o, "<h2 id=\"{id}-coefficients\">Coefficients</h2>");
+    let _ = writeln!(o, "<p>{}</p>", escape::html(&coefficients_intro()));
+    if !defined_on_page(s) {
+        let total: usize = coefficients.iter().map(|(_, t)| t).sum();
+        let _ = writeln!(
+            o,
+            "<p>Their definitions, {total} terms in all, are more than a web page holds: \
+             they are in the notes as PDF and Markdown (<code>hdot notes</code>) and in the \
+             SymPy and JSON exports (<code>hdot derive {} --format sympy</code>).</p>\n<ul class=\"coefficients\">",
+            escape::html(&s.name)
+        );
+        for (e, terms) in &coefficients {
+            let _ = writeln!(
+                o,
+                "<li>{}: {terms} terms</li>",
+                prose_html(&format!("${}$", e.lhs.unicode()))
+            );
+        }
+        o.push_str("</ul>\n");
+        return;
+    }
+    let rows: Vec<Row> = coefficients
+        .iter()
+        .flat_map(|(e, _)| mathml::rows(e, LINE_BUDGET))
+        .collect();
+    let latex = format!(
+        "\\begin{{aligned}}\n{}\n\\end{{aligned}}",
+        coefficient_groups(s, LINE_BUDGET).concat().join(" \\\\\n")
+    );
+    let _ = writeln!(
+        o,
+        "<div class=\"equation\">{}</div>",
+        mathml::math(&mathml::table(&rows), &latex, true)
+    );
 }
 
 #[cfg(test)]

@@ -6,9 +6,12 @@
 use std::fmt::Write;
 
 use super::layout::{
-    equations_lines, failure_lines, math_width, omega_inline, symbol_list, write_step_lines,
+    coefficient_groups, equations_lines, failure_lines, math_width, named_list, omega_inline,
+    symbol_list, write_step_lines,
 };
-use super::words::{label_key, latex_code, sentence, step_title, vanishes_text};
+use super::words::{
+    coefficients_intro, label_key, latex_code, named_text, sentence, step_title, vanishes_text,
+};
 use super::{LINE_BUDGET, REFRESH_COMMAND, has_chapters};
 use crate::document::{Backend, Document, Section, Verdict};
 use crate::escape;
@@ -237,39 +240,75 @@ pub(super) fn latex_section(o: &mut String, s: &Section, level: usize, target: T
             write_step_lines(&mut lines, st, LINE_BUDGET);
             // A block taller than a page may break across pages (the
             // article allows it everywhere; a fragment, in its own group).
+            // A step whose equations are all written by name has no block.
             let tall = target == Target::Fragment && lines.matches(" \\\\\n").count() >= TALL_BLOCK;
             if tall {
                 o.push_str("\\begingroup\\allowdisplaybreaks\n");
             }
-            o.push_str("\\begin{align*}\n");
-            o.push_str(&lines);
-            o.push_str("\n\\end{align*}\n");
+            if !lines.is_empty() {
+                o.push_str("\\begin{align*}\n");
+                o.push_str(&lines);
+                o.push_str("\n\\end{align*}\n");
+            }
             if tall {
                 o.push_str("\\endgroup\n");
             }
         }
-        if !st.condition.is_empty() {
-            let _ = writeln!(o, "(for {})\n", prose::latex(&st.condition));
+        step_after(o, st);
+    }
+    latex_coefficients(o, s, sub, target);
+}
+
+/// What follows a step's block: the sentence on the equations it writes
+/// by name, its conditions and its verdict.
+fn step_after(o: &mut String, st: &crate::document::StepBlock) {
+    if let Some((names, terms)) = named_list(st) {
+        let _ = writeln!(o, "{}\n", named_text(&names, terms, false, false));
+    }
+    if !st.condition.is_empty() {
+        let _ = writeln!(o, "(for {})\n", prose::latex(&st.condition));
+    }
+    match &st.verdict {
+        Verdict::NoExpectation => {
+            let _ = writeln!(o, "\\emph{{No expectation is stated for this step.}}\n");
         }
-        match &st.verdict {
-            Verdict::NoExpectation => {
-                let _ = writeln!(o, "\\emph{{No expectation is stated for this step.}}\n");
-            }
-            Verdict::Holds => {
-                let _ = writeln!(o, "$\\checkmark$ Equals the expected (textbook) form.\n");
-            }
-            Verdict::Fails(f) => {
-                let _ = writeln!(
-                    o,
-                    "\\textbf{{Does not equal the expected form}} (derived $-$ expected is shown):"
-                );
-                let _ = writeln!(
-                    o,
-                    "\\begin{{align*}}\n{}\n\\end{{align*}}\n",
-                    failure_lines(f, LINE_BUDGET)
-                );
-            }
+        Verdict::Holds => {
+            let _ = writeln!(o, "$\\checkmark$ Equals the expected (textbook) form.\n");
         }
+        Verdict::Fails(f) => {
+            let _ = writeln!(
+                o,
+                "\\textbf{{Does not equal the expected form}} (derived $-$ expected is shown):"
+            );
+            let _ = writeln!(
+                o,
+                "\\begin{{align*}}\n{}\n\\end{{align*}}\n",
+                failure_lines(f, LINE_BUDGET)
+            );
+        }
+    }
+}
+
+/// A section's *Coefficients*: the definitions of the results its steps
+/// print by name, each broken like a long equation, in a block that may
+/// break across pages.
+fn latex_coefficients(o: &mut String, s: &Section, sub: &str, target: Target) {
+    let groups = coefficient_groups(s, LINE_BUDGET);
+    if groups.is_empty() {
+        return;
+    }
+    let _ = writeln!(o, "\\{sub}*{{Coefficients}}");
+    let _ = writeln!(o, "{}\n", prose::latex(&coefficients_intro()));
+    if target == Target::Fragment {
+        o.push_str("\\begingroup\\allowdisplaybreaks\n");
+    }
+    let _ = writeln!(
+        o,
+        "\\begin{{align*}}\n{}\n\\end{{align*}}",
+        groups.concat().join(" \\\\\n")
+    );
+    if target == Target::Fragment {
+        o.push_str("\\endgroup\n");
     }
 }
 

@@ -239,7 +239,10 @@ pub(super) fn matrix_groups(s: &StepBlock, width: f32) -> Option<Vec<Vec<String>
         if symmetric && i > j { at(j, i) } else { k }
     };
     let budget = width - math_width(&lhs) - 3.0;
-    let mut named = vec![false; n * m];
+    // Entries above the document's size are named whatever the width, and
+    // defined under *Coefficients*, not after the matrix.
+    let long: Vec<bool> = (0..n * m).map(|k| s.named(k)).collect();
+    let mut named = long.clone();
     loop {
         let cells: Vec<&str> = (0..n * m)
             .map(|k| {
@@ -261,7 +264,7 @@ pub(super) fn matrix_groups(s: &StepBlock, width: f32) -> Option<Vec<Vec<String>
                 "{lhs} &= \\begin{{bmatrix}} {} \\end{{bmatrix}}",
                 rows.join(r" \\ ")
             )]];
-            for k in (0..n * m).filter(|&k| named[k]) {
+            for k in (0..n * m).filter(|&k| named[k] && !long[k]) {
                 groups.push(equation_lines(&names[k], &s.equations[k].rhs, width));
             }
             return Some(groups);
@@ -274,9 +277,49 @@ pub(super) fn matrix_groups(s: &StepBlock, width: f32) -> Option<Vec<Vec<String>
 }
 
 /// The equations of one step as groups of lines of an `align*` block:
-/// a matrix as a matrix ([`matrix_groups`]), else one group per equation.
+/// a matrix as a matrix ([`matrix_groups`]), else one group per equation;
+/// the equations printed by name ([`StepBlock::named`]) are left out of
+/// the list (see [`named_groups`] and [`coefficient_groups`]), so a step
+/// whose equations are all named has no groups.
 pub(super) fn step_groups(s: &StepBlock, width: f32) -> Vec<Vec<String>> {
-    matrix_groups(s, width).unwrap_or_else(|| equations_groups(&s.equations, width))
+    matrix_groups(s, width).unwrap_or_else(|| {
+        if s.has_named() {
+            let kept: Vec<Equation> = (0..s.equations.len())
+                .filter(|&k| !s.named(k))
+                .map(|k| s.equations[k].clone())
+                .collect();
+            equations_groups(&kept, width)
+        } else {
+            equations_groups(&s.equations, width)
+        }
+    })
+}
+
+/// The names of a step's equations printed by name, as LaTeX math
+/// joined by commas (`M_{11}, M_{12}, f_{1}`), and the number of their
+/// terms in all; `None` when the step names none.
+pub(super) fn named_list(s: &StepBlock) -> Option<(String, usize)> {
+    let ks: Vec<usize> = (0..s.equations.len()).filter(|&k| s.named(k)).collect();
+    if ks.is_empty() {
+        return None;
+    }
+    let names: Vec<String> = ks.iter().map(|&k| s.equations[k].lhs.latex()).collect();
+    Some((
+        names.join(",\\ \\allowbreak "),
+        ks.iter().map(|&k| s.terms[k]).sum(),
+    ))
+}
+
+/// The definitions of a section's named coefficients ([`Section::coefficients`])
+/// as groups of lines of an `align*` block, one group per coefficient,
+/// each broken like any long equation.
+///
+/// [`Section::coefficients`]: crate::document::Section::coefficients
+pub(super) fn coefficient_groups(s: &crate::document::Section, width: f32) -> Vec<Vec<String>> {
+    s.coefficients()
+        .into_iter()
+        .map(|(e, _)| equation_lines(&e.lhs.latex(), &e.rhs, width))
+        .collect()
 }
 
 /// `rhs = 0` broken like [`equation_lines`], set from the left edge of the

@@ -5,8 +5,12 @@
 
 use std::fmt::Write;
 
-use super::layout::{failure_lines, omega_inline, step_lines, symbol_list};
-use super::words::{label_key, sentence, step_title, vanishes_text};
+use super::layout::{
+    coefficient_groups, failure_lines, named_list, omega_inline, step_lines, symbol_list,
+};
+use super::words::{
+    coefficients_intro, label_key, named_text, sentence, step_title, vanishes_text,
+};
 use super::{LINE_BUDGET, REFRESH_COMMAND, has_chapters};
 use crate::document::{Backend, Document, Section, Verdict};
 use crate::escape;
@@ -192,7 +196,14 @@ pub(super) fn markdown_section(o: &mut String, number: &str, s: &Section, level:
         if st.vanishes() {
             let _ = writeln!(o, "{}\n", vanishes_text(true));
         } else {
-            md_math_block(o, &step_lines(st, LINE_BUDGET));
+            // A step whose equations are all written by name has no block.
+            let lines = step_lines(st, LINE_BUDGET);
+            if !lines.is_empty() {
+                md_math_block(o, &lines);
+            }
+        }
+        if let Some((names, terms)) = named_list(st) {
+            let _ = writeln!(o, "{}\n", named_text(&names, terms, true, false));
         }
         if !st.condition.is_empty() {
             let _ = writeln!(o, "(for {})\n", prose::markdown(&st.condition));
@@ -212,6 +223,12 @@ pub(super) fn markdown_section(o: &mut String, number: &str, s: &Section, level:
                 md_math_block(o, &failure_lines(f, LINE_BUDGET));
             }
         }
+    }
+    let groups = coefficient_groups(s, LINE_BUDGET);
+    if !groups.is_empty() {
+        let _ = writeln!(o, "{sub} Coefficients\n");
+        let _ = writeln!(o, "{}\n", prose::markdown(&coefficients_intro()));
+        md_math_block(o, &groups.concat().join(" \\\\\n"));
     }
 }
 

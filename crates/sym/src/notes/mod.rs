@@ -245,9 +245,16 @@ mod tests {
         for path in &files {
             let d = crate::derivation::load(path).unwrap_or_else(|e| panic!("{e}"));
             let section = Section::of(&d, None);
+            // The definitions of the results written by name are set at the
+            // notes' measure (a slide only names them).
+            let coefficients = super::layout::coefficient_groups(&section, LINE_BUDGET).concat();
             for st in section.steps.iter().filter(|s| !s.vanishes()) {
                 for width in [LINE_BUDGET, SLIDE_BUDGET] {
-                    for line in super::layout::step_groups(st, width).concat() {
+                    let mut step = super::layout::step_groups(st, width).concat();
+                    if width == LINE_BUDGET && st.has_named() {
+                        step.extend(coefficients.iter().cloned());
+                    }
+                    for line in step {
                         if line.contains(r"\begin{bmatrix}") {
                             continue;
                         }
@@ -302,5 +309,76 @@ mod tests {
         ] {
             assert!(all.contains(construct), "coverage lacks {construct}: {all}");
         }
+    }
+
+    /// A result above the size (`document::NAMED_ABOVE` terms) is written
+    /// by its name in its step and defined under *Coefficients* at the end
+    /// of the section; one at the size prints as before (here a matrix
+    /// entry too wide for its column: named and defined after the matrix).
+    /// The slides name it and define nothing; the web page's count of
+    /// equations follows.
+    #[test]
+    fn results_above_the_size_are_named_coefficients() {
+        use crate::document::{NAMED_ABOVE, Section};
+        let text = r#"
+title = "Long results"
+source = "a test"
+[symbols]
+constants = ["a", "b"]
+time = ["q", "p"]
+[[step]]
+name = "E"
+value = "(1 + a + q)^15"
+[[step]]
+name = "short"
+value = "a*q + b"
+[[step]]
+name = "J"
+label = "M"
+value = "jacobian(list(q*(1 + a + b)^15 + p*(1 + a + b)^14, a*q + p*q), [q, p])"
+"#;
+        let d = crate::derivation::load_str("long.toml", text).unwrap();
+        let section = Section::of(&d, None);
+        // (1 + a + q)^15 has C(17, 2) = 136 terms, (1 + a + b)^14 has
+        // C(16, 2) = 120: one above the size, one at it.
+        assert_eq!(NAMED_ABOVE, 120);
+        assert_eq!(section.steps[0].terms, vec![136]);
+        assert_eq!(section.steps[2].terms, vec![136, 120, 2, 1]);
+        let named: Vec<String> = section
+            .coefficients()
+            .iter()
+            .map(|(e, terms)| format!("{} {terms}", e.lhs.latex()))
+            .collect();
+        assert_eq!(named, ["E 136", "M_{11} 136"]);
+        let tex = latex_fragment(&d);
+        let (steps, coefficients) = tex.split_once(r"\subsection*{Coefficients}").unwrap();
+        assert!(!steps.contains("E &="), "{steps}");
+        assert!(steps.contains("written by name"), "{steps}");
+        assert!(
+            steps.contains(r"M &= \begin{bmatrix} M_{11} & M_{12} \\ a + p & q \end{bmatrix}"),
+            "{steps}"
+        );
+        assert!(steps.contains("M_{12} &= "), "{steps}");
+        assert!(steps.contains("b + a q"), "{steps}");
+        assert!(coefficients.contains("E &= "), "{coefficients}");
+        assert!(coefficients.contains("M_{11} &= "), "{coefficients}");
+        assert!(!coefficients.contains("M_{12} &="), "{coefficients}");
+        let md = markdown_fragment(&d);
+        let (steps, coefficients) = md.split_once("### Coefficients").unwrap();
+        assert!(
+            !steps.contains("E &=") && coefficients.contains("E &= "),
+            "{md}"
+        );
+        let doc = crate::document::Course::plain(&[d.clone()]).document(&[d.clone()]);
+        let slides = slides_document(&doc);
+        assert!(
+            !slides.contains("E &=") && !slides.contains("M_{11} &="),
+            "{slides}"
+        );
+        assert!(slides.contains("defined in the notes"), "{slides}");
+        let site = html_site(&doc);
+        let page = site.iter().find(|p| p.equations > 0).unwrap();
+        assert_eq!(page.text.matches("<math").count(), page.equations);
+        assert!(page.text.contains("Coefficients"));
     }
 }

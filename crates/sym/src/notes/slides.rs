@@ -5,8 +5,8 @@
 use std::fmt::Write;
 
 use super::latex::generated_comment;
-use super::layout::step_groups;
-use super::words::{sentence, step_title, vanishes_text};
+use super::layout::{named_list, step_groups};
+use super::words::{named_text, sentence, step_title, vanishes_text};
 use super::{SLIDE_BUDGET, has_chapters};
 use crate::document::{Backend, Chapter, Document, Section, StepBlock, Verdict};
 use crate::prose;
@@ -263,14 +263,36 @@ pub(super) fn slides_step(o: &mut String, section_title: &str, st: &StepBlock) {
         note = format!("{note} (for {})", prose::latex(&st.condition));
         note_chars += 6 + prose::unicode(&st.condition).chars().count();
     }
+    // The equations written by name: a line saying so on the last frame.
+    let named = named_list(st).map(|(names, terms)| {
+        let chars = names.len() / 3 + 90;
+        (named_text(&names, terms, false, true), chars)
+    });
     let room = FRAME_HEIGHT
         - FRAME_FIXED
         - (text_lines(prose::ascii(section_title).chars().count(), TITLE_CHARS) - 1.0)
-        - (text_lines(note_chars + 12, NOTE_CHARS) - 1.0) * NOTE_HEIGHT;
-    let frames = if st.vanishes() {
+        - (text_lines(note_chars + 12, NOTE_CHARS) - 1.0) * NOTE_HEIGHT
+        - named.as_ref().map_or(0.0, |(_, chars)| {
+            text_lines(*chars, NOTE_CHARS) * NOTE_HEIGHT
+        });
+    let mut groups = if st.vanishes() {
+        Vec::new()
+    } else {
+        step_groups(st, SLIDE_BUDGET)
+    };
+    // A matrix with entries written by name shows the matrix alone: the
+    // definitions of its entries are in the notes.
+    if named.is_some()
+        && groups
+            .first()
+            .is_some_and(|g| g[0].contains(r"\begin{bmatrix}"))
+    {
+        groups.truncate(1);
+    }
+    let frames = if groups.is_empty() {
         vec![Vec::new()]
     } else {
-        frames_of(step_groups(st, SLIDE_BUDGET), room)
+        frames_of(groups, room)
     };
     let last = frames.len() - 1;
     for (k, lines) in frames.iter().enumerate() {
@@ -281,7 +303,7 @@ pub(super) fn slides_step(o: &mut String, section_title: &str, st: &StepBlock) {
         );
         if st.vanishes() {
             let _ = writeln!(o, "{}\\par", vanishes_text(false));
-        } else {
+        } else if !lines.is_empty() {
             let _ = writeln!(
                 o,
                 "\\begin{{align*}}\n{}\n\\end{{align*}}",
@@ -289,6 +311,9 @@ pub(super) fn slides_step(o: &mut String, section_title: &str, st: &StepBlock) {
             );
         }
         if k == last {
+            if let Some((text, _)) = &named {
+                let _ = writeln!(o, "{{\\footnotesize {text}\\par}}");
+            }
             match &st.verdict {
                 Verdict::NoExpectation => {}
                 Verdict::Holds => {

@@ -74,3 +74,39 @@ pub(super) fn capitalise(s: &str) -> String {
         _ => s.to_owned(),
     }
 }
+
+/// The sentence after a step some of whose equations are printed by name
+/// (`names` as LaTeX math, `terms` their terms in all): where they are
+/// defined — under *Coefficients* at the end of the section, or, on a
+/// slide, in the notes. As LaTeX prose, or Markdown when `markdown`.
+pub(super) fn named_text(names: &str, terms: usize, markdown: bool, slides: bool) -> String {
+    let place = if slides {
+        "in the notes, as is every entry named here"
+    } else if markdown {
+        "under *Coefficients* at the end of this section"
+    } else {
+        "under \\emph{Coefficients} at the end of this section"
+    };
+    let names = if markdown {
+        escape::markdown_math(names)
+    } else {
+        names.to_owned()
+    };
+    let verb = if names.contains("allowbreak") {
+        "are"
+    } else {
+        "is"
+    };
+    format!(
+        "Too long to print here ({terms} terms in all), ${names}$ {verb} written by name and defined {place}."
+    )
+}
+
+/// The sentence that opens a section's *Coefficients*.
+pub(super) const COEFFICIENTS_INTRO: &str = "The results written by name in the steps above, \
+     each with more than {NAMED} terms (hdot prints a result of that size by name).";
+
+/// [`COEFFICIENTS_INTRO`] with the size.
+pub(super) fn coefficients_intro() -> String {
+    COEFFICIENTS_INTRO.replace("{NAMED}", &crate::document::NAMED_ABOVE.to_string())
+}
