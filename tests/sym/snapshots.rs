@@ -40,7 +40,10 @@ fn digest(out: &str) -> String {
     if out.len() <= FULL_UP_TO {
         return out.to_string();
     }
-    let mut d = format!("digest of {} bytes: lines over 160 characters cut\n", out.len());
+    let mut d = format!(
+        "digest of {} bytes: lines over 160 characters cut\n",
+        out.len()
+    );
     for line in out.lines() {
         let n = line.chars().count();
         if n > 160 {

@@ -369,7 +369,8 @@ value = "jacobian(list(q*(1 + a + b)^15 + p*(1 + a + b)^14, a*q + p*q), [q, p])"
             !steps.contains("E &=") && coefficients.contains("E &= "),
             "{md}"
         );
-        let doc = crate::document::Course::plain(&[d.clone()]).document(&[d.clone()]);
+        let doc = crate::document::Course::plain(std::slice::from_ref(&d))
+            .document(std::slice::from_ref(&d));
         let slides = slides_document(&doc);
         assert!(
             !slides.contains("E &=") && !slides.contains("M_{11} &="),
