@@ -258,7 +258,7 @@ fn bad_bicycle_body_tables_are_refused_at_their_table() {
 }
 
 /// The nonlinear bicycle (docs/examples/sim-bicycle-nonlinear.toml: the
-/// multiplier form of derivations in docs/examples/derivations/
+/// multiplier form of derivations in derivations/
 /// bicycle-nonlinear.toml, both contacts exact) simulated from upright
 /// straight running with a small lean rate follows its linearization: at
 /// 5 m/s, inside the self-stable range, the lean decays; at 2 m/s, below the
