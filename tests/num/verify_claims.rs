@@ -4,6 +4,7 @@
 //! tests: a compound pendulum with a true and a false conservation claim.
 
 use hdot_num::verify::{Options, check};
+use hdot_tests::{fixed_point, frame, point};
 
 /// A rigid pendulum about a fixed pivot O, turning about y (axisymmetric
 /// about its own z, so that its centre may lie off O on the axis); `{extra}` is
@@ -193,6 +194,18 @@ means = "kinetic_energy(rod)"
     assert!(s.against.contains("label `0`"), "{s:?}");
 }
 
+/// The double pendulum's frames and points: rod 1 (frame A) hangs from
+/// the fixed O, rod 2 (frame B) from rod 1's tip P; C1 and C2 the rods'
+/// centres.
+const DOUBLE_PENDULUM_GEOMETRY: &str = concat!(
+    frame!("A", "N", "z(q1)"),
+    frame!("B", "A", "z(q2)"),
+    fixed_point!("O"),
+    point!("P", "O", "[0, -l1, 0] in A"),
+    point!("C1", "O", "[0, -l1/2, 0] in A"),
+    point!("C2", "P", "[0, -l2/2, 0] in B"),
+);
+
 /// A double pendulum of two rods in generalized speeds u₁ = q̇₁ and
 /// u₂ = q̇₁ + q̇₂ (rod 2's absolute rate, so the kinematic equations are
 /// not the identity), written for this test; `{laws}` are its equations
@@ -210,30 +223,7 @@ speeds = ["u1", "u2"]
 [kinematics]
 q1 = "u1"
 q2 = "u2 - u1"
-[[frame]]
-name = "A"
-parent = "N"
-rotation = "z(q1)"
-[[frame]]
-name = "B"
-parent = "A"
-rotation = "z(q2)"
-[[point]]
-name = "O"
-fixed = true
-[[point]]
-name = "P"
-from = "O"
-at = "[0, -l1, 0] in A"
-[[point]]
-name = "C1"
-from = "O"
-at = "[0, -l1/2, 0] in A"
-[[point]]
-name = "C2"
-from = "P"
-at = "[0, -l2/2, 0] in B"
-[[body]]
+{DOUBLE_PENDULUM_GEOMETRY}[[body]]
 name = "rod1"
 frame = "A"
 point = "O"
