@@ -1,6 +1,7 @@
 //! Shared helpers of the integration tests.
 
 pub mod fixtures;
+pub mod pendulum;
 
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;

@@ -34,7 +34,7 @@ fn simulation_scenes() -> Vec<PathBuf> {
 }
 
 /// The JSON data of a page's view.
-fn view_data(page: &str) -> serde_json::Value {
+pub(super) fn view_data(page: &str) -> serde_json::Value {
     let open = "<script id=\"motion\" type=\"application/json\">";
     let start = page.find(open).expect("the view's data") + open.len();
     let end = start + page[start..].find("</script>").unwrap();
@@ -93,7 +93,21 @@ fn check_page_file(path: &Path) -> u64 {
     for g in groups {
         assert!(!g["parts"].as_array().unwrap().is_empty());
         assert_eq!(g["rot"].as_array().unwrap().len(), 9 * (FRAMES + 1));
+        // A body's place at each frame, or none (drawn at the origin).
+        if let Some(pos) = g["pos"].as_array() {
+            assert_eq!(pos.len(), 3 * (FRAMES + 1));
+        }
     }
+    // The view's turn (up to the canvas' up) is a rotation.
+    let v: Vec<f64> = data["view"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    let v = nalgebra::Matrix3::from_row_slice(&v);
+    assert!((v.transpose() * v - nalgebra::Matrix3::identity()).norm() < 1e-5);
+    assert!((v.determinant() - 1.0).abs() < 1e-5);
     assert!(data["scale"].as_f64().unwrap() > 0.0);
     size
 }

@@ -9,6 +9,7 @@ mod derived_errors;
 mod exports;
 mod html;
 mod notes_html;
+mod page_places;
 mod reliability;
 mod review;
 mod stability;

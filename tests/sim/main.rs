@@ -21,6 +21,8 @@ mod holonomic;
 mod multiplier;
 // scene/derived.rs: a derived scene's `[[body]]` tables bind the derivation's symbols.
 mod derived_bodies;
+// systems/derived/positions.rs: where each declared body is, and gravity in N.
+mod positions;
 // stability/: eigenvalue sweeps of linearised equations (hdot stability).
 mod eigen_sweep;
 // elliptic.rs: identities, special values, series of K.

@@ -19,6 +19,7 @@
 
 use std::path::{Path, PathBuf};
 
+use hdot_num::scene::Bodies;
 use nalgebra::{Quaternion, Rotation3, UnitQuaternion, Vector3};
 
 use crate::exact::SteadyTop;
@@ -58,6 +59,9 @@ pub struct Scene {
     /// A free body's or heavy top's body frame in the axes of its
     /// `[[body]]` tables (what a drawing of the tables turns with).
     pub body_frame: Option<BodyFrame>,
+    /// What moves (`g`, `[[body]]`, `[[cloud]]`), as read once with the
+    /// rest of the scene (`hdot_num::scene::bodies_from`).
+    pub bodies: Bodies,
 }
 
 /// The body frame of a free body or heavy top, in the tables' axes.
@@ -226,31 +230,35 @@ impl Scene {
             ));
         }
         let mut body_frame = None;
-        let kind = match raw.kind.as_str() {
+        let (kind, bodies) = match raw.kind.as_str() {
             "free" | "heavy-top" => {
                 let heavy = raw.kind == "heavy-top";
-                let (kind, frame) = rigid::read(raw.top, shared, &initial, heavy, file, text)?;
+                let (kind, frame, bodies) =
+                    rigid::read(raw.top, shared, &initial, heavy, file, text)?;
                 body_frame = Some(frame);
-                kind
+                (kind, bodies)
             }
             "fixed-axis" => shaft::read(raw.shaft, raw.motor, shared, &initial, file, text)?,
-            "derived" => SceneKind::Derived(Box::new(derived::read(
-                derived::Tables {
-                    derivation: raw.derivation,
-                    constants: raw.constants.unwrap_or_default(),
-                    inputs: raw.inputs.unwrap_or_default(),
-                    builtin: [
-                        ("top", raw.top.is_some()),
-                        ("shaft", raw.shaft.is_some()),
-                        ("motor", raw.motor.is_some()),
-                    ],
-                    shared,
-                },
-                initial,
-                file,
-                text,
-                resolve,
-            )?)),
+            "derived" => {
+                let (ds, bodies) = derived::read(
+                    derived::Tables {
+                        derivation: raw.derivation,
+                        constants: raw.constants.unwrap_or_default(),
+                        inputs: raw.inputs.unwrap_or_default(),
+                        builtin: [
+                            ("top", raw.top.is_some()),
+                            ("shaft", raw.shaft.is_some()),
+                            ("motor", raw.motor.is_some()),
+                        ],
+                        shared,
+                    },
+                    initial,
+                    file,
+                    text,
+                    resolve,
+                )?;
+                (SceneKind::Derived(Box::new(ds)), bodies)
+            }
             other => {
                 return Err(bad(
                     "kind",
@@ -267,6 +275,7 @@ impl Scene {
             t_end: raw.t_end,
             kind,
             body_frame,
+            bodies,
         };
         scene.check_initial_rates(text)?;
         Ok(scene)

@@ -185,13 +185,9 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<ExitCode> {
         }
     };
     if let Some(path) = &args.html {
-        let source = match crate::catalog::bundled_scene(&args.scene) {
-            Some((_, text)) => text.to_owned(),
-            None => std::fs::read_to_string(&args.scene)?,
-        };
         // A non-finite sample is a failure of the run (exit 1), as when
         // the run itself ends on one.
-        let page = match crate::html::simulation_page(&scene, &source, &report) {
+        let page = match crate::html::simulation_page(&scene, &report) {
             Ok(page) => page,
             Err(e @ crate::html::PageError::NonFinite { .. }) => {
                 eprintln!("error: {e}");

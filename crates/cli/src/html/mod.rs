@@ -8,6 +8,7 @@
 use std::path::{Path, PathBuf};
 
 mod motion;
+mod place;
 mod plot;
 mod shapes;
 mod shell;

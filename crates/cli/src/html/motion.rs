@@ -1,7 +1,8 @@
 //! The motion a simulation page shows, from what a run returned: the
 //! samples (a closed-form run, which records only its end, is sampled at
 //! screen resolution from its closed form), the series each plot draws,
-//! and the attitude of every drawn frame at every sample.
+//! and the attitude of every drawn frame and the place of every derived
+//! body at every sample.
 
 use hdot_sim::nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
 use hdot_sim::run::{self, Report};
@@ -317,6 +318,25 @@ impl Motion {
         m.frames = anim.iter().map(|r| r[0]).collect();
         m.anim = anim;
         Ok(m)
+    }
+
+    /// The place of a derivation's body `name` (its reference point, in
+    /// space) at each animation frame; `Err` says why it is not known (it
+    /// is drawn at the origin).
+    pub fn body_positions(&self, scene: &Scene, name: &str) -> Result<Vec<Vector3<f64>>, String> {
+        let ds = scene.derivation().ok_or("not a derived scene")?;
+        let p: Vec<Vector3<f64>> = self
+            .anim
+            .iter()
+            .map(|row| ds.model.position(name, row[0], &row[1..]))
+            .collect::<Result<_, _>>()?;
+        match p.iter().position(|v| !v.iter().all(|c| c.is_finite())) {
+            Some(i) => Err(format!(
+                "the place of body `{name}` is not finite at t = {}",
+                self.frames[i]
+            )),
+            None => Ok(p),
+        }
     }
 
     /// The attitude of a derivation's frame: the first of `chain` (a frame

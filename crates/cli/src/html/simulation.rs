@@ -1,14 +1,15 @@
 //! `hdot simulate --html`: the page of a run — the report, SVG plots of
 //! the coordinates, ω and the conserved quantities' drift against time,
-//! and a 3D view of the body moving on a `<canvas>`, drawn by the small
-//! script `view.js` (embedded) from the scene's `[[body]]` tables and the
-//! run's attitudes.
+//! and a 3D view of the bodies moving on a `<canvas>`, drawn by the small
+//! script `view.js` (embedded) from the scene's `[[body]]` tables, the
+//! run's attitudes and, for a derived scene, where each body is
+//! (`place.rs`: the view upright and framed).
 //!
 //! The page reads only what a run returns ([`hdot_sim::run::Report`], its
-//! trajectory, the attitude of a derived scene's frames) and the scene's
-//! bodies; its size is bounded whatever the run's length (the plots are
-//! drawn at screen resolution, the animation has
-//! [`super::motion::FRAMES`] frames).
+//! trajectory, the attitude of a derived scene's frames and the place of
+//! its bodies) and the scene's bodies as the scene read them; its size is
+//! bounded whatever the run's length (the plots are drawn at screen
+//! resolution, the animation has [`super::motion::FRAMES`] frames).
 
 use std::fmt::Write;
 
@@ -18,6 +19,7 @@ use hdot_sim::scene::Scene;
 use serde_json::{Value, json};
 
 use super::motion::{Motion, Track};
+use super::place::{self, Placed};
 use super::shapes::{self, Shape, round};
 use super::shell::{Shell, report_table};
 use super::{PageError, plot};
@@ -25,11 +27,11 @@ use super::{PageError, plot};
 /// The view's script, written in this project.
 const VIEW_JS: &str = include_str!("view.js");
 
-/// The page of `report`, a run of `scene` whose text (for its `[[body]]`
-/// tables) is `text`.
-pub fn simulation_page(scene: &Scene, text: &str, report: &Report) -> Result<String, PageError> {
+/// The page of `report`, a run of `scene` (whose `[[body]]` tables it
+/// draws as the scene read them).
+pub fn simulation_page(scene: &Scene, report: &Report) -> Result<String, PageError> {
     let motion = Motion::new(scene, report)?;
-    let data = view_data(scene, text, &motion)?;
+    let data = view_data(scene, &motion);
     // No `<` in a script element (`</script>` would end it, `<!--` would
     // change how it ends): JSON writes it `\u003c`, inside strings only.
     let data = data.to_string().replace('<', "\\u003c");
@@ -68,7 +70,7 @@ pub fn simulation_page(scene: &Scene, text: &str, report: &Report) -> Result<Str
 }
 
 /// A rotation track as the page's data: 9 numbers (row-major) per frame.
-fn track_json(track: &Track, frames: usize) -> (Value, Option<String>) {
+fn rotations_json(track: &Track, frames: usize) -> (Value, Option<String>) {
     match &track.rotations {
         Ok(r) => (
             Value::from(
@@ -88,73 +90,107 @@ fn track_json(track: &Track, frames: usize) -> (Value, Option<String>) {
     }
 }
 
+/// One group of parts as drawn, before it becomes the page's data.
+struct Drawn {
+    frame: String,
+    parts: Vec<Shape>,
+    rot: Value,
+    placed: Placed,
+}
+
+/// The groups a derived scene draws: each group of `[[body]]` tables
+/// (`of`) turning with its derivation body's frame (or the nearest frame
+/// above it whose attitude is known) and placed at the body's reference
+/// point.
+fn derived_groups(
+    scene: &Scene,
+    ds: &hdot_sim::scene::DerivedScene,
+    motion: &Motion,
+    notes: &mut Vec<String>,
+) -> Vec<Drawn> {
+    let frames = motion.frames.len();
+    let mut out = vec![];
+    for g in &scene.bodies.groups {
+        let name =
+            g.of.clone()
+                .or_else(|| ds.model.bodies().next().map(str::to_owned));
+        let chain = name
+            .as_ref()
+            .and_then(|n| ds.body_frames.iter().find(|(b, _)| b == n))
+            .map(|(_, c)| c.clone())
+            .or_else(|| ds.frame.clone().map(|f| vec![f]))
+            .unwrap_or_default();
+        let track = motion.frame_track(scene, &chain);
+        if let (Some(first), Ok(_)) = (chain.first(), &track.rotations)
+            && *first != track.frame
+        {
+            notes.push(format!(
+                "{} turns with frame {} (the attitude of its own frame {first} is not a function \
+                 of the coordinates).",
+                g.of.as_deref().unwrap_or("The body"),
+                track.frame
+            ));
+        }
+        let positions = match &name {
+            Some(n) => match motion.body_positions(scene, n) {
+                Ok(p) => Some(p),
+                Err(why) => {
+                    notes.push(format!("{why}: {n} is drawn at the origin."));
+                    None
+                }
+            },
+            None => None,
+        };
+        let (rot, note) = rotations_json(&track, frames);
+        notes.extend(note);
+        let parts = shapes::shapes(&g.body, &Vector3::zeros());
+        let reach = parts.iter().map(Shape::reach).fold(0.0, f64::max);
+        out.push(Drawn {
+            frame: track.frame,
+            parts,
+            rot,
+            placed: Placed { positions, reach },
+        });
+    }
+    if out.is_empty() {
+        notes.push("the scene has no [[body]] table: nothing to draw".into());
+    }
+    out
+}
+
 /// What `view.js` draws: frame times, the groups of parts with their
-/// rotations, the view's scale, gravity, and the top's axis or the free
-/// body's angular momentum.
-fn view_data(scene: &Scene, text: &str, motion: &Motion) -> Result<Value, PageError> {
-    let bodies =
-        hdot_num::scene::bodies(&scene.file, text).map_err(|e| PageError::Run(e.to_string()))?;
+/// rotations and places, the view's turn (up at the top), scale and
+/// centre, gravity, and the top's axis or the free body's angular
+/// momentum.
+fn view_data(scene: &Scene, motion: &Motion) -> Value {
     let frames = motion.frames.len();
     let mut notes = vec![];
-    let mut groups = vec![];
-    let mut reach = 0.0f64;
-    let mut add = |shapes: Vec<Shape>, track: &Track, notes: &mut Vec<String>| {
-        let (rot, note) = track_json(track, frames);
-        notes.extend(note);
-        for sh in &shapes {
-            reach = reach.max(sh.reach());
-        }
-        groups.push(json!({
-            "frame": track.frame,
-            "parts": shapes.iter().map(Shape::to_json).collect::<Vec<_>>(),
-            "rot": rot,
-        }));
+    let groups = match scene.derivation() {
+        Some(ds) => derived_groups(scene, ds, motion, &mut notes),
+        None => match (&scene.bodies.body, &motion.body) {
+            (Some(body), Some(track)) => {
+                let origin = scene.body_frame.map_or_else(Vector3::zeros, |f| f.origin);
+                let parts = shapes::shapes(body, &origin);
+                let reach = parts.iter().map(Shape::reach).fold(0.0, f64::max);
+                let (rot, note) = rotations_json(track, frames);
+                notes.extend(note);
+                vec![Drawn {
+                    frame: track.frame.clone(),
+                    parts,
+                    rot,
+                    placed: Placed {
+                        positions: None,
+                        reach,
+                    },
+                }]
+            }
+            _ => vec![],
+        },
     };
-    let origin = scene.body_frame.map_or_else(Vector3::zeros, |f| f.origin);
-    match scene.derivation() {
-        Some(ds) => {
-            for g in &bodies.groups {
-                let chain = match &g.of {
-                    Some(name) => ds
-                        .body_frames
-                        .iter()
-                        .find(|(b, _)| b == name)
-                        .map(|(_, c)| c.clone()),
-                    None => ds.body_frames.first().map(|(_, c)| c.clone()),
-                }
-                .or_else(|| ds.frame.clone().map(|f| vec![f]))
-                .unwrap_or_default();
-                let track = motion.frame_track(scene, &chain);
-                if let (Some(first), Ok(_)) = (chain.first(), &track.rotations)
-                    && *first != track.frame
-                {
-                    notes.push(format!(
-                        "{} turns with frame {} (the attitude of its own frame {first} is not a function \
-                         of the coordinates).",
-                        g.of.as_deref().unwrap_or("The body"),
-                        track.frame
-                    ));
-                }
-                add(
-                    shapes::shapes(&g.body, &Vector3::zeros()),
-                    &track,
-                    &mut notes,
-                );
-            }
-            if bodies.groups.is_empty() {
-                notes.push("the scene has no [[body]] table: nothing to draw".into());
-            }
-        }
-        None => {
-            if let (Some(body), Some(track)) = (&bodies.body, &motion.body) {
-                add(shapes::shapes(body, &origin), track, &mut notes);
-            }
-        }
-    }
     let bearings = scene.shaft().map(|(shaft, _)| shaft.bearings);
-    if let Some(b) = bearings {
-        reach = reach.max(b[0].abs()).max(b[1].abs());
-    }
+    let extra = bearings.map_or(0.0, |b| b[0].abs().max(b[1].abs()));
+    let placed: Vec<Placed> = groups.iter().map(|g| g.placed.clone()).collect();
+    let (reach, centre) = place::framing(&placed, frames, extra);
     let reach = if reach.is_finite() && reach > 0.0 {
         reach
     } else {
@@ -166,24 +202,34 @@ fn view_data(scene: &Scene, text: &str, motion: &Motion) -> Result<Value, PageEr
         let a = f.axes * Vector3::z() * reach;
         [round(a.x), round(a.y), round(a.z)]
     });
-    let g = bodies.g.and_then(|g| {
-        let n = g.norm();
-        (n > 0.0 && n.is_finite()).then(|| [round(g.x / n), round(g.y / n), round(g.z / n)])
-    });
+    let g = place::gravity(scene);
     let momentum = motion.momentum.and_then(|h| {
         let n = h.norm();
         (n > 0.0 && n.is_finite()).then(|| [round(h.x / n), round(h.y / n), round(h.z / n)])
     });
-    Ok(json!({
+    let groups: Vec<Value> = groups
+        .into_iter()
+        .map(|g| {
+            json!({
+                "frame": g.frame,
+                "parts": g.parts.iter().map(Shape::to_json).collect::<Vec<_>>(),
+                "rot": g.rot,
+                "pos": g.placed.positions.as_deref().map(place::track_json),
+            })
+        })
+        .collect();
+    json!({
         "t": motion.frames.iter().map(|t| round(*t)).collect::<Vec<_>>(),
         "groups": groups,
         "scale": round(reach),
-        "g": g,
+        "view": place::rotation_json(&place::upright(g.map(|g| -g))),
+        "centre": centre.as_deref().map(place::track_json),
+        "g": g.map(|g| [round(g.x), round(g.y), round(g.z)]),
         "axis": axis,
         "momentum": momentum,
         "bearings": bearings,
         "notes": notes,
-    }))
+    })
 }
 
 #[cfg(test)]
@@ -194,11 +240,10 @@ mod tests {
 
     use super::*;
 
-    /// A run of the bundled heavy top (its text, the scene and the report
-    /// with the trajectory).
-    fn heavy_top() -> (String, Scene, Report) {
+    /// A run of the bundled heavy top (the scene and the report with the
+    /// trajectory).
+    fn heavy_top() -> (Scene, Report) {
         let path = Path::new("docs/examples/sim-heavy-top.toml");
-        let (_, text) = crate::catalog::bundled_scene(path).expect("bundled");
         let scene = crate::catalog::scene(path).unwrap();
         let plan = run::plan(&scene, &Request::default()).unwrap();
         let mut out = Output {
@@ -206,17 +251,17 @@ mod tests {
             ..Output::default()
         };
         let report = run::run(&scene, &plan, &mut out).unwrap();
-        (text.to_owned(), scene, report)
+        (scene, report)
     }
 
     #[test]
     fn a_non_finite_sample_is_refused_and_located() {
-        let (text, scene, mut report) = heavy_top();
-        assert!(simulation_page(&scene, &text, &report).is_ok());
+        let (scene, mut report) = heavy_top();
+        assert!(simulation_page(&scene, &report).is_ok());
         let rows = report.trajectory.as_mut().unwrap();
         let t = rows[7][0];
         rows[7][3] = f64::NAN;
-        let e = simulation_page(&scene, &text, &report).unwrap_err();
+        let e = simulation_page(&scene, &report).unwrap_err();
         assert!(
             matches!(&e, PageError::NonFinite { sample: 7, quantity, .. } if quantity == "q_y"),
             "{e}"

@@ -1,8 +1,10 @@
 // The 3D view of `hdot simulate --html`: draws the scene's bodies on a
-// <canvas> at each frame of the run with a small perspective projection
-// (no library), the space axes, gravity, a top's axis trace or a free
-// body's angular momentum, and runs play/pause, speed and the time scrubber.
-// Data: the JSON in <script id="motion"> (see crates/cli/src/html/mod.rs).
+// <canvas> at each frame of the run, each turned and placed where it is,
+// with a small perspective projection (no library), the space axes,
+// gravity, a top's axis trace or a free body's angular momentum, the paths
+// of bodies the view follows, and runs play/pause, speed and the time
+// scrubber. The view is turned so that up (against gravity) is up.
+// Data: the JSON in <script id="motion"> (see crates/cli/src/html/simulation.rs).
 "use strict";
 (function () {
   const D = JSON.parse(document.getElementById("motion").textContent);
@@ -84,6 +86,7 @@
   }
   const groups = D.groups.map((g, gi) => ({
     rot: g.rot,
+    pos: g.pos,
     colour: COLOURS[gi % COLOURS.length],
     parts: g.parts.map((p) => ({ p: p.p, r: p.r, m: mesh(p) })),
   }));
@@ -97,6 +100,19 @@
   const add = (a, b) => [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
   const sub = (a, b) => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
   const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+  const at3 = (a, i) => (a ? [a[3 * i], a[3 * i + 1], a[3 * i + 2]] : [0, 0, 0]);
+
+  // -- space → view: about the view's centre at frame i (the origin, or
+  // the bodies it follows), turned by D.view so that up is +Z --
+  const V = D.view || [1, 0, 0, 0, 1, 0, 0, 0, 1];
+  const dir = (v) => mul(V, 0, v);
+  const toView = (p, i) => mul(V, 0, sub(p, at3(D.centre, i)));
+  // The paths the view draws when it follows the bodies: one per place.
+  const paths = [];
+  if (D.centre)
+    for (const g of groups)
+      if (g.pos && !paths.some((p) => p.pos.every((v, k) => v === g.pos[k])))
+        paths.push({ pos: g.pos, colour: g.colour });
 
   // -- the camera: turned by az about Z and tipped by el, perspective --
   let W = 0, H = 0, dpr = 1;
@@ -139,13 +155,23 @@
     ctx.fillRect(0, 0, W, H);
     const o = [0, 0, 0];
     for (const [v, name] of [[[1, 0, 0], "X"], [[0, 1, 0], "Y"], [[0, 0, 1], "Z"]])
-      arrow(o, v.map((c) => 1.25 * S * c), "#888", name);
+      arrow(o, dir(v).map((c) => 1.25 * S * c), "#888", name);
     if (D.g) {
       const base = [-1.1 * S, -1.1 * S, 0.9 * S];
-      arrow(base, add(base, D.g.map((c) => 0.5 * S * c)), "#b45309", "g");
+      arrow(base, add(base, dir(D.g).map((c) => 0.5 * S * c)), "#b45309", "g");
+    }
+    for (const p of paths) {
+      ctx.strokeStyle = "rgba(" + p.colour.join(",") + ", 0.6)";
+      ctx.lineWidth = 1.5 * dpr;
+      ctx.beginPath();
+      for (let i = 0; i <= frame; i++) {
+        const c = camera(toView(at3(p.pos, i), frame));
+        i ? ctx.lineTo(c[0], c[1]) : ctx.moveTo(c[0], c[1]);
+      }
+      ctx.stroke();
     }
     if (D.bearings) {
-      const [a, b] = D.bearings.map((z) => camera([0, 0, z]));
+      const [a, b] = D.bearings.map((z) => camera(toView([0, 0, z], frame)));
       ctx.strokeStyle = "#555";
       ctx.lineWidth = 3 * dpr;
       ctx.beginPath();
@@ -161,7 +187,8 @@
     const faces = [], lines = [];
     for (const g of groups) {
       const o9 = 9 * frame;
-      const world = (part, q) => mul(g.rot, o9, add(part.p, mul(part.r, 0, q)));
+      const here = at3(g.pos, frame);
+      const world = (part, q) => toView(add(here, mul(g.rot, o9, add(part.p, mul(part.r, 0, q)))), frame);
       for (const part of g.parts) {
         const m = part.m;
         if (m.faces)
@@ -210,14 +237,14 @@
       ctx.lineWidth = 1.5 * dpr;
       ctx.beginPath();
       for (let i = 0; i <= frame; i++) {
-        const p = camera(mul(rot, 9 * i, D.axis));
+        const p = camera(toView(mul(rot, 9 * i, D.axis), frame));
         i ? ctx.lineTo(p[0], p[1]) : ctx.moveTo(p[0], p[1]);
       }
       ctx.stroke();
-      arrow(o, mul(rot, 9 * frame, D.axis), "#be123c", "axis");
+      arrow(o, toView(mul(rot, 9 * frame, D.axis), frame), "#be123c", "axis");
     }
     // H reaches past the body (S is the body's reach), within the view.
-    if (D.momentum) arrow(o, D.momentum.map((c) => 1.45 * S * c), "#15803d", "H");
+    if (D.momentum) arrow(o, dir(D.momentum).map((c) => 1.45 * S * c), "#15803d", "H");
     timeOut.textContent = "t = " + D.t[frame].toFixed(3) + " s";
     scrub.value = frame;
   }
@@ -262,6 +289,7 @@
   if (D.axis) legend.push("Red: the axis of the top and the trace of its tip.");
   if (D.momentum) legend.push("Green: the angular momentum H, fixed in space.");
   if (D.g) legend.push("Brown: gravity.");
+  if (D.centre) legend.push("The view follows the bodies; thin lines: the paths of their reference points.");
   document.getElementById("legend").textContent = legend.concat(D.notes).join(" ");
   window.addEventListener("resize", resize);
   resize();

@@ -134,14 +134,15 @@ pub(super) struct Tables {
 }
 
 /// A derived scene from its tables, its `[initial]` table, and the shared
-/// `[[body]]` tables (parsed with the rest of `text`).
+/// `[[body]]` tables (parsed with the rest of `text`); and those tables as
+/// read (the scene keeps them).
 pub(super) fn read(
     tables: Tables,
     initial: RawInitial,
     file: &Path,
     text: &str,
     resolve: Resolve<'_>,
-) -> Result<DerivedScene, SimError> {
+) -> Result<(DerivedScene, Bodies), SimError> {
     let builtin = [
         ("initial.attitude", initial.attitude.is_some()),
         ("initial.euler_angles", initial.euler_angles.is_some()),
@@ -176,15 +177,17 @@ pub(super) fn read(
         rates: initial.rates.unwrap_or_default(),
         speeds: initial.speeds.unwrap_or_default(),
     };
-    parse(
+    let bodies = bodies_from(file, text, tables.shared)?;
+    let scene = parse(
         tables.derivation,
         tables.constants,
-        bodies_from(file, text, tables.shared)?,
+        &bodies,
         tables.inputs,
         start,
         (file, text),
         resolve,
-    )
+    )?;
+    Ok((scene, bodies))
 }
 
 /// A derived model's error traced to a field of the scene, as that
@@ -216,7 +219,7 @@ fn located(file: &Path, text: &str, e: SimError) -> SimError {
 fn parse(
     raw: Option<RawDerivation>,
     mut constants: BTreeMap<String, f64>,
-    bodies: Bodies,
+    bodies: &Bodies,
     inputs: BTreeMap<String, String>,
     start: RawStart,
     (file, scene_text): (&Path, &str),
@@ -357,8 +360,8 @@ fn parse(
             ),
         ));
     }
-    check_gravity(&d, &path, &bodies, &constants, file)?;
-    let bound = bind_scene_bodies(&d, &path, &bodies, &constants, file)?;
+    check_gravity(&d, &path, bodies, &constants, file)?;
+    let bound = bind_scene_bodies(&d, &path, bodies, &constants, file)?;
     let from_bodies: Vec<String> = bound.keys().cloned().collect();
     constants.extend(bound);
     let constants_for_inputs = constants.clone();

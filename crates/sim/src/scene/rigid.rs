@@ -19,7 +19,8 @@ use crate::{PrincipalMoments, SimError};
 type Start = (UnitQuaternion<f64>, Vector3<f64>, Option<SteadyTop>);
 
 /// A free body (`heavy` false) or a heavy top: what moves, its body
-/// frame in the tables' axes, and its initial state.
+/// frame in the tables' axes, and its initial state; and the shared
+/// tables as read (the scene keeps them).
 pub(super) fn read(
     top: Option<RawTop>,
     shared: RawBodies,
@@ -27,14 +28,15 @@ pub(super) fn read(
     heavy: bool,
     file: &Path,
     text: &str,
-) -> Result<(SceneKind, BodyFrame), SimError> {
+) -> Result<(SceneKind, BodyFrame, Bodies), SimError> {
     let bad = |field: &str, message: String| bad_field(file, field, message);
     let all = bodies_from(file, text, shared)?;
     all.refuse_of(file)?;
-    let Bodies {
-        g, g_line, body, ..
-    } = all;
-    let body = body.ok_or_else(|| bad("body", NO_BODY.into()))?;
+    let (g, g_line) = (all.g, all.g_line);
+    let body = all
+        .body
+        .as_ref()
+        .ok_or_else(|| bad("body", NO_BODY.into()))?;
     let props = body.mass_properties();
     let (about, axis3, weight_arm) = if heavy {
         let (o, weight_arm) = pivot(top, g, g_line, props.center, props.mass, file)?;
@@ -89,7 +91,7 @@ pub(super) fn read(
     } else {
         SceneKind::Free { moments, q0, w0 }
     };
-    Ok((kind, body_frame))
+    Ok((kind, body_frame, all))
 }
 
 /// A heavy top's pivot O (in the tables' axes) and its weight × the

@@ -13,7 +13,8 @@ use crate::SimError;
 use crate::systems::Shaft;
 
 /// A fixed-axis scene: the shaft (from its tables and bodies) and its
-/// initial angle and rate.
+/// initial angle and rate; and the shared tables as read (the scene keeps
+/// them).
 pub(super) fn read(
     shaft: Option<RawShaft>,
     motor: Option<RawMotor>,
@@ -21,7 +22,7 @@ pub(super) fn read(
     initial: &RawInitial,
     file: &Path,
     text: &str,
-) -> Result<SceneKind, SimError> {
+) -> Result<(SceneKind, Bodies), SimError> {
     let bad = |field: &str, message: String| bad_field(file, field, message);
     let s = shaft.ok_or_else(|| bad("shaft", "missing table [shaft]".into()))?;
     let motor = motor.ok_or_else(|| bad("motor", "missing table [motor]".into()))?;
@@ -48,8 +49,10 @@ pub(super) fn read(
     }
     let all = bodies_from(file, text, shared)?;
     all.refuse_of(file)?;
-    let Bodies { body, .. } = all;
-    let body = body.ok_or_else(|| bad("body", NO_BODY.into()))?;
+    let body = all
+        .body
+        .as_ref()
+        .ok_or_else(|| bad("body", NO_BODY.into()))?;
     let props = body.mass_properties();
     // Inertia about the origin O on the axis, in the shaft's axes: I_z on
     // the diagonal, products ∫xz dm = −I[0][2].
@@ -85,5 +88,5 @@ pub(super) fn read(
     if !(y0[0].is_finite() && y0[1].is_finite()) {
         return Err(bad("initial", "angle and rate must be finite".into()));
     }
-    Ok(SceneKind::FixedAxis { shaft, y0 })
+    Ok((SceneKind::FixedAxis { shaft, y0 }, all))
 }

@@ -22,7 +22,8 @@
 //! the chain of `parent`/`rotation` frames) and its angular velocity are
 //! evaluated from the derivation's own frames ([`DerivedModel::attitude`],
 //! [`DerivedModel::angular_velocity`]), so a derived run can be compared
-//! with a built-in model on the attitude matrix and ω.
+//! with a built-in model on the attitude matrix and ω; so is where each
+//! declared body is ([`DerivedModel::position`], `derived/positions.rs`).
 
 use std::cell::RefCell;
 use std::collections::BTreeMap;
@@ -40,6 +41,7 @@ mod compile;
 mod first_order;
 mod holonomic;
 mod multiplier;
+mod positions;
 mod small_solve;
 
 pub use build::{in_speed_rates, step_coordinates};
@@ -208,6 +210,10 @@ pub struct DerivedModel {
     /// The derivation's frames, in order: each frame's name and its
     /// motion, or why its attitude cannot be evaluated.
     frames: Vec<(String, Result<FrameChain, String>)>,
+    /// Where each declared body's reference point is (`derived/positions.rs`).
+    placements: Vec<(String, positions::Placement)>,
+    /// The derivation's gravity, compiled.
+    gravity: Option<positions::Piece>,
     /// The slots of the tapes' evaluation (see [`DerivedModel::eval`]).
     scratch: RefCell<Vec<f64>>,
 }

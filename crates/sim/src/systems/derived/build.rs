@@ -173,6 +173,7 @@ impl DerivedModel {
             _ => None,
         };
         let frames = frames(d, &cx);
+        let (placements, gravity) = super::positions::compile(d, &cx);
         let carried_rates = if carried.is_empty() {
             None
         } else {
@@ -190,6 +191,8 @@ impl DerivedModel {
             conserved,
             holonomic,
             frames,
+            placements,
+            gravity,
             scratch: RefCell::new(Vec::new()),
         })
     }

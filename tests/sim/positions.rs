@@ -1,0 +1,141 @@
+//! systems/derived/positions.rs: where each declared body is — its
+//! reference point in N, summed along the chain of `at` vectors — against
+//! the same place written by hand from the coordinates, at seeded random
+//! states; a body with no declared place says why; the derivation's
+//! gravity in N.
+
+use hdot_sim::scene::{DerivedScene, Scene, SceneKind};
+use hdot_tests::pendulum::{DOUBLE_PENDULUM, DOUBLE_PENDULUM_SCENE};
+use hdot_tests::repo_root;
+use nalgebra::Vector3;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+fn derived(scene: &Scene) -> &DerivedScene {
+    match &scene.kind {
+        SceneKind::Derived(ds) => ds,
+        _ => panic!("a derived scene"),
+    }
+}
+
+fn example(name: &str) -> Scene {
+    Scene::from_file(&repo_root().join("docs/examples").join(name)).expect("scene")
+}
+
+/// `y0` with the coordinates named set to random angles (seeded).
+fn random_state(ds: &DerivedScene, rng: &mut ChaCha8Rng, names: &[&str]) -> Vec<f64> {
+    let mut y = ds.y0.clone();
+    for (k, q) in ds.model.coordinates().iter().enumerate() {
+        if names.contains(&q.name()) {
+            y[k] = rng.gen_range(-3.0..3.0);
+        }
+    }
+    y
+}
+
+fn value(ds: &DerivedScene, y: &[f64], name: &str) -> f64 {
+    let k = ds
+        .model
+        .coordinates()
+        .iter()
+        .position(|q| q.name() == name)
+        .expect("a coordinate");
+    y[k]
+}
+
+/// `got` within `tol` of `want` relative to `scale`.
+fn assert_near(got: Vector3<f64>, want: Vector3<f64>, scale: f64, tol: f64) {
+    assert!((got - want).norm() <= tol * scale, "{got} against {want}");
+}
+
+/// Rod 2 hangs from rod 1's end: P = l1 (sin q1, −cos q1, 0); rod 1 from
+/// the fixed O at the origin.
+#[test]
+fn the_second_rod_is_placed_at_the_first_rods_end() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("double-pendulum.toml"), DOUBLE_PENDULUM).unwrap();
+    let scene = Scene::parse(
+        DOUBLE_PENDULUM_SCENE,
+        &dir.path().join("sim-double-pendulum.toml"),
+    )
+    .expect("scene");
+    let ds = derived(&scene);
+    assert_eq!(ds.model.bodies().collect::<Vec<_>>(), ["rod1", "rod2"]);
+    let l1 = 1.0;
+    let mut rng = ChaCha8Rng::seed_from_u64(24);
+    for _ in 0..20 {
+        let y = random_state(ds, &mut rng, &["q1", "q2"]);
+        let q1 = value(ds, &y, "q1");
+        let p = ds.model.position("rod2", 0.0, &y).expect("placed");
+        assert_near(p, l1 * Vector3::new(q1.sin(), -q1.cos(), 0.0), l1, 1e-15);
+        assert_eq!(
+            ds.model.position("rod1", 0.0, &y).expect("placed"),
+            Vector3::zeros()
+        );
+    }
+    assert!(ds.model.position("rod3", 0.0, &ds.y0).is_err());
+    // Y is up: gravity is −g Y.
+    let g = ds.model.gravity(0.0, &ds.y0).expect("gravity");
+    assert_near(g, Vector3::new(0.0, -9.81, 0.0), 9.81, 1e-15);
+}
+
+/// The rolling disk's centre G is r above the contact (x, y, 0) along the
+/// lean frame's z: G = (x, y, 0) + R_z(ψ) R_x(θ) (0, 0, r).
+#[test]
+fn the_rolling_disk_is_placed_above_its_contact() {
+    let scene = example("sim-disk-rolling-on-plane.toml");
+    let ds = derived(&scene);
+    let r = 0.3;
+    let mut rng = ChaCha8Rng::seed_from_u64(7);
+    for _ in 0..20 {
+        let mut y = random_state(ds, &mut rng, &["theta", "psi", "phi"]);
+        y[0] = rng.gen_range(-5.0..5.0);
+        y[1] = rng.gen_range(-5.0..5.0);
+        let (x, yy) = (value(ds, &y, "x"), value(ds, &y, "y"));
+        let (theta, psi) = (value(ds, &y, "theta"), value(ds, &y, "psi"));
+        let want = Vector3::new(
+            x + r * psi.sin() * theta.sin(),
+            yy - r * psi.cos() * theta.sin(),
+            r * theta.cos(),
+        );
+        let got = ds.model.position("disk", 0.0, &y).expect("placed");
+        assert_near(got, want, 5.0, 1e-15);
+    }
+    let g = ds.model.gravity(0.0, &ds.y0).expect("gravity");
+    assert_near(g, Vector3::new(0.0, 0.0, -9.81), 9.81, 1e-15);
+}
+
+/// The bicycle's N has Z down: gravity is +g Z, and the rear wheel's
+/// centre, upright, is r_R above the ground (−r_R in Z) over the contact.
+#[test]
+fn the_bicycle_is_placed_with_z_down() {
+    let scene = example("sim-bicycle-nonlinear.toml");
+    let ds = derived(&scene);
+    let g = ds.model.gravity(0.0, &ds.y0).expect("gravity");
+    assert_near(g, Vector3::new(0.0, 0.0, 9.81), 9.81, 1e-15);
+    // The pitch is solved from the configuration constraints (Newton's
+    // tolerance): the places hold to that.
+    let w_r = ds
+        .model
+        .position("rear_wheel", 0.0, &ds.y0)
+        .expect("placed");
+    assert_near(w_r, Vector3::new(0.0, 0.0, -0.3), 1.0, 1e-12);
+    // The front wheel's centre, upright and unsteered, is the wheel base
+    // (between the contacts) ahead and r_F above the ground.
+    let w_f = ds
+        .model
+        .position("front_wheel", 0.0, &ds.y0)
+        .expect("placed");
+    assert_near(w_f, Vector3::new(1.02, 0.0, -0.35), 1.0, 1e-12);
+}
+
+/// A body about its own centre with no declared place (the gyrostat) is
+/// not placed, and says why.
+#[test]
+fn a_body_with_no_declared_place_says_why() {
+    let scene = example("sim-gyrostat.toml");
+    let ds = derived(&scene);
+    let body = ds.model.bodies().next().expect("a body").to_owned();
+    let e = ds.model.position(&body, 0.0, &ds.y0).unwrap_err();
+    assert!(e.contains(&body) && e.contains("not known"), "{e}");
+}
