@@ -18,7 +18,7 @@ pub const FOLLOW_RATIO: f64 = 3.0;
 
 /// The radius a following view shows, in units of the bodies' own reach
 /// about their centre: room for the paths behind them.
-pub const FOLLOW_ROOM: f64 = 1.5;
+pub const FOLLOW_ROOM: f64 = 1.2;
 
 /// The turn from space axes to the view's axes that takes `up` to +Z (the
 /// canvas' up): the shortest one, or half a turn about X when `up` is −Z

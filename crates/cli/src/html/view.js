@@ -154,8 +154,11 @@
     ctx.fillStyle = "#fbfbf8";
     ctx.fillRect(0, 0, W, H);
     const o = [0, 0, 0];
+    // The space axes from the origin, or, when the view follows the
+    // bodies, small in a corner (their directions only).
+    const axes = D.centre ? [[1.1 * S, 1.1 * S, -0.9 * S], 0.35 * S] : [o, 1.25 * S];
     for (const [v, name] of [[[1, 0, 0], "X"], [[0, 1, 0], "Y"], [[0, 0, 1], "Z"]])
-      arrow(o, dir(v).map((c) => 1.25 * S * c), "#888", name);
+      arrow(axes[0], add(axes[0], dir(v).map((c) => axes[1] * c)), "#888", name);
     if (D.g) {
       const base = [-1.1 * S, -1.1 * S, 0.9 * S];
       arrow(base, add(base, dir(D.g).map((c) => 0.5 * S * c)), "#b45309", "g");
