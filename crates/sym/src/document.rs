@@ -194,6 +194,21 @@ pub enum Verdict {
     Fails(Vec<(Equation, Equation)>),
 }
 
+impl Verdict {
+    /// The words every backend shows for a step without an expectation
+    /// (each marks them up its own way: emphasis, a capital, a stop).
+    pub const NONE: &str = "no expectation is stated for this step";
+    /// The words for a step whose expectations hold.
+    pub const HOLDS: &str = "equals the expected (textbook) form";
+    /// The words for a step some of whose expectations fail.
+    pub const FAILS: &str = "does not equal the expected form";
+    /// What follows [`Verdict::FAILS`] where the differences are shown:
+    /// `minus` is the backend's minus sign.
+    pub fn fails_shown(minus: &str) -> String {
+        format!("derived {minus} expected is shown")
+    }
+}
+
 /// One shown step.
 #[derive(Clone, Debug)]
 pub struct StepBlock {

@@ -14,7 +14,7 @@ use std::fmt::Write;
 
 use super::layout::{coefficient_groups, failure_lines, omega_inline, step_lines, symbol_list};
 use super::mathml::{self, Row};
-use super::words::{coefficients_intro, label_key, sentence};
+use super::words::{capitalise, coefficients_intro, label_key, sentence};
 use super::{LINE_BUDGET, has_chapters};
 use crate::document::{Backend, Document, Lhs, Section, StepBlock, Verdict};
 use crate::escape;
@@ -509,20 +509,23 @@ fn step_html(o: &mut String, n: usize, st: &StepBlock, id: &str) {
         Verdict::NoExpectation => {
             let _ = writeln!(
                 o,
-                "<p class=\"verdict\"><em>No expectation is stated for this step.</em></p>"
+                "<p class=\"verdict\"><em>{}</em></p>",
+                sentence(Verdict::NONE)
             );
         }
         Verdict::Holds => {
             let _ = writeln!(
                 o,
-                "<p class=\"verdict holds\">✓ Equals the expected (textbook) form.</p>"
+                "<p class=\"verdict holds\">✓ {}</p>",
+                sentence(Verdict::HOLDS)
             );
         }
         Verdict::Fails(f) => {
             let _ = writeln!(
                 o,
-                "<p class=\"verdict fails\">✗ <strong>Does not equal the expected form</strong> \
-                 (derived − expected is shown):</p>"
+                "<p class=\"verdict fails\">✗ <strong>{}</strong> ({}):</p>",
+                capitalise(Verdict::FAILS),
+                Verdict::fails_shown("−")
             );
             let mut rows: Vec<Row> = Vec::new();
             for (exp, diff) in f {

@@ -10,7 +10,8 @@ use super::layout::{
     symbol_list, write_step_lines,
 };
 use super::words::{
-    coefficients_intro, label_key, latex_code, named_text, sentence, step_title, vanishes_text,
+    capitalise, coefficients_intro, label_key, latex_code, named_text, sentence, step_title,
+    vanishes_text,
 };
 use super::{LINE_BUDGET, REFRESH_COMMAND, has_chapters};
 use crate::document::{Backend, Document, Section, Verdict};
@@ -270,15 +271,17 @@ fn step_after(o: &mut String, st: &crate::document::StepBlock) {
     }
     match &st.verdict {
         Verdict::NoExpectation => {
-            let _ = writeln!(o, "\\emph{{No expectation is stated for this step.}}\n");
+            let _ = writeln!(o, "\\emph{{{}}}\n", sentence(Verdict::NONE));
         }
         Verdict::Holds => {
-            let _ = writeln!(o, "$\\checkmark$ Equals the expected (textbook) form.\n");
+            let _ = writeln!(o, "$\\checkmark$ {}\n", sentence(Verdict::HOLDS));
         }
         Verdict::Fails(f) => {
             let _ = writeln!(
                 o,
-                "\\textbf{{Does not equal the expected form}} (derived $-$ expected is shown):"
+                "\\textbf{{{}}} ({}):",
+                capitalise(Verdict::FAILS),
+                Verdict::fails_shown("$-$")
             );
             let _ = writeln!(
                 o,

@@ -9,7 +9,7 @@ use super::layout::{
     coefficient_groups, failure_lines, named_list, omega_inline, step_lines, symbol_list,
 };
 use super::words::{
-    coefficients_intro, label_key, named_text, sentence, step_title, vanishes_text,
+    capitalise, coefficients_intro, label_key, named_text, sentence, step_title, vanishes_text,
 };
 use super::{LINE_BUDGET, REFRESH_COMMAND, has_chapters};
 use crate::document::{Backend, Document, Section, Verdict};
@@ -210,15 +210,17 @@ pub(super) fn markdown_section(o: &mut String, number: &str, s: &Section, level:
         }
         match &st.verdict {
             Verdict::NoExpectation => {
-                let _ = writeln!(o, "*No expectation is stated for this step.*\n");
+                let _ = writeln!(o, "*{}*\n", sentence(Verdict::NONE));
             }
             Verdict::Holds => {
-                let _ = writeln!(o, "✓ Equals the expected (textbook) form.\n");
+                let _ = writeln!(o, "✓ {}\n", sentence(Verdict::HOLDS));
             }
             Verdict::Fails(f) => {
                 let _ = writeln!(
                     o,
-                    "✗ **Does not equal the expected form** (derived − expected is shown):\n"
+                    "✗ **{}** ({}):\n",
+                    capitalise(Verdict::FAILS),
+                    Verdict::fails_shown("−")
                 );
                 md_math_block(o, &failure_lines(f, LINE_BUDGET));
             }

@@ -322,7 +322,8 @@ pub(super) fn slides_step(o: &mut String, section_title: &str, st: &StepBlock) {
                 Verdict::Fails(_) => {
                     let _ = writeln!(
                         o,
-                        "{{\\footnotesize\\textbf{{Does not equal the expected form.}}\\par}}"
+                        "{{\\footnotesize\\textbf{{{}}}\\par}}",
+                        sentence(Verdict::FAILS)
                     );
                 }
             }

@@ -103,7 +103,7 @@ pub fn unicode_section(s: &Section) -> String {
         match &st.verdict {
             Verdict::NoExpectation => {}
             Verdict::Holds => {
-                let _ = writeln!(o, "   ✓ equals the expected (textbook) form");
+                let _ = writeln!(o, "   ✓ {}", Verdict::HOLDS);
             }
             Verdict::Fails(f) => {
                 for (expected, difference) in f {
