@@ -119,7 +119,8 @@ fn unknowns_come_first() {
 /// are positive for the constants declared `positive` is divided by
 /// exactly; the result prints as a fraction over the sum, the sum's
 /// terms free of fractions (a = m g r² sin β/(I + m r²), the textbook's
-/// g sin β/(1 + I/(m r²)), which the file expects), and equals what
+/// g sin β/(1 + I/(m r²)), which the file expects; the sum presented as
+/// a textbook writes it, J + R² (m_1 + m_2)), and equals what
 /// another route gives.
 #[test]
 fn a_sum_of_positive_constants_is_divided_by() {
@@ -127,7 +128,7 @@ fn a_sum_of_positive_constants_is_divided_by() {
     assert_eq!(printed(&d, "a_disk"), ["m g r² sin β/(I + m r²)"]);
     assert_eq!(
         printed(&d, "a_pulley"),
-        ["g R² (m_1 − m_2)/(J + R² m_1 + R² m_2)"]
+        ["g R² (m_1 − m_2)/(J + R² (m_1 + m_2))"]
     );
     assert_eq!(printed(&d, "alpha"), ["M_a r²/(I L² + I′ r²)"]);
     let checks: Vec<_> = d.steps.iter().flat_map(|s| &s.checks).collect();

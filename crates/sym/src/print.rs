@@ -342,7 +342,7 @@ fn write_fraction(e: &Expr, nums: &[Id], dens: &[Id], style: &Cached, out: &mut 
             match e.node(*base) {
                 Node::Atom(a) if alone && *k == -1 && matches!(a.kind(), AtomKind::Sum { .. }) => {
                     if let AtomKind::Sum { sum, .. } = a.kind() {
-                        b = print(&Expr::from_poly(sum), style.inner);
+                        b = print(&shown_sum(sum), style.inner);
                     }
                 }
                 Node::Atom(_) => write(e, *base, style, &mut b),
@@ -379,7 +379,14 @@ pub(crate) use names::{primed_base, split_name, superscript};
 /// in the style's brackets, `(I′ r² + I L²)`.
 pub(crate) fn sum_atom(style: &dyn Style, sum: &crate::poly::Poly) -> String {
     let (l, r) = style.parens();
-    format!("{l}{}{r}", print(&Expr::from_poly(sum), style))
+    format!("{l}{}{r}", print(&shown_sum(sum), style))
+}
+
+/// A sum atom (a sum of constants held to a negative power) as the
+/// textbook writes it: its constants sharing a coefficient as one term,
+/// J + R² (m_1 + m_2), not the canonical terms in name order.
+fn shown_sum(sum: &crate::poly::Poly) -> Expr {
+    crate::present::present(sum, &crate::present::Presentation::default())
 }
 
 fn is_trig(n: &Node) -> bool {
