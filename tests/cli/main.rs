@@ -13,6 +13,7 @@ mod page_places;
 mod reliability;
 mod review;
 mod stability;
+mod wrong_file;
 
 fn hdot(args: &[&str]) -> std::process::Output {
     Command::new(hdot_bin())

@@ -238,6 +238,7 @@ pub fn resolve(dir: &Dir, arg: &str) -> anyhow::Result<Entry> {
         if !p.is_file() {
             bail!("no such derivation file: {arg}");
         }
+        not_a_derivation(p, arg)?;
         return Ok(Entry::File(p.to_owned()));
     }
     match dir {
@@ -263,6 +264,34 @@ pub fn resolve(dir: &Dir, arg: &str) -> anyhow::Result<Entry> {
         names.join(", "),
         hdot_sym::chain::MAX_K
     )
+}
+
+/// Refuses a notes manifest or a scene given where a derivation is
+/// expected (see [`kind_of`]), saying what it is and which command takes
+/// it; a derivation, or a file that cannot be read, passes (the loader
+/// reports it).
+fn not_a_derivation(p: &Path, arg: &str) -> anyhow::Result<()> {
+    let Ok(text) = std::fs::read_to_string(p) else {
+        return Ok(());
+    };
+    match kind_of(p, &text) {
+        FileKind::Derivation => Ok(()),
+        FileKind::Manifest => {
+            let folder = p
+                .parent()
+                .filter(|d| !d.as_os_str().is_empty())
+                .map_or_else(|| ".".to_owned(), |d| d.display().to_string());
+            bail!(
+                "`{arg}` is a notes manifest (the course's title, author and chapters, docs/notes/README.md), \
+                 not a derivation: `hdot notes {folder}` (or `hdot notes --manifest {arg}`) reads it with the \
+                 derivations it names; give this command a derivation file (one with [[step]]s) or its folder"
+            )
+        }
+        FileKind::Scene => bail!(
+            "`{arg}` is a scene (docs/scenes.md), not a derivation: `hdot simulate`, `hdot dynamics` and \
+             `hdot inertia` take it; give this command a derivation file (one with [[step]]s)"
+        ),
+    }
 }
 
 /// A bundled example scene named by `arg` when no such file exists: its
