@@ -8,6 +8,7 @@
 //! - `textbook`: printed forms a textbook would use, on files written for
 //!   them (`textbook/*.toml`, insta);
 //! - `broken`: broken derivation files, each asserting its error's location;
+//! - `newcomer`: a new user's multibody findings, on files written for them;
 //! - `subst`: substitution in a derivation, angles set to 0 among them;
 //! - `work_budget`: deterministic work of reference workloads against the
 //!   committed budget (`work_budget.toml`).
@@ -26,6 +27,7 @@ mod labels;
 mod laurent;
 mod lecturer;
 mod linearize;
+mod newcomer;
 mod notes;
 mod presentation;
 mod snapshots;

@@ -163,8 +163,8 @@ fn wheel_and_centre(cx: &Context<'_>, c: &RawContact, earlier: &[Point]) -> R<(u
     let body = &cx.physics.bodies[wheel];
     let centre = match &c.centre {
         Some(s) => {
-            if !cx.physics.points.iter().any(|p| &p.name == s.get_ref()) {
-                let known: Vec<&str> = cx.physics.points.iter().map(|p| p.name.as_str()).collect();
+            if cx.physics.point(s.get_ref()).is_none() {
+                let known = cx.physics.point_names();
                 return Err(whole(
                     cx,
                     s,
@@ -179,7 +179,7 @@ fn wheel_and_centre(cx: &Context<'_>, c: &RawContact, earlier: &[Point]) -> R<(u
         }
         None => body.point.clone(),
     };
-    if !cx.physics.points.iter().any(|p| p.name == centre) {
+    if cx.physics.point(&centre).is_none() {
         return Err(whole(
             cx,
             &c.wheel,
@@ -190,6 +190,80 @@ fn wheel_and_centre(cx: &Context<'_>, c: &RawContact, earlier: &[Point]) -> R<(u
         ));
     }
     Ok((wheel, centre))
+}
+
+/// `p` at every coordinate 0: sin → 0, cos → 1, a time symbol → 0.
+fn at_zero(p: &Poly) -> Poly {
+    p.subst(&mut |a| {
+        if !a.is_time_dependent() {
+            return None;
+        }
+        Some(match a.kind() {
+            AtomKind::Cos(_) => Poly::one(),
+            _ => Poly::zero(),
+        })
+    })
+}
+
+/// At every coordinate 0 the contact point (the centre plus `rim`, in
+/// `frame`'s components) must be on the ground, N's z = 0, when the
+/// centre's place is known (through the `at` vectors back to a fixed
+/// point): a radius that does not match where the centre is placed
+/// (the centre r above the ground, `radius = "2*r"`) would otherwise
+/// become a configuration constraint nobody wrote, found only when the
+/// constraints are solved.
+fn on_the_ground(
+    cx: &Context<'_>,
+    c: &RawContact,
+    centre: &str,
+    frame: usize,
+    rim: &Vec3,
+) -> R<()> {
+    let mut pieces: Vec<(Vec3, usize)> = Vec::new();
+    let mut at = centre.to_owned();
+    loop {
+        let index = |f: &str| cx.frame_index(f).expect("the point's frame exists");
+        match cx.physics.point(&at).map(|p| &p.kind) {
+            Some(PointKind::From { from, at: v, frame }) => {
+                if pieces.len() > cx.physics.point_names().len() {
+                    return Ok(());
+                }
+                pieces.push((v.clone(), index(frame)));
+                at = from.clone();
+            }
+            Some(PointKind::Fixed(v, f)) => {
+                pieces.push((v.clone(), index(f)));
+                break;
+            }
+            // A free centre: its height is not declared.
+            _ => return Ok(()),
+        }
+    }
+    let mut centre_height = Poly::zero();
+    for (v, f) in pieces {
+        let Some(v) = express_in(cx, v.map(|p| cx.unfold(p)), f, 0) else {
+            return Ok(());
+        };
+        centre_height = &centre_height + &v.0[2];
+    }
+    let Some(rim) = express_in(cx, rim.map(|p| cx.unfold(p)), frame, 0) else {
+        return Ok(());
+    };
+    let (centre0, rim0) = (at_zero(&centre_height), at_zero(&rim.0[2]));
+    let height = &centre0 + &rim0;
+    if height.is_zero() {
+        return Ok(());
+    }
+    Err(whole(
+        cx,
+        &c.radius,
+        format!(
+            "at every coordinate 0 the contact point is {height} above the ground (N's z = 0), not on it: the \
+             centre `{centre}` is {centre0} above the ground there and the rim reaches {} below it; make \
+             `radius` the distance from the centre to the rim (or place `{centre}` that high)",
+            -&rim0
+        ),
+    ))
 }
 
 /// The radius: a positive constant expression.
@@ -324,6 +398,7 @@ fn one(cx: &Context<'_>, c: &RawContact, earlier: &[Point]) -> R<(Contact, Point
     let plane = plane(cx, c)?;
     let (down, angle) = direction(cx, c, frame, &axle, d)?;
     lowest(cx, c, frame, &down)?;
+    on_the_ground(cx, c, &centre, frame, &down.scale(&radius))?;
     let point = Point {
         name: name.clone(),
         doc: format!("the contact point of {} on the ground", body.name),

@@ -334,17 +334,36 @@ impl Context<'_> {
                 }
             }
             Value::Matrix(m) => {
-                let ax = ["x", "y", "z"];
-                let pos = |c: &str| ax.iter().position(|a| *a == c);
-                let (i, j) = (comp.get(0..1).and_then(pos), comp.get(1..2).and_then(pos));
-                match (i, j, comp.len()) {
-                    (Some(i), Some(j), 2) => Ok(Value::Scalar(m.0[i][j].clone())),
-                    _ => err(
+                let rows: Vec<Vec<Poly>> = m.0.iter().map(|r| r.to_vec()).collect();
+                match entry(&rows, comp) {
+                    Some(p) => Ok(Value::Scalar(p)),
+                    None => err(
                         sp,
-                        format!("a matrix element is named by two axes such as `xy`, not `{comp}`"),
+                        format!(
+                            "a matrix element is named by two axes such as `xy`, or by its row and column from 1 \
+                             such as `12`, not `{comp}`"
+                        ),
                     ),
                 }
             }
+            Value::Array(rows) => match entry(&rows, comp) {
+                Some(p) => Ok(Value::Scalar(p)),
+                None => {
+                    let (n, m) = (rows.len(), rows.first().map_or(0, Vec::len));
+                    let axes = if (n, m) == (3, 3) {
+                        ", or by two axes such as `xy`"
+                    } else {
+                        ""
+                    };
+                    err(
+                        sp,
+                        format!(
+                            "an element of a {n}×{m} array is named by its row (1 to {n}) and column (1 to {m}), \
+                             such as `12`{axes}, not `{comp}`"
+                        ),
+                    )
+                }
+            },
             Value::List { items, labels } => {
                 let k = comp
                     .parse::<usize>()
@@ -416,4 +435,20 @@ impl Context<'_> {
             _ => Err(self.at(base, a.span, "expected a symbol such as omega_x or theta''")),
         }
     }
+}
+
+/// The element `comp` of a matrix or an array by rows: `ij`, its row and
+/// column counted from 1 (`12`), or two axes of a 3×3 one (`xy`).
+fn entry(rows: &[Vec<Poly>], comp: &str) -> Option<Poly> {
+    let (n, m) = (rows.len(), rows.first().map_or(0, Vec::len));
+    let [a, b]: [char; 2] = comp.chars().collect::<Vec<_>>().try_into().ok()?;
+    let (i, j) = match (a.to_digit(10), b.to_digit(10)) {
+        (Some(i), Some(j)) if i >= 1 && j >= 1 => (i as usize - 1, j as usize - 1),
+        (None, None) if (n, m) == (3, 3) => {
+            let axis = |c: char| "xyz".find(c);
+            (axis(a)?, axis(b)?)
+        }
+        _ => return None,
+    };
+    rows.get(i)?.get(j).cloned()
 }

@@ -22,8 +22,8 @@ fn load(cx: &Context<'_>, l: &RawLoad) -> R<Load> {
     match (&l.point, &l.force, &l.frame, &l.torque) {
         (Some(p), Some(f), None, None) => {
             let name = p.get_ref();
-            if !cx.physics.points.iter().any(|q| &q.name == name) {
-                let known: Vec<&str> = cx.physics.points.iter().map(|q| q.name.as_str()).collect();
+            if cx.physics.point(name).is_none() {
+                let known = cx.physics.point_names();
                 return Err(cx.diag_string(
                     p,
                     0,

@@ -2,7 +2,10 @@
 //! a steady motion (`phi = 0, u_6 = -v/r_R`), read from `name = value`
 //! arguments — and the first-order Taylor expansion of a polynomial about
 //! it, f(x₀) + Σ ∂f/∂x(x₀) (x − x₀), shared by `linearize` and the
-//! linearized form of `kane`.
+//! linearized form of `kane`. An angle's value may be a multiple of π/2
+//! (`q1 = pi`, the inverted pendulum): π is no number of the algebra, so
+//! the result is written in the angle's deviation from that value, its
+//! sine and cosine exact (sin(π + q) = −sin q).
 
 use crate::atom::{Atom, AtomKind};
 use crate::derivation::context::R;
@@ -16,8 +19,11 @@ use crate::poly::Poly;
 #[derive(Clone, Debug, Default)]
 pub(crate) struct OperatingPoint {
     /// Each listed symbol (a time symbol of any order) with its value, an
-    /// expression in constants.
+    /// expression in constants (0 for an angle in `turns`).
     pub values: Vec<(Atom, Poly)>,
+    /// The angles whose value is k π/2, with k: the result is in their
+    /// deviation from that value.
+    pub turns: Vec<(Atom, i64)>,
 }
 
 impl OperatingPoint {
@@ -26,6 +32,7 @@ impl OperatingPoint {
     /// its value is not an expression in constants.
     pub fn read(c: &Call<'_, '_>, args: &[Ast]) -> R<OperatingPoint> {
         let mut values: Vec<(Atom, Poly)> = Vec::with_capacity(args.len());
+        let mut turns = Vec::new();
         for r in args {
             let AstKind::Assign {
                 name,
@@ -54,6 +61,14 @@ impl OperatingPoint {
             if values.iter().any(|(b, _)| *b == a) {
                 return c.err(*name_span, format!("`{a}` is given twice"));
             }
+            if let Some(k) = crate::derivation::ops::quarter_turns(value) {
+                if *primes > 0 {
+                    return c.err(value.span, "a multiple of pi is an angle, not a rate");
+                }
+                values.push((a, Poly::zero()));
+                turns.push((a, k));
+                continue;
+            }
             let v = c.cx.unfold(&c.cx.scalar(value, c.base)?);
             if let Some(t) = v.atoms().into_iter().find(|t| t.is_time_dependent()) {
                 return c.err(
@@ -65,7 +80,7 @@ impl OperatingPoint {
             }
             values.push((a, v));
         }
-        Ok(OperatingPoint { values })
+        Ok(OperatingPoint { values, turns })
     }
 
     /// Whether no symbol is listed.
@@ -85,11 +100,60 @@ impl OperatingPoint {
             .then(Poly::zero)
     }
 
+    /// An angle given a multiple of π/2 that occurs in `p` outside sin
+    /// and cos (q + π is no polynomial): the operations check what the
+    /// file wrote with it, since a bare angle in their own expansions is
+    /// already a deviation.
+    pub fn outside_trig(&self, p: &Poly) -> Option<Atom> {
+        p.atoms().into_iter().find(|a| {
+            matches!(a.kind(), AtomKind::Var { time: true, .. })
+                && self.turns.iter().any(|(q, _)| q == a)
+        })
+    }
+
+    /// `p` in the deviations of the angles given a multiple of π/2 (and
+    /// passing `which`): sin q → sin(q + k π/2), cos q likewise, exactly;
+    /// the angle itself outside sin and cos is read as its deviation
+    /// ([`OperatingPoint::outside_trig`] refuses it in what the file
+    /// wrote).
+    fn shifted(&self, p: &Poly, which: &dyn Fn(Atom) -> bool) -> Poly {
+        let turned = |q: Atom| {
+            self.turns
+                .iter()
+                .find(|(a, _)| *a == q && which(q))
+                .map(|(_, k)| k.rem_euclid(4))
+        };
+        p.subst(&mut |a| {
+            let (q, sin) = match a.kind() {
+                AtomKind::Sin(q) => (q, true),
+                AtomKind::Cos(q) => (q, false),
+                _ => return None,
+            };
+            let k = turned(q)?;
+            let (s, c) = (
+                Poly::atom(Atom::sin(q).expect("an angle")),
+                Poly::atom(Atom::cos(q).expect("an angle")),
+            );
+            // sin(q + k π/2) and cos(q + k π/2).
+            Some(match (k, sin) {
+                (0, true) | (3, false) => s,
+                (0, false) | (1, true) => c,
+                (1, false) | (2, true) => -&s,
+                _ => -&c,
+            })
+        })
+    }
+
     /// `p` at the operating point: each symbol with a value (and passing
     /// `which`) replaced, sin and cos of a listed angle too. `Err(a)` when
-    /// the angle `a`'s value is neither 0 nor a constant symbol, or its
-    /// sine or cosine divides and vanishes there.
+    /// the angle `a`'s value is neither 0, a multiple of π/2 nor a
+    /// constant symbol, or its sine or cosine divides and vanishes there.
     pub fn at(&self, p: &Poly, which: &dyn Fn(Atom) -> bool) -> Result<Poly, Atom> {
+        self.at_shifted(&self.shifted(p, which), which)
+    }
+
+    /// [`OperatingPoint::at`] of a `p` already in the deviations.
+    fn at_shifted(&self, p: &Poly, which: &dyn Fn(Atom) -> bool) -> Result<Poly, Atom> {
         let mut bad = None;
         let out = p.subst(&mut |a| match a.kind() {
             AtomKind::Var { time: true, .. } if which(a) => self.value(a),
@@ -134,6 +198,7 @@ impl OperatingPoint {
     /// in the symbols that have a value there and pass `which`:
     /// f(x₀) + Σ ∂f/∂x(x₀) (x − x₀). Other symbols are held as they are.
     pub fn first_order(&self, p: &Poly, which: &dyn Fn(Atom) -> bool) -> Result<Poly, Atom> {
+        let p = &self.shifted(p, which);
         let mut vars: Vec<Atom> = Vec::new();
         for a in p.atoms() {
             let x = match a.kind() {
@@ -145,9 +210,9 @@ impl OperatingPoint {
                 vars.push(x);
             }
         }
-        let mut out = self.at(p, which)?;
+        let mut out = self.at_shifted(p, which)?;
         for x in vars {
-            let dx = self.at(&p.partial(x), which)?;
+            let dx = self.at_shifted(&p.partial(x), which)?;
             if dx.is_zero() {
                 continue;
             }

@@ -35,8 +35,8 @@ impl Linear<'_, '_, '_> {
             c.base,
             c.span,
             format!(
-                "`{a}` cannot be expanded about its operating value: give an angle the value 0 or a constant symbol, \
-                 and divide by no sine or cosine that vanishes there"
+                "`{a}` cannot be expanded about its operating value: give an angle the value 0, a multiple of pi/2 \
+                 (under sin and cos only) or a constant symbol, and divide by no sine or cosine that vanishes there"
             ),
         )
     }
@@ -137,8 +137,17 @@ pub(crate) fn eliminate(
     }
     let Some(lin) = lin else {
         let (m, f) = linear_system(&velocity, deps).map_err(at)?;
-        let x = solve_system(&m, &f)
-            .map_err(|e| at(format!("the dependent speeds cannot be eliminated: {e}")))?;
+        let x = solve_system(&m, &f).map_err(|e| {
+            let every: Vec<String> = speeds.iter().map(|u| u.to_string()).collect();
+            at(format!(
+                "the dependent speeds cannot be eliminated: {e}. Keep the constraints in multiplier form \
+                 instead: Kane's equations in every speed, `kane([{0}])`, with `mass_matrix(…)` and \
+                 `forcing(…)`, the constraint matrix `jacobian(c, [{0}])` of the velocity constraints c (a \
+                 configuration constraint f's are `in_speeds(dt(f))`) and its rate with the speeds' rates zero; `hdot simulate` solves the rates and the multipliers together \
+                 (docs/multibody.md, *In multiplier form*)",
+                every.join(", ")
+            ))
+        })?;
         return Ok(Eliminated {
             speeds: deps.iter().copied().zip(x).collect(),
             coordinates: Vec::new(),

@@ -129,7 +129,7 @@ fn height_of(c: &Call<'_, '_>, k: &Contact) -> R<Poly> {
     for (v, f) in &pieces {
         h = &h + &cx.unfold(&v.dot(&up_in(c, *f)?));
     }
-    let place = cx.physics.points.iter().find(|p| p.name == fixed);
+    let place = cx.physics.point(&fixed);
     if let Some(PointKind::Fixed(v, frame)) = place.map(|p| &p.kind) {
         let f = cx.frame_index(frame).expect("the point's frame exists");
         h = &h + &cx.unfold(&v.dot(&up_in(c, f)?));

@@ -63,6 +63,25 @@ fn eval(c: &Call<'_, '_>) -> R<Value> {
         );
     }
     let op = OperatingPoint::read(c, &c.args[positional..])?;
+    // What the file wrote: the points' places and the loads.
+    let written = cx
+        .physics
+        .points
+        .iter()
+        .chain(&cx.physics.centres)
+        .filter_map(|p| match &p.kind {
+            crate::derivation::physics::PointKind::From { at, .. } => Some(at.clone()),
+            _ => None,
+        })
+        .chain(cx.loads.iter().map(|l| match l {
+            crate::derivation::multibody::Load::Force { force, .. } => force.clone(),
+            crate::derivation::multibody::Load::Torque { torque, .. } => torque.clone(),
+        }));
+    for v in written {
+        if let Some(a) = v.0.iter().find_map(|p| op.outside_trig(&cx.unfold(p))) {
+            return c.err(c.span, super::linearize::outside_trig_message(a));
+        }
+    }
     let lin = (!op.is_empty()).then(|| Linear { c, op });
     let us = speeds_arg(c, 0, &[])?;
     let (sp, coordinates) = if positional >= 3 {

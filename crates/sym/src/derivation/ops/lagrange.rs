@@ -11,7 +11,9 @@ pub(crate) const LAGRANGE: Op = Op {
     signature: "lagrange(T, V, q), lagrange(T, V, [q1, q2, …], Q)",
     doc: "Lagrange's equation d/dt(∂T/∂q̇) − ∂T/∂q + ∂V/∂q − Q_q for each coordinate (= 0 along the motion); `Q` \
           (optional: a scalar, or a `list(…)` with one per coordinate) is the generalized force of the forces \
-          not in V. One coordinate gives a scalar, several a list",
+          not in V. One coordinate gives a scalar, several a list. T and V are written in the coordinates and \
+          their rates: one that holds a generalized speed (a T built from `velocity()` in a file with \
+          `[kinematics]`) is an error saying how to write it",
     eval,
 };
 
@@ -19,6 +21,8 @@ fn eval(c: &Call<'_, '_>) -> R<Value> {
     c.arity_between(3, 4)?;
     let t = c.cx.unfold(&c.scalar(0)?);
     let v = c.cx.unfold(&c.scalar(1)?);
+    no_speeds(c, 0, &t, "T")?;
+    no_speeds(c, 1, &v, "V")?;
     let (qs, listed) = c.symbols(2)?;
     for (k, &q) in qs.iter().enumerate() {
         if q.order() != 0 || !q.is_time_dependent() {
@@ -61,6 +65,47 @@ fn eval(c: &Call<'_, '_>) -> R<Value> {
     } else {
         Value::Scalar(eqs.into_iter().next().expect("one coordinate"))
     })
+}
+
+/// Refuses, at argument `i`, an energy `p` that holds a generalized
+/// speed: ∂/∂q̇ would treat the speed as another function of time and
+/// drop its terms without a word (a T built from `velocity()`, which is
+/// written in the speeds). The message says what to write instead.
+fn no_speeds(c: &Call<'_, '_>, i: usize, p: &Poly, what: &str) -> R<()> {
+    let speeds = &c.cx.speeds;
+    let held: Vec<Atom> = speeds
+        .speeds
+        .iter()
+        .copied()
+        .filter(|u| p.atoms().iter().any(|a| a.base() == *u))
+        .collect();
+    let Some(first) = held.first() else {
+        return Ok(());
+    };
+    // q̇ = u for each speed held: the substitution that writes p in rates.
+    let rates: Option<Vec<String>> = held
+        .iter()
+        .map(|u| {
+            speeds
+                .kinematics
+                .iter()
+                .find(|(_, f)| *f == Poly::atom(*u))
+                .map(|(q, _)| format!("{u} = {q}'"))
+        })
+        .collect();
+    let instead = match rates {
+        Some(r) => format!("`subst({what}, {})` (q̇ = u here)", r.join(", ")),
+        None => "velocities from `dt(position(P, O))`".to_string(),
+    };
+    c.err(
+        c.args[i].span,
+        format!(
+            "{what} holds the generalized speed `{first}`: Lagrange's equations take ∂{what}/∂q̇ and would treat \
+             `{first}` as another function of time, dropping its terms. `velocity()` is written in the speeds \
+             when [kinematics] gives them; write {what} in the coordinates' rates — {instead} — or take Kane's \
+             equations, `kane([…])`, in the speeds"
+        ),
+    )
 }
 
 /// d/dt(∂T/∂q̇) − ∂T/∂q + ∂V/∂q − Q.

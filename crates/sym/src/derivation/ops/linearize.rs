@@ -16,7 +16,9 @@ pub(crate) const LINEARIZE: Op = Op {
           counts as first order under sin and cos (sin ε → ε, cos ε → 1). With `name = value` arguments, the \
           first-order Taylor polynomial about that operating point, f(x₀) + Σ ∂f/∂x(x₀) (x − x₀), in the listed \
           coordinates, speeds and rates (values in constants; a rate of a listed symbol is 0 there unless listed; \
-          symbols not listed are held as they are)",
+          symbols not listed are held as they are). An angle may be given a multiple of pi/2 (`q1 = pi`, the \
+          inverted pendulum): its sine and cosine are exact there and the result is in its deviation from that \
+          value (q1 stands for q1 − π), which must occur only under sin and cos",
     eval,
 };
 
@@ -81,6 +83,13 @@ fn eval(c: &Call<'_, '_>) -> R<Value> {
 fn about(c: &Call<'_, '_>) -> R<Value> {
     let op = OperatingPoint::read(c, &c.args[1..])?;
     let v = c.value(0)?;
+    if let Some(a) = v
+        .components()
+        .into_iter()
+        .find_map(|p| op.outside_trig(&c.cx.unfold(p)))
+    {
+        return c.err(c.args[0].span, outside_trig_message(a));
+    }
     let mut failed = None;
     let out = v.map(&mut |p| {
         let p = c.cx.unfold(p);
@@ -93,10 +102,20 @@ fn about(c: &Call<'_, '_>) -> R<Value> {
         Some(a) => c.err(
             c.span,
             format!(
-                "`{a}` cannot be expanded about its operating value: give an angle the value 0 or a constant \
-                 symbol, and divide by no sine or cosine that vanishes there"
+                "`{a}` cannot be expanded about its operating value: give an angle the value 0, a multiple of pi/2 \
+                 (under sin and cos only) or a constant symbol, and divide by no sine or cosine that vanishes there"
             ),
         ),
         None => Ok(out),
     }
+}
+
+/// The error for an angle given a multiple of π/2 that occurs outside sin
+/// and cos in what is expanded (`linearize`, `kane`).
+pub(crate) fn outside_trig_message(a: crate::atom::Atom) -> String {
+    format!(
+        "`{a}` occurs outside sin and cos, so its operating value cannot be a multiple of pi (pi is no number of \
+         the algebra): write it under sin and cos, or give the operating point as a constant symbol (`{a} = beta`) \
+         and substitute after taking coefficients"
+    )
 }

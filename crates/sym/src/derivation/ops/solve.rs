@@ -7,7 +7,7 @@
 use super::mass_matrix::system;
 use super::sign::sign_of;
 use super::{Call, Op};
-use crate::atom::Atom;
+use crate::atom::{Atom, AtomKind};
 use crate::derivation::context::R;
 use crate::derivation::value::Value;
 use crate::expr::Expr;
@@ -44,8 +44,8 @@ fn eval(c: &Call<'_, '_>) -> R<Value> {
     let mut m = m;
     let mut f = f;
     divide_common(&mut m, &mut f);
-    let x =
-        solve_known(&m, &f, &c.cx.positive).map_err(|msg| c.cx.at(c.base, c.args[0].span, msg))?;
+    let x = solve_known(&m, &f, &c.cx.positive)
+        .map_err(|msg| c.cx.at(c.base, c.args[0].span, advise(msg, &unknowns)))?;
     Ok(match v {
         Value::Vector(_, frame)
             if unknowns.len() == 3 && unknowns.iter().all(|u| u.order() == 0) =>
@@ -106,8 +106,8 @@ fn solve_power(c: &Call<'_, '_>, base: &Ast, k: u32) -> R<Value> {
     let mut m = vec![vec![Poly::from_terms(coefficient)]];
     let mut f = vec![-&Poly::from_terms(rest)];
     divide_common(&mut m, &mut f);
-    let x =
-        solve_known(&m, &f, &c.cx.positive).map_err(|msg| c.cx.at(c.base, c.args[0].span, msg))?;
+    let x = solve_known(&m, &f, &c.cx.positive)
+        .map_err(|msg| c.cx.at(c.base, c.args[0].span, advise(msg, &[u])))?;
     Ok(Value::Scalar(x.into_iter().next().expect("one unknown")))
 }
 
@@ -185,10 +185,10 @@ fn solve_known(m: &[Vec<Poly>], f: &[Poly], positive: &[Atom]) -> Result<Vec<Pol
             }
             None => {
                 return Err(format!(
-                    "{what} is {}, which cannot be divided by ({}); write the equations in mass-matrix form \
-                     with mass_matrix(…) and forcing(…) instead",
+                    "{what} is {}, which cannot be divided by ({}){}",
                     factored(&det),
-                    crate::poly::DIVISOR_RULE
+                    crate::poly::DIVISOR_RULE,
+                    vanishing(&det)
                 ));
             }
         },
@@ -207,6 +207,58 @@ fn solve_known(m: &[Vec<Poly>], f: &[Poly], positive: &[Atom]) -> Result<Vec<Pol
             &determinant(&mj) * &inv
         })
         .collect())
+}
+
+/// Why a determinant that cannot be divided by could vanish: a function
+/// of time outside sin and cos (a speed, a rate, a coordinate), or else a
+/// sum of sines and cosines of the coordinates (zero at some
+/// configuration). Empty when neither says more than the rule.
+pub(crate) fn vanishing(det: &Poly) -> String {
+    let time: Vec<String> = det
+        .atoms()
+        .into_iter()
+        .filter(|a| matches!(a.kind(), AtomKind::Var { time: true, .. }))
+        .map(|a| format!("`{a}`"))
+        .collect();
+    if !time.is_empty() {
+        return format!(
+            ": {} {} a function of time that can be zero along the motion, so it is never divided by",
+            time.join(", "),
+            if time.len() == 1 { "is" } else { "are" }
+        );
+    }
+    let trig = det
+        .atoms()
+        .into_iter()
+        .any(|a| matches!(a.kind(), AtomKind::Sin(q) | AtomKind::Cos(q) if q.is_time_dependent()));
+    if trig {
+        return ": a sum of sines and cosines of the coordinates is zero at some configuration"
+            .into();
+    }
+    String::new()
+}
+
+/// The error `msg` of [`solve_known`] with what to write
+/// instead: for accelerations (every unknown a rate), the mass-matrix
+/// form, which a simulation solves numerically; for other unknowns (a
+/// steady-motion condition solved for a speed), another unknown.
+fn advise(msg: String, unknowns: &[Atom]) -> String {
+    if !msg.contains("cannot be divided by (") {
+        return msg;
+    }
+    if unknowns.iter().all(|u| u.order() > 0) {
+        return format!(
+            "{msg}; write the equations in mass-matrix form with mass_matrix(…) and forcing(…) instead: \
+             `hdot simulate` solves them numerically at each step"
+        );
+    }
+    let unknown: Vec<String> = unknowns.iter().map(|u| format!("`{u}`")).collect();
+    let unknown = unknown.join(", ");
+    format!(
+        "{msg}; solving for {unknown} would divide by it: solve for an unknown whose coefficient holds no \
+         function of time (in a steady-motion condition, a constant such as a load or `g`), or keep the \
+         equation as it stands"
+    )
 }
 
 /// `p` for an error message, factored where it can be: the monomial common

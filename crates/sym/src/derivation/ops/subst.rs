@@ -64,7 +64,10 @@ fn eval(c: &Call<'_, '_>) -> R<Value> {
                 return c.err(
                     *name_span,
                     format!(
-                        "`{name}` occurs outside sin/cos, so it cannot be set to a multiple of pi"
+                        "`{name}` occurs outside sin/cos, so it cannot be set to a multiple of pi (pi is no number \
+                         of the algebra): take the coefficients first (`subst(jacobian(x, […]), {name} = …)`), or \
+                         give the operating point as `q = pi` to `kane` or `linearize` directly, whose result is \
+                         then in the deviation from pi"
                     ),
                 );
             }

@@ -16,8 +16,9 @@ use crate::vector::Vec3;
 pub(crate) const VELOCITY: Op = Op {
     names: &["velocity"],
     signature: "velocity(P)",
-    doc: "the velocity in N of the declared point `P` (fixed, or placed `from` another point with `at`), in the \
-          components of the frame of its `at`; written in the generalized speeds when `[kinematics]` gives them",
+    doc: "the velocity in N of the declared point `P` (fixed, or placed `from` another point with `at`, or a \
+          body's centre placed by its `mass_centre`), in the components of the frame of its `at`; written in the \
+          generalized speeds when `[kinematics]` gives them (so not for `lagrange`, which refuses speeds)",
     eval: velocity,
 };
 
@@ -56,13 +57,7 @@ fn rolling(c: &Call<'_, '_>) -> R<Value> {
     };
     let p = point_name(c, 1)?;
     let sp = Speedmap::plain(c);
-    let placed = |of: &str| {
-        cx.physics
-            .points
-            .iter()
-            .find(|q| q.name == of)
-            .map(|q| &q.kind)
-    };
+    let placed = |of: &str| cx.physics.point(of).map(|q| &q.kind);
     // r from the reference point to P, and its frame.
     let (r, rf) = match (placed(&p), placed(&body.point)) {
         (Some(PointKind::From { from, at, frame }), _) if *from == body.point => {
@@ -90,13 +85,13 @@ fn rolling(c: &Call<'_, '_>) -> R<Value> {
 
 /// Argument `i`, the name of a declared point.
 fn point_name(c: &Call<'_, '_>, i: usize) -> R<String> {
-    let points = &c.cx.physics.points;
+    let ph = &c.cx.physics;
     if let crate::parse::AstKind::Name { name, primes: 0 } = &c.args[i].kind
-        && points.iter().any(|p| &p.name == name)
+        && ph.point(name).is_some()
     {
         return Ok(name.clone());
     }
-    let names: Vec<&str> = points.iter().map(|p| p.name.as_str()).collect();
+    let names = ph.point_names();
     c.err(
         c.args[i].span,
         format!("expected a declared point (one of {})", names.join(", ")),
@@ -179,7 +174,7 @@ impl<'c, 'a, 'b> Speedmap<'c, 'a, 'b> {
     /// measured from plus the rate in N of the vector from it.
     pub fn point_velocity(&self, name: &str, depth: usize) -> R<(Vec3, usize)> {
         let (c, cx) = (self.c, self.c.cx);
-        let Some(p) = cx.physics.points.iter().find(|p| p.name == name) else {
+        let Some(p) = cx.physics.point(name) else {
             return c.err(
                 c.span,
                 format!(
@@ -198,7 +193,7 @@ impl<'c, 'a, 'b> Speedmap<'c, 'a, 'b> {
             ),
             PointKind::From { from, at, frame } => {
                 // Declarations forbid cycles; the depth is a guard only.
-                if depth > cx.physics.points.len() {
+                if depth > cx.physics.point_names().len() {
                     return c.err(c.span, format!("point `{name}` leads back to itself"));
                 }
                 let (vf, ff) = self.point_velocity(from, depth + 1)?;

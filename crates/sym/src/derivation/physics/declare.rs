@@ -7,6 +7,7 @@ use std::collections::HashSet;
 use toml::Spanned;
 
 use super::bodies::{body, point};
+use super::centres::centre_points;
 use super::check::{constant, parse_spanned, unknown};
 use super::conditions::rule;
 use super::means::{check_shape, meaning};
@@ -114,6 +115,14 @@ pub(crate) fn declarations(cx: &Context<'_>, raw: &RawFile) -> R<Physics> {
     for b in &raw.bodies {
         taken(&mut names, &b.name, "body")?;
         let centre = match &b.centre {
+            // A [[point]] of the same name: accepted at the same place
+            // (`centres.rs`), once.
+            Some(c)
+                if raw.points.iter().any(|p| p.name.get_ref() == c.get_ref())
+                    && !centres.iter().flatten().any(|x: &String| x == c.get_ref()) =>
+            {
+                Some(c.get_ref().clone())
+            }
             Some(c) => {
                 taken(&mut names, c, "point")?;
                 Some(c.get_ref().clone())
@@ -126,12 +135,16 @@ pub(crate) fn declarations(cx: &Context<'_>, raw: &RawFile) -> R<Physics> {
         };
         centres.push(centre);
     }
-    let point_names: Vec<String> = raw
+    let mut point_names: Vec<String> = raw
         .points
         .iter()
         .map(|p| p.name.get_ref().clone())
-        .chain(centres.iter().flatten().cloned())
         .collect();
+    for c in centres.iter().flatten() {
+        if !point_names.contains(c) {
+            point_names.push(c.clone());
+        }
+    }
     let known_point = |s: &Spanned<String>| -> R<String> {
         let n = s.get_ref();
         if point_names.contains(n) {
@@ -165,6 +178,7 @@ pub(crate) fn declarations(cx: &Context<'_>, raw: &RawFile) -> R<Physics> {
     for (b, centre) in raw.bodies.iter().zip(centres) {
         ph.bodies.push(body(cx, b, centre, &known_point)?);
     }
+    ph.centres = centre_points(cx, raw, &ph)?;
     ph.supports = supports(cx, &ph, &raw.supports)?;
     for k in &raw.knowns {
         ph.knowns.push(known(cx, &ph, k)?);

@@ -12,12 +12,14 @@
 //! This file holds the model's types; the reading is split by job:
 //! `declare.rs` reads a file's declarations in order (frames' motion,
 //! gravity, names, knowns, `[motion]`), `bodies.rs` a `[[point]]` and a
-//! `[[body]]` table, `supports.rs` a `[[support]]` table, `vocabulary.rs`
-//! the `means` language's quantities and its tree [`Meaning`], `means.rs`
+//! `[[body]]` table, `centres.rs` a body's mass centre as a point,
+//! `supports.rs` a `[[support]]` table, `vocabulary.rs` the `means`
+//! language's quantities and its tree [`Meaning`], `means.rs`
 //! its parser and `conditions.rs` a step's meaning with its conditions
 //! (`given`, `symmetry`); `check.rs` holds the small checks they share.
 
 mod bodies;
+mod centres;
 mod check;
 mod conditions;
 mod declare;
@@ -45,6 +47,11 @@ pub struct Physics {
     pub frames: Vec<FrameMotion>,
     /// Declared points (not the bodies' centres).
     pub points: Vec<Point>,
+    /// The bodies' mass centres as points, where the file places them
+    /// (`centres.rs`): `from` the reference point by `mass_centre`, or
+    /// free for a body about its own centre. A centre that is also a
+    /// `[[point]]` (at the same place) is in `points` only.
+    pub centres: Vec<Point>,
     /// Declared bodies.
     pub bodies: Vec<Body>,
     /// Declared supports: what holds the bodies (`[[support]]`).
@@ -63,6 +70,26 @@ pub struct Physics {
     /// What `[symbols] positive` declares positive (constants, sin or cos
     /// of an angle): the values the verifier draws respect it.
     pub positive: Vec<Atom>,
+}
+
+impl Physics {
+    /// The point `name`: a declared `[[point]]` (a contact point too) or a
+    /// body's mass centre placed by its body.
+    pub fn point(&self, name: &str) -> Option<&Point> {
+        self.points
+            .iter()
+            .chain(&self.centres)
+            .find(|p| p.name == name)
+    }
+
+    /// The names of every point [`Physics::point`] finds, for messages.
+    pub fn point_names(&self) -> Vec<&str> {
+        self.points
+            .iter()
+            .chain(&self.centres)
+            .map(|p| p.name.as_str())
+            .collect()
+    }
 }
 
 /// How a frame moves relative to its parent.

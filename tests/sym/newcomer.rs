@@ -1,0 +1,56 @@
+//! A new user's multibody findings, each on a small file written for it
+//! in `tests/sym/newcomer/` (their errors are in `tests/sym/broken/`,
+//! 60–64): a body's mass centre is a point (`position`, `velocity`, a
+//! `[[load]]` at it, a `[[point]]` of its name at its place); entries of an
+//! array (`M.12`); an operating point at π; `position` across two fixed
+//! points. Every step with an expectation must hold, and each file must
+//! hold as many expectations as it was written with.
+
+use hdot_sym::derivation::load;
+use hdot_tests::repo_root;
+
+/// The file `newcomer/NAME.toml`, loaded; every expectation holds, and
+/// there are `checks` of them (a file that lost its expectations fails).
+fn holds(name: &str, checks: usize) {
+    let path = repo_root().join(format!("tests/sym/newcomer/{name}.toml"));
+    let d = load(&path).unwrap_or_else(|e| panic!("{e}"));
+    let failures: Vec<String> = d
+        .failures()
+        .iter()
+        .map(|(step, c)| {
+            format!(
+                "{step}.{}: derived − expected = {}",
+                c.component, c.difference
+            )
+        })
+        .collect();
+    assert!(failures.is_empty(), "{name}: {failures:#?}");
+    assert_eq!(d.check_count(), checks, "{name}: expectations checked");
+}
+
+#[test]
+fn a_body_s_centre_is_a_point_for_position_velocity_and_loads() {
+    // Kane's equations with the load at the centre G2 equal Lagrange's
+    // with its generalized forces, F · ∂v_G2/∂u_r.
+    holds("centre-is-a-point", 3 + 3 + 3 + 2);
+}
+
+#[test]
+fn a_point_named_as_a_body_s_centre_at_its_place_is_accepted() {
+    holds("centre-also-a-point", 3 + 1);
+}
+
+#[test]
+fn array_and_matrix_entries_are_read_by_row_and_column() {
+    holds("array-entries", 4 + 4 + 4 + 1);
+}
+
+#[test]
+fn an_operating_point_at_pi_linearizes_about_the_inverted_motion() {
+    holds("inverted-pendulum", 4);
+}
+
+#[test]
+fn position_runs_between_points_hung_from_two_fixed_points() {
+    holds("two-fixed-points", 3 + 3 + 3);
+}
