@@ -140,11 +140,12 @@ pub(crate) fn eliminate(
         let x = solve_system(&m, &f).map_err(|e| {
             let every: Vec<String> = speeds.iter().map(|u| u.to_string()).collect();
             at(format!(
-                "the dependent speeds cannot be eliminated: {e}. Keep the constraints in multiplier form \
-                 instead: Kane's equations in every speed, `kane([{0}])`, with `mass_matrix(…)` and \
-                 `forcing(…)`, the constraint matrix `jacobian(c, [{0}])` of the velocity constraints c (a \
-                 configuration constraint f's are `in_speeds(dt(f))`) and its rate with the speeds' rates zero; `hdot simulate` solves the rates and the multipliers together \
-                 (docs/multibody.md, *In multiplier form*)",
+                "the dependent speeds cannot be eliminated: {e}; it vanishes wherever the constraints are \
+                 singular. Keep the constraints in multiplier form instead: Kane's equations in every speed, \
+                 `kane([{0}])`, with `mass_matrix(…)` and `forcing(…)`, the constraint matrix \
+                 `jacobian(c, [{0}])` of the velocity constraints c (a configuration constraint f's are \
+                 `in_speeds(dt(f))`) and its rate with the speeds' rates zero; `hdot simulate` solves the \
+                 rates and the multipliers together (docs/multibody.md, *In multiplier form*)",
                 every.join(", ")
             ))
         })?;

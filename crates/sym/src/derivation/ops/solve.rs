@@ -209,10 +209,11 @@ fn solve_known(m: &[Vec<Poly>], f: &[Poly], positive: &[Atom]) -> Result<Vec<Pol
         .collect())
 }
 
-/// Why a determinant that cannot be divided by could vanish: a function
-/// of time outside sin and cos (a speed, a rate, a coordinate), or else a
-/// sum of sines and cosines of the coordinates (zero at some
-/// configuration). Empty when neither says more than the rule.
+/// Why a determinant cannot be divided by: it holds a function of time
+/// outside sin and cos (a speed, a rate, a coordinate), which can be zero
+/// along the motion, or else it is a sum holding sines and cosines of the
+/// coordinates, whose sign the engine does not decide. Empty when neither
+/// says more than the rule.
 pub(crate) fn vanishing(det: &Poly) -> String {
     let time: Vec<String> = det
         .atoms()
@@ -232,7 +233,8 @@ pub(crate) fn vanishing(det: &Poly) -> String {
         .into_iter()
         .any(|a| matches!(a.kind(), AtomKind::Sin(q) | AtomKind::Cos(q) if q.is_time_dependent()));
     if trig {
-        return ": a sum of sines and cosines of the coordinates is zero at some configuration"
+        return ": it is a sum holding sines and cosines of the coordinates, which the exact engine does not \
+                divide by (it does not decide whether such a sum vanishes at some configuration)"
             .into();
     }
     String::new()
