@@ -142,3 +142,27 @@ fn a_dependent_or_undeclared_speed_in_a_meaning_is_a_clear_error() {
     let e = check(&load(&text), &options()).expect_err("u_2 is dependent");
     assert!(e.to_string().contains("u_2"), "{e}");
 }
+
+/// A `[[load]]` at a body's centre (`point = "G2"`, the centre named by
+/// the body, no `[[point]]` of it): Kane's equations measured on the
+/// particles with the load there agree.
+#[test]
+fn a_load_at_a_body_s_centre_is_measured_there() {
+    let text = include_str!("../sym/newcomer/centre-is-a-point.toml");
+    let r = check(&load(text), &options()).unwrap_or_else(|e| panic!("{e}"));
+    let k = r
+        .steps
+        .iter()
+        .find(|s| s.step == "K")
+        .expect("K is compared");
+    assert!(k.passed, "{k:?}");
+    // The load's share flipped in the derived equations is rejected.
+    let wrong = text.replace(
+        "value = \"kane([u1, u2])\"",
+        "value = \"list(kane([u1, u2]).1, kane([u1, u2]).2 + 2*dot(express([F, 0, 0] in N, B), coeff(vG2, u2)))\"",
+    );
+    assert_ne!(wrong, text);
+    let r = check(&load(&wrong), &options()).unwrap_or_else(|e| panic!("{e}"));
+    let k = r.steps.iter().find(|s| s.step == "K").expect("K");
+    assert!(!k.passed, "{k:?}");
+}
