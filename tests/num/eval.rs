@@ -219,3 +219,84 @@ proptest! {
         prop_assert!(r.is_ok(), "{}", r.unwrap_err());
     }
 }
+
+/// The inputs gathered from a state by the tape's plan (components, one
+/// `sin_cos` per angle, the rest given by a closure) give the bits the
+/// same inputs passed in full give; an output equal to an earlier one is
+/// copied from it, and a zero output is zero.
+#[test]
+fn planned_inputs_give_the_outputs_of_explicit_inputs() {
+    use hdot_num::eval::Input;
+    let polys = [
+        poly("x*sin(y) + cos(y)*z' - 3*x^2*z'/sin(y)"),
+        poly("0"),
+        poly("x*sin(y) + cos(y)*z' - 3*x^2*z'/sin(y)"),
+        poly("a*x + 2*cos(y)^2"),
+    ];
+    let mut tape = Tape::compile(&polys);
+    let state = [0.7, 1.3, -0.4];
+    let a_value = -1.9;
+    let source = |a: Atom| match a.to_string().as_str() {
+        "x" => Input::Component(0),
+        "sin(y)" => Input::Sin(1),
+        "cos(y)" => Input::Cos(1),
+        "z'" => Input::Component(2),
+        _ => Input::Given,
+    };
+    tape.plan_inputs(source);
+    let (s, c) = state[1].sin_cos();
+    let inputs: Vec<f64> = tape
+        .atoms()
+        .iter()
+        .map(|&a| match source(a) {
+            Input::Component(i) => state[i],
+            Input::Sin(_) => s,
+            Input::Cos(_) => c,
+            Input::Given => a_value,
+        })
+        .collect();
+    let mut want = [0.0; 4];
+    tape.eval(&inputs, &mut want);
+    let mut got = [f64::NAN; 4];
+    let atoms = tape.atoms().to_vec();
+    tape.eval_at(
+        &state,
+        |slots| {
+            for (k, &a) in atoms.iter().enumerate() {
+                if source(a) == Input::Given {
+                    slots[k] = a_value;
+                }
+            }
+        },
+        &mut got,
+    );
+    assert_eq!(got.map(f64::to_bits), want.map(f64::to_bits));
+    assert_eq!(got[1], 0.0);
+    assert_eq!(got[2].to_bits(), got[0].to_bits());
+    let reference = polys[3].eval(&mut |a| match a.to_string().as_str() {
+        "x" => state[0],
+        "y" => state[1],
+        _ => a_value,
+    });
+    assert!((got[3] - reference).abs() <= 8.0 * f64::EPSILON * reference.abs());
+}
+
+/// A tape of more slots than fit on the stack is evaluated in a buffer
+/// kept per thread, with the same bits.
+#[test]
+fn a_tape_larger_than_the_stack_buffer_evaluates_alike() {
+    let text = (1..=5000)
+        .map(|k| format!("x^{k}"))
+        .collect::<Vec<_>>()
+        .join(" + ");
+    let mut tape = Tape::compile(&[poly(&text)]);
+    assert!(tape.slots() > 4096, "{} slots", tape.slots());
+    tape.plan_inputs(|_| hdot_num::eval::Input::Component(0));
+    let x = 1.0001;
+    let (mut want, mut got) = ([0.0], [0.0]);
+    tape.eval(&[x], &mut want);
+    tape.eval_at(&[x], |_| {}, &mut got);
+    assert_eq!(got[0].to_bits(), want[0].to_bits());
+    let exact: f64 = (1..=5000).map(|k| x.powi(k)).sum();
+    assert!((got[0] - exact).abs() <= 1e-9 * exact);
+}

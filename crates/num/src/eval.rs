@@ -126,6 +126,14 @@ struct Term {
     factors: [u32; WIDTH],
 }
 
+/// Output `out` is the sum of `terms[start..end]` (at least one term).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Sum {
+    out: u32,
+    start: u32,
+    end: u32,
+}
+
 /// A monomial's factors left after folding the known atoms, and its
 /// coefficient.
 type FoldedTerm = (Vec<(Atom, i32)>, f64);
@@ -134,15 +142,64 @@ type FoldedTerm = (Vec<(Atom, i32)>, f64);
 ///
 /// Invariant: slots `0..atoms.len()` are the inputs in [`Tape::atoms`]
 /// order, slot `atoms.len()` holds 1 during an evaluation; every
-/// instruction writes a slot above every slot it reads; the terms of
-/// output `k` are `terms[ends[k-1]..ends[k]]`.
+/// instruction writes a slot above every slot it reads; each output is
+/// either one of `sums` (its terms `terms[start..end]`, at least one), or
+/// listed in `zeros` (no terms: structurally zero), or in `aliases` as
+/// `(k, j)` (j < k): the same polynomial as output j, copied from it.
 #[derive(Clone, Debug)]
 pub struct Tape {
     atoms: Vec<Atom>,
     ops: Vec<Op>,
     terms: Vec<Term>,
-    ends: Vec<usize>,
+    sums: Vec<Sum>,
+    zeros: Vec<u32>,
+    outputs: usize,
+    aliases: Vec<(usize, usize)>,
     slots: usize,
+    gather: Gather,
+}
+
+/// Where an input of a tape gets its value in [`Tape::eval_at`] (see
+/// [`Tape::plan_inputs`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Input {
+    /// Component `i` of the state vector.
+    Component(usize),
+    /// The sine of component `i`.
+    Sin(usize),
+    /// The cosine of component `i`.
+    Cos(usize),
+    /// Written by the caller's closure.
+    Given,
+}
+
+/// How [`Tape::eval_at`] fills the inputs from a state vector, planned once:
+/// slots copied from it, and one `sin_cos` per component whose sine and
+/// cosine are both read (one libm call instead of two). No match on each
+/// input's source per evaluation.
+#[derive(Clone, Debug, Default)]
+struct Gather {
+    /// `(slot, i)`: slot ← x[i].
+    copies: Vec<(u32, u32)>,
+    trig: Vec<Trig>,
+}
+
+#[derive(Clone, Copy, Debug)]
+enum Trig {
+    /// `(sin slot, cos slot) ← sin_cos x[i]`.
+    Both {
+        i: u32,
+        sin: u32,
+        cos: u32,
+    },
+    Sin {
+        i: u32,
+        slot: u32,
+    },
+    Cos {
+        i: u32,
+        slot: u32,
+    },
 }
 
 /// # Construction
@@ -157,11 +214,33 @@ impl Tape {
     /// the coefficients now, they are no inputs, and terms left with the
     /// same monomial are merged. `m g l / I′ · sin θ` costs one product per
     /// evaluation, not a reciprocal power and three products.
+    ///
+    /// An output equal to an earlier one (a symmetric mass matrix's
+    /// M_ji = M_ij) is computed once and copied.
     pub fn compile_with(polys: &[Poly], known: &mut dyn FnMut(Atom) -> Option<f64>) -> Tape {
         let mut value: HashMap<Atom, Option<f64>> = HashMap::new();
+        let mut first: HashMap<&Poly, usize> = HashMap::new();
+        let mut aliases = Vec::new();
+        for (k, p) in polys.iter().enumerate() {
+            match first.get(p) {
+                Some(&j) if !p.is_zero() => aliases.push((k, j)),
+                Some(_) => {}
+                None => {
+                    first.insert(p, k);
+                }
+            }
+        }
+        let mut aliased = vec![false; polys.len()];
+        for &(k, _) in &aliases {
+            aliased[k] = true;
+        }
         let folded: Vec<Vec<FoldedTerm>> = polys
             .iter()
-            .map(|p| {
+            .enumerate()
+            .map(|(k, p)| {
+                if aliased[k] {
+                    return Vec::new();
+                }
                 let mut out: Vec<FoldedTerm> = Vec::new();
                 let mut index: HashMap<Vec<(Atom, i32)>, usize> = HashMap::new();
                 for (m, c) in p.terms() {
@@ -213,8 +292,9 @@ impl Tape {
             }
         }
         let mut terms = Vec::new();
-        let mut ends = Vec::with_capacity(polys.len());
-        for p in &folded {
+        let (mut sums, mut zeros) = (Vec::new(), Vec::new());
+        for (k, p) in folded.iter().enumerate() {
+            let start = terms.len() as u32;
             for (factors, c) in p {
                 let mut shared = (0..factors.len())
                     .rev()
@@ -261,15 +341,74 @@ impl Tape {
                     factors: slots,
                 });
             }
-            ends.push(terms.len());
+            let end = terms.len() as u32;
+            if end > start {
+                sums.push(Sum {
+                    out: k as u32,
+                    start,
+                    end,
+                });
+            } else if !aliased[k] {
+                zeros.push(k as u32);
+            }
         }
         Tape {
             atoms,
             ops,
             terms,
-            ends,
+            sums,
+            zeros,
+            outputs: polys.len(),
+            aliases,
             slots: next as usize,
+            gather: Gather::default(),
         }
+    }
+}
+
+/// # Planning the inputs
+impl Tape {
+    /// Plans how [`Tape::eval_at`] fills each input slot: `input(a)` for
+    /// each atom `a` of [`Tape::atoms`]. Until planned, every input is
+    /// [`Input::Given`].
+    pub fn plan_inputs(&mut self, mut input: impl FnMut(Atom) -> Input) {
+        let mut g = Gather::default();
+        let mut trig: Vec<(usize, Option<u32>, Option<u32>)> = Vec::new();
+        for (slot, &a) in self.atoms.iter().enumerate() {
+            let slot = slot as u32;
+            let source = input(a);
+            match source {
+                Input::Component(i) => g.copies.push((slot, i as u32)),
+                Input::Sin(i) | Input::Cos(i) => {
+                    let k = match trig.iter().position(|t| t.0 == i) {
+                        Some(k) => k,
+                        None => {
+                            trig.push((i, None, None));
+                            trig.len() - 1
+                        }
+                    };
+                    if matches!(source, Input::Sin(_)) {
+                        trig[k].1 = Some(slot);
+                    } else {
+                        trig[k].2 = Some(slot);
+                    }
+                }
+                Input::Given => {}
+            }
+        }
+        g.trig = trig
+            .into_iter()
+            .map(|(i, sin, cos)| {
+                let i = i as u32;
+                match (sin, cos) {
+                    (Some(sin), Some(cos)) => Trig::Both { i, sin, cos },
+                    (Some(slot), None) => Trig::Sin { i, slot },
+                    (None, Some(slot)) => Trig::Cos { i, slot },
+                    (None, None) => unreachable!("a trigonometric input has a slot"),
+                }
+            })
+            .collect();
+        self.gather = g;
     }
 }
 
@@ -282,7 +421,7 @@ impl Tape {
 
     /// The number of outputs.
     pub fn outputs(&self) -> usize {
-        self.ends.len()
+        self.outputs
     }
 
     /// The number of instructions (powers and products).
@@ -294,6 +433,45 @@ impl Tape {
     pub fn is_empty(&self) -> bool {
         self.ops.is_empty()
     }
+}
+
+/// A buffer of slots an evaluation reads and writes: a fixed array of
+/// `N` (a power of two ≥ the tape's slots) indexed by masking, so the
+/// compiler needs no bounds check per operand, or a slice (checked).
+trait Slots {
+    fn get(&self, i: u32) -> f64;
+    fn set(&mut self, i: u32, v: f64);
+}
+
+impl<const N: usize> Slots for [f64; N] {
+    #[inline(always)]
+    fn get(&self, i: u32) -> f64 {
+        self[i as usize & (N - 1)]
+    }
+    #[inline(always)]
+    fn set(&mut self, i: u32, v: f64) {
+        self[i as usize & (N - 1)] = v;
+    }
+}
+
+impl Slots for [f64] {
+    #[inline(always)]
+    fn get(&self, i: u32) -> f64 {
+        self[i as usize]
+    }
+    #[inline(always)]
+    fn set(&mut self, i: u32, v: f64) {
+        self[i as usize] = v;
+    }
+}
+
+/// The largest tape [`Tape::eval_at`] evaluates in a buffer on the
+/// stack (32 KB); a larger one uses a buffer kept per thread.
+const STACK_SLOTS: usize = 4096;
+
+thread_local! {
+    /// The slots of tapes larger than [`STACK_SLOTS`], reused.
+    static SCRATCH: std::cell::Cell<Vec<f64>> = const { std::cell::Cell::new(Vec::new()) };
 }
 
 /// # Evaluation
@@ -335,43 +513,139 @@ impl Tape {
     /// # Panics
     /// When `slots.len() < self.slots()` or `out.len() != outputs()`.
     pub fn eval_slots(&self, slots: &mut [f64], out: &mut [f64], abs: bool) {
-        assert_eq!(out.len(), self.ends.len(), "one output per polynomial");
         let scratch = &mut slots[..self.slots];
-        scratch[self.atoms.len()] = 1.0;
-        for op in &self.ops {
-            match *op {
-                Op::Recip { dst, src } => scratch[dst as usize] = 1.0 / scratch[src as usize],
-                Op::Mul { dst, a, b } => {
-                    scratch[dst as usize] = scratch[a as usize] * scratch[b as usize]
+        if abs {
+            self.run::<true, [f64]>(scratch, out);
+        } else {
+            self.run::<false, [f64]>(scratch, out);
+        }
+    }
+
+    /// Evaluates every output at the state vector `x`: the inputs planned
+    /// by [`Tape::plan_inputs`] gathered from it, then the [`Input::Given`]
+    /// ones written by `given` into the slice it is given
+    /// (`atoms().len()` slots, input i at index i). The gathering and the
+    /// evaluation are one call, in a buffer on the stack sized for this
+    /// tape (no allocation, no shared scratch buffer, no bounds check per
+    /// operand); a tape of more than 4096 slots uses a buffer kept per
+    /// thread instead.
+    ///
+    /// # Panics
+    /// When `out.len() != outputs()`, or `x` is shorter than a planned
+    /// component.
+    #[inline]
+    pub fn eval_at(&self, x: &[f64], given: impl FnOnce(&mut [f64]), out: &mut [f64]) {
+        match self.slots {
+            0..=16 => self.eval_on_stack::<16>(x, given, out),
+            17..=32 => self.eval_on_stack::<32>(x, given, out),
+            33..=64 => self.eval_on_stack::<64>(x, given, out),
+            65..=128 => self.eval_on_stack::<128>(x, given, out),
+            129..=256 => self.eval_on_stack::<256>(x, given, out),
+            257..=1024 => self.eval_on_stack::<1024>(x, given, out),
+            1025..=STACK_SLOTS => self.eval_on_stack::<STACK_SLOTS>(x, given, out),
+            _ => self.eval_on_heap(x, given, out),
+        }
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn eval_on_heap(&self, x: &[f64], given: impl FnOnce(&mut [f64]), out: &mut [f64]) {
+        // Taken out of the thread's cell while in use: a `given` that
+        // evaluates another tape gets a buffer of its own.
+        let mut buf = SCRATCH.take();
+        buf.clear();
+        buf.resize(self.slots, 0.0);
+        self.gather_into::<[f64]>(&mut buf, x);
+        given(&mut buf[..self.atoms.len()]);
+        self.run::<false, [f64]>(&mut buf, out);
+        SCRATCH.set(buf);
+    }
+
+    // Not inlined: each size keeps a stack frame of its own (one frame
+    // holding every size's buffer would probe 40 KB of stack per call).
+    #[inline(never)]
+    fn eval_on_stack<const N: usize>(
+        &self,
+        x: &[f64],
+        given: impl FnOnce(&mut [f64]),
+        out: &mut [f64],
+    ) {
+        debug_assert!(self.slots <= N && N.is_power_of_two());
+        let mut buf = [0.0; N];
+        self.gather_into(&mut buf, x);
+        given(&mut buf[..self.atoms.len()]);
+        self.run::<false, [f64; N]>(&mut buf, out);
+    }
+
+    /// The planned inputs from `x`.
+    #[inline(always)]
+    fn gather_into<S: Slots + ?Sized>(&self, s: &mut S, x: &[f64]) {
+        for &(slot, i) in &self.gather.copies {
+            s.set(slot, x[i as usize]);
+        }
+        for t in &self.gather.trig {
+            match *t {
+                Trig::Both { i, sin, cos } => {
+                    let (a, b) = x[i as usize].sin_cos();
+                    s.set(sin, a);
+                    s.set(cos, b);
                 }
+                Trig::Sin { i, slot } => s.set(slot, x[i as usize].sin()),
+                Trig::Cos { i, slot } => s.set(slot, x[i as usize].cos()),
             }
         }
-        if abs {
-            self.sum_terms::<true>(scratch, out);
-        } else {
-            self.sum_terms::<false>(scratch, out);
+    }
+
+    /// The instructions, then each output's sum, on `s` (inputs filled).
+    #[inline(always)]
+    fn run<const ABS: bool, S: Slots + ?Sized>(&self, s: &mut S, out: &mut [f64]) {
+        assert_eq!(out.len(), self.outputs, "one output per polynomial");
+        s.set(self.atoms.len() as u32, 1.0);
+        for op in &self.ops {
+            match *op {
+                Op::Recip { dst, src } => s.set(dst, 1.0 / s.get(src)),
+                Op::Mul { dst, a, b } => s.set(dst, s.get(a) * s.get(b)),
+            }
+        }
+        self.sum_terms::<ABS, S>(s, out);
+        for &(k, j) in &self.aliases {
+            out[k] = out[j];
         }
     }
 
     /// Each output's terms, summed with an exact error term (Knuth's
-    /// TwoSum: no branch; the same error Neumaier's comparison finds).
-    fn sum_terms<const ABS: bool>(&self, s: &[f64], out: &mut [f64]) {
-        let mut start = 0;
-        for (k, &end) in self.ends.iter().enumerate() {
-            let (mut sum, mut comp) = (0.0f64, 0.0f64);
-            for t in &self.terms[start..end] {
-                let [a, b, c, d] = t.factors;
-                let mut v = t.coef * s[a as usize] * s[b as usize] * s[c as usize] * s[d as usize];
-                if ABS {
-                    v = v.abs();
+    /// TwoSum: no branch; the same error Neumaier's comparison finds),
+    /// from the first term on. A sum of one or two terms is added plainly:
+    /// `x + e` of TwoSum rounds back to `x`, so the bits are the same.
+    #[inline(always)]
+    fn sum_terms<const ABS: bool, S: Slots + ?Sized>(&self, s: &S, out: &mut [f64]) {
+        let term = |t: &Term| {
+            let [a, b, c, d] = t.factors;
+            let v = t.coef * s.get(a) * s.get(b) * s.get(c) * s.get(d);
+            if ABS { v.abs() } else { v }
+        };
+        for &k in &self.zeros {
+            out[k as usize] = 0.0;
+        }
+        for sum in &self.sums {
+            let terms = &self.terms[sum.start as usize..sum.end as usize];
+            // `+ 0.0` as the compensated sum's last step adds it: −0 → +0.
+            out[sum.out as usize] = match terms {
+                [] => 0.0,
+                [t] => term(t) + 0.0,
+                [t, u] => term(t) + term(u) + 0.0,
+                [t, rest @ ..] => {
+                    let (mut sum, mut comp) = (term(t), 0.0f64);
+                    for u in rest {
+                        let v = term(u);
+                        let x = sum + v;
+                        let bv = x - sum;
+                        comp += (sum - (x - bv)) + (v - bv);
+                        sum = x;
+                    }
+                    sum + comp
                 }
-                let x = sum + v;
-                let bv = x - sum;
-                comp += (sum - (x - bv)) + (v - bv);
-                sum = x;
-            }
-            out[k] = sum + comp;
-            start = end;
+            };
         }
     }
 }

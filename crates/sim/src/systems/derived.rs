@@ -25,7 +25,6 @@
 //! with a built-in model on the attitude matrix and ω; so is where each
 //! declared body is ([`DerivedModel::position`], `derived/positions.rs`).
 
-use std::cell::RefCell;
 use std::collections::BTreeMap;
 
 use hdot_sym::atom::Atom;
@@ -214,8 +213,6 @@ pub struct DerivedModel {
     placements: Vec<(String, positions::Placement)>,
     /// The derivation's gravity, compiled.
     gravity: Option<positions::Piece>,
-    /// The slots of the tapes' evaluation (see [`DerivedModel::eval`]).
-    scratch: RefCell<Vec<f64>>,
 }
 
 #[derive(Debug, Clone)]
@@ -231,7 +228,7 @@ enum FrameAttitude {
     /// parent, or from N when there is none.
     Rotation {
         parent: Option<usize>,
-        rotation: Compiled,
+        rotation: Box<Compiled>,
     },
     /// A frame given by a constant angular velocity ω (its own components),
     /// coinciding with N at t = 0: `exp(t [ω]×)`.
@@ -407,22 +404,11 @@ impl DerivedModel {
         Ok(y)
     }
 
-    /// Writes the value of each input of `c` at `(t, y)` into `into`.
-    fn inputs_into(&self, c: &Compiled, t: f64, y: &[f64], into: &mut [f64]) {
-        let g = &c.gather;
-        for &(slot, i) in &g.copies {
-            into[slot] = y[i];
-        }
-        for &(i, sin, cos) in &g.trig {
-            match (sin, cos) {
-                (Some(s), Some(c)) => (into[s], into[c]) = y[i].sin_cos(),
-                (Some(s), None) => into[s] = y[i].sin(),
-                (None, Some(c)) => into[c] = y[i].cos(),
-                (None, None) => {}
-            }
-        }
+    /// Writes the value of each input of `c` the state does not give
+    /// (applied inputs at t, unfolded values) into `into`.
+    fn given_into(&self, c: &Compiled, t: f64, y: &[f64], into: &mut [f64]) {
         let n = self.dof();
-        for &(slot, s) in &g.other {
+        for &(slot, s) in &c.given {
             into[slot] = match s {
                 Source::Coordinate(i) => y[i],
                 Source::Rate(i) | Source::Speed(i) => y[n + i],
@@ -436,16 +422,17 @@ impl DerivedModel {
         }
     }
 
-    /// Evaluates `c` at `(t, y)` in the model's scratch buffer (sized once:
-    /// an evaluation allocates nothing).
+    /// Evaluates `c` at `(t, y)`: the tape gathers its inputs from the
+    /// state itself, in one call, in a buffer on its stack (an evaluation
+    /// allocates nothing).
+    #[inline]
     fn eval(&self, c: &Compiled, t: f64, y: &[f64], out: &mut [f64]) {
-        let mut buf = self.scratch.borrow_mut();
-        let slots = c.tape.slots();
-        if buf.len() < slots {
-            buf.resize(slots, 0.0);
+        if c.given.is_empty() {
+            c.tape.eval_at(y, |_| {}, out);
+        } else {
+            c.tape
+                .eval_at(y, |slots| self.given_into(c, t, y, slots), out);
         }
-        self.inputs_into(c, t, y, &mut buf[..c.sources.len()]);
-        c.tape.eval_slots(&mut buf, out, false);
     }
 
     /// The rate of the state, `ẏ` at `(t, y)`: `(q̇, q̈)` or `(q̇, u̇)`;

@@ -2,8 +2,6 @@
 //! steps that hold the equations, the divisors that can vanish, the
 //! conserved steps and the frames whose attitude can be evaluated.
 
-use std::cell::RefCell;
-
 use hdot_sym::atom::{Atom, AtomKind};
 use hdot_sym::derivation::{Derivation, Step, Value};
 use hdot_sym::poly::Poly;
@@ -193,7 +191,6 @@ impl DerivedModel {
             frames,
             placements,
             gravity,
-            scratch: RefCell::new(Vec::new()),
         })
     }
 }
@@ -424,15 +421,17 @@ fn frames(d: &Derivation, cx: &Resolver<'_>) -> Vec<(String, Result<FrameChain, 
                     let attitude = match &f.parent {
                         Some((p, r)) => FrameAttitude::Rotation {
                             parent: d.frames.iter().position(|g| &g.name == p),
-                            rotation: cx
-                                .compile(&r.0.iter().flatten().cloned().collect::<Vec<_>>())
-                                .map_err(|e| e.to_string())?,
+                            rotation: Box::new(
+                                cx.compile(&r.0.iter().flatten().cloned().collect::<Vec<_>>())
+                                    .map_err(|e| e.to_string())?,
+                            ),
                         },
                         None if f.omega.0.iter().all(|p| p.is_zero()) => FrameAttitude::Rotation {
                             parent: None,
-                            rotation: cx
-                                .compile(&Mat3::identity().0.iter().flatten().cloned().collect::<Vec<_>>())
-                                .map_err(|e| e.to_string())?,
+                            rotation: Box::new(
+                                cx.compile(&Mat3::identity().0.iter().flatten().cloned().collect::<Vec<_>>())
+                                    .map_err(|e| e.to_string())?,
+                            ),
                         },
                         None if omega.sources.iter().all(|s| matches!(s, Source::Value(_))) => {
                             let mut w = [0.0; 3];

@@ -6,7 +6,7 @@
 //! dependent speeds are first replaced by what the kinematic equations
 //! and the constraints give for them (the resolver's `replace`).
 
-use hdot_num::eval::Tape;
+use hdot_num::eval::{Input, Tape};
 use hdot_sym::atom::{Atom, AtomKind};
 use hdot_sym::derivation::Derivation;
 use hdot_sym::poly::Poly;
@@ -38,53 +38,26 @@ pub(super) enum Source {
 }
 
 /// A compiled set of polynomials and the source of each of its inputs.
+/// The tape gathers the state's components, and the sines and cosines of
+/// the angles, itself ([`Tape::plan_inputs`]); `given` lists the other
+/// inputs (applied inputs, unfolded values), written per evaluation.
 #[derive(Debug, Clone)]
 pub(super) struct Compiled {
     pub(super) tape: Tape,
     pub(super) sources: Vec<Source>,
-    pub(super) gather: Gather,
+    /// `slot ← source` for the inputs the state does not give.
+    pub(super) given: Vec<(usize, Source)>,
 }
 
-/// How the inputs of a tape are filled from `(t, y)`, planned once from
-/// the sources: slots copied from the state, one `sin_cos` per angle
-/// whose sine and cosine are both read (one libm call instead of two),
-/// and the rest (applied inputs, unfolded values) one by one: no match on
-/// each atom's source per evaluation.
-#[derive(Debug, Clone, Default)]
-pub(super) struct Gather {
-    /// `slot ← y[index]`.
-    pub(super) copies: Vec<(usize, usize)>,
-    /// `slot ← sin y[i]`, `slot ← cos y[i]`: `(i, sin slot, cos slot)`.
-    pub(super) trig: Vec<(usize, Option<usize>, Option<usize>)>,
-    /// `slot ← source`, evaluated per source.
-    pub(super) other: Vec<(usize, Source)>,
-}
-
-impl Gather {
-    fn plan(sources: &[Source], n: usize) -> Gather {
-        let mut g = Gather::default();
-        for (slot, &s) in sources.iter().enumerate() {
-            match s {
-                Source::Coordinate(i) => g.copies.push((slot, i)),
-                Source::Rate(i) | Source::Speed(i) => g.copies.push((slot, n + i)),
-                Source::SinOf(i) | Source::CosOf(i) => {
-                    let k = match g.trig.iter().position(|t| t.0 == i) {
-                        Some(k) => k,
-                        None => {
-                            g.trig.push((i, None, None));
-                            g.trig.len() - 1
-                        }
-                    };
-                    if matches!(s, Source::SinOf(_)) {
-                        g.trig[k].1 = Some(slot);
-                    } else {
-                        g.trig[k].2 = Some(slot);
-                    }
-                }
-                _ => g.other.push((slot, s)),
-            }
-        }
-        g
+/// Where the tape reads a source from in the state, if it does: `n`
+/// coordinates, their rates or the speeds after them.
+fn input(s: Source, n: usize) -> Input {
+    match s {
+        Source::Coordinate(i) => Input::Component(i),
+        Source::Rate(i) | Source::Speed(i) => Input::Component(n + i),
+        Source::SinOf(i) => Input::Sin(i),
+        Source::CosOf(i) => Input::Cos(i),
+        _ => Input::Given,
     }
 }
 
@@ -135,16 +108,25 @@ impl Resolver<'_> {
             Ok(Source::Value(v)) => Some(v),
             _ => None,
         });
+        let mut tape = tape;
         let sources = tape
             .atoms()
             .iter()
             .map(|&a| self.source(a))
             .collect::<Result<Vec<_>, _>>()?;
-        let gather = Gather::plan(&sources, self.coordinates.len());
+        let n = self.coordinates.len();
+        let mut planned = sources.iter();
+        tape.plan_inputs(|_| input(*planned.next().expect("one source per atom"), n));
+        let given = sources
+            .iter()
+            .enumerate()
+            .filter(|(_, s)| input(**s, n) == Input::Given)
+            .map(|(slot, s)| (slot, *s))
+            .collect();
         Ok(Compiled {
             tape,
             sources,
-            gather,
+            given,
         })
     }
 
