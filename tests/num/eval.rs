@@ -234,7 +234,7 @@ fn planned_inputs_give_the_outputs_of_explicit_inputs() {
         poly("a*x + 2*cos(y)^2"),
     ];
     let mut tape = Tape::compile(&polys);
-    let state = [0.7, 1.3, -0.4];
+    let state: [f64; 3] = [0.7, 1.3, -0.4];
     let a_value = -1.9;
     let source = |a: Atom| match a.to_string().as_str() {
         "x" => Input::Component(0),
@@ -275,8 +275,9 @@ fn planned_inputs_give_the_outputs_of_explicit_inputs() {
     assert_eq!(got[2].to_bits(), got[0].to_bits());
     let reference = polys[3].eval(&mut |a| match a.to_string().as_str() {
         "x" => state[0],
-        "y" => state[1],
-        _ => a_value,
+        "cos(y)" => c,
+        "a" => a_value,
+        other => panic!("no atom {other} in a*x + 2*cos(y)^2"),
     });
     assert!((got[3] - reference).abs() <= 8.0 * f64::EPSILON * reference.abs());
 }
@@ -292,7 +293,7 @@ fn a_tape_larger_than_the_stack_buffer_evaluates_alike() {
     let mut tape = Tape::compile(&[poly(&text)]);
     assert!(tape.slots() > 4096, "{} slots", tape.slots());
     tape.plan_inputs(|_| hdot_num::eval::Input::Component(0));
-    let x = 1.0001;
+    let x: f64 = 1.0001;
     let (mut want, mut got) = ([0.0], [0.0]);
     tape.eval(&[x], &mut want);
     tape.eval_at(&[x], |_| {}, &mut got);
