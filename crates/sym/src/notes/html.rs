@@ -12,7 +12,9 @@
 
 use std::fmt::Write;
 
-use super::layout::{coefficient_groups, failure_lines, omega_inline, step_lines, symbol_list};
+use super::layout::{
+    failure_lines, omega_inline, step_lines, symbol_list, write_coefficient_lines,
+};
 use super::mathml::{self, Row};
 use super::words::{capitalise, coefficients_intro, label_key, sentence};
 use super::{LINE_BUDGET, has_chapters};
@@ -666,10 +668,9 @@ fn coefficients_html(o: &mut String, s: &Section, id: &str) {
         .iter()
         .flat_map(|(e, _)| mathml::rows(e, LINE_BUDGET))
         .collect();
-    let latex = format!(
-        "\\begin{{aligned}}\n{}\n\\end{{aligned}}",
-        coefficient_groups(s, LINE_BUDGET).concat().join(" \\\\\n")
-    );
+    let mut latex = String::from("\\begin{aligned}\n");
+    write_coefficient_lines(&mut latex, s, LINE_BUDGET);
+    latex.push_str("\n\\end{aligned}");
     let _ = writeln!(
         o,
         "<div class=\"equation\">{}</div>",

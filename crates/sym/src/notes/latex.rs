@@ -6,8 +6,8 @@
 use std::fmt::Write;
 
 use super::layout::{
-    coefficient_groups, equations_lines, failure_lines, math_width, named_list, omega_inline,
-    symbol_list, write_step_lines,
+    equations_lines, failure_lines, math_width, named_list, omega_inline, symbol_list,
+    write_coefficient_lines, write_step_lines,
 };
 use super::words::{
     capitalise, coefficients_intro, label_key, latex_code, named_text, sentence, step_title,
@@ -296,8 +296,7 @@ fn step_after(o: &mut String, st: &crate::document::StepBlock) {
 /// print by name, each broken like a long equation, in a block that may
 /// break across pages.
 fn latex_coefficients(o: &mut String, s: &Section, sub: &str, target: Target) {
-    let groups = coefficient_groups(s, LINE_BUDGET);
-    if groups.is_empty() {
+    if s.coefficients().is_empty() {
         return;
     }
     let _ = writeln!(o, "\\{sub}*{{Coefficients}}");
@@ -305,11 +304,9 @@ fn latex_coefficients(o: &mut String, s: &Section, sub: &str, target: Target) {
     if target == Target::Fragment {
         o.push_str("\\begingroup\\allowdisplaybreaks\n");
     }
-    let _ = writeln!(
-        o,
-        "\\begin{{align*}}\n{}\n\\end{{align*}}",
-        groups.concat().join(" \\\\\n")
-    );
+    o.push_str("\\begin{align*}\n");
+    write_coefficient_lines(o, s, LINE_BUDGET);
+    o.push_str("\n\\end{align*}\n");
     if target == Target::Fragment {
         o.push_str("\\endgroup\n");
     }

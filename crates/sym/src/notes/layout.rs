@@ -279,7 +279,7 @@ pub(super) fn matrix_groups(s: &StepBlock, width: f32) -> Option<Vec<Vec<String>
 /// The equations of one step as groups of lines of an `align*` block:
 /// a matrix as a matrix ([`matrix_groups`]), else one group per equation;
 /// the equations printed by name ([`StepBlock::named`]) are left out of
-/// the list (see [`named_groups`] and [`coefficient_groups`]), so a step
+/// the list (see [`named_groups`] and [`write_coefficient_lines`]), so a step
 /// whose equations are all named has no groups.
 pub(super) fn step_groups(s: &StepBlock, width: f32) -> Vec<Vec<String>> {
     matrix_groups(s, width).unwrap_or_else(|| {
@@ -311,15 +311,24 @@ pub(super) fn named_list(s: &StepBlock) -> Option<(String, usize)> {
 }
 
 /// The definitions of a section's named coefficients ([`Section::coefficients`])
-/// as groups of lines of an `align*` block, one group per coefficient,
-/// each broken like any long equation.
+/// as the lines of an `align*` block appended to `o`, separated by ` \\`,
+/// each coefficient broken like any long equation. Each coefficient's
+/// lines are written and dropped before the next one is broken: a large
+/// section holds one coefficient's lines at a time, not every line and
+/// then a joined copy of them (chain-8's definitions are 13 MB of LaTeX).
 ///
 /// [`Section::coefficients`]: crate::document::Section::coefficients
-pub(super) fn coefficient_groups(s: &crate::document::Section, width: f32) -> Vec<Vec<String>> {
-    s.coefficients()
-        .into_iter()
-        .map(|(e, _)| equation_lines(&e.lhs.latex(), &e.rhs, width))
-        .collect()
+pub(super) fn write_coefficient_lines(o: &mut String, s: &crate::document::Section, width: f32) {
+    let mut first = true;
+    for (e, _) in s.coefficients() {
+        for line in equation_lines(&e.lhs.latex(), &e.rhs, width) {
+            if !first {
+                o.push_str(" \\\\\n");
+            }
+            first = false;
+            o.push_str(&line);
+        }
+    }
 }
 
 /// `rhs = 0` broken like [`equation_lines`], set from the left edge of the

@@ -6,7 +6,7 @@
 use std::fmt::Write;
 
 use super::layout::{
-    coefficient_groups, failure_lines, named_list, omega_inline, step_lines, symbol_list,
+    failure_lines, named_list, omega_inline, step_lines, symbol_list, write_coefficient_lines,
 };
 use super::words::{
     capitalise, coefficients_intro, label_key, named_text, sentence, step_title, vanishes_text,
@@ -226,11 +226,12 @@ pub(super) fn markdown_section(o: &mut String, number: &str, s: &Section, level:
             }
         }
     }
-    let groups = coefficient_groups(s, LINE_BUDGET);
-    if !groups.is_empty() {
+    if !s.coefficients().is_empty() {
         let _ = writeln!(o, "{sub} Coefficients\n");
         let _ = writeln!(o, "{}\n", prose::markdown(&coefficients_intro()));
-        md_math_block(o, &groups.concat().join(" \\\\\n"));
+        let mut lines = String::new();
+        write_coefficient_lines(&mut lines, s, LINE_BUDGET);
+        md_math_block(o, &lines);
     }
 }
 
