@@ -383,6 +383,11 @@ pub(crate) fn text_symbol(c: char) -> Option<&'static str> {
 /// arrows, primes, super- and subscripts. `None` for characters that are
 /// text.
 pub fn unicode_math(c: char) -> Option<String> {
+    // Every character of the tables below is beyond ASCII: prose is
+    // mostly ASCII, asked of character by character.
+    if c.is_ascii() {
+        return None;
+    }
     if let Some(g) = symbols::greek_latex(c) {
         return Some(g.to_owned());
     }

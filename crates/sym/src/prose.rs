@@ -186,6 +186,15 @@ fn kind(core: &str) -> Kind {
     if OPS.contains(&core) {
         return Kind::Op;
     }
+    // A word of ASCII letters (most of prose) has no accent, subscript or
+    // operator in it: a symbol letter, a function name or a word, as below.
+    if core.bytes().all(|b| b.is_ascii_alphabetic()) {
+        return if (core.len() == 1 && core != "a") || FUNCTIONS.contains(&core) {
+            Kind::Atom
+        } else {
+            Kind::Word
+        };
+    }
     let chars: Vec<char> = core.chars().collect();
     let mathy = chars.iter().enumerate().any(|(i, &c)| {
         symbols::greek_latex(c).is_some()

@@ -324,6 +324,9 @@ pub fn greek(name: &str) -> Option<(&'static str, char)> {
 
 /// The LaTeX of a Greek character: `ω` → `\omega`, `ϑ` → `\vartheta`.
 pub fn greek_latex(c: char) -> Option<&'static str> {
+    if c.is_ascii() {
+        return None;
+    }
     GREEK
         .iter()
         .find(|g| g.2 == c)
