@@ -34,6 +34,8 @@ mod verify_meanings;
 mod constrained;
 // Kane's generalized active and inertia forces on the particles.
 mod verify_kane;
+// verify/quaternion.rs: frames turned by Euler parameters, drawn on the unit sphere.
+mod verify_quaternion;
 // Line bodies and point masses: moments of inertia declared zero.
 mod line_bodies;
 // Mutated derivations rejected by verification (issue 9).

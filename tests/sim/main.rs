@@ -17,6 +17,8 @@ mod derived_scene;
 mod derived_first_order;
 // systems/derived/holonomic.rs: configuration constraints solved at the start and kept by projection.
 mod holonomic;
+// systems/derived/unit_norm.rs: Euler parameters normalized after each step, against 3-1-3 angles.
+mod quaternion;
 // systems/derived/multiplier.rs: the multiplier form M u' - f = A_c^T lambda, A_c u' + b = 0.
 mod multiplier;
 // scene/derived.rs: a derived scene's `[[body]]` tables bind the derivation's symbols.

@@ -204,7 +204,7 @@ fn bundled_scenes_simulate_with_every_method() {
             );
         }
     }
-    assert_eq!(n, 14, "fourteen bundled scenes");
+    assert_eq!(n, 15, "fifteen bundled scenes");
 }
 
 #[test]

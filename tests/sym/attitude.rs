@@ -255,3 +255,99 @@ fn bad_attitude_entries_are_located_errors() {
         assert!(e.column > 1, "{entry}: the value is pointed at: {e}");
     }
 }
+
+/// A frame turned from N by Euler parameters, speeds u_1, u_2, u_3, and
+/// `entry` as the `[kinematics]` table; `rotation` replaces the rotation.
+fn quaternion_file(rotation: &str, entry: &str) -> String {
+    format!(
+        r#"title = "t"
+source = "t"
+[symbols]
+constants = ["c"]
+time = ["e_0", "e_1", "e_2", "e_3", "q"]
+speeds = ["u_1", "u_2", "u_3"]
+[kinematics]
+{entry}
+[[frame]]
+name = "B"
+parent = "N"
+rotation = "{rotation}"
+[[frame]]
+name = "C"
+parent = "B"
+rotation = "z(q)"
+[[step]]
+name = "omega"
+value = "in_speeds(angvel(B))"
+expect = ["u_1", "u_2", "u_3"]
+"#
+    )
+}
+
+// Kane, Likins & Levinson, Spacecraft Dynamics (1983), (1.3.22)-(1.3.25):
+// ė = ½ E(e)ᵀ ω with ω in the body's axes, e₀ the scalar part.
+#[test]
+fn euler_parameters_get_the_textbook_kinematic_equations() {
+    let text = quaternion_file(
+        "quaternion(e_0, e_1, e_2, e_3)",
+        r#"body = { frame = "B", speeds = ["u_1", "u_2", "u_3"] }"#,
+    );
+    let d = load("t.toml", &text);
+    assert!(d.all_hold(), "{:?}", d.failures());
+    assert_rates(
+        &d,
+        &[
+            ("e_0", "-(e_1*u_1 + e_2*u_2 + e_3*u_3)/2"),
+            ("e_1", "(e_0*u_1 - e_3*u_2 + e_2*u_3)/2"),
+            ("e_2", "(e_3*u_1 + e_0*u_2 - e_1*u_3)/2"),
+            ("e_3", "(-e_2*u_1 + e_1*u_2 + e_0*u_3)/2"),
+        ],
+    );
+    // In N's axes the same rates come out with ω = C u.
+    let text = quaternion_file(
+        "quaternion(e_0, e_1, e_2, e_3)",
+        r#"body = { frame = "B", speeds = ["u_1", "u_2", "u_3"], axes = "N" }"#,
+    )
+    .replace("in_speeds(angvel(B))", "in_speeds(express(angvel(B), N))");
+    let d = load("t.toml", &text);
+    assert!(d.all_hold(), "{:?}", d.failures());
+    assert_rates(
+        &d,
+        &[
+            ("e_0", "-(e_1*u_1 + e_2*u_2 + e_3*u_3)/2"),
+            ("e_1", "(e_0*u_1 + e_3*u_2 - e_2*u_3)/2"),
+            ("e_2", "(-e_3*u_1 + e_0*u_2 + e_1*u_3)/2"),
+            ("e_3", "(e_2*u_1 - e_1*u_2 + e_0*u_3)/2"),
+        ],
+    );
+}
+
+#[test]
+fn bad_quaternion_rotations_are_located_errors() {
+    let entry = r#"body = { frame = "B", speeds = ["u_1", "u_2", "u_3"] }"#;
+    let cases: [(&str, &str, &str); 4] = [
+        (
+            "quaternion(e_0, e_1, e_2)",
+            entry,
+            "quaternion(e_0, e_1, e_2, e_3)",
+        ),
+        ("quaternion(e_0, e_1, e_2, c)", entry, "`c` is a constant"),
+        (
+            "quaternion(e_0, e_1, e_1, e_3)",
+            entry,
+            "`e_1` is named twice",
+        ),
+        (
+            "quaternion(e_0, e_1, e_2, e_3)",
+            r#"body = { frame = "C", speeds = ["u_1", "u_2", "u_3"] }"#,
+            "give 4 equations in the rates of 5 coordinates",
+        ),
+    ];
+    for (rotation, entry, words) in cases {
+        let e = load_str("bad.toml", &quaternion_file(rotation, entry)).unwrap_err();
+        assert!(e.message.contains(words), "{rotation} / {entry}: {e}");
+        assert!(e.column > 1, "{rotation}: pointed at: {e}");
+        let line = if words.contains("coordinates") { 8 } else { 12 };
+        assert_eq!(e.line, line, "{rotation} / {entry}: {e}");
+    }
+}

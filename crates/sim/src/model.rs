@@ -353,6 +353,16 @@ pub struct VelocityConstraintDrift {
     pub max_correction: f64,
 }
 
+/// What the Euler parameters of a derived state met along the run: each
+/// quaternion is divided by its norm after every step.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct UnitNormDrift {
+    /// The parameters of each quaternion, scalar part first.
+    pub parameters: Vec<[String; 4]>,
+    /// The largest | |e| − 1 | met before a normalization.
+    pub max_drift: f64,
+}
+
 /// §7 check of a simulated steady precession.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct PrecessionCheck {
@@ -420,6 +430,8 @@ pub struct Outcome {
     pub constraints: Option<ConstraintDrift>,
     /// A multiplier form's velocity constraints along the run.
     pub velocity_constraints: Option<VelocityConstraintDrift>,
+    /// A derived state's Euler parameters along the run.
+    pub unit_norms: Option<UnitNormDrift>,
 }
 
 /// What one timed run of the work-precision sweep measured.

@@ -46,7 +46,7 @@ use serde::Serialize;
 pub use crate::estimate::{CHECK_TOL, CLOSED_FORM_BOUND, closed_form_estimate};
 pub use crate::model::{
     Check, ConstraintDrift, Cover, DEFAULT_DT, DEFAULT_TOL, Drift, DriftColumns, FrameState,
-    Integration, Model, ModelEntry, Plan, PrecessionCheck, REFERENCE_TOL, Request,
+    Integration, Model, ModelEntry, Plan, PrecessionCheck, REFERENCE_TOL, Request, UnitNormDrift,
     VelocityConstraintDrift, step_label,
 };
 use crate::model::{not_applicable, requested_step};
@@ -271,6 +271,10 @@ pub struct Report {
     /// largest |A_c u| and the largest correction of a dependent speed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub velocity_constraints: Option<VelocityConstraintDrift>,
+    /// A derived state's Euler parameters: normalized after each step,
+    /// the largest | |e| − 1 | met before it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub unit_norms: Option<UnitNormDrift>,
 }
 
 /// Refuses `model` on `scene` when its entry says it does not apply.
@@ -315,6 +319,7 @@ pub fn run(scene: &Scene, plan: &Plan, out: &mut Output<'_>) -> Result<Report, S
         frame: o.frame,
         constraints: o.constraints,
         velocity_constraints: o.velocity_constraints,
+        unit_norms: o.unit_norms,
     };
     refuse_non_finite(&report)?;
     Ok(report)
@@ -381,6 +386,11 @@ fn refuse_non_finite(r: &Report) -> Result<(), SimError> {
         && !(c.max_residual.is_finite() && c.max_correction.is_finite())
     {
         return bad("residual of the velocity constraints A_c u".into());
+    }
+    if let Some(n) = &r.unit_norms
+        && !n.max_drift.is_finite()
+    {
+        return bad("drift of the Euler parameters' norm".into());
     }
     if let Some(re) = &r.reactions {
         const RN: [&str; 7] = ["A_x", "A_y", "B_x", "B_y", "M_x", "M_y", "M_z"];
@@ -470,6 +480,15 @@ impl fmt::Display for Report {
                 c.max_residual,
                 c.dependent.join(", "),
                 c.max_correction
+            )?;
+        }
+        if let Some(n) = &self.unit_norms {
+            let names: Vec<String> = n.parameters.iter().map(|e| e.join(", ")).collect();
+            writeln!(
+                f,
+                "unit norm:   {} divided by the norm after each step (largest | |e| - 1 | before it {:.3e})",
+                names.join("; "),
+                n.max_drift
             )?;
         }
         writeln!(

@@ -30,6 +30,10 @@ pub struct Frame {
     /// The parent frame and the matrix taking this frame's components to the
     /// parent's (`v_parent = R v_self`), when the frame is defined by a rotation.
     pub parent: Option<(String, Mat3)>,
+    /// The Euler parameters (scalar part first) when the rotation from the
+    /// parent is `quaternion(e_0, e_1, e_2, e_3)`: the matrix is quadratic
+    /// in them and they keep a unit norm.
+    pub quaternion: Option<[crate::atom::Atom; 4]>,
     /// One-line description.
     pub doc: String,
 }
@@ -42,6 +46,7 @@ impl Frame {
             axes: ["x".into(), "y".into(), "z".into()],
             omega: Vec3::zero(),
             parent: None,
+            quaternion: None,
             doc: String::new(),
         }
     }

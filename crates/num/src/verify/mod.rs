@@ -39,6 +39,7 @@ pub mod means;
 pub mod motion;
 mod partials;
 pub mod quantities;
+mod quaternion;
 mod reactions;
 mod speeds;
 #[cfg(feature = "proptest")]

@@ -1,6 +1,7 @@
 //! Generalized speeds drawn consistent with the derivation: the dependent
 //! speeds solved numerically from a `kane` step's constraint rows at the
-//! drawn state, and each coordinate's rates from the kinematic equations
+//! drawn state (Euler parameters first scaled to unit norm), and each
+//! coordinate's rates from the kinematic equations
 //! q̇ = f(q, u), order by order (the rows' rates bring in the speeds'
 //! rates, the equations' rates the coordinates' higher rates).
 
@@ -178,6 +179,7 @@ impl Speeds {
 /// from the constraints (see the module comment); nothing without
 /// `[kinematics]`.
 pub(crate) fn draw_consistent(d: &Derivation, values: &mut Values) -> Result<(), VerifyError> {
+    super::quaternion::on_unit_sphere(d, values);
     if let Some(s) = Speeds::of(d) {
         let mut v = values.clone();
         if s.fill(d, &mut v, ORDERS)?.is_some() {

@@ -580,6 +580,11 @@ impl<'d> World<'d> {
                     );
                     turned(&frames[*parent], &partials[*parent], turn)
                 }
+                FrameMotion::Quaternion { parent, e } => {
+                    let (_, c) = d.frames[i].parent.as_ref().expect("a turned frame");
+                    let at = (&frames[*parent], &partials[*parent]);
+                    super::quaternion::turned(at.0, at.1, c, e, coordinate, values)?
+                }
                 FrameMotion::AngularVelocity => {
                     let w = vec_jet(&d.frames[i].omega, values)?;
                     let wx: [Matrix3<f64>; ORDERS] = std::array::from_fn(|n| w[n].cross_matrix());

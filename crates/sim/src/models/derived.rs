@@ -12,8 +12,8 @@ use nalgebra::Matrix3;
 
 use crate::model::{
     ConstraintDrift, DEFAULT_TOL, Descriptor, Drift, DriftColumns, FrameState, Integration,
-    Measured, Model, ModelEntry, Outcome, Plan, REFERENCE_TOL, Request, VelocityConstraintDrift,
-    not_a_splitting, not_applicable,
+    Measured, Model, ModelEntry, Outcome, Plan, REFERENCE_TOL, Request, UnitNormDrift,
+    VelocityConstraintDrift, not_a_splitting, not_applicable,
 };
 use crate::record::{Recorder, integrate_recorded, time_and_state, timed};
 use crate::scene::{DerivedScene, Scene};
@@ -339,6 +339,7 @@ fn run_n<const N: usize>(
     }
     ds.model.reset_constraint_monitor();
     ds.model.reset_velocity_monitor(&y0);
+    ds.model.reset_unit_norm_monitor();
     let (y, stats, wall) = integrate_recorded(
         &DerivedSystem::<N>(&ds.model),
         (method, step),
@@ -364,6 +365,10 @@ fn run_n<const N: usize>(
             max_residual: v.max_residual,
             max_correction: v.max_correction,
         });
+    report.unit_norms = ds.model.unit_norm_drift().map(|max_drift| UnitNormDrift {
+        parameters: ds.model.unit_norms(),
+        max_drift,
+    });
     report.stats = stats;
     Ok(report)
 }

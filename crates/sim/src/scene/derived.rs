@@ -421,6 +421,9 @@ fn parse(
             format!("the equations break down at the initial state: {why}"),
         ));
     }
+    if let Some(why) = model.unit_norm_refusal(&y0) {
+        return Err(bad("initial.coordinates", why));
+    }
     let body_frames = body_frames(&d);
     Ok(DerivedScene {
         derivation: path,

@@ -42,6 +42,7 @@ mod holonomic;
 mod multiplier;
 mod positions;
 mod small_solve;
+mod unit_norm;
 
 pub use build::{in_speed_rates, step_coordinates};
 use compile::{Compiled, Source};
@@ -206,6 +207,8 @@ pub struct DerivedModel {
     conserved: Vec<Conserved>,
     /// Configuration constraints and their dependent coordinates.
     holonomic: Option<holonomic::Holonomic>,
+    /// The quaternions of the state, normalized after every step.
+    unit_norms: unit_norm::UnitNorms,
     /// The derivation's frames, in order: each frame's name and its
     /// motion, or why its attitude cannot be evaluated.
     frames: Vec<(String, Result<FrameChain, String>)>,
@@ -619,9 +622,10 @@ impl<const N: usize> System<N> for DerivedSystem<'_, N> {
     fn project(&self, y: &mut [f64; N]) -> bool {
         // f(q) has no applied input (refused when compiled): t is not read;
         // nor has A_c (a multiplier form with inputs is refused).
+        let e = self.0.keep_unit_norms(y);
         let q = self.0.keep_constraints(0.0, y);
         let u = self.0.keep_velocity_constraints(0.0, y);
-        q || u
+        e || q || u
     }
 
     fn check(&self, t: f64, y: &[f64; N]) -> Result<(), SimError> {

@@ -5,7 +5,9 @@
 //! velocity, linear in the rates of the angles of its chain of rotations
 //! from N, is set equal to the speeds and solved for those rates exactly
 //! (Cramer's rule): each angle's kinematic equation q̇ = f(q, u), used as
-//! a typed one would be.
+//! a typed one would be. A chain holding a frame turned by Euler
+//! parameters adds the rate of their unit norm as a row
+//! (`attitude_quaternion.rs`).
 
 use serde::Deserialize;
 use toml::Spanned;
@@ -67,6 +69,18 @@ pub(crate) fn derive(
             ))
         })?;
     let rates = chain_rates(cx, fi);
+    let norms = chain_norms(cx, fi);
+    if !norms.is_empty() {
+        return super::attitude_quaternion::derive(
+            cx,
+            (name, &raw.frame),
+            &omega,
+            &us,
+            &rates,
+            &norms,
+        )
+        .map_err(here);
+    }
     if rates.len() != 3 {
         let listed: Vec<String> = rates.iter().map(ToString::to_string).collect();
         return Err(here(format!(
@@ -135,6 +149,10 @@ fn chain_rates(cx: &Context<'_>, mut i: usize) -> Vec<Atom> {
     }
     let mut rates: Vec<Atom> = Vec::new();
     for &k in chain.iter().rev() {
+        // Euler parameters in their declared order, the scalar part first.
+        for e in cx.frames[k].quaternion.iter().flatten() {
+            rates.push(e.derivative().expect("a function of time"));
+        }
         for w in &cx.frames[k].omega.0 {
             for a in cx.unfold(w).atoms() {
                 if a.order() == 1 && !rates.contains(&a) {
@@ -144,6 +162,17 @@ fn chain_rates(cx: &Context<'_>, mut i: usize) -> Vec<Atom> {
         }
     }
     rates
+}
+
+/// The Euler parameters of the quaternion frames on frame `i`'s chain.
+fn chain_norms(cx: &Context<'_>, mut i: usize) -> Vec<[Atom; 4]> {
+    let mut out: Vec<[Atom; 4]> = cx.frames[i].quaternion.into_iter().collect();
+    while let Some((p, _)) = &cx.frames[i].parent {
+        i = cx.frame_index(p).expect("parent exists");
+        out.extend(cx.frames[i].quaternion);
+    }
+    out.reverse();
+    out
 }
 
 /// The first line of a deserializer's message (the rest repeats the

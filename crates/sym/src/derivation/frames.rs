@@ -125,6 +125,25 @@ impl Context<'_> {
                     a.starts_with(|c: char| c.is_ascii_digit())
                         && text[lead..].starts_with(&format!("{a}("))
                 });
+                // Euler parameters: quaternion(e_0, e_1, e_2, e_3).
+                let quaternion = super::quaternion::QUATERNION;
+                if numbered.is_none()
+                    && text[lead..].starts_with(&format!("{quaternion}("))
+                    && !parent_frame.axes.iter().any(|a| a == quaternion)
+                {
+                    let ast = self.parse_at(text, base)?;
+                    if let AstKind::Call { args, .. } = &ast.kind {
+                        let e = super::quaternion::parameters(self, args, ast.span, base)?;
+                        let r = super::quaternion::direction_cosines(&e);
+                        // Ω_child = Cᵀ Ω_parent + the axial vector of Cᵀ Ċ.
+                        let omega = r.transpose().mul_vec(&parent_frame.omega);
+                        let omega = omega.map(|w| super::quaternion::reduce(w, &e));
+                        frame.omega = omega.add(&super::quaternion::relative_angular_velocity(&e));
+                        frame.parent = Some((parent_frame.name.clone(), r));
+                        frame.quaternion = Some(e);
+                        return Ok(frame);
+                    }
+                }
                 // The revolute-joint shorthand: about([k_x, k_y, k_z], q).
                 let about = super::joints::ABOUT;
                 let ast = (numbered.is_none()

@@ -30,6 +30,7 @@
 //! ```
 
 mod attitude;
+mod attitude_quaternion;
 mod checks;
 mod contact;
 mod context;
@@ -44,6 +45,7 @@ mod operating;
 pub mod ops;
 pub mod physics;
 mod presentation;
+mod quaternion;
 mod raw;
 mod speeds;
 mod value;
@@ -421,6 +423,10 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
             &format!("step `{}`", s.name.get_ref()),
             &mut || {
                 let value = cx.eval_step(s)?;
+                let value = match cx.speeds.unit_norms.as_slice() {
+                    [] => value,
+                    norms => value.map(&mut |p| quaternion::reduce_all(p, norms)),
+                };
                 let presentation = cx.presentation(s, &abbreviations)?;
                 let axes = cx.axes_of(&value);
                 let checks = cx.checks(s, &value, &abbreviations, &presentation, &axes)?;

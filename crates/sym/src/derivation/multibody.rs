@@ -15,6 +15,9 @@ pub struct Speeds {
     /// q̇ = f(q, u) for each coordinate q (undifferentiated), in the
     /// file's order, abbreviations unfolded.
     pub kinematics: Vec<(Atom, Poly)>,
+    /// The Euler parameters of every quaternion frame (scalar part first):
+    /// values are reduced modulo their unit norm (`quaternion.rs`).
+    pub unit_norms: Vec<[Atom; 4]>,
 }
 
 impl Speeds {
@@ -33,7 +36,8 @@ impl Speeds {
 
     /// `p` with every rate of a coordinate that has a kinematic equation
     /// replaced: q̇ by f(q, u), q̈ by ḟ (whose q̇ are replaced in turn), …
-    /// The result holds no rate of those coordinates.
+    /// The result holds no rate of those coordinates, and is reduced
+    /// modulo the unit norm of the Euler parameters.
     pub fn in_speeds(&self, p: &Poly) -> Poly {
         let mut p = p.clone();
         loop {
@@ -47,7 +51,7 @@ impl Speeds {
                 _ => None,
             });
             if !changed {
-                return p;
+                return super::quaternion::reduce_all(&p, &self.unit_norms);
             }
         }
     }

@@ -25,6 +25,7 @@ pub(crate) fn declare(cx: &mut Context<'_>, raw: &RawFile) -> R<()> {
         .map(|s| Atom::time(s.get_ref(), 0))
         .collect();
     cx.speeds.speeds = speeds.clone();
+    cx.speeds.unit_norms = cx.frames.iter().filter_map(|f| f.quaternion).collect();
     let Some(table) = &raw.kinematics else {
         return Ok(());
     };

@@ -177,6 +177,7 @@ impl DerivedModel {
         } else {
             Some(cx.compile(&carried_rates).map_err(|e| at(field, e))?)
         };
+        let unit_norms = super::unit_norm::UnitNorms::of(d, &coordinates);
         Ok(DerivedModel {
             coordinates,
             speeds,
@@ -188,6 +189,7 @@ impl DerivedModel {
             singular,
             conserved,
             holonomic,
+            unit_norms,
             frames,
             placements,
             gravity,

@@ -32,7 +32,7 @@ mod velocity;
 
 pub(crate) use express::express_in;
 pub(crate) use mass_matrix::linear_system;
-pub(crate) use solve::{solve_system, sum_inverse};
+pub(crate) use solve::{determinant, solve_system, sum_inverse};
 pub(crate) use subst::quarter_turns;
 
 use super::context::{Context, R};

@@ -67,13 +67,14 @@ pub(crate) fn declarations(cx: &Context<'_>, raw: &RawFile) -> R<Physics> {
         ph.frames.push(match &f.parent {
             Some((p, m)) => {
                 let parent = cx.frame_index(p).expect("parent exists");
-                match rotation_of(m) {
-                    Some((axis, angle)) => FrameMotion::Rotation {
+                match (f.quaternion, rotation_of(m)) {
+                    (Some(e), _) => FrameMotion::Quaternion { parent, e },
+                    (None, Some((axis, angle))) => FrameMotion::Rotation {
                         parent,
                         axis,
                         angle,
                     },
-                    None => {
+                    (None, None) => {
                         let (axis, angle) = hinge_of(m).expect("frames turn about one axis");
                         FrameMotion::Hinge {
                             parent,

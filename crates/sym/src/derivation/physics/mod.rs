@@ -116,6 +116,15 @@ pub enum FrameMotion {
         /// The angle symbol.
         angle: Atom,
     },
+    /// Its parent turned by Euler parameters (`rotation =
+    /// "quaternion(e_0, e_1, e_2, e_3)"`): the attitude is the frame's
+    /// direction cosine matrix, quadratic in them, of unit norm.
+    Quaternion {
+        /// Index of the parent frame.
+        parent: usize,
+        /// The parameters, scalar part first.
+        e: [Atom; 4],
+    },
     /// Given by its angular velocity (the frame's `omega`, own components);
     /// its attitude is free.
     AngularVelocity,
