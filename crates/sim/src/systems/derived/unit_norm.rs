@@ -71,7 +71,8 @@ impl DerivedModel {
     pub fn unit_norm_refusal(&self, y: &[f64]) -> Option<String> {
         self.unit_norms.quaternions.iter().find_map(|(i, names)| {
             let norm = i.iter().map(|&k| y[k] * y[k]).sum::<f64>().sqrt();
-            (!((norm - 1.0).abs() <= 1e-9)).then(|| {
+            let on_sphere = (norm - 1.0).abs() <= 1e-9;
+            (!on_sphere).then(|| {
                 format!(
                     "the Euler parameters {} have norm {norm}: they must have unit norm ({}² = 1)",
                     names.join(", "),
