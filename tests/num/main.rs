@@ -12,6 +12,8 @@ mod sums;
 mod bad_input;
 // Scenes and worked problems.
 mod scenes;
+// A scene of many bodies against the sums of its bodies.
+mod many_bodies;
 // Strict scene input, no false alarms (issue 13).
 mod strict_scenes;
 // Convergence sweeps and the cheapest discretisation.

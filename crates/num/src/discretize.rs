@@ -430,9 +430,18 @@ impl ParticleSource for DiscretizedComposite<'_> {
     fn len(&self) -> usize {
         self.offsets.last().copied().unwrap_or(0)
     }
+    /// Only the parts that overlap `lo..hi` are visited, found by a binary
+    /// search of the offsets: a leaf costs O(log parts + its particles), so
+    /// a sum over a composite of many parts is linear in its size (a scan
+    /// of every part per leaf made it quadratic in the number of parts).
     fn visit(&self, lo: usize, hi: usize, f: &mut dyn FnMut(Block<'_>)) {
-        for (k, p) in self.parts.iter().enumerate() {
+        // first part whose end lies beyond `lo`
+        let first = self.offsets[1..].partition_point(|&end| end <= lo);
+        for (k, p) in self.parts.iter().enumerate().skip(first) {
             let (a, b) = (self.offsets[k], self.offsets[k + 1]);
+            if a >= hi {
+                break;
+            }
             let (s, e) = (lo.max(a), hi.min(b));
             if s < e {
                 p.as_source().visit(s - a, e - a, f);
