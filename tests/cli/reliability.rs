@@ -47,6 +47,38 @@ fn a_closed_stdout_ends_every_command_quietly() {
 }
 
 #[test]
+fn a_closed_stderr_keeps_the_documented_exit_code() {
+    let dir = tempfile::tempdir().unwrap();
+    // a scene that does not parse: bad input, exit 2, its message on stderr
+    let bad = dir.path().join("bad.toml");
+    std::fs::write(
+        &bad,
+        "name = \"x\"\n[[body]]\nshape = \"sphere\"\nmass = \"heavy\"\n",
+    )
+    .unwrap();
+    let bad = bad.to_str().unwrap();
+    let cases: Vec<(Vec<&str>, i32)> = vec![
+        (vec!["simulate", bad], 2),
+        (vec!["inertia", bad], 2),
+        (vec!["dynamics", bad], 2),
+        (vec!["derive", "no-such-derivation"], 2),
+    ];
+    for (args, code) in cases {
+        let mut child = Command::new(hdot_bin())
+            .args(&args)
+            .current_dir(repo_root())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        // Close the reading end of stderr before the command reports.
+        drop(child.stderr.take());
+        let out = child.wait_with_output().unwrap();
+        assert_eq!(out.status.code(), Some(code), "{args:?}");
+    }
+}
+
+#[test]
 fn a_result_that_cannot_be_written_exits_1() {
     let out = hdot(&["derive", "euler-principal", "--out", "/dev/full"]);
     assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));

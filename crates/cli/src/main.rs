@@ -5,7 +5,8 @@
 //! Exit codes: 0 success; 1 a check or verification failed, or a result
 //! could not be written; 2 bad input (a file that does not parse, an
 //! unknown name, an invalid option). A standard output closed by its reader
-//! (`hdot list | head -1`) ends the command quietly with 0.
+//! (`hdot list | head -1`) ends the command quietly with 0; a closed
+//! standard error loses the message, not the exit code (`errln!`).
 
 use std::process::ExitCode;
 
@@ -73,7 +74,7 @@ fn main() -> ExitCode {
         // The panic message is already on stderr.
         Ok(Err(_)) => ExitCode::from(101),
         Err(e) => {
-            eprintln!("error: cannot start: {e}");
+            crate::errln!("error: cannot start: {e}");
             ExitCode::from(2)
         }
     }
@@ -101,15 +102,15 @@ fn dispatch(cli: Cli) -> ExitCode {
         Err(err) => match err.downcast_ref::<output::OutputError>() {
             Some(o) if o.is_closed_stdout() => ExitCode::SUCCESS,
             Some(o) if o.is_input_refusal() => {
-                eprintln!("error: {err:#}");
+                crate::errln!("error: {err:#}");
                 ExitCode::from(2)
             }
             Some(_) => {
-                eprintln!("error: {err:#}");
+                crate::errln!("error: {err:#}");
                 ExitCode::from(1)
             }
             None => {
-                eprintln!("error: {err:#}");
+                crate::errln!("error: {err:#}");
                 ExitCode::from(2)
             }
         },

@@ -75,6 +75,17 @@ macro_rules! outln {
     };
 }
 
+/// `eprintln!` that never panics: a message for a standard error whose
+/// reader has gone is dropped, so the command still ends with the exit
+/// code it documents (`eprintln!` would panic, exit 101).
+#[macro_export]
+macro_rules! errln {
+    ($($arg:tt)*) => {{
+        use ::std::io::Write as _;
+        let _ = ::std::writeln!(::std::io::stderr(), $($arg)*);
+    }};
+}
+
 /// Writes `text` to `out` atomically, or to standard output when `out` is `None`.
 pub fn emit(out: Option<&Path>, text: &str) -> Result<(), OutputError> {
     match out {

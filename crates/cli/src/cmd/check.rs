@@ -76,7 +76,7 @@ pub fn run(args: CheckArgs) -> anyhow::Result<ExitCode> {
             }
             Ok(Err(diag)) => {
                 crate::outln!("{:<30} {:>7} {:>10}  ERROR", p.name(), "-", time);
-                eprintln!("{diag}");
+                crate::errln!("{diag}");
                 broken += 1;
             }
         }

@@ -49,7 +49,7 @@ pub fn run(args: DeriveArgs) -> anyhow::Result<ExitCode> {
     let d = match catalog::load(&dir, &args.target)? {
         Ok(d) => d,
         Err(diag) => {
-            eprintln!("{diag}");
+            crate::errln!("{diag}");
             return Ok(ExitCode::from(2));
         }
     };
@@ -64,7 +64,7 @@ pub fn run(args: DeriveArgs) -> anyhow::Result<ExitCode> {
     output::emit(args.out.as_deref(), &text)?;
     let failures = d.failures();
     for (step, c) in &failures {
-        eprintln!(
+        crate::errln!(
             "expectation failed: {}{}{}: derived − expected = {}",
             step,
             if c.component.is_empty() { "" } else { "." },

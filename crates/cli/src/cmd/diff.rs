@@ -98,10 +98,11 @@ pub fn exit_code(files: &[FileDiff], fail_on: FailOn) -> ExitCode {
 
 /// Reports a version that does not load (exit 2).
 pub fn load_failure(e: &LoadFailure) -> ExitCode {
-    eprintln!("{}", e.diagnostic);
-    eprintln!(
+    crate::errln!("{}", e.diagnostic);
+    crate::errln!(
         "error: the {} version {} does not load; nothing compared",
-        e.which, e.name
+        e.which,
+        e.name
     );
     ExitCode::from(2)
 }

@@ -36,7 +36,7 @@ pub fn run(args: InertiaArgs) -> anyhow::Result<ExitCode> {
     let scene = Scene::from_path(&args.scene)?;
     let report = Report::inertia(&scene);
     if let Some(q) = report.non_finite() {
-        eprintln!(
+        crate::errln!(
             "error: {}: {q} is not a finite number (the scene's values are too large or too small for it)",
             args.scene.display()
         );

@@ -71,8 +71,8 @@ fn load_all(files: &[catalog::Entry]) -> Result<Vec<Derivation>, ExitCode> {
         match entry.load() {
             Ok(d) => ds.push(d),
             Err(diag) => {
-                eprintln!("{diag}");
-                eprintln!("error: no notes written");
+                crate::errln!("{diag}");
+                crate::errln!("error: no notes written");
                 return Err(ExitCode::from(2));
             }
         }
@@ -157,8 +157,8 @@ pub fn run(args: NotesArgs) -> anyhow::Result<ExitCode> {
         Some((m, text)) => match course::parse(&m.display().to_string(), text, &ds) {
             Ok(c) => c,
             Err(diag) => {
-                eprintln!("{diag}");
-                eprintln!("error: no notes written");
+                crate::errln!("{diag}");
+                crate::errln!("error: no notes written");
                 return Ok(ExitCode::from(2));
             }
         },
@@ -168,8 +168,8 @@ pub fn run(args: NotesArgs) -> anyhow::Result<ExitCode> {
     if let Some(dir) = &args.html
         && let Err(why) = site_folder_ok(dir)
     {
-        eprintln!("error: {why}");
-        eprintln!("error: no notes written");
+        crate::errln!("error: {why}");
+        crate::errln!("error: no notes written");
         return Ok(ExitCode::from(2));
     }
     // Every file appears, or none does.
@@ -227,7 +227,7 @@ pub fn run(args: NotesArgs) -> anyhow::Result<ExitCode> {
         .map_err(|e| OutputError::new(format!("cannot write {}", folder.display()), e))?;
     for d in &ds {
         for (step, c) in d.failures() {
-            eprintln!(
+            crate::errln!(
                 "warning: {}: expectation does not hold: {}{}{}",
                 d.path,
                 step,

@@ -180,7 +180,7 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<ExitCode> {
         Ok(r) => r,
         Err(e) if is_input_error(&e) => return Err(e.into()),
         Err(e) => {
-            eprintln!("error: {e}");
+            crate::errln!("error: {e}");
             return Ok(ExitCode::from(1));
         }
     };
@@ -190,7 +190,7 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<ExitCode> {
         let page = match crate::html::simulation_page(&scene, &report) {
             Ok(page) => page,
             Err(e @ crate::html::PageError::NonFinite { .. }) => {
-                eprintln!("error: {e}");
+                crate::errln!("error: {e}");
                 return Ok(ExitCode::from(1));
             }
             Err(e) => return Err(e.into()),
@@ -216,7 +216,7 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<ExitCode> {
     // A conserved step that drifts far above the run's error is a false
     // claim (or an unconverged run): a failure, not a number.
     if let Some(d) = report.failed_drifts().first() {
-        eprintln!(
+        crate::errln!(
             "error: step `{}` is declared conserved, but it drifts by {:.3e} (relative), more than {}× the error \
              at T ({:.3e})",
             d.name,
@@ -237,7 +237,7 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<ExitCode> {
     if let Some((tol, which)) = target
         && report.error.is_some_and(|e| e.is_nan() || e > tol)
     {
-        eprintln!(
+        crate::errln!(
             "error: the {which} error {tol:e} is not met: error at T is {:e} ({})",
             report.error.unwrap_or(f64::NAN),
             report.error_basis

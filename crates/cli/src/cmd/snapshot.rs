@@ -89,11 +89,11 @@ fn derivations(paths: &[String]) -> anyhow::Result<Vec<Entry>> {
             match catalog::kind_of(p, &text) {
                 FileKind::Derivation => {}
                 FileKind::Scene => {
-                    eprintln!("skipped {}: a scene, not a derivation", p.display());
+                    crate::errln!("skipped {}: a scene, not a derivation", p.display());
                     continue;
                 }
                 FileKind::Manifest => {
-                    eprintln!("skipped {}: the notes manifest", p.display());
+                    crate::errln!("skipped {}: the notes manifest", p.display());
                     continue;
                 }
             }
@@ -113,8 +113,8 @@ fn load_wanted(paths: &[String]) -> anyhow::Result<Result<Wanted, ExitCode>> {
         let d = match e.load() {
             Ok(d) => d,
             Err(diag) => {
-                eprintln!("{diag}");
-                eprintln!("error: no snapshots written or checked");
+                crate::errln!("{diag}");
+                crate::errln!("error: no snapshots written or checked");
                 return Ok(Err(ExitCode::from(2)));
             }
         };

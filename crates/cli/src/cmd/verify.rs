@@ -69,7 +69,7 @@ pub fn run(args: VerifyArgs) -> anyhow::Result<ExitCode> {
                 if let Some(b) = &bar {
                     b.finish_and_clear();
                 }
-                eprintln!("{diag}");
+                crate::errln!("{diag}");
                 return Ok(ExitCode::from(2));
             }
         };

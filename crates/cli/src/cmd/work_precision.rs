@@ -74,7 +74,7 @@ pub fn run(args: WorkPrecisionArgs) -> anyhow::Result<ExitCode> {
     std::fs::create_dir_all(&args.out)
         .map_err(|e| OutputError::new(format!("cannot create {}", args.out.display()), e))?;
     let rows = run::work_precision(&scene, t_end, args.min_time, |r| {
-        eprintln!("{}", r.csv());
+        crate::errln!("{}", r.csv());
     })?;
     // The CSV and the chart appear together or not at all.
     let mut text = format!("{}\n", run::CSV_HEADER);
