@@ -292,6 +292,29 @@ fn a_cloud_whose_total_mass_overflows_is_an_error_naming_the_csv() {
     );
 }
 
+/// Issue 21: an error whose line is not known printed "line 0"
+/// (`big.csv:0: field m`, `s.toml:0: body: …`): it names the file and the
+/// field, and no line.
+#[test]
+fn an_error_without_a_line_prints_no_line_0() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("big.csv"), "0,0,0,1.7e308\n1,0,0,1.7e308\n").unwrap();
+    std::fs::write(dir.path().join("one.csv"), "0,0,0,1e308\n").unwrap();
+    let scene_path = dir.path().join("s.toml");
+    let e = Scene::from_str_at(&scene_path, "[[cloud]]\nfile = \"big.csv\"\n").unwrap_err();
+    let csv = dir.path().join("big.csv");
+    let want = format!("{}: field `m`: ", csv.display());
+    assert!(e.message.contains(&want), "`{e}` lacks `{want}`");
+    // Two clouds whose masses sum past the largest number: the scene and
+    // the field, no line.
+    let text = "[[cloud]]\nfile = \"one.csv\"\n\n[[cloud]]\nfile = \"one.csv\"\n";
+    let e = Scene::from_str_at(&scene_path, text).unwrap_err();
+    let msg = e.to_string();
+    let want = format!("{}: body: ", scene_path.display());
+    assert!(msg.starts_with(&want), "`{msg}` lacks `{want}`");
+    assert!(!msg.contains(":0:"), "{msg}");
+}
+
 /// Issue 21: a body of 1 mg and 1 mm printed its inertia tensor as zeros;
 /// the text report prints significant digits however small the body.
 #[test]

@@ -57,7 +57,7 @@ pub enum BodyError {
 
 /// A line of a particle CSV file that cannot be read.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{}:{line}: field `{field}`: {kind}", file.display())]
+#[error("{}: field `{field}`: {kind}", at(file, *line))]
 pub struct CsvError {
     /// The file (or the name given to a string source).
     pub file: PathBuf,
@@ -98,4 +98,14 @@ pub enum CsvErrorKind {
     /// moments are not finite), named: `mass`, `mass centre`, `inertia`.
     #[error("the particles' {0} is not finite (the sums over the file overflow)")]
     Overflow(&'static str),
+}
+
+/// `file:line`, or just `file` when the line is not known (0): a message
+/// never points at a line 0 that no editor shows.
+pub fn at(file: &std::path::Path, line: usize) -> String {
+    if line == 0 {
+        file.display().to_string()
+    } else {
+        format!("{}:{line}", file.display())
+    }
 }

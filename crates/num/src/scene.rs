@@ -52,7 +52,7 @@ pub use read::unit_of;
 
 /// A scene file that cannot be used, with where.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{}:{line}: {field}: {message}", file.display())]
+#[error("{}: {field}: {message}", crate::error::at(file, *line))]
 pub struct SceneError {
     /// The scene file.
     pub file: PathBuf,
