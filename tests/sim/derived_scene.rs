@@ -943,3 +943,20 @@ rates = { phi = 2.0 }
     assert!(!text.contains("-0.000000000"), "{line}");
     assert!(line.contains("0.000000000"), "{line}");
 }
+
+/// Issue 21, item 8: a coordinate that is not finite is named at its
+/// field and line, not only by the model's component.
+#[test]
+fn an_initial_coordinate_that_is_not_finite_is_located() {
+    let text = TURNTABLE_SCENE.replace("{ theta = 0.3 }", "{ theta = nan }");
+    let line = text
+        .lines()
+        .position(|l| l.contains("theta = nan"))
+        .expect("replaced")
+        + 1;
+    let msg = turntable(&text, TURNTABLE)
+        .expect_err("must be refused")
+        .to_string();
+    let at = format!("field `initial.coordinates.theta`: line {line}: ");
+    assert!(msg.contains(&at), "`{msg}` lacks `{at}`");
+}

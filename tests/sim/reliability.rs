@@ -176,3 +176,45 @@ fn bad_initial_values_name_their_field_and_line() {
         assert!(!msg.contains("end time"), "blames the end time: {msg}");
     }
 }
+
+/// The 1-based line of the first line of `text` containing `needle`.
+fn line_with(text: &str, needle: &str) -> usize {
+    text.lines()
+        .position(|l| l.contains(needle))
+        .expect("the needle is in the text")
+        + 1
+}
+
+/// Item 8's leftovers: a value that is not finite in `[initial]` of a
+/// fixed-axis, free or derived scene is named at its field and line.
+#[test]
+fn initial_values_that_are_not_finite_are_located() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/examples");
+    let read = |name: &str| std::fs::read_to_string(root.join(name)).unwrap();
+    let cases = [
+        (
+            read("sim-shaft-unbalanced.toml").replace("angle = 0.0", "angle = inf"),
+            "angle = inf",
+            "field `initial.angle`",
+        ),
+        (
+            read("sim-shaft-unbalanced.toml").replace("rate = 0.0", "rate = nan"),
+            "rate = nan",
+            "field `initial.rate`",
+        ),
+        (
+            read("sim-heavy-top.toml").replace(
+                "angular_velocity = [0.0, 0.0, 60.0]",
+                "angular_velocity = [0.0, nan, 60.0]",
+            ),
+            "angular_velocity = [0.0, nan",
+            "field `initial.angular_velocity`",
+        ),
+    ];
+    for (text, needle, field) in cases {
+        assert!(text.contains(needle), "the example changed: {needle}");
+        let msg = scene(&text).expect_err("must be refused").to_string();
+        let at = format!("{field}: line {}: ", line_with(&text, needle));
+        assert!(msg.contains(&at), "`{msg}` lacks `{at}`");
+    }
+}

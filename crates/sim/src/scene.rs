@@ -359,15 +359,22 @@ pub(super) fn bad_field(file: &Path, field: &str, message: String) -> SimError {
     }
 }
 
-/// A vector of a scene, checked finite.
-pub(super) fn finite3(v: [f64; 3], field: &str, file: &Path) -> Result<Vector3<f64>, SimError> {
+/// A vector of a scene, checked finite; the error names the field's line.
+pub(super) fn finite3(
+    v: [f64; 3],
+    field: &str,
+    (file, text): (&Path, &str),
+) -> Result<Vector3<f64>, SimError> {
     if v.iter().all(|x| x.is_finite()) {
         Ok(Vector3::from(v))
     } else {
         Err(bad_field(
             file,
             field,
-            format!("components must be finite, got {v:?}"),
+            format!(
+                "{}components must be finite, got {v:?}",
+                text::at_field_line(text, field)
+            ),
         ))
     }
 }

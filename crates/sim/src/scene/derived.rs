@@ -47,7 +47,7 @@ use hdot_sym::symbols::Decl;
 
 use super::bind::{bind_scene_bodies, check_gravity};
 use super::raw::{RawDerivation, RawInitial};
-use super::text::line_of_field;
+use super::text::{line_of_after, line_of_field};
 use crate::SimError;
 use crate::systems::derived::{
     DerivedModel, DerivedSpec, EquationsSpec, HolonomicSpec, MultiplierSpec, NewtonFailure,
@@ -390,6 +390,25 @@ fn parse(
             format!("constants.{name}")
         };
         return Err(bad(&field, format!("{}: {why}", path.display())));
+    }
+    // A value that is not finite, at its own field and line (the model
+    // would only say which component).
+    for (table, given) in [
+        ("coordinates", &start.coordinates),
+        ("rates", &start.rates),
+        ("speeds", &start.speeds),
+    ] {
+        if let Some((k, v)) = given.iter().find(|(_, v)| !v.is_finite()) {
+            let line = line_of_after(scene_text, k, table)
+                .or_else(|| line_of_field(scene_text, &format!("initial.{table}")));
+            return Err(bad(
+                &format!("initial.{table}.{k}"),
+                format!(
+                    "{}the initial value of `{k}` must be finite, got {v}",
+                    line.map_or(String::new(), |n| format!("line {n}: "))
+                ),
+            ));
+        }
     }
     let mut values = BTreeMap::new();
     for (k, v) in start.coordinates {

@@ -39,7 +39,7 @@ pub(super) fn read(
         .ok_or_else(|| bad("body", NO_BODY.into()))?;
     let props = body.mass_properties();
     let (about, axis3, weight_arm) = if heavy {
-        let (o, weight_arm) = pivot(top, g, g_line, props.center, props.mass, file)?;
+        let (o, weight_arm) = pivot(top, g, g_line, props.center, props.mass, (file, text))?;
         (
             *props.inertia_about(&o).matrix(),
             Some(props.center - o),
@@ -102,7 +102,7 @@ fn pivot(
     g_line: usize,
     centre: Vector3<f64>,
     mass: f64,
-    file: &Path,
+    (file, text): (&Path, &str),
 ) -> Result<(Vector3<f64>, f64), SimError> {
     let bad = |field: &str, message: String| bad_field(file, field, message);
     let top = top.ok_or_else(|| {
@@ -134,7 +134,7 @@ fn pivot(
             "missing: the pivot O in the body's axes".into(),
         )
     })?;
-    let o = finite3(o, "top.fixed_point", file)?;
+    let o = finite3(o, "top.fixed_point", (file, text))?;
     let g = g.ok_or_else(|| {
         bad(
             "g",
@@ -227,7 +227,7 @@ fn given_start(
     let q0 = match (initial.attitude, initial.euler_angles) {
         (Some(q), None) => unit_attitude(q, &format!("{}: initial.attitude", file.display()))?,
         (None, Some(e)) => {
-            let e = finite3(e, "initial.euler_angles", file)?;
+            let e = finite3(e, "initial.euler_angles", (file, text))?;
             hdot_num::body::eulerian_rotation(e.x, e.y, e.z)
         }
         (None, None) => UnitQuaternion::identity(),
@@ -262,7 +262,7 @@ fn given_start(
     };
     let w0 = match (initial.angular_momentum, initial.angular_velocity) {
         (Some(h), None) => {
-            let h = to_body * finite3(h, "initial.angular_momentum", file)?;
+            let h = to_body * finite3(h, "initial.angular_momentum", (file, text))?;
             let w = Vector3::new(h.x / i[0], h.y / i[1], h.z / i[2]);
             if !in_range(&w) {
                 return Err(overflow("initial.angular_momentum", &h));
@@ -270,7 +270,7 @@ fn given_start(
             w
         }
         (None, Some(w)) => {
-            let w = to_body * finite3(w, "initial.angular_velocity", file)?;
+            let w = to_body * finite3(w, "initial.angular_velocity", (file, text))?;
             if !in_range(&w) {
                 return Err(overflow("initial.angular_velocity", &w));
             }

@@ -85,8 +85,18 @@ pub(super) fn read(
         bearings: s.bearings,
     };
     let y0 = [initial.angle.unwrap_or(0.0), initial.rate.unwrap_or(0.0)];
-    if !(y0[0].is_finite() && y0[1].is_finite()) {
-        return Err(bad("initial", "angle and rate must be finite".into()));
+    for (k, key) in ["angle", "rate"].iter().enumerate() {
+        if !y0[k].is_finite() {
+            let field = format!("initial.{key}");
+            return Err(bad(
+                &field,
+                format!(
+                    "{}must be finite, got {}",
+                    super::text::at_field_line(text, &field),
+                    y0[k]
+                ),
+            ));
+        }
     }
     Ok((SceneKind::FixedAxis { shaft, y0 }, all))
 }

@@ -55,6 +55,12 @@ pub(super) fn line_of_field(text: &str, field: &str) -> Option<usize> {
     header.or_else(|| line_of(text, if key.is_empty() { table } else { key }))
 }
 
+/// `"line N: "` for the line of the scene field `table.key` (see
+/// [`line_of_field`]), or nothing when it is not written.
+pub(super) fn at_field_line(text: &str, field: &str) -> String {
+    line_of_field(text, field).map_or(String::new(), |n| format!("line {n}: "))
+}
+
 /// `line N: ` for the line of `key`, or nothing when it is not found.
 pub(super) fn at_line(text: &str, key: &str) -> String {
     at_line_after(text, key, "")
