@@ -47,10 +47,10 @@ fn csv_errors_name_file_line_and_field() {
             }
             (a, b) => assert_eq!(a, b),
         }
-        assert!(
-            e.to_string()
-                .starts_with(&format!("p.csv:{line}: field `{field}`"))
-        );
+        assert!(e.to_string().starts_with(&format!(
+            "{}: field `{field}`",
+            hdot_num::error::at(Path::new("p.csv"), *line)
+        )));
     }
     let e = ParticleCloud::from_csv_path(Path::new("/nonexistent/cloud.csv")).unwrap_err();
     assert!(matches!(e.kind, CsvErrorKind::Io(_)));
