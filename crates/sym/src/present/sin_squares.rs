@@ -47,10 +47,23 @@ pub(super) fn merge_trig_squares(ts: &mut Terms) {
     angles.dedup();
     angles.sort_by_cached_key(|a| a.sort_key());
     let mut changed = false;
+    // Each term's hash, a sum over its factors, from which the hash of
+    // the term without its power of cos θ is one subtraction; made again
+    // only when a rule has rewritten the terms.
+    let mut hashes: Vec<u64> = ts.iter().map(|t| monomial_hash(&t.0)).collect();
     for q in angles {
         if let (Some(cos), Some(sin)) = (Atom::cos(q), Atom::sin(q)) {
-            changed |= factor_sin_squares(ts, cos, sin);
-            changed |= merge_pairs(ts, cos, sin);
+            let mut found = chains(ts, &hashes, cos);
+            if factor_sin_squares(ts, &found, cos, sin) {
+                changed = true;
+                hashes = ts.iter().map(|t| monomial_hash(&t.0)).collect();
+                found = chains(ts, &hashes, cos);
+            }
+            // Unchanged terms have the same chains: they are found once.
+            if merge_pairs(ts, &found, cos, sin) {
+                changed = true;
+                hashes = ts.iter().map(|t| monomial_hash(&t.0)).collect();
+            }
         }
     }
     if changed {
@@ -64,23 +77,26 @@ pub(super) fn merge_trig_squares(ts: &mut Terms) {
 /// `cos` of the same rest joined to its chain. Equal exponents in a chain
 /// (two equal monomials left by an earlier angle) are added into the first.
 ///
-/// The terms are keyed by a hash of the rest computed in place (no rest
-/// is built until a chain is found), and a bucket is split by comparing
-/// the rests factor by factor, so hash collisions cost time, never
-/// correctness.
-fn chains(ts: &mut Terms, cos: Atom) -> Vec<Chain> {
+/// The terms are keyed by a hash of the rest (`hashes[i]` is the
+/// [`monomial_hash`] of term i; no rest is built until a chain is found),
+/// and a bucket is split by comparing the rests factor by factor, so hash
+/// collisions cost time, never correctness.
+fn chains(ts: &mut Terms, hashes: &[u64], cos: Atom) -> Vec<Chain> {
     let mut buckets: FxHashMap<u64, SmallVec<[usize; 2]>> = FxHashMap::default();
-    for (i, (m, _)) in ts.iter().enumerate() {
-        if m.exponent(cos) != 0 {
-            buckets.entry(rest_hash(m, cos)).or_default().push(i);
+    // Each term's exponent of cos, read once.
+    let exps: Vec<i32> = ts.iter().map(|t| t.0.exponent(cos)).collect();
+    for (i, &e) in exps.iter().enumerate() {
+        if e != 0 {
+            let rest = hashes[i].wrapping_sub(factor_hash(cos, e));
+            buckets.entry(rest).or_default().push(i);
         }
     }
     if buckets.is_empty() {
         return Vec::new();
     }
-    for (i, (m, _)) in ts.iter().enumerate() {
-        if m.exponent(cos) == 0
-            && let Some(b) = buckets.get_mut(&rest_hash(m, cos))
+    for (i, &e) in exps.iter().enumerate() {
+        if e == 0
+            && let Some(b) = buckets.get_mut(&hashes[i])
         {
             b.push(i);
         }
@@ -121,17 +137,22 @@ fn chains(ts: &mut Terms, cos: Atom) -> Vec<Chain> {
     out
 }
 
-/// A hash of `m` without its power of `cos`.
-fn rest_hash(m: &Monomial, cos: Atom) -> u64 {
-    let mut h: u64 = 0x243F_6A88_85A3_08D3;
-    for &(a, e) in m.factors() {
-        if a != cos {
-            let w = (u64::from(a.id()) << 32) | u64::from(e as u32);
-            h = (h ^ w).wrapping_mul(0x9E37_79B9_7F4A_7C15);
-            h ^= h >> 29;
-        }
-    }
-    h
+/// A hash of `m`: the sum of its factors' hashes, so that the hash of `m`
+/// without one factor is the difference (`chains` keys every term by its
+/// rest without cos θ, for each angle in turn).
+fn monomial_hash(m: &Monomial) -> u64 {
+    m.factors()
+        .iter()
+        .fold(0u64, |h, &(a, e)| h.wrapping_add(factor_hash(a, e)))
+}
+
+/// A hash of one factor `a^e` (splitmix64 of the atom's id and exponent).
+fn factor_hash(a: Atom, e: i32) -> u64 {
+    let mut z =
+        ((u64::from(a.id()) << 32) | u64::from(e as u32)).wrapping_add(0x9E37_79B9_7F4A_7C15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
 }
 
 /// Whether `a` and `b` agree but for their powers of `cos`.
@@ -144,10 +165,10 @@ fn same_rest(a: &Monomial, b: &Monomial, cos: Atom) -> bool {
 /// Each chain as a polynomial P(cos) (exponent → coefficient), divided by
 /// (1 − cos²) as often as that leaves the fewest terms (fewer than
 /// before). True when a chain was rewritten.
-fn factor_sin_squares(ts: &mut Terms, cos: Atom, sin: Atom) -> bool {
+fn factor_sin_squares(ts: &mut Terms, chains: &[Chain], cos: Atom, sin: Atom) -> bool {
     let mut removed: Vec<usize> = Vec::new();
     let mut added: Terms = Vec::new();
-    for (rest, chain) in chains(ts, cos) {
+    for (rest, chain) in chains {
         let p: BTreeMap<i32, Rational> = chain
             .iter()
             .filter(|&&(_, i)| !ts[i].1.is_zero())
@@ -208,9 +229,9 @@ fn divide_one_minus_square(p: &BTreeMap<i32, Rational>) -> Option<BTreeMap<i32, 
 /// `X cosⁿ θ sin² θ` (n of any sign); in a chain of one X the pairs are
 /// taken from the lowest power up, each term in one pair at most. True
 /// when a pair was merged.
-fn merge_pairs(ts: &mut Terms, cos: Atom, sin: Atom) -> bool {
+fn merge_pairs(ts: &mut Terms, chains: &[Chain], cos: Atom, sin: Atom) -> bool {
     let mut removed: Vec<usize> = Vec::new();
-    for (rest, chain) in chains(ts, cos) {
+    for (rest, chain) in chains {
         let mut used: SmallVec<[bool; 4]> = SmallVec::from_elem(false, chain.len());
         for b in 0..chain.len() {
             let (e, k) = chain[b];
