@@ -153,10 +153,10 @@ pub(crate) type PrintTerm<'a> = (SmallVec<[(Atom, i32); 12]>, &'a Monomial, &'a 
 /// order of terms inside a presented bracket.
 ///
 /// The order is computed with integer keys: each distinct atom's print rank
-/// is found once (one sort of the atoms by [`Atom::sort_key`]), so the
-/// comparisons of the term sort compare integers, not names. A key is
-/// `[u32::MAX − top order, (rank, −exp)…]` (without the first entry
-/// unless `derivative_first`) with the factor codes sorted,
+/// is found once (one sort of the atoms by [`Atom::sort_key`], see
+/// [`PrintRanks`]), so the comparisons of the term sort compare integers,
+/// not names. A key is `[u32::MAX − top order, (rank, −exp)…]` (without the
+/// first entry unless `derivative_first`) with the factor codes sorted,
 /// which orders lexicographically exactly as the comparisons do, and the
 /// sorted codes are the factors in print order (then, as in
 /// [`Monomial::sorted_for_print`], a cosine is moved next to the sine of
@@ -165,71 +165,141 @@ pub(crate) fn print_sorted(
     terms: &[(Monomial, Rational)],
     derivative_first: bool,
 ) -> Vec<PrintTerm<'_>> {
-    // The rank of an atom, read by its id (a table as long as the largest
-    // id, not a hash map: looked up for every factor of every term). The
-    // distinct atoms are found by marking that table, in one pass over the
-    // factors (sorting all the factors to find them was n log n in them).
-    let mut rank: Vec<u32> = Vec::new();
-    let mut atoms: Vec<Atom> = Vec::new();
-    for (m, _) in terms {
-        for &(a, _) in m.factors() {
-            let i = a.id() as usize;
-            if i >= rank.len() {
-                rank.resize(i + 1, u32::MAX);
-            }
-            if rank[i] == u32::MAX {
-                rank[i] = 0;
-                atoms.push(a);
+    PrintRanks::of(terms.iter().map(|t| &t.0)).sort(terms, derivative_first)
+}
+
+/// The print rank of each atom of a set of monomials (its place in the
+/// order of [`Atom::sort_key`]), read by the atom's id. Made once for a
+/// whole result, it orders the factors and terms of every part of it —
+/// the presentation's brackets are quotients of the result's terms, so
+/// their atoms are among the result's — without sorting names again.
+pub(crate) struct PrintRanks {
+    /// The rank of an atom by its id (`u32::MAX`: not among the atoms).
+    rank: Vec<u32>,
+    /// The atoms in print order.
+    atoms: Vec<Atom>,
+    /// Each atom's sin/cos kind, in print order.
+    trig: Vec<crate::poly::Trig>,
+}
+
+impl PrintRanks {
+    /// The ranks of the atoms of `monomials`.
+    pub(crate) fn of<'a>(monomials: impl Iterator<Item = &'a Monomial>) -> PrintRanks {
+        // A table as long as the largest id, not a hash map: looked up for
+        // every factor of every term. The distinct atoms are found by
+        // marking that table, in one pass over the factors.
+        let mut rank: Vec<u32> = Vec::new();
+        let mut atoms: Vec<Atom> = Vec::new();
+        for m in monomials {
+            for &(a, _) in m.factors() {
+                let i = a.id() as usize;
+                if i >= rank.len() {
+                    rank.resize(i + 1, u32::MAX);
+                }
+                if rank[i] == u32::MAX {
+                    rank[i] = 0;
+                    atoms.push(a);
+                }
             }
         }
+        // Sort keys are distinct (names), so the order found is immaterial.
+        atoms.sort_by_cached_key(|a| a.sort_key());
+        let trig = atoms.iter().map(|&a| crate::poly::trig_of(a)).collect();
+        for (k, a) in atoms.iter().enumerate() {
+            rank[a.id() as usize] = k as u32;
+        }
+        PrintRanks { rank, atoms, trig }
     }
-    // Sort keys are distinct (names), so the order found is immaterial.
-    atoms.sort_by_cached_key(|a| a.sort_key());
-    let trig: Vec<crate::poly::Trig> = atoms.iter().map(|&a| crate::poly::trig_of(a)).collect();
-    for (k, a) in atoms.iter().enumerate() {
-        rank[a.id() as usize] = k as u32;
+
+    /// The rank of `a`, `None` when it is not among the atoms.
+    pub(crate) fn rank(&self, a: Atom) -> Option<u32> {
+        self.rank
+            .get(a.id() as usize)
+            .copied()
+            .filter(|&r| r != u32::MAX)
     }
-    let code = |a: Atom, x: i32| {
-        (u64::from(rank[a.id() as usize]) << 32) | (i64::from(i32::MAX) - i64::from(x)) as u64
-    };
-    // Every term's key in one flat array (its slice `start..end`), so
-    // that no key is allocated on its own.
-    let mut codes: Vec<u64> =
-        Vec::with_capacity(terms.iter().map(|t| t.0.factors().len() + 1).sum());
-    let mut keyed: Vec<(u32, u32, u32)> = Vec::with_capacity(terms.len());
-    for (i, (m, _)) in terms.iter().enumerate() {
-        let top = if derivative_first {
-            m.factors().iter().map(|f| f.0.order()).max().unwrap_or(0)
-        } else {
-            0
-        };
-        let start = codes.len();
-        codes.push(u64::from(u32::MAX - top));
-        codes.extend(m.factors().iter().map(|&(a, x)| code(a, x)));
-        codes[start + 1..].sort_unstable();
-        keyed.push((start as u32, codes.len() as u32, i as u32));
+
+    /// The atoms, in print order.
+    pub(crate) fn atoms(&self) -> &[Atom] {
+        &self.atoms
     }
-    let key = |k: &(u32, u32, u32)| &codes[k.0 as usize..k.1 as usize];
-    keyed.sort_unstable_by(|a, b| key(a).cmp(key(b)));
-    keyed
-        .iter()
-        .map(|k| {
-            let codes = &key(k)[1..];
-            let mut factors: SmallVec<[(Atom, i32); 12]> = codes
-                .iter()
-                .map(|&c| {
-                    let atom = atoms[(c >> 32) as usize];
-                    let x = i64::from(i32::MAX) - (c & 0xffff_ffff) as i64;
-                    (atom, x as i32)
-                })
-                .collect();
-            let mut kinds: SmallVec<[crate::poly::Trig; 16]> =
-                codes.iter().map(|&c| trig[(c >> 32) as usize]).collect();
-            crate::poly::trig_by_angle_of(&mut factors, &mut kinds);
-            let i = k.2 as usize;
-            (factors, &terms[i].0, &terms[i].1)
-        })
-        .collect()
+
+    /// Whether every atom of `m` has a rank.
+    pub(crate) fn covers(&self, m: &Monomial) -> bool {
+        m.factors().iter().all(|f| self.rank(f.0).is_some())
+    }
+
+    fn code(&self, a: Atom, x: i32) -> u64 {
+        (u64::from(self.rank[a.id() as usize]) << 32) | (i64::from(i32::MAX) - i64::from(x)) as u64
+    }
+
+    /// The factors of sorted codes, a cosine next to the sine of its angle.
+    fn factors_of(&self, codes: &[u64]) -> SmallVec<[(Atom, i32); 12]> {
+        let mut factors: SmallVec<[(Atom, i32); 12]> = codes
+            .iter()
+            .map(|&c| {
+                let atom = self.atoms[(c >> 32) as usize];
+                let x = i64::from(i32::MAX) - (c & 0xffff_ffff) as i64;
+                (atom, x as i32)
+            })
+            .collect();
+        let mut kinds: SmallVec<[crate::poly::Trig; 16]> = codes
+            .iter()
+            .map(|&c| self.trig[(c >> 32) as usize])
+            .collect();
+        crate::poly::trig_by_angle_of(&mut factors, &mut kinds);
+        factors
+    }
+
+    /// The factors of `m` in print order, as [`Monomial::sorted_for_print`]
+    /// gives them.
+    pub(crate) fn sorted(&self, m: &Monomial) -> SmallVec<[(Atom, i32); 12]> {
+        if !self.covers(m) {
+            return m.sorted_for_print().into_iter().collect();
+        }
+        let mut codes: SmallVec<[u64; 16]> =
+            m.factors().iter().map(|&(a, x)| self.code(a, x)).collect();
+        codes.sort_unstable();
+        self.factors_of(&codes)
+    }
+
+    /// [`print_sorted`] of `terms` with these ranks (made anew when some
+    /// atom of `terms` has none).
+    pub(crate) fn sort<'t>(
+        &self,
+        terms: &'t [(Monomial, Rational)],
+        derivative_first: bool,
+    ) -> Vec<PrintTerm<'t>> {
+        if !terms.iter().all(|t| self.covers(&t.0)) {
+            return PrintRanks::of(terms.iter().map(|t| &t.0)).sort(terms, derivative_first);
+        }
+        // Every term's key in one flat array (its slice `start..end`), so
+        // that no key is allocated on its own.
+        let mut codes: Vec<u64> =
+            Vec::with_capacity(terms.iter().map(|t| t.0.factors().len() + 1).sum());
+        let mut keyed: Vec<(u32, u32, u32)> = Vec::with_capacity(terms.len());
+        for (i, (m, _)) in terms.iter().enumerate() {
+            let top = if derivative_first {
+                m.factors().iter().map(|f| f.0.order()).max().unwrap_or(0)
+            } else {
+                0
+            };
+            let start = codes.len();
+            codes.push(u64::from(u32::MAX - top));
+            codes.extend(m.factors().iter().map(|&(a, x)| self.code(a, x)));
+            codes[start + 1..].sort_unstable();
+            keyed.push((start as u32, codes.len() as u32, i as u32));
+        }
+        let key = |k: &(u32, u32, u32)| &codes[k.0 as usize..k.1 as usize];
+        keyed.sort_unstable_by(|a, b| key(a).cmp(key(b)));
+        keyed
+            .iter()
+            .map(|k| {
+                let i = k.2 as usize;
+                (self.factors_of(&key(k)[1..]), &terms[i].0, &terms[i].1)
+            })
+            .collect()
+    }
 }
 
 /// Orders printed terms: by their factors' name keys, then exponents.

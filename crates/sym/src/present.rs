@@ -56,7 +56,7 @@ use std::cmp::Reverse;
 use std::collections::BTreeMap;
 
 use crate::atom::{Atom, AtomKind};
-use crate::expr::{Expr, Id, Node, print_sorted};
+use crate::expr::{Expr, Id, Node, PrintRanks};
 use crate::poly::{Monomial, Poly};
 use crate::rational::Rational;
 
@@ -67,7 +67,7 @@ mod order;
 mod sin_squares;
 use bracket::group_node;
 pub use fold::fold;
-use order::leading_constant;
+use order::{Ranks, leading_constant};
 use sin_squares::merge_trig_squares;
 
 /// A group (a bracket, or the whole sum) of more terms than this is
@@ -101,6 +101,13 @@ pub struct Presentation {
     /// Unknowns (what the file solves for): the terms of the sum that hold
     /// one come first, in their order otherwise, a (A_x − B_x) + … = 0.
     pub unknowns: Vec<Atom>,
+}
+
+/// What the parts of one presentation share: the request, and the ranks
+/// of the result's atoms (found once, read by every bracket).
+struct Context<'p> {
+    pres: &'p Presentation,
+    ranks: Ranks,
 }
 
 /// Presents `p` in textbook form (see the module doc).
@@ -140,6 +147,15 @@ pub fn present(p: &Poly, pres: &Presentation) -> Expr {
         }
     }
     groups.retain(|(_, ts)| !ts.is_empty());
+    // Every bracket below is a quotient of these terms: its atoms are
+    // among theirs.
+    let monomials = groups
+        .iter()
+        .flat_map(|(k, ts)| std::iter::once(k).chain(ts.iter().map(|t| &t.0)));
+    let cx = Context {
+        pres,
+        ranks: Ranks::of(monomials, &pres.constant_order),
+    };
     // One rule for a constant ratio: when the result is a solved form whose
     // constant divisors go term by term (some terms divided by constants,
     // others not), every such term carries its ratio in front, whichever
@@ -153,25 +169,25 @@ pub fn present(p: &Poly, pres: &Presentation) -> Expr {
             // What `collect` left over is not one bracket among the groups:
             // its terms are grouped by their rates (and sin, cos), each with
             // its own constants, A_3 ω̇_3 + ḣ − (I_1 − I_2) ω_1 ω_2.
-            for (t, rest) in by_time_part(ts) {
-                ids.push(group_node(&mut e, &t, &rest, pres, ratios));
+            for (t, rest) in by_time_part(ts, &cx.ranks.print) {
+                ids.push(group_node(&mut e, &t, &rest, &cx, ratios));
             }
         } else if let Some(classes) = split_by_content(ts) {
             // ½ (I′ θ̇² + …) − m g l cos θ: a fraction is pulled out only
             // over the terms that carry it; inside a collected group's
             // bracket too, ((J − I′) Ω² + (1/2) m g L) ε.
-            let parts = content_parts(&mut e, &classes, pres, ratios);
+            let parts = content_parts(&mut e, &classes, &cx, ratios);
             if k.is_one() {
                 ids.extend(parts);
             } else {
                 let mut factors = vec![e.add(parts)];
-                for (a, x) in k.sorted_for_print() {
+                for (a, x) in cx.ranks.print.sorted(k) {
                     factors.push(e.atom_pow(a, x));
                 }
                 ids.push(e.mul(factors));
             }
         } else {
-            ids.push(group_node(&mut e, k, ts, pres, ratios));
+            ids.push(group_node(&mut e, k, ts, &cx, ratios));
         }
     }
     if ids.len() > 1 {
@@ -211,14 +227,17 @@ fn unknowns_first(e: &Expr, ids: Vec<Id>, unknowns: &[Atom]) -> Vec<Id> {
 /// time-dependent angles), each group as (that part, the terms divided by
 /// it), in the order of terms inside a bracket: highest derivative first,
 /// then the terms of constants only, then by name.
-fn by_time_part(ts: &[(Monomial, Rational)]) -> Vec<(Monomial, Vec<(Monomial, Rational)>)> {
+fn by_time_part(
+    ts: &[(Monomial, Rational)],
+    ranks: &PrintRanks,
+) -> Vec<(Monomial, Vec<(Monomial, Rational)>)> {
     let mut map: BTreeMap<Monomial, Vec<(Monomial, Rational)>> = BTreeMap::new();
     for (m, c) in ts {
         let (t, rest) = m.split(|a| a.is_time_dependent());
         map.entry(t).or_default().push((rest, c.clone()));
     }
     let keys: Vec<(Monomial, Rational)> = map.keys().map(|k| (k.clone(), Rational::ONE)).collect();
-    let mut sorted = print_sorted(&keys, true);
+    let mut sorted = ranks.sort(&keys, true);
     sorted.sort_by_key(|t| {
         let top = t.1.factors().iter().map(|f| f.0.order()).max();
         (Reverse(top.unwrap_or(0)), !t.1.is_one())
@@ -282,12 +301,12 @@ fn split_by_content(ts: &[(Monomial, Rational)]) -> Option<Vec<Vec<(Monomial, Ra
 fn content_parts(
     e: &mut Expr,
     classes: &[Vec<(Monomial, Rational)>],
-    pres: &Presentation,
+    cx: &Context<'_>,
     ratios: bool,
 ) -> Vec<Id> {
     let parts: Vec<Id> = classes
         .iter()
-        .map(|class| group_node(e, &Monomial::one(), class, pres, ratios))
+        .map(|class| group_node(e, &Monomial::one(), class, cx, ratios))
         .collect();
     let mut parts = splice_sums(e, parts);
     let negative = |e: &Expr, id: Id| matches!(e.node(id), Node::Neg(_));
@@ -358,10 +377,11 @@ mod tests {
         );
         let mut checked = 0;
         for p in &polys {
-            let fast: Vec<(Vec<(Atom, i32)>, Monomial)> = print_sorted(p.terms(), true)
-                .into_iter()
-                .map(|t| (t.0.to_vec(), t.1.clone()))
-                .collect();
+            let fast: Vec<(Vec<(Atom, i32)>, Monomial)> =
+                crate::expr::print_sorted(p.terms(), true)
+                    .into_iter()
+                    .map(|t| (t.0.to_vec(), t.1.clone()))
+                    .collect();
             let mut slow: Vec<(Vec<(Atom, i32)>, Monomial)> = p
                 .terms()
                 .iter()
@@ -369,10 +389,11 @@ mod tests {
                 .collect();
             let mut by_names = slow.clone();
             by_names.sort_by(|a, b| crate::expr::print_order(&a.0, &b.0));
-            let fast_by_names: Vec<(Vec<(Atom, i32)>, Monomial)> = print_sorted(p.terms(), false)
-                .into_iter()
-                .map(|t| (t.0.to_vec(), t.1.clone()))
-                .collect();
+            let fast_by_names: Vec<(Vec<(Atom, i32)>, Monomial)> =
+                crate::expr::print_sorted(p.terms(), false)
+                    .into_iter()
+                    .map(|t| (t.0.to_vec(), t.1.clone()))
+                    .collect();
             assert_eq!(fast_by_names, by_names);
             slow.sort_by(|a, b| term_order(&a.0, &b.0));
             assert_eq!(fast, slow);

@@ -13,12 +13,11 @@ use smallvec::SmallVec;
 
 use super::known::{factor_by, known_factor_node};
 use super::order::{
-    constant_class, constant_next, constants_of_one_family, conventional, cyclic_pair,
-    leading_constant,
+    constant_next, constants_of_one_family, conventional, cyclic_pair, leading_constant,
 };
-use super::{PLAIN_ABOVE, Presentation};
+use super::{Context, PLAIN_ABOVE};
 use crate::atom::{Atom, AtomKind};
-use crate::expr::{Expr, Id, Node, PrintTerm, print_sorted};
+use crate::expr::{Expr, Id, Node, PrintTerm};
 use crate::poly::{Monomial, Poly};
 use crate::rational::Rational;
 
@@ -31,16 +30,16 @@ pub(super) fn group_node(
     e: &mut Expr,
     key: &Monomial,
     terms: &[(Monomial, Rational)],
-    pres: &Presentation,
+    cx: &Context<'_>,
     ratios: bool,
 ) -> Id {
-    let known = &pres.factors[..];
-    let order = &pres.constant_order[..];
-    let mut terms = print_sorted(terms, true);
+    let known = &cx.pres.factors[..];
+    let order = &cx.pres.constant_order[..];
+    let mut terms = cx.ranks.print.sort(terms, true);
     if ratios && terms.len() == 1 {
         let m = key.mul(terms[0].1);
-        let mut f: SmallVec<[(Atom, i32); 16]> = m.sorted_for_print().into_iter().collect();
-        conventional(&mut f, order);
+        let mut f: SmallVec<[(Atom, i32); 16]> = cx.ranks.print.sorted(&m).into_iter().collect();
+        conventional(&mut f, order, &cx.ranks);
         if let Some(id) = ratio_node(e, &f, terms[0].2) {
             return id;
         }
@@ -61,7 +60,7 @@ pub(super) fn group_node(
         }
         all = all.gcd(t.1);
     }
-    terms.sort_by_cached_key(|t| {
+    let bracket_order = |t: &PrintTerm<'_>| {
         let top = t.1.factors().iter().map(|f| f.0.order()).max();
         // Some factor of t / all that is not a leading constant (t / all
         // is not built: the exponents are compared).
@@ -78,7 +77,12 @@ pub(super) fn group_node(
             timed,
             distribute && has_divisor(t.1),
         )
-    });
+    };
+    // A stable sort of terms already in print order: often nothing moves,
+    // and the keys tell it without a sort.
+    if !terms.iter().map(bracket_order).is_sorted() {
+        terms.sort_by_cached_key(bracket_order);
+    }
     // Content: rational gcd, with the minus sign pulled out only when that
     // leaves fewer negative terms inside the bracket and the bracket does
     // not mix kinds of terms of opposite signs; otherwise the bracket leads
@@ -102,13 +106,8 @@ pub(super) fn group_node(
         let t = terms.remove(k);
         terms.insert(0, t);
     }
-    let mut common = terms[0].1.clone();
-    for t in &terms[1..] {
-        if common.is_one() {
-            break;
-        }
-        common = common.gcd(t.1);
-    }
+    // What every term has (`all`: the same terms, in another order).
+    let mut common = all;
     if distribute {
         // Only common rates leave the bracket (½ (I′ + m L² + I L²/r²) φ̇²);
         // constants, sin and cos stay with each term.
@@ -142,9 +141,11 @@ pub(super) fn group_node(
         outer = outer.mul(&m);
         number = &number * &c.abs();
         negative ^= c.is_negative();
-        fs.iter().map(|f| known_factor_node(e, f, pres)).collect()
+        fs.iter()
+            .map(|f| known_factor_node(e, f, cx.pres))
+            .collect()
     } else {
-        let (sum, flip) = bracket_sum(e, &terms, &common, &inv, distribute, pres, ratios);
+        let (sum, flip) = bracket_sum(e, &terms, &common, &inv, distribute, cx, ratios);
         negative ^= flip;
         vec![sum]
     };
@@ -152,7 +153,7 @@ pub(super) fn group_node(
         number = terms[0].2.abs();
     }
 
-    let factors = outer.sorted_for_print();
+    let factors = cx.ranks.print.sorted(&outer);
     let mut ids = Vec::new();
     if !number.is_one() || (factors.is_empty() && bracket.is_empty()) {
         ids.push(e.push(Node::Num(number)));
@@ -163,7 +164,7 @@ pub(super) fn group_node(
     // follow the bracket with the rates.
     let leading = leading_constant;
     let mut lead: Vec<(Atom, i32)> = factors.iter().copied().filter(|f| leading(f.0)).collect();
-    lead.sort_by_key(|f| constant_class(f.0, order));
+    cx.ranks.sort_constants(&mut lead, order);
     for (a, x) in lead {
         ids.push(e.atom_pow(a, x));
     }
@@ -207,10 +208,10 @@ fn bracket_sum(
     common: &Monomial,
     inv: &Rational,
     distribute: bool,
-    pres: &Presentation,
+    cx: &Context<'_>,
     ratios: bool,
 ) -> (Id, bool) {
-    let order = &pres.constant_order[..];
+    let order = &cx.pres.constant_order[..];
     let plain = common.is_one() && inv.is_one();
     let mut negative = false;
     // Terms that share their time-dependent part (the same rates, sin
@@ -294,7 +295,7 @@ fn bracket_sum(
                             .iter()
                             .map(|(_, u, c)| (u.clone(), c.clone()))
                             .collect();
-                        let id = group_node(e, x, &sub, pres, ratios);
+                        let id = group_node(e, x, &sub, cx, ratios);
                         nodes.push((id, matches!(e.node(id), Node::Neg(_)), top, false));
                     }
                     continue;
@@ -305,7 +306,7 @@ fn bracket_sum(
                     // The first of the like terms stands for all of them.
                     if !sub.is_empty() {
                         let sub = std::mem::take(sub);
-                        let id = group_node(e, rest, &sub, pres, ratios);
+                        let id = group_node(e, rest, &sub, cx, ratios);
                         let follows = rest.factors().iter().any(|&(a, _)| !leading_constant(a));
                         nodes.push((id, matches!(e.node(id), Node::Neg(_)), top, follows));
                     }
@@ -315,7 +316,7 @@ fn bracket_sum(
                     // The first term of the shared part stands for all of them.
                     if !sub.is_empty() {
                         let sub = std::mem::take(sub);
-                        let id = group_node(e, t, &sub, pres, ratios);
+                        let id = group_node(e, t, &sub, cx, ratios);
                         nodes.push((id, matches!(e.node(id), Node::Neg(_)), top, true));
                     }
                     continue;
@@ -326,9 +327,9 @@ fn bracket_sum(
         let mut f: SmallVec<[(Atom, i32); 16]> = if plain {
             sorted.iter().copied().collect()
         } else {
-            m.sorted_for_print().into_iter().collect()
+            cx.ranks.print.sorted(m).into_iter().collect()
         };
-        conventional(&mut f, order);
+        conventional(&mut f, order, &cx.ranks);
         let id = if distribute {
             ratio_term(e, &f, c)
         } else if big {

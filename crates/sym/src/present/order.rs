@@ -7,7 +7,62 @@
 use smallvec::SmallVec;
 
 use crate::atom::{Atom, AtomKind, AtomMemo};
-use crate::expr::{Expr, Id, Node};
+use crate::expr::{Expr, Id, Node, PrintRanks};
+use crate::poly::Monomial;
+
+/// The ranks of one result's atoms, found once per presentation and read
+/// by atom id: their print order ([`PrintRanks`]) and the conventional
+/// order of the constants among them ([`constant_class`]), so that the
+/// factors of every term and bracket are ordered by integers, not names.
+pub(super) struct Ranks {
+    /// The print order of the atoms.
+    pub(super) print: PrintRanks,
+    /// The place of a leading constant in [`constant_class`] order, by
+    /// atom id (`u32::MAX` for the other atoms).
+    conv: Vec<u32>,
+}
+
+impl Ranks {
+    /// The ranks of the atoms of `monomials`, constants ordered by the
+    /// file's `order` first.
+    pub(super) fn of<'a>(monomials: impl Iterator<Item = &'a Monomial>, order: &[String]) -> Ranks {
+        let print = PrintRanks::of(monomials);
+        let mut constants: Vec<Atom> = print
+            .atoms()
+            .iter()
+            .copied()
+            .filter(|&a| leading_constant(a))
+            .collect();
+        // Names are distinct, so the classes are.
+        constants.sort_by_cached_key(|&a| constant_class(a, order));
+        let mut conv = Vec::new();
+        for (k, a) in constants.iter().enumerate() {
+            let i = a.id() as usize;
+            if i >= conv.len() {
+                conv.resize(i + 1, u32::MAX);
+            }
+            conv[i] = k as u32;
+        }
+        Ranks { print, conv }
+    }
+
+    /// The place of constant `a` in [`constant_class`] order.
+    fn conv(&self, a: Atom) -> Option<u32> {
+        self.conv
+            .get(a.id() as usize)
+            .copied()
+            .filter(|&r| r != u32::MAX)
+    }
+
+    /// Leading constants sorted by [`constant_class`].
+    pub(super) fn sort_constants(&self, fs: &mut [(Atom, i32)], order: &[String]) {
+        if fs.iter().all(|f| self.conv(f.0).is_some()) {
+            fs.sort_unstable_by_key(|f| self.conv(f.0));
+        } else {
+            fs.sort_by_key(|f| constant_class(f.0, order));
+        }
+    }
+}
 
 /// The degree of a presented term in the rates: time-dependent symbols
 /// and constant rates named by Greek letters count, numbers, sin, cos and
@@ -131,7 +186,7 @@ pub(super) fn constant_next(a: Atom, b: Atom) -> bool {
 /// The factors of a term inside a bracket in conventional order: constants
 /// first as [`constant_class`] orders them (`2 m g l cos θ`), the rest as
 /// they were, two rates of one cyclic family in cyclic order.
-pub(super) fn conventional(fs: &mut [(Atom, i32)], order: &[String]) {
+pub(super) fn conventional(fs: &mut [(Atom, i32)], order: &[String], ranks: &Ranks) {
     let constant = leading_constant;
     // One look at each factor: the first constant and whether there is a
     // second.
@@ -145,13 +200,28 @@ pub(super) fn conventional(fs: &mut [(Atom, i32)], order: &[String]) {
         cyclic_pair(fs);
         return;
     }
-    fs.sort_by_cached_key(|&(a, _)| {
-        if constant(a) {
-            (0, constant_class(a, order))
-        } else {
-            (1, (0, 0, ""))
-        }
-    });
+    // Constants have distinct places; the others keep their order (a
+    // stable sort).
+    if fs
+        .iter()
+        .all(|f| !constant(f.0) || ranks.conv(f.0).is_some())
+    {
+        fs.sort_by_key(|&(a, _)| {
+            if constant(a) {
+                (0, ranks.conv(a).unwrap_or(0))
+            } else {
+                (1, 0)
+            }
+        });
+    } else {
+        fs.sort_by_cached_key(|&(a, _)| {
+            if constant(a) {
+                (0, constant_class(a, order))
+            } else {
+                (1, (0, 0, ""))
+            }
+        });
+    }
     cyclic_pair(fs);
 }
 
