@@ -48,24 +48,25 @@ pub(super) fn merge_trig_squares(ts: &mut Terms) {
     angles.sort_by_cached_key(|a| a.sort_key());
     let mut changed = false;
     // Each term's hash, a sum over its factors, from which the hash of
-    // the term without its power of cos θ is one subtraction; made again
-    // only when a rule has rewritten the terms.
+    // the term without its power of cos θ is one subtraction; kept beside
+    // the terms as the rules rewrite them.
     let mut hashes: Vec<u64> = ts.iter().map(|t| monomial_hash(&t.0)).collect();
     for q in angles {
         if let (Some(cos), Some(sin)) = (Atom::cos(q), Atom::sin(q)) {
             let mut found = chains(ts, &hashes, cos);
-            if factor_sin_squares(ts, &found, cos, sin) {
+            if factor_sin_squares(ts, &mut hashes, &found, cos, sin) {
                 changed = true;
-                hashes = ts.iter().map(|t| monomial_hash(&t.0)).collect();
                 found = chains(ts, &hashes, cos);
             }
             // Unchanged terms have the same chains: they are found once.
-            if merge_pairs(ts, &found, cos, sin) {
-                changed = true;
-                hashes = ts.iter().map(|t| monomial_hash(&t.0)).collect();
-            }
+            changed |= merge_pairs(ts, &mut hashes, &found, cos, sin);
         }
     }
+    debug_assert!(
+        ts.iter()
+            .zip(&hashes)
+            .all(|(t, &h)| monomial_hash(&t.0) == h)
+    );
     if changed {
         // Two rewritten terms may meet on one monomial: add them.
         add_equal_monomials(ts);
@@ -82,7 +83,8 @@ pub(super) fn merge_trig_squares(ts: &mut Terms) {
 /// and a bucket is split by comparing the rests factor by factor, so hash
 /// collisions cost time, never correctness.
 fn chains(ts: &mut Terms, hashes: &[u64], cos: Atom) -> Vec<Chain> {
-    let mut buckets: FxHashMap<u64, SmallVec<[usize; 2]>> = FxHashMap::default();
+    let mut buckets: FxHashMap<u64, SmallVec<[usize; 2]>> =
+        FxHashMap::with_capacity_and_hasher(ts.len(), Default::default());
     // Each term's exponent of cos, read once.
     let exps: Vec<i32> = ts.iter().map(|t| t.0.exponent(cos)).collect();
     for (i, &e) in exps.iter().enumerate() {
@@ -165,10 +167,31 @@ fn same_rest(a: &Monomial, b: &Monomial, cos: Atom) -> bool {
 /// Each chain as a polynomial P(cos) (exponent → coefficient), divided by
 /// (1 − cos²) as often as that leaves the fewest terms (fewer than
 /// before). True when a chain was rewritten.
-fn factor_sin_squares(ts: &mut Terms, chains: &[Chain], cos: Atom, sin: Atom) -> bool {
+fn factor_sin_squares(
+    ts: &mut Terms,
+    hashes: &mut Vec<u64>,
+    chains: &[Chain],
+    cos: Atom,
+    sin: Atom,
+) -> bool {
     let mut removed: Vec<usize> = Vec::new();
     let mut added: Terms = Vec::new();
     for (rest, chain) in chains {
+        // (1 − cos²) divides P only where P(1) = P(−1) = 0: two sums tell
+        // most chains apart without the division.
+        let (mut at_one, mut at_minus_one) = (Rational::ZERO, Rational::ZERO);
+        for &(e, i) in chain {
+            let c = &ts[i].1;
+            at_one = &at_one + c;
+            at_minus_one = if e.rem_euclid(2) == 0 {
+                &at_minus_one + c
+            } else {
+                &at_minus_one - c
+            };
+        }
+        if !at_one.is_zero() || !at_minus_one.is_zero() {
+            continue;
+        }
         let p: BTreeMap<i32, Rational> = chain
             .iter()
             .filter(|&&(_, i)| !ts[i].1.is_zero())
@@ -197,7 +220,8 @@ fn factor_sin_squares(ts: &mut Terms, chains: &[Chain], cos: Atom, sin: Atom) ->
     if removed.is_empty() {
         return false;
     }
-    remove_indices(ts, &removed);
+    remove_indices(ts, hashes, &removed);
+    hashes.extend(added.iter().map(|t| monomial_hash(&t.0)));
     ts.extend(added);
     true
 }
@@ -229,7 +253,13 @@ fn divide_one_minus_square(p: &BTreeMap<i32, Rational>) -> Option<BTreeMap<i32, 
 /// `X cosⁿ θ sin² θ` (n of any sign); in a chain of one X the pairs are
 /// taken from the lowest power up, each term in one pair at most. True
 /// when a pair was merged.
-fn merge_pairs(ts: &mut Terms, chains: &[Chain], cos: Atom, sin: Atom) -> bool {
+fn merge_pairs(
+    ts: &mut Terms,
+    hashes: &mut Vec<u64>,
+    chains: &[Chain],
+    cos: Atom,
+    sin: Atom,
+) -> bool {
     let mut removed: Vec<usize> = Vec::new();
     for (rest, chain) in chains {
         let mut used: SmallVec<[bool; 4]> = SmallVec::from_elem(false, chain.len());
@@ -246,6 +276,7 @@ fn merge_pairs(ts: &mut Terms, chains: &[Chain], cos: Atom, sin: Atom) -> bool {
                 continue;
             }
             ts[j].0 = rest.mul(&Monomial::from_factors([(cos, e - 2), (sin, 2)]));
+            hashes[j] = monomial_hash(&ts[j].0);
             used[a] = true;
             used[b] = true;
             removed.push(k);
@@ -254,18 +285,23 @@ fn merge_pairs(ts: &mut Terms, chains: &[Chain], cos: Atom, sin: Atom) -> bool {
     if removed.is_empty() {
         return false;
     }
-    remove_indices(ts, &removed);
+    remove_indices(ts, hashes, &removed);
     true
 }
 
-/// Removes the terms at `indices` (any order, no repeats).
-fn remove_indices(ts: &mut Terms, indices: &[usize]) {
+/// Removes the terms at `indices` (any order, no repeats), and their hashes.
+fn remove_indices(ts: &mut Terms, hashes: &mut Vec<u64>, indices: &[usize]) {
     let mut gone = vec![false; ts.len()];
     for &i in indices {
         gone[i] = true;
     }
     let mut k = 0;
     ts.retain(|_| {
+        k += 1;
+        !gone[k - 1]
+    });
+    let mut k = 0;
+    hashes.retain(|_| {
         k += 1;
         !gone[k - 1]
     });
