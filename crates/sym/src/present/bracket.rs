@@ -12,9 +12,7 @@ use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
 
 use super::known::{factor_by, known_factor_node};
-use super::order::{
-    constant_next, constants_of_one_family, conventional, cyclic_pair, leading_constant,
-};
+use super::order::{constant_next, constants_of_one_family, conventional, leading_constant};
 use super::{Context, PLAIN_ABOVE};
 use crate::atom::{Atom, AtomKind};
 use crate::expr::{Expr, Id, Node, PrintTerm};
@@ -185,7 +183,7 @@ pub(super) fn group_node(
     }
     let mut trailing: Vec<(Atom, i32)> =
         factors.iter().copied().filter(|f| !leading(f.0)).collect();
-    cyclic_pair(&mut trailing);
+    cx.ranks.cyclic_pair(&mut trailing);
     for (a, x) in trailing {
         ids.push(e.atom_pow(a, x));
     }

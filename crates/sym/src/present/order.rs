@@ -20,6 +20,8 @@ pub(super) struct Ranks {
     /// The place of a leading constant in [`constant_class`] order, by
     /// atom id (`u32::MAX` for the other atoms).
     conv: Vec<u32>,
+    /// The [`cyclic_place`] of each atom by id, its family numbered.
+    place: Vec<Option<NumberedPlace>>,
 }
 
 impl Ranks {
@@ -43,7 +45,46 @@ impl Ranks {
             }
             conv[i] = k as u32;
         }
-        Ranks { print, conv }
+        let mut place = Vec::new();
+        let mut families: Vec<&'static str> = Vec::new();
+        for &a in print.atoms() {
+            if let Some((family, k, o)) = cyclic_place(a) {
+                let f = families
+                    .iter()
+                    .position(|&x| x == family)
+                    .unwrap_or_else(|| {
+                        families.push(family);
+                        families.len() - 1
+                    });
+                let i = a.id() as usize;
+                if i >= place.len() {
+                    place.resize(i + 1, None);
+                }
+                place[i] = Some((f as u32, k, o));
+            }
+        }
+        Ranks { print, conv, place }
+    }
+
+    /// Whether every factor's atom is in the table.
+    fn covers(&self, fs: &[(Atom, i32)]) -> bool {
+        fs.iter().all(|f| self.print.rank(f.0).is_some())
+    }
+
+    /// [`cyclic_pair`] with each factor's place read from the table.
+    pub(super) fn cyclic_pair(&self, fs: &mut [(Atom, i32)]) {
+        if !self.covers(fs) {
+            return cyclic_pair(fs);
+        }
+        let placed: SmallVec<[(usize, NumberedPlace); 16]> = fs
+            .iter()
+            .enumerate()
+            .filter_map(|(k, f)| {
+                let p = self.place.get(f.0.id() as usize).copied().flatten();
+                p.map(|p| (k, p))
+            })
+            .collect();
+        pairs_in_order(fs, &placed);
     }
 
     /// The place of constant `a` in [`constant_class`] order.
@@ -131,6 +172,9 @@ pub(super) fn constant_class(a: Atom, order: &[String]) -> (usize, u8, &'static 
 /// A place in a cyclic order: (family, position, which order).
 pub(super) type Place = (&'static str, usize, u8);
 
+/// A [`Place`] with its family numbered (in one result's [`Ranks`]).
+type NumberedPlace = (u32, usize, u8);
+
 /// The position of a subscript or letter in a cyclic order (x → y → z,
 /// 1 → 2 → 3, A → B → C, also with a common subscript: A_p → B_p → C_p),
 /// the family (the name without the subscript, or the letters' common
@@ -187,7 +231,16 @@ pub(super) fn constant_next(a: Atom, b: Atom) -> bool {
 /// first as [`constant_class`] orders them (`2 m g l cos θ`), the rest as
 /// they were, two rates of one cyclic family in cyclic order.
 pub(super) fn conventional(fs: &mut [(Atom, i32)], order: &[String], ranks: &Ranks) {
-    let constant = leading_constant;
+    // Atoms in the table are read from it: a leading constant is one with
+    // a conventional place.
+    let covered = ranks.covers(fs);
+    let constant = |a: Atom| {
+        if covered {
+            ranks.conv(a).is_some()
+        } else {
+            leading_constant(a)
+        }
+    };
     // One look at each factor: the first constant and whether there is a
     // second.
     let mut constants = fs.iter().enumerate().filter(|(_, f)| constant(f.0));
@@ -197,15 +250,12 @@ pub(super) fn conventional(fs: &mut [(Atom, i32)], order: &[String], ranks: &Ran
         if let Some(k) = first {
             fs[..=k].rotate_right(1);
         }
-        cyclic_pair(fs);
+        ranks.cyclic_pair(fs);
         return;
     }
     // Constants have distinct places; the others keep their order (a
     // stable sort).
-    if fs
-        .iter()
-        .all(|f| !constant(f.0) || ranks.conv(f.0).is_some())
-    {
+    if covered {
         fs.sort_by_key(|&(a, _)| {
             if constant(a) {
                 (0, ranks.conv(a).unwrap_or(0))
@@ -222,7 +272,7 @@ pub(super) fn conventional(fs: &mut [(Atom, i32)], order: &[String], ranks: &Ran
             }
         });
     }
-    cyclic_pair(fs);
+    ranks.cyclic_pair(fs);
 }
 
 /// Two rates of one cyclic family in cyclic order: ω_x ω_z → ω_z ω_x
@@ -237,10 +287,17 @@ pub(super) fn cyclic_pair(fs: &mut [(Atom, i32)]) {
         .enumerate()
         .filter_map(|(k, f)| cyclic_place(f.0).map(|p| (k, p)))
         .collect();
+    pairs_in_order(fs, &placed);
+}
+
+/// The swaps of [`cyclic_pair`], given the factors that have a place (the
+/// factor's index, its place with the family as a name or a number).
+fn pairs_in_order<F: Copy + Eq>(fs: &mut [(Atom, i32)], placed: &[(usize, (F, usize, u8))]) {
     if placed.len() < 2 {
         return;
     }
-    let next = |a: Place, b: Place| a.0 == b.0 && a.2 == b.2 && (a.1 + 1) % 3 == b.1;
+    let next =
+        |a: (F, usize, u8), b: (F, usize, u8)| a.0 == b.0 && a.2 == b.2 && (a.1 + 1) % 3 == b.1;
     for (j, &(p, pp)) in placed.iter().enumerate() {
         let family = pp.0;
         if placed[..j].iter().any(|e| e.1.0 == family) {
