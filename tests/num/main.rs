@@ -38,6 +38,8 @@ mod constrained;
 mod verify_kane;
 // verify/quaternion.rs: frames turned by Euler parameters, drawn on the unit sphere.
 mod verify_quaternion;
+// verify/speeds.rs: draws kept away from the kinematic equations' singular angles.
+mod verify_singular_draws;
 // Line bodies and point masses: moments of inertia declared zero.
 mod line_bodies;
 // Mutated derivations rejected by verification (issue 9).

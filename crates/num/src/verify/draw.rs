@@ -203,6 +203,7 @@ pub(crate) fn draw(
             values.set(q, v, v);
         }
     }
+    super::speeds::away_from_singularities(d, &mut values, &declared);
     bind_all(d, &mut values, eqs)?;
     // The coordinates' rates from the speeds, the dependent speeds from
     // the constraints.

@@ -5,7 +5,7 @@
 //! q̇ = f(q, u), order by order (the rows' rates bring in the speeds'
 //! rates, the equations' rates the coordinates' higher rates).
 
-use hdot_sym::atom::Atom;
+use hdot_sym::atom::{Atom, AtomKind};
 use hdot_sym::derivation::Derivation;
 use hdot_sym::parse::{AstKind, parse};
 use hdot_sym::poly::Poly;
@@ -172,6 +172,57 @@ impl Speeds {
             values.set(u, *v, v.abs().max(scale / smax));
         }
         Ok(Some(()))
+    }
+}
+
+/// Moves each drawn angle that the kinematic equations divide the sine
+/// or cosine of (the 1/sin θ of 3-1-3 Euler angles) to where that sine or
+/// cosine is at least ½ in magnitude, keeping the signs of both. Near
+/// the coordinate singularity the coordinates' rates and their own rates
+/// grow like 1/sinⁿ θ, and the particle sums cancel terms that large to
+/// the moment's size, so their round-off is amplified past any tolerance
+/// scaled to the result; the equations hold at every other attitude, so
+/// the draw loses nothing. The angles in `fixed` (values a declaration
+/// gives) are left.
+pub(crate) fn away_from_singularities(d: &Derivation, values: &mut Values, fixed: &[Atom]) {
+    let (mut by_sin, mut by_cos): (Vec<Atom>, Vec<Atom>) = (Vec::new(), Vec::new());
+    for (_, f) in d.kinematic_equations() {
+        for (m, _) in d.unfold(f).terms() {
+            for &(a, e) in m.factors() {
+                match a.kind() {
+                    AtomKind::Sin(q) if e < 0 && !by_sin.contains(&q) => by_sin.push(q),
+                    AtomKind::Cos(q) if e < 0 && !by_cos.contains(&q) => by_cos.push(q),
+                    _ => {}
+                }
+            }
+        }
+    }
+    let angles = by_sin.iter().chain(&by_cos).copied().collect::<Vec<_>>();
+    for (k, &q) in angles.iter().enumerate() {
+        if angles[..k].contains(&q) || fixed.contains(&q) {
+            continue;
+        }
+        let Some((v, _)) = values.get(q) else {
+            continue;
+        };
+        let (s, c) = v.sin_cos();
+        let (sin, cos) = (by_sin.contains(&q), by_cos.contains(&q));
+        let sign = |x: f64| if x < 0.0 { -1.0 } else { 1.0 };
+        let (s2, c2) = if sin && cos && (s.abs() < 0.5 || c.abs() < 0.5) {
+            // Both divide: |sin| in [½, √3/2], so |cos| is too.
+            let m = 0.5 + (0.75_f64.sqrt() - 0.5) * s.abs();
+            (sign(s) * m, sign(c) * (1.0 - m * m).sqrt())
+        } else if sin && !cos && s.abs() < 0.5 {
+            let m = 0.5 + s.abs() / 2.0;
+            (sign(s) * m, sign(c) * (1.0 - m * m).sqrt())
+        } else if cos && !sin && c.abs() < 0.5 {
+            let m = 0.5 + c.abs() / 2.0;
+            (sign(s) * (1.0 - m * m).sqrt(), sign(c) * m)
+        } else {
+            continue;
+        };
+        let moved = s2.atan2(c2);
+        values.set(q, moved, moved);
     }
 }
 
