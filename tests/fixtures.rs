@@ -80,3 +80,21 @@ macro_rules! disk_frames {
         )
     };
 }
+
+/// A double pendulum's two rods as `[[body]]` tables: rod 1 (frame `A`,
+/// mass `m1`, length `l1`) hangs from `O`, rod 2 (frame `B`, `m2`, `l2`)
+/// from rod 1's end `P`; each rod's centre (`G1`, `G2`) halfway down it,
+/// its moment of inertia (`I1`, `I2`) about the axes across it.
+#[macro_export]
+macro_rules! double_pendulum_rods {
+    () => {
+        concat!(
+            "[[body]]\nname = \"rod1\"\nframe = \"A\"\npoint = \"O\"\ncentre = \"G1\"\n",
+            "mass = \"m1\"\nmass_centre = \"[0, -l1/2, 0] in A\"\n",
+            "inertia = \"principal(I1, 0, I1)\"\ninertia_about = \"G1\"\n",
+            "[[body]]\nname = \"rod2\"\nframe = \"B\"\npoint = \"P\"\ncentre = \"G2\"\n",
+            "mass = \"m2\"\nmass_centre = \"[0, -l2/2, 0] in B\"\n",
+            "inertia = \"principal(I2, 0, I2)\"\ninertia_about = \"G2\"\n"
+        )
+    };
+}

@@ -27,27 +27,8 @@ q2 = "u2"
     crate::frame!("B", "A", "z(q2)"),
     crate::fixed_point!("O"),
     crate::point!("P", "O", "[0, -l1, 0] in A"),
+    crate::double_pendulum_rods!(),
     r#"
-[[body]]
-name = "rod1"
-frame = "A"
-point = "O"
-centre = "G1"
-mass = "m1"
-mass_centre = "[0, -l1/2, 0] in A"
-inertia = "principal(I1, 0, I1)"
-inertia_about = "G1"
-
-[[body]]
-name = "rod2"
-frame = "B"
-point = "P"
-centre = "G2"
-mass = "m2"
-mass_centre = "[0, -l2/2, 0] in B"
-inertia = "principal(I2, 0, I2)"
-inertia_about = "G2"
-
 [[step]]
 name = "K"
 label = "0"

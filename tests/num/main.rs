@@ -52,3 +52,20 @@ mod user_crate;
 fn load(text: &str) -> hdot_sym::derivation::Derivation {
     hdot_sym::derivation::load_str("test.toml", text).unwrap_or_else(|e| panic!("{e}"))
 }
+
+/// `hdot verify` of a derivation written in a test: the steps it
+/// compared, and those of them that failed.
+fn verified(text: &str, options: &hdot_num::verify::Options) -> (Vec<String>, Vec<String>) {
+    let r = hdot_num::verify::check(&load(text), options).unwrap_or_else(|e| panic!("{e}"));
+    let names = |pass: bool| {
+        r.steps
+            .iter()
+            .filter(|s| s.passed == pass)
+            .map(|s| s.step.clone())
+            .collect::<Vec<_>>()
+    };
+    let failed = names(false);
+    let mut compared = names(true);
+    compared.extend(failed.iter().cloned());
+    (compared, failed)
+}

@@ -4,7 +4,7 @@
 //! tests: a compound pendulum with a true and a false conservation claim.
 
 use hdot_num::verify::{Options, check};
-use hdot_tests::{fixed_point, frame, point};
+use hdot_tests::{double_pendulum_rods, fixed_point, frame, point};
 
 /// A rigid pendulum about a fixed pivot O, turning about y (axisymmetric
 /// about its own z, so that its centre may lie off O on the axis); `{extra}` is
@@ -211,6 +211,7 @@ const DOUBLE_PENDULUM_GEOMETRY: &str = concat!(
 /// not the identity), written for this test; `{laws}` are its equations
 /// of motion and `{energy}` the claimed-conserved energy.
 fn double_pendulum(laws: &str, energy: &str) -> String {
+    let rods = double_pendulum_rods!();
     format!(
         r#"
 title = "A double pendulum in generalized speeds, written for this test"
@@ -223,25 +224,7 @@ speeds = ["u1", "u2"]
 [kinematics]
 q1 = "u1"
 q2 = "u2 - u1"
-{DOUBLE_PENDULUM_GEOMETRY}[[body]]
-name = "rod1"
-frame = "A"
-point = "O"
-centre = "G1"
-mass = "m1"
-mass_centre = "[0, -l1/2, 0] in A"
-inertia = "principal(I1, 0, I1)"
-inertia_about = "G1"
-[[body]]
-name = "rod2"
-frame = "B"
-point = "P"
-centre = "G2"
-mass = "m2"
-mass_centre = "[0, -l2/2, 0] in B"
-inertia = "principal(I2, 0, I2)"
-inertia_about = "G2"
-[[step]]
+{DOUBLE_PENDULUM_GEOMETRY}{rods}[[step]]
 name = "T"
 value = "m1*dot(dt(position(C1, O)), dt(position(C1, O)))/2 + m2*dot(dt(position(C2, O)), dt(position(C2, O)))/2 + I1*q1'^2/2 + I2*(q1' + q2')^2/2"
 [[step]]

@@ -11,7 +11,7 @@
 use hdot_num::verify::{Options, check};
 use hdot_sym::derivation::load_str;
 
-use super::load;
+use super::{load, verified};
 
 const SLED: &str = include_str!("derivations/kane-sled.toml");
 
@@ -21,13 +21,9 @@ fn options() -> Options {
 
 /// The failed checks of `text`, by step name.
 fn failed(text: &str) -> Vec<String> {
-    let r = check(&load(text), &options()).unwrap_or_else(|e| panic!("{e}"));
-    assert!(r.steps.len() >= 6, "{:?}", r.steps);
-    r.steps
-        .iter()
-        .filter(|s| !s.passed)
-        .map(|s| s.step.clone())
-        .collect()
+    let (compared, failed) = verified(text, &options());
+    assert!(compared.len() >= 6, "{compared:?}");
+    failed
 }
 
 /// `text` with `from` replaced by `to` exactly once.

@@ -9,7 +9,7 @@
 use hdot_num::verify::{Options, check};
 use hdot_sym::derivation::load_str;
 
-use super::load;
+use super::{load, verified};
 
 /// The tilted body; `{abbrev}` and `{extra}` are spliced in (the
 /// abbreviation before the frames, the steps after the others).
@@ -59,13 +59,9 @@ fn options() -> Options {
 
 /// The names of the failed checks of `text`.
 fn failed(text: &str) -> Vec<String> {
-    let r = check(&load(text), &options()).unwrap_or_else(|e| panic!("{e}"));
-    assert!(!r.steps.is_empty());
-    r.steps
-        .iter()
-        .filter(|s| !s.passed)
-        .map(|s| s.step.clone())
-        .collect()
+    let (compared, failed) = verified(text, &options());
+    assert!(!compared.is_empty());
+    failed
 }
 
 #[test]
