@@ -182,14 +182,36 @@ impl Monomial {
     /// The greatest common divisor: the minimum exponent of every atom
     /// (an absent atom has exponent 0), so a common denominator is kept.
     pub fn gcd(&self, other: &Monomial) -> Monomial {
-        let mut atoms: Vec<Atom> = self.0.iter().chain(other.0.iter()).map(|f| f.0).collect();
-        atoms.sort_unstable();
-        atoms.dedup();
-        Monomial::from_factors(
-            atoms
-                .into_iter()
-                .map(|a| (a, self.exponent(a).min(other.exponent(a)))),
-        )
+        // One merge of the two sorted factor lists.
+        let (a, b) = (&self.0, &other.0);
+        let mut out = SmallVec::new();
+        let (mut i, mut j) = (0, 0);
+        while i < a.len() || j < b.len() {
+            let (atom, e) = match (a.get(i), b.get(j)) {
+                (Some(x), Some(y)) if x.0 == y.0 => {
+                    i += 1;
+                    j += 1;
+                    (x.0, x.1.min(y.1))
+                }
+                (Some(x), Some(y)) if x.0 < y.0 => {
+                    i += 1;
+                    (x.0, x.1.min(0))
+                }
+                (Some(x), None) => {
+                    i += 1;
+                    (x.0, x.1.min(0))
+                }
+                (_, Some(y)) => {
+                    j += 1;
+                    (y.0, y.1.min(0))
+                }
+                (None, None) => break,
+            };
+            if e != 0 {
+                out.push((atom, e));
+            }
+        }
+        Monomial(out)
     }
 
     /// `self / other`.
@@ -261,5 +283,45 @@ pub(crate) fn trig_by_angle_of<E>(fs: &mut [(Atom, E)], trig: &mut [Trig]) {
             fs[j + 1..=k].rotate_right(1);
             trig[j + 1..=k].rotate_right(1);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The merge of `gcd` gives the minimum exponent of every atom, an
+    /// absent atom counting as exponent 0, over pairs of monomials with
+    /// shared, missing and negative powers (seeded, exhaustive over a small
+    /// grid of exponents).
+    #[test]
+    fn gcd_is_the_minimum_of_every_exponent() {
+        let s = crate::Symbols::parse_decl(&["a", "b", "c", "d"], &["x"]);
+        let atoms: Vec<Atom> = ["a", "b", "c", "d"]
+            .iter()
+            .map(|n| s.poly(n).unwrap().terms()[0].0.factors()[0].0)
+            .collect();
+        let exps = [-2, -1, 0, 1, 3];
+        let monomial = |code: usize| {
+            Monomial::from_factors(
+                atoms
+                    .iter()
+                    .enumerate()
+                    .map(|(k, &a)| (a, exps[(code / exps.len().pow(k as u32)) % exps.len()])),
+            )
+        };
+        let n = exps.len().pow(atoms.len() as u32);
+        let mut checked = 0;
+        for i in (0..n).step_by(7) {
+            for j in (0..n).step_by(11) {
+                let (p, q) = (monomial(i), monomial(j));
+                let want = Monomial::from_factors(
+                    atoms.iter().map(|&a| (a, p.exponent(a).min(q.exponent(a)))),
+                );
+                assert_eq!(p.gcd(&q), want, "gcd of {p:?} and {q:?}");
+                checked += 1;
+            }
+        }
+        assert!(checked > 1_000);
     }
 }

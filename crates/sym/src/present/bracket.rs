@@ -261,10 +261,15 @@ fn bracket_sum(
     // Like terms: terms with the same constants and rates that differ
     // only in sin and cos are one term with a bracket of those,
     // I′ φ̇ (1 + cos² θ), not I′ φ̇ + I′ φ̇ cos² θ.
+    // (Parts are distinct, so without a sine or cosine in any of them no
+    // two share what is left once sin and cos are taken out.)
     let mut alike: FxHashMap<Monomial, Vec<(Monomial, Rational)>> = FxHashMap::default();
     let mut alike_of: Vec<Option<Monomial>> = vec![None; timed.len()];
+    let any_trig = parts
+        .iter()
+        .any(|(m, _)| m.factors().iter().any(|f| is_trig(f.0)));
     for (k, ((m, c), t)) in parts.iter().zip(&timed).enumerate() {
-        if shared.contains_key(t) || linear_of[k].is_some() {
+        if !any_trig || shared.contains_key(t) || linear_of[k].is_some() {
             continue;
         }
         let (trig, rest) = m.split(is_trig);
@@ -277,6 +282,14 @@ fn bracket_sum(
         }
     }
     alike.retain(|_, v| v.len() > 1);
+    // Dividing by `common` keeps the print order of a term's other factors
+    // unless it takes away a sine, next to which its cosine was placed (a
+    // positive power of `common` is in every term; a negative one, a
+    // divisor of some terms only, would add a factor to the others).
+    let common_keeps_order = common
+        .factors()
+        .iter()
+        .all(|f| f.1 > 0 && !matches!(f.0.kind(), AtomKind::Sin(_)));
     let mut atoms: FxHashMap<(Atom, i32), Id> = FxHashMap::default();
     // (node, negative, highest derivative order, has a part that
     // follows a bracket)
@@ -324,9 +337,12 @@ fn bracket_sum(
         };
         let mut f: SmallVec<[(Atom, i32); 16]> = if plain {
             sorted.iter().copied().collect()
+        } else if common_keeps_order {
+            quotient_in_order(sorted, common)
         } else {
             cx.ranks.print.sorted(m).into_iter().collect()
         };
+        debug_assert!(f.iter().eq(cx.ranks.print.sorted(m).iter()));
         conventional(&mut f, order, &cx.ranks);
         let id = if distribute {
             ratio_term(e, &f, c)
@@ -479,6 +495,21 @@ fn linear_groups(
         }
     }
     groups
+}
+
+/// The factors of `term / common` in print order, given the term's
+/// factors in print order (`sorted`) and a `common` divisor of it of
+/// positive powers and without a sine: the same factors with `common`'s exponents taken off, those left
+/// at zero dropped (print order is by atom, and a cosine follows the sine
+/// of its angle, neither of which a division without a sine changes).
+fn quotient_in_order(sorted: &[(Atom, i32)], common: &Monomial) -> SmallVec<[(Atom, i32); 16]> {
+    sorted
+        .iter()
+        .filter_map(|&(a, x)| {
+            let y = x - common.exponent(a);
+            (y != 0).then_some((a, y))
+        })
+        .collect()
 }
 
 /// A sine or a cosine.
