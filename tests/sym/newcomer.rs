@@ -3,8 +3,9 @@
 //! 60–64): a body's mass centre is a point (`position`, `velocity`, a
 //! `[[load]]` at it, a `[[point]]` of its name at its place); entries of an
 //! array (`M.12`); an operating point at π; `position` across two fixed
-//! points. Every step with an expectation must hold, and each file must
-//! hold as many expectations as it was written with.
+//! points; a solution divided by the coefficients' own sums once, not by
+//! their expanded power. Every step with an expectation must hold, and each
+//! file must hold as many expectations as it was written with.
 
 use hdot_sym::derivation::load;
 use hdot_tests::repo_root;
@@ -53,4 +54,18 @@ fn an_operating_point_at_pi_linearizes_about_the_inverted_motion() {
 #[test]
 fn position_runs_between_points_hung_from_two_fixed_points() {
     holds("two-fixed-points", 3 + 3 + 3);
+}
+
+#[test]
+fn a_solution_holds_a_coefficient_s_sum_once_as_a_textbook_writes_it() {
+    // Cramer's rule divides by (I + m r²)² J; each rate reads
+    // (…)/(I + m r²), and the coupled pair, whose determinant holds no
+    // entry's sum, is divided by it whole.
+    holds("wheels-on-an-incline", 3);
+    let path = repo_root().join("tests/sym/newcomer/wheels-on-an-incline.toml");
+    let d = load(&path).unwrap_or_else(|e| panic!("{e}"));
+    insta::assert_snapshot!(hdot_sym::render::render(
+        &d,
+        hdot_sym::render::Format::Unicode
+    ));
 }

@@ -27,6 +27,9 @@
 //! coefficients): its remainder is zero exactly when `s` divides. Two
 //! different sums are taken to be coprime (sums are not factored), so a
 //! value is reduced by each sum atom in turn.
+//! (`solve` splits a determinant's sum into the coefficients' own sums
+//! where they divide it, so that each cancels against the numerators:
+//! `derivation/ops/solve.rs`.)
 //!
 //! A sum is divided by only where it is known not to be zero: `solve`
 //! asks that every term have one sign for the constants declared
@@ -86,6 +89,13 @@ impl Poly {
     pub fn inverse_with_sum(&self) -> Option<Poly> {
         let (k, s) = self.sum_factor()?;
         Some(&k.inverse_divisor()? * &Poly::recip_sum(&s))
+    }
+
+    /// `self / s` for a sum `s` in normal form ([`Poly::sum_factor`]) when
+    /// `s` divides it exactly (the division algorithm of the module doc);
+    /// `None` when it does not.
+    pub fn div_sum(&self, s: &Poly) -> Option<Poly> {
+        divide_by_sum(self, s)
     }
 
     /// `1/s` for a sum `s` in normal form ([`Poly::sum_factor`]), which the

@@ -23,7 +23,9 @@ pub(crate) const SOLVE: Op = Op {
           linearly and the coefficient matrix's determinant can be divided by (numbers, constants, sin and cos, \
           and a sum of constants whose terms all have one sign for the constants declared `positive`, such as \
           I′ + I L²/r²: \
-          otherwise use `mass_matrix`/`forcing`); a factor common to all terms of an equation is divided out first. \
+          otherwise use `mass_matrix`/`forcing`); a factor common to all terms of an equation is divided out first, \
+          and a determinant holding a power of the coefficients' own sums is divided by each once, so a \
+          solution reads (m g r sin β + T)/(I + m r²), not over (I + m r²)² expanded. \
           A vector equation in three unknowns gives a vector; otherwise one unknown gives a scalar and several a \
           list labelled by the unknowns (θ̈ = …). `solve(eq, x^k)` solves one equation in which x occurs only as \
           x^k for that power (φ̇² = 3 g/(2 L cos θ))",
@@ -154,6 +156,50 @@ pub(crate) fn sum_inverse(det: &Poly, positive: &[Atom]) -> Option<Result<Poly, 
     })
 }
 
+/// The inverse of `det = k · s` with `s` split into the sums of constants
+/// that the coefficient matrix's own entries hold (`I + m r²` of a diagonal
+/// `diag(I + m r², I + m r², I)`, whose determinant's sum is
+/// `I² + 2 m I r² + m² r⁴`), each known not to be zero for the `positive`
+/// constants: the canonical form then cancels each factor against the
+/// numerators that hold it, so a solution reads `(m g r sin β + T)/(I + m r²)`
+/// as a textbook writes it. `None` when no entry's sum divides `s`, or a
+/// factor's sign is not known (the caller then divides by `s` whole).
+fn factored_inverse(det: &Poly, m: &[Vec<Poly>], positive: &[Atom]) -> Option<Poly> {
+    let (k, mut s) = det.sum_factor()?;
+    let mut candidates: Vec<Poly> = Vec::new();
+    for e in m.iter().flatten() {
+        if let Some((_, c)) = e.sum_factor()
+            && c != s
+            && !candidates.contains(&c)
+        {
+            candidates.push(c);
+        }
+    }
+    let mut inv = k.inverse_divisor()?;
+    let mut split = false;
+    for c in &candidates {
+        while let Some(q) = s.div_sum(c) {
+            sign_of(c, positive)?;
+            inv = &inv * &Poly::recip_sum(c);
+            s = q;
+            split = true;
+        }
+    }
+    if !split {
+        return None;
+    }
+    // What is left: a number times a monomial, or one more sum.
+    let rest = match s.inverse_divisor() {
+        Some(r) => r,
+        None => {
+            let (k, rest) = s.sum_factor()?;
+            sign_of(&rest, positive)?;
+            &k.inverse_divisor()? * &Poly::recip_sum(&rest)
+        }
+    };
+    Some(&inv * &rest)
+}
+
 /// [`solve_system`], dividing also by a sum of constants that is known not
 /// to be zero for the `positive` constants ([`sum_inverse`]).
 fn solve_known(m: &[Vec<Poly>], f: &[Poly], positive: &[Atom]) -> Result<Vec<Poly>, String> {
@@ -175,7 +221,10 @@ fn solve_known(m: &[Vec<Poly>], f: &[Poly], positive: &[Atom]) -> Result<Vec<Pol
     };
     let inv = match det.inverse_divisor() {
         Some(inv) => inv,
-        None => match sum_inverse(&det, positive) {
+        None => match factored_inverse(&det, m, positive)
+            .map(Ok)
+            .or_else(|| sum_inverse(&det, positive))
+        {
             Some(Ok(inv)) => inv,
             Some(Err(why)) => {
                 return Err(format!(
