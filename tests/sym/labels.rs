@@ -92,3 +92,156 @@ fn a_label_formula_names_only_symbols_and_earlier_steps() {
         assert_eq!(e.line, 26, "{label}: {e}");
     }
 }
+
+/// A label formula is what it evaluates to (issue 21, item 15): `|v|^2` is
+/// v·v, `H^2` of a vector likewise, `2T` twice the step `T`, words that are
+/// all symbols or steps (`m a_G`) their product, a bare `|x|` compared
+/// through squares, a step's own name its value; each holds here.
+const HOLDS: &str = r#"
+title = "labels that hold"
+source = "written for the test"
+[symbols]
+constants = ["m", "k"]
+time = ["x", "theta"]
+[[frame]]
+name = "B"
+parent = "N"
+rotation = "z(theta)"
+[[step]]
+name = "a_G"
+value = "[x'', 0, 0] in B"
+[[step]]
+name = "F"
+label = "m a_G"
+value = "express([m*x'', 0, 0] in B, N)"
+[[step]]
+name = "v2"
+label = "|a_G|^2"
+value = "x''^2"
+[[step]]
+name = "T"
+value = "m*x'^2/2"
+[[step]]
+name = "twoT"
+label = "2T"
+value = "m*x'^2"
+[[step]]
+name = "mag"
+label = "|k x|"
+value = "-k*x"
+[[step]]
+name = "sq"
+label = "sq^1"
+value = "k*x^2"
+"#;
+
+#[test]
+fn a_label_formula_holds_when_it_is_the_value() {
+    let d = load_str("holds.toml", HOLDS).unwrap_or_else(|e| panic!("{e}"));
+    assert!(d.all_hold(), "{:?}", d.failures());
+}
+
+#[test]
+fn a_label_formula_that_is_not_the_value_is_a_located_error() {
+    for (from, to, says) in [
+        // |a_G|² = ẍ² + 1 is false.
+        (
+            "value = \"x''^2\"",
+            "value = \"x''^2 + 1\"",
+            "their difference is 1",
+        ),
+        // m a_G with a different value, in another frame.
+        (
+            "value = \"express([m*x'', 0, 0] in B, N)\"",
+            "value = \"express([m*x'', m, 0] in B, N)\"",
+            "`m a_G` means",
+        ),
+        // 2T with the value of T.
+        ("value = \"m*x'^2\"", "value = \"m*x'^2/2\"", "`2T` means"),
+        // |k x| squared is k² x², not k x².
+        ("value = \"-k*x\"", "value = \"k*x^2\"", "squared"),
+        // The step's own name stands for its value: sq¹ = 2 sq is false.
+        ("label = \"sq^1\"", "label = \"2sq\"", "`2sq` means"),
+        // A vector is no scalar.
+        ("label = \"|a_G|^2\"", "label = \"a_G\"", ""),
+    ] {
+        let file = HOLDS.replace(from, to);
+        assert_ne!(file, HOLDS, "{from}");
+        match load_str("holds.toml", &file) {
+            Err(e) => {
+                assert!(
+                    e.message.contains("field `label`") && e.message.contains(says),
+                    "{to}: {}",
+                    e.message
+                );
+                assert!(e.line > 0 && e.column > 0, "{to}: {e}");
+            }
+            // A single word that names a step stays a name.
+            Ok(_) => assert_eq!(to, "label = \"a_G\"", "{to} was accepted"),
+        }
+    }
+}
+
+#[test]
+fn a_label_formula_of_two_vectors_side_by_side_is_refused() {
+    let file = HOLDS.replace("label = \"m a_G\"", "label = \"a_G a_G\"");
+    let e = load_str("holds.toml", &file).expect_err("two vectors");
+    assert!(
+        e.message.contains("two vectors side by side"),
+        "{}",
+        e.message
+    );
+}
+
+/// A name with several underscores (issue 24): the first starts the
+/// subscript, each further one separates an index; indices print with
+/// commas, braced in Unicode (`A_{c,rate}`, never `A_c,rate`); one index
+/// prints as before; the SymPy export keeps the name, a valid identifier.
+#[test]
+fn a_name_with_several_underscores_prints_its_indices_apart() {
+    use hdot_sym::print::{latex_symbol, unicode_symbol};
+    for (name, order, unicode, latex) in [
+        ("A_c_rate", 0, "A_{c,rate}", "A_{c,rate}"),
+        (
+            "R_B_steady",
+            1,
+            "R\u{307}_{B,steady}",
+            r"\dot{R}_{B,steady}",
+        ),
+        ("omega_B_theta", 0, "ω_{B,θ}", r"\omega_{B,\theta}"),
+        ("omega_x", 0, "ω_x", r"\omega_x"),
+        ("I_xy", 0, "I_xy", "I_{xy}"),
+    ] {
+        assert_eq!(unicode_symbol(name, order), unicode, "{name}");
+        assert_eq!(latex_symbol(name, order), latex, "{name}");
+    }
+    let file = r#"
+title = "names"
+source = "written for the test"
+[symbols]
+constants = ["A_c_rate", "k"]
+[[step]]
+name = "b_c_rate"
+value = "k*A_c_rate"
+"#;
+    let d = load_str("names.toml", file).unwrap_or_else(|e| panic!("{e}"));
+    let text = render(&d, Format::Unicode);
+    assert!(text.contains("= A_{c,rate} k"), "{text}");
+    assert!(!text.contains("A_c,rate"), "{text}");
+    let sympy = render(&d, Format::Sympy);
+    assert!(sympy.contains("Symbol('A_c_rate')"), "{sympy}");
+    // Every variable the export binds is a Python identifier.
+    for line in sympy.lines() {
+        if let Some((lhs, _)) = line.split_once(" = ")
+            && !lhs.starts_with([' ', '#'])
+        {
+            for v in lhs.split(", ") {
+                assert!(
+                    v.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+                        && !v.starts_with(|c: char| c.is_ascii_digit()),
+                    "`{v}` in {line}"
+                );
+            }
+        }
+    }
+}
