@@ -9,6 +9,11 @@ pub fn greek_names() -> impl Iterator<Item = &'static str> {
 }
 
 /// Splits a symbol name into its base and subscript: `omega_x` → (`omega`, `x`).
+///
+/// The first `_` starts the subscript; each further `_` separates one
+/// index of it from the next, and the indices print separated by commas
+/// (a textbook's A_{c,rate}, I_{B,xx}): `A_c_rate` is `A_{c,rate}` in LaTeX
+/// and `A_{c,rate}` in Unicode, braced there because it holds a comma.
 pub(crate) fn split_name(name: &str) -> (&str, Option<&str>) {
     match name.split_once('_') {
         Some((b, s)) if !b.is_empty() && !s.is_empty() => (b, Some(s)),
@@ -107,10 +112,13 @@ pub fn unicode_symbol(name: &str, order: u32) -> String {
         n => b.push_str(&format!("⁽{}⁾", superscript(n))),
     }
     match sub {
-        Some(s) => {
+        // One index as it is (ω_x, I_xy); several, separated by commas,
+        // in braces: `A_c_rate` is A_{c,rate}, never `A_c,rate`.
+        Some(s) if s.contains('_') => {
             let s: Vec<String> = s.split('_').map(unicode_base).collect();
-            format!("{b}_{}", s.join(","))
+            format!("{b}_{{{}}}", s.join(","))
         }
+        Some(s) => format!("{b}_{}", unicode_base(s)),
         None => b,
     }
 }
