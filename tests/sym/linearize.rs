@@ -236,3 +236,174 @@ fn what_cannot_be_linearized_is_a_located_error() {
         assert_eq!(e.path, "geared.toml");
     }
 }
+
+/// A damped pendulum driven by a torque, in Lagrange's form (the speed is
+/// θ̇): E ẋ = A x + B r with M = m l² divided out (E = I).
+const PENDULUM: &str = r#"
+title = "a damped pendulum driven by a torque, linearized"
+source = "written for the test"
+[symbols]
+constants = ["m", "l", "g", "c", "M_a"]
+time = ["theta"]
+[[step]]
+name = "eqs"
+value = "list(m*l^2*theta'' + c*theta' + m*g*l*theta - M_a)"
+[[step]]
+name = "A_lin"
+label = "A"
+value = "state_matrix(eqs, [theta], [theta'], [M_a])"
+expect = [["0", "1"], ["-g/l", "-c/(m*l^2)"]]
+[[step]]
+name = "B_lin"
+label = "B"
+value = "input_matrix(eqs, [theta], [theta'], [M_a])"
+expect = [["0"], ["1/(m*l^2)"]]
+[[step]]
+name = "E_lin"
+label = "E"
+value = "state_mass(eqs, [theta], [theta'], [M_a])"
+expect = [["1", "0"], ["0", "1"]]
+"#;
+
+#[test]
+fn a_state_space_form_divides_out_a_mass_matrix_it_can_divide_by() {
+    let d = load_str("pendulum.toml", PENDULUM).unwrap_or_else(|e| panic!("{e}"));
+    assert!(d.all_hold(), "{:?}", d.failures());
+}
+
+/// Two coupled masses whose mass matrix's determinant a c − b² has no
+/// known sign: E holds M, and A and B are not divided by it.
+#[test]
+fn a_state_space_form_keeps_a_mass_matrix_it_cannot_divide_by_in_e() {
+    let text = r#"
+title = "coupled, descriptor form"
+source = "written for the test"
+[symbols]
+constants = ["a", "b", "c", "k", "F"]
+time = ["x", "y", "u", "w"]
+[kinematics]
+x = "u"
+y = "w"
+[[step]]
+name = "eqs"
+value = "list(a*u' + b*w' + k*x - F, b*u' + c*w' + k*(y - x))"
+[[step]]
+name = "A_lin"
+value = "state_matrix(eqs, [x, y], [u, w], [F])"
+expect = [["0", "0", "1", "0"], ["0", "0", "0", "1"], ["-k", "0", "0", "0"], ["k", "-k", "0", "0"]]
+[[step]]
+name = "B_lin"
+value = "input_matrix(eqs, [x, y], [u, w], [F])"
+expect = [["0"], ["0"], ["1"], ["0"]]
+[[step]]
+name = "E_lin"
+value = "state_mass(eqs, [x, y], [u, w], [F])"
+expect = [["1", "0", "0", "0"], ["0", "1", "0", "0"], ["0", "0", "a", "b"], ["0", "0", "b", "c"]]
+"#;
+    let d = load_str("coupled.toml", text).unwrap_or_else(|e| panic!("{e}"));
+    assert!(d.all_hold(), "{:?}", d.failures());
+}
+
+#[test]
+fn what_is_no_linear_state_space_system_is_a_located_error() {
+    for (from, to, says) in [
+        (
+            "c*theta' + m*g*l*theta",
+            "c*theta'^2 + m*g*l*theta",
+            "occurs to the power 2",
+        ),
+        (
+            "m*g*l*theta - M_a",
+            "m*g*l*sin(theta) - M_a",
+            "neither in the state nor an input",
+        ),
+        ("- M_a)", "- M_a + g)", "the equations must vanish"),
+        (
+            "state_matrix(eqs, [theta], [theta'], [M_a])",
+            "state_matrix(eqs, [theta], [m], [M_a])",
+            "is a constant",
+        ),
+        (
+            "state_mass(eqs, [theta], [theta'], [M_a])",
+            "state_mass(eqs, [theta, theta'], [theta'], [M_a])",
+            "2 coordinates for 1 equation",
+        ),
+    ] {
+        let file = PENDULUM.replace(from, to);
+        assert_ne!(file, PENDULUM, "{from}");
+        let e = load_str("pendulum.toml", &file).expect_err(to);
+        assert!(e.message.contains(says), "{to}: {}", e.message);
+        assert!(e.line > 0 && e.column > 0, "{to}: {e}");
+    }
+}
+
+/// The bundled bicycle's state matrix (E ẋ = A x, E = diag(I, M): its
+/// det M holds sin λ and cos λ) has at 5 m/s the eigenvalues of the
+/// benchmark's form M q̈ + v C₁ q̇ + (g K₀ + v² K₂) q = 0 built from the
+/// steps M, C_1, K_0 and K_2, with the benchmark's parameters.
+#[test]
+fn the_bicycle_s_state_matrix_has_the_eigenvalues_of_its_lean_and_steer_form() {
+    use hdot_sym::atom::AtomKind;
+    use nalgebra::DMatrix;
+    let d = hdot_sym::derivation::load(&repo_root().join("derivations/bicycle.toml"))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let text =
+        std::fs::read_to_string(repo_root().join("docs/examples/stability-bicycle.toml")).unwrap();
+    let table: toml::Table = toml::from_str(&text).unwrap();
+    let mut constants: std::collections::BTreeMap<String, f64> = table["constants"]
+        .as_table()
+        .expect("[constants]")
+        .iter()
+        .map(|(k, v)| (k.clone(), v.as_float().expect("a number")))
+        .collect();
+    let v = 5.0;
+    constants.insert("v".into(), v);
+    let of = |q: hdot_sym::atom::Atom| constants[q.name()];
+    let number = |p: &hdot_sym::Poly| -> f64 {
+        p.eval(&mut |a| match a.kind() {
+            AtomKind::Sin(q) => of(q).sin(),
+            AtomKind::Cos(q) => of(q).cos(),
+            _ => of(a),
+        })
+    };
+    let matrix = |name: &str| -> DMatrix<f64> {
+        let Value::Array(rows) = step(&d, name) else {
+            panic!("{name} is no array");
+        };
+        let (n, m) = (rows.len(), rows[0].len());
+        DMatrix::from_fn(n, m, |i, j| number(&d.unfold(&rows[i][j])))
+    };
+    let (a, e) = (matrix("A_lin"), matrix("E_lin"));
+    assert_eq!(a.shape(), (4, 4));
+    let state = e.lu().solve(&a).expect("E is regular");
+    // The benchmark's form, A = [[0, I], [−M⁻¹ K, −M⁻¹ C]].
+    let (m, c1, k0, k2) = (matrix("M"), matrix("C_1"), matrix("K_0"), matrix("K_2"));
+    let g = constants["g"];
+    let k = &k0 * g + &k2 * (v * v);
+    let c = &c1 * v;
+    let lu = m.lu();
+    let (mk, mc) = (lu.solve(&k).unwrap(), lu.solve(&c).unwrap());
+    let mut reference = DMatrix::zeros(4, 4);
+    for i in 0..2 {
+        reference[(i, 2 + i)] = 1.0;
+        for j in 0..2 {
+            reference[(2 + i, j)] = -mk[(i, j)];
+            reference[(2 + i, 2 + j)] = -mc[(i, j)];
+        }
+    }
+    let got = state.complex_eigenvalues();
+    let want = reference.complex_eigenvalues();
+    let scale = want.iter().fold(0.0f64, |s, z| s.max(z.norm()));
+    for z in want.iter() {
+        let nearest = got.iter().map(|e| (e - z).norm()).fold(f64::MAX, f64::min);
+        assert!(
+            nearest <= 1e-12 * scale,
+            "v = {v}: {z} not among {got:?} (nearest {nearest:e})"
+        );
+    }
+    // The weave pair: a complex pair with negative real part at 5 m/s.
+    assert!(
+        want.iter().any(|z| z.im.abs() > 1.0 && z.re < 0.0),
+        "{want:?}"
+    );
+}

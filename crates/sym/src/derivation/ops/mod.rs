@@ -25,6 +25,7 @@ mod partial;
 mod position;
 mod sign;
 mod solve;
+mod state_space;
 mod subst;
 mod trig;
 mod vector;
@@ -68,6 +69,9 @@ pub(crate) static OPS: &[&Op] = &[
     &express::EXPRESS,
     &subst::SUBST,
     &linearize::LINEARIZE,
+    &state_space::STATE_MATRIX,
+    &state_space::INPUT_MATRIX,
+    &state_space::STATE_MASS,
     &coeff::COEFF,
     &coeff::JACOBIAN,
     &partial::PARTIAL,
