@@ -41,15 +41,18 @@ use std::collections::HashMap;
 use hdot_sym::atom::{Atom, AtomKind};
 use hdot_sym::poly::Poly;
 
-/// One instruction; operands and destination are slot indices. Powers
-/// are products (by squaring) of the atom or of its reciprocal: no call
-/// to `powi` per evaluation.
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Op {
-    /// `slot[dst] = 1 / slot[src]`.
-    Recip { dst: u32, src: u32 },
-    /// `slot[dst] = slot[a] * slot[b]`.
-    Mul { dst: u32, a: u32, b: u32 },
+/// The instructions of a tape; operands and destinations are slot
+/// indices. Powers are products (by squaring) of the atom or of its
+/// reciprocal: no call to `powi` per evaluation. A reciprocal is only ever
+/// of an input (one division per distinct denominator), so every
+/// reciprocal is taken first and the products follow in one loop with no
+/// dispatch per instruction.
+#[derive(Clone, Debug, Default, PartialEq)]
+struct Ops {
+    /// `(dst, src)`: `slot[dst] = 1 / slot[src]`, `src` an input.
+    recips: Vec<(u32, u32)>,
+    /// `[dst, a, b]`: `slot[dst] = slot[a] * slot[b]`, in order.
+    muls: Vec<[u32; 3]>,
 }
 
 /// The slot of `a^e` (`e ≠ 0`), emitting the products (and reciprocal)
@@ -59,7 +62,7 @@ fn power_slot(
     e: i32,
     atom_slot: &HashMap<Atom, u32>,
     powers: &mut HashMap<(Atom, i32), u32>,
-    ops: &mut Vec<Op>,
+    ops: &mut Ops,
     next: &mut u32,
 ) -> u32 {
     if e == 1 {
@@ -69,10 +72,7 @@ fn power_slot(
         return s;
     }
     let s = if e == -1 {
-        ops.push(Op::Recip {
-            dst: *next,
-            src: atom_slot[&a],
-        });
+        ops.recips.push((*next, atom_slot[&a]));
         *next += 1;
         *next - 1
     } else if e % 2 == 0 {
@@ -106,8 +106,8 @@ fn known_value(a: Atom, known: &mut dyn FnMut(Atom) -> Option<f64>) -> Option<f6
     }
 }
 
-fn emit_mul(ops: &mut Vec<Op>, next: &mut u32, a: u32, b: u32) -> u32 {
-    ops.push(Op::Mul { dst: *next, a, b });
+fn emit_mul(ops: &mut Ops, next: &mut u32, a: u32, b: u32) -> u32 {
+    ops.muls.push([*next, a, b]);
     *next += 1;
     *next - 1
 }
@@ -134,6 +134,39 @@ struct Sum {
     end: u32,
 }
 
+/// The outputs of a tape by their number of terms, known when compiled:
+/// each class is summed by a loop of its own with no dispatch or slice
+/// per output (a mass matrix has many outputs of one or two terms). The
+/// sums of four terms or more keep their terms in [`Tape`]'s `terms`.
+#[derive(Clone, Debug, Default, PartialEq)]
+struct Outputs {
+    /// No terms: structurally zero.
+    zeros: Vec<u32>,
+    ones: Vec<(u32, Term)>,
+    twos: Vec<(u32, [Term; 2])>,
+    threes: Vec<(u32, [Term; 3])>,
+    longer: Vec<Sum>,
+}
+
+impl Outputs {
+    fn of(sums: &[Sum], terms: &[Term], zeros: Vec<u32>) -> Outputs {
+        let mut o = Outputs {
+            zeros,
+            ..Outputs::default()
+        };
+        for s in sums {
+            let t = &terms[s.start as usize..s.end as usize];
+            match *t {
+                [a] => o.ones.push((s.out, a)),
+                [a, b] => o.twos.push((s.out, [a, b])),
+                [a, b, c] => o.threes.push((s.out, [a, b, c])),
+                _ => o.longer.push(*s),
+            }
+        }
+        o
+    }
+}
+
 /// A monomial's factors left after folding the known atoms, and its
 /// coefficient.
 type FoldedTerm = (Vec<(Atom, i32)>, f64);
@@ -143,16 +176,16 @@ type FoldedTerm = (Vec<(Atom, i32)>, f64);
 /// Invariant: slots `0..atoms.len()` are the inputs in [`Tape::atoms`]
 /// order, slot `atoms.len()` holds 1 during an evaluation; every
 /// instruction writes a slot above every slot it reads; each output is
-/// either one of `sums` (its terms `terms[start..end]`, at least one), or
-/// listed in `zeros` (no terms: structurally zero), or in `aliases` as
-/// `(k, j)` (j < k): the same polynomial as output j, copied from it.
+/// either one of `outputs`' classes (a sum of four terms or more has its
+/// terms in `terms[start..end]`), or in its `zeros` (no terms:
+/// structurally zero), or in `aliases` as `(k, j)` (j < k): the same
+/// polynomial as output j, copied from it.
 #[derive(Clone, Debug)]
 pub struct Tape {
     atoms: Vec<Atom>,
-    ops: Vec<Op>,
+    ops: Ops,
     terms: Vec<Term>,
-    sums: Vec<Sum>,
-    zeros: Vec<u32>,
+    sums: Outputs,
     outputs: usize,
     aliases: Vec<(usize, usize)>,
     slots: usize,
@@ -277,7 +310,7 @@ impl Tape {
         }
         let one = atoms.len() as u32;
         let mut next = one + 1;
-        let mut ops = Vec::new();
+        let mut ops = Ops::default();
         let mut powers: HashMap<(Atom, i32), u32> = HashMap::new();
         let mut prefixes: HashMap<Vec<(Atom, i32)>, u32> = HashMap::new();
         // How many terms share each prefix: only a shared one is stored in
@@ -316,15 +349,7 @@ impl Tape {
                     let pw = power_slot(a, e, &atom_slot, &mut powers, &mut ops, &mut next);
                     let s = match acc {
                         None => pw,
-                        Some(prev) => {
-                            ops.push(Op::Mul {
-                                dst: next,
-                                a: prev,
-                                b: pw,
-                            });
-                            next += 1;
-                            next - 1
-                        }
+                        Some(prev) => emit_mul(&mut ops, &mut next, prev, pw),
                     };
                     prefixes.insert(key.to_vec(), s);
                     acc = Some(s);
@@ -355,9 +380,8 @@ impl Tape {
         Tape {
             atoms,
             ops,
+            sums: Outputs::of(&sums, &terms, zeros),
             terms,
-            sums,
-            zeros,
             outputs: polys.len(),
             aliases,
             slots: next as usize,
@@ -426,12 +450,12 @@ impl Tape {
 
     /// The number of instructions (powers and products).
     pub fn len(&self) -> usize {
-        self.ops.len()
+        self.ops.recips.len() + self.ops.muls.len()
     }
 
     /// True when the tape has no instructions.
     pub fn is_empty(&self) -> bool {
-        self.ops.is_empty()
+        self.len() == 0
     }
 }
 
@@ -601,11 +625,11 @@ impl Tape {
     fn run<const ABS: bool, S: Slots + ?Sized>(&self, s: &mut S, out: &mut [f64]) {
         assert_eq!(out.len(), self.outputs, "one output per polynomial");
         s.set(self.atoms.len() as u32, 1.0);
-        for op in &self.ops {
-            match *op {
-                Op::Recip { dst, src } => s.set(dst, 1.0 / s.get(src)),
-                Op::Mul { dst, a, b } => s.set(dst, s.get(a) * s.get(b)),
-            }
+        for &(dst, src) in &self.ops.recips {
+            s.set(dst, 1.0 / s.get(src));
+        }
+        for &[dst, a, b] in &self.ops.muls {
+            s.set(dst, s.get(a) * s.get(b));
         }
         self.sum_terms::<ABS, S>(s, out);
         for &(k, j) in &self.aliases {
@@ -624,28 +648,33 @@ impl Tape {
             let v = t.coef * s.get(a) * s.get(b) * s.get(c) * s.get(d);
             if ABS { v.abs() } else { v }
         };
-        for &k in &self.zeros {
+        // TwoSum: `sum + v` and its exact error added to `comp`.
+        let add = |(sum, comp): (f64, f64), v: f64| {
+            let x = sum + v;
+            let bv = x - sum;
+            (x, comp + ((sum - (x - bv)) + (v - bv)))
+        };
+        let o = &self.sums;
+        for &k in &o.zeros {
             out[k as usize] = 0.0;
         }
-        for sum in &self.sums {
-            let terms = &self.terms[sum.start as usize..sum.end as usize];
-            // `+ 0.0` as the compensated sum's last step adds it: −0 → +0.
-            out[sum.out as usize] = match terms {
-                [] => 0.0,
-                [t] => term(t) + 0.0,
-                [t, u] => term(t) + term(u) + 0.0,
-                [t, rest @ ..] => {
-                    let (mut sum, mut comp) = (term(t), 0.0f64);
-                    for u in rest {
-                        let v = term(u);
-                        let x = sum + v;
-                        let bv = x - sum;
-                        comp += (sum - (x - bv)) + (v - bv);
-                        sum = x;
-                    }
-                    sum + comp
-                }
-            };
+        // `+ 0.0` as the compensated sum's last step adds it: −0 → +0.
+        for (k, t) in &o.ones {
+            out[*k as usize] = term(t) + 0.0;
+        }
+        for (k, [t, u]) in &o.twos {
+            out[*k as usize] = term(t) + term(u) + 0.0;
+        }
+        for (k, [t, u, v]) in &o.threes {
+            let (sum, comp) = add(add((term(t), 0.0), term(u)), term(v));
+            out[*k as usize] = sum + comp;
+        }
+        for s in &o.longer {
+            let terms = &self.terms[s.start as usize..s.end as usize];
+            if let [t, rest @ ..] = terms {
+                let (sum, comp) = rest.iter().fold((term(t), 0.0), |acc, u| add(acc, term(u)));
+                out[s.out as usize] = sum + comp;
+            }
         }
     }
 }

@@ -42,13 +42,14 @@ mod holonomic;
 mod multiplier;
 mod positions;
 mod small_solve;
+mod symmetric_solve;
 mod unit_norm;
 
 pub use build::{in_speed_rates, step_coordinates};
 use compile::{Compiled, Source};
 pub use holonomic::{ConstraintMonitor, NewtonFailure};
 pub use multiplier::{MultiplierSpec, VelocityMonitor};
-use small_solve::solve_small;
+use symmetric_solve::MassSolve;
 
 /// Which steps of the derivation hold the equations of motion.
 #[derive(Debug, Clone, PartialEq)]
@@ -174,8 +175,9 @@ pub fn energy_reason(s: &hdot_sym::derivation::Step) -> Option<String> {
 enum Form {
     /// q̈ (second order), or q̇ then u̇ (first order).
     Explicit(Compiled),
-    /// M (row-major) and f, the outputs of one tape; then q̇ in a first-order model.
-    MassMatrix(Compiled),
+    /// M (row-major) and f, the outputs of one tape; then q̇ in a first-order
+    /// model; and how M q̈ = f is solved.
+    MassMatrix(Compiled, MassSolve),
     /// M, f, A_c and b of a multiplier form, then q̇.
     Multiplier(Compiled, multiplier::Layout),
 }
@@ -466,12 +468,12 @@ impl DerivedModel {
                 self.eval(c, t, y, qdd);
                 Some(())
             }
-            Form::MassMatrix(mf) => {
+            Form::MassMatrix(mf, solve) => {
                 // M and f on the stack (n ≤ MAX_DOF): no allocation.
                 let mut buf = [0.0; MAX_DOF * MAX_DOF + MAX_DOF];
                 let out = &mut buf[..n * n + n];
                 self.eval(mf, t, y, out);
-                solve_small(n, out, qdd)
+                solve.solve(out, qdd)
             }
             Form::Multiplier(..) => None,
         }
@@ -513,7 +515,7 @@ impl DerivedModel {
         if let Some(why) = self.multiplier_singularity(t, y) {
             return Some(why);
         }
-        if let Form::MassMatrix(mf) = &self.form {
+        if let Form::MassMatrix(mf, _) = &self.form {
             // M is over the speeds' rates in a first-order model.
             let n = if self.is_first_order() {
                 self.speeds.len()

@@ -9,6 +9,7 @@ use hdot_sym::vector::Mat3;
 use nalgebra::Vector3;
 
 use super::compile::{Resolver, Source};
+use super::symmetric_solve::MassSolve;
 use super::{
     Conserved, DIVISOR_BOUND, DerivedModel, DerivedSpec, Divisor, EquationsSpec, Form,
     FrameAttitude, FrameChain, MAX_DOF, MAX_STATE, SpeedRates, TimeFunction, at, carried,
@@ -160,7 +161,11 @@ impl DerivedModel {
             } => Form::Explicit(compiled),
             _ => match layout {
                 Some(l) => Form::Multiplier(compiled, l),
-                None => Form::MassMatrix(compiled),
+                None => {
+                    // M is over the speeds' rates in a first-order model.
+                    let m = if speeds.is_empty() { n } else { speeds.len() };
+                    Form::MassMatrix(compiled, MassSolve::plan(m, &replaced))
+                }
             },
         };
         let conserved = conserved(d, spec, &cx)?;

@@ -13,7 +13,6 @@ use hdot_sym::derivation::{Derivation, Value};
 use hdot_sym::poly::Poly;
 
 use super::build::{mass_matrix_and_forcing, step, step_unknowns};
-use super::small_solve::solve_small;
 use super::{DerivedModel, Form, MAX_DOF, MAX_STATE, SpeedRates, at, err, multiplier};
 use crate::SimError;
 
@@ -273,13 +272,13 @@ impl DerivedModel {
                 self.eval(c, t, y, &mut dy[..nq + nu]);
                 Some(())
             }
-            Form::MassMatrix(c) => {
+            Form::MassMatrix(c, solve) => {
                 // M, f and q̇ on the stack: no allocation.
                 let mut buf = [0.0; MAX_DOF * MAX_DOF + 3 * MAX_DOF];
                 let out = &mut buf[..nu * nu + nu + nq];
                 self.eval(c, t, y, out);
                 dy[..nq].copy_from_slice(&out[nu * nu + nu..]);
-                solve_small(nu, &out[..nu * nu + nu], &mut dy[nq..nq + nu])
+                solve.solve(&out[..nu * nu + nu], &mut dy[nq..nq + nu])
             }
             Form::Multiplier(c, l) => self.multiplier_rates(c, l, t, y, dy),
         }
