@@ -19,9 +19,10 @@
 //! or compared across processes may depend on them: printers sort by
 //! [`Atom::sort_key`], which depends only on names.
 
-use std::collections::HashMap;
 use std::fmt;
 use std::sync::{OnceLock, RwLock};
+
+use rustc_hash::FxHashMap;
 
 /// What an atom is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -56,12 +57,15 @@ pub enum AtomKind {
 pub struct Atom(u32);
 
 #[derive(Default)]
+/// Its maps are looked up, never iterated, so their hash (Fx, not the
+/// std's SipHash, which was 5 % of a small run's instructions) changes no
+/// order.
 struct Interner {
     kinds: Vec<AtomKind>,
-    ids: HashMap<AtomKind, Atom>,
-    names: HashMap<String, &'static str>,
+    ids: FxHashMap<AtomKind, Atom>,
+    names: FxHashMap<String, &'static str>,
     /// Sum atoms by their text, so that a sum is leaked once.
-    sums: HashMap<&'static str, Atom>,
+    sums: FxHashMap<&'static str, Atom>,
 }
 
 fn interner() -> &'static RwLock<Interner> {
