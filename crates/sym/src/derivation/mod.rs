@@ -291,6 +291,16 @@ impl Derivation {
 }
 
 pub(crate) fn unfold(abbrevs: &[Abbreviation], p: &Poly) -> Poly {
+    // Most values name no abbreviation (nor a sum of constants, whose
+    // terms `subst` visits): nothing to replace, so no pass per
+    // abbreviation.
+    let named = |x: Atom| {
+        matches!(x.kind(), crate::atom::AtomKind::Sum { .. })
+            || abbrevs.iter().any(|a| x.base() == a.atom)
+    };
+    if abbrevs.is_empty() || !p.atoms().into_iter().any(named) {
+        return p.clone();
+    }
     let mut p = p.clone();
     // Later abbreviations may use earlier ones: unfold in reverse order.
     for a in abbrevs.iter().rev() {
