@@ -85,6 +85,16 @@ fn explicit_math(s: &str) -> Option<(&str, &str, &str)> {
     Some((&s[..open], &s[open + 1..close], &s[close + 1..]))
 }
 
+/// Appends text made of `parts` as [`push`] would a `Piece::Text` of
+/// their concatenation, but into the last text piece in place: one
+/// string for a run of words, not one per word.
+fn push_text(out: &mut Vec<Piece>, parts: &[&str]) {
+    match out.last_mut() {
+        Some(Piece::Text(a)) => parts.iter().for_each(|p| a.push_str(p)),
+        _ => out.push(Piece::Text(parts.concat())),
+    }
+}
+
 fn push(out: &mut Vec<Piece>, p: Piece) {
     match (out.last_mut(), p) {
         (Some(Piece::Text(a)), Piece::Text(b)) => a.push_str(&b),
@@ -275,7 +285,7 @@ fn words(s: &str, out: &mut Vec<Piece>) {
     // Leading whitespace.
     let ws = rest.len() - rest.trim_start().len();
     if ws > 0 {
-        push(out, Piece::Text(rest[..ws].to_owned()));
+        push_text(out, &[&rest[..ws]]);
         rest = &rest[ws..];
     }
     while !rest.is_empty() {
@@ -307,10 +317,7 @@ fn words(s: &str, out: &mut Vec<Piece>) {
             None => {
                 // Not a formula: the first token as text.
                 let t = &toks[k];
-                push(
-                    out,
-                    Piece::Text(format!("{}{}{}{}", t.lead, t.core, t.trail, t.space)),
-                );
+                push_text(out, &[t.lead, t.core, t.trail, t.space]);
                 k += 1;
             }
         }
@@ -457,19 +464,13 @@ fn formula(toks: &[Tok], k: usize, end: usize, out: &mut Vec<Piece>) -> Option<u
         return None;
     }
     for t in &toks[k..a] {
-        push(
-            out,
-            Piece::Text(format!("{}{}{}{}", t.lead, t.core, t.trail, t.space)),
-        );
+        push_text(out, &[t.lead, t.core, t.trail, t.space]);
     }
-    push(out, Piece::Text(lead_text.to_owned()));
+    push_text(out, &[lead_text]);
     push(out, Piece::Math(m));
-    push(out, Piece::Text(format!("{trail}{}", last.space)));
+    push_text(out, &[trail, last.space]);
     for t in &toks[b..end] {
-        push(
-            out,
-            Piece::Text(format!("{}{}{}{}", t.lead, t.core, t.trail, t.space)),
-        );
+        push_text(out, &[t.lead, t.core, t.trail, t.space]);
     }
     Some(end)
 }
