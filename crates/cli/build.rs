@@ -11,7 +11,12 @@ fn main() {
     // ~150 relocations at start instead of ~11,000 (and copies no page of
     // pointers to write them), a tenth of a small run's time
     // (docs/performance.md, Engine). The crates' code is unchanged.
-    println!("cargo:rustc-link-arg-bins=-no-pie");
+    // Only where the linker is GNU's (a Linux target's `cc`): elsewhere the
+    // flag is unknown, and the binary is linked as the platform does.
+    let var = |k: &str| std::env::var(k).unwrap_or_default();
+    if var("CARGO_CFG_TARGET_OS") == "linux" && var("CARGO_CFG_TARGET_ENV") == "gnu" {
+        println!("cargo:rustc-link-arg-bins=-no-pie");
+    }
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
     let mut out = String::new();
     for (konst, dir) in [("DERIVATIONS", "derivations"), ("SCENES", "docs/examples")] {
