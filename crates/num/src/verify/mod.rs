@@ -38,6 +38,7 @@ mod linear;
 pub mod means;
 pub mod motion;
 mod partials;
+mod placed;
 pub mod quantities;
 mod quaternion;
 mod reactions;
