@@ -36,6 +36,8 @@ mod verify_meanings;
 mod constrained;
 // Kane's generalized active and inertia forces on the particles.
 mod verify_kane;
+// Rolling constraints met by the draw, Kane's forces of the disk and the bicycles.
+mod verify_rolling;
 // verify/quaternion.rs: frames turned by Euler parameters, drawn on the unit sphere.
 mod verify_quaternion;
 // verify/speeds.rs: draws kept away from the kinematic equations' singular angles.

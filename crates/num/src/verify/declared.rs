@@ -24,7 +24,7 @@ use rand_chacha::ChaCha8Rng;
 use super::draw::{Draw, apply, constrain, draw, for_step};
 use super::knowns::bind_knowns;
 use super::means::{against_of, frame_index, meaning_value};
-use super::speeds::draw_consistent;
+use super::speeds::Consistent;
 use super::world::World;
 use super::{Comparison, StepCheck, VerifyError, claims, declaration};
 use crate::bind::Values;
@@ -249,7 +249,7 @@ fn compare_step(
         for a in unknowns {
             zero.set(*a, 0.0, 0.0);
         }
-        draw_consistent(d, &mut zero)?;
+        draw.consistent().fill(d, &mut zero)?;
         constrain(d, &mut zero, &c.meaning.given)?;
         let (x0, mut scale) = at(&zero)?;
         let direct: Vec<f64> = if matches!(c.meaning.meaning, Meaning::Forcing(..)) {
@@ -259,7 +259,7 @@ fn compare_step(
             for a in unknowns {
                 let mut unit = zero.clone();
                 unit.set(*a, 1.0, 1.0);
-                draw_consistent(d, &mut unit)?;
+                draw.consistent().fill(d, &mut unit)?;
                 constrain(d, &mut unit, &c.meaning.given)?;
                 let (xj, sj) = at(&unit)?;
                 scale = scale.max(sj);
@@ -502,10 +502,11 @@ fn run(
         );
     }
     let mut rng = ChaCha8Rng::seed_from_u64(options.seed);
+    let consistent = std::rc::Rc::new(Consistent::of(d));
     let mut draws = 0;
     if !compiled.is_empty() || vanishing > 0 || !conserved.is_empty() {
         for _ in 0..options.draws.max(1) {
-            let (dr, mut values) = draw(d, &mut rng, given)?;
+            let (dr, mut values) = draw(d, &mut rng, given, &consistent)?;
             apply(d, &mut values, &d.physics.motion)?;
             let steps = compiled
                 .iter()

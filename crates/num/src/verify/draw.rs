@@ -7,6 +7,7 @@
 //! selecting a class of bodies) call for.
 
 use std::collections::HashMap;
+use std::rc::Rc;
 
 use hdot_sym::atom::{Atom, AtomKind};
 use hdot_sym::derivation::Derivation;
@@ -21,6 +22,7 @@ use rand_chacha::ChaCha8Rng;
 
 use super::bodies::{axisymmetric, map_particles, mirrored, random_body, random_rotation};
 use super::jet::{ORDERS, PointJet};
+use super::speeds::Consistent;
 use super::world::CloudMoments;
 use super::{VerifyError, declaration};
 use crate::bind::{MeasuredBody, Values, bind_all, declared_equations, nth};
@@ -45,6 +47,9 @@ pub struct Draw {
     centres: Vec<Vector3<f64>>,
     attitudes: HashMap<usize, Matrix3<f64>>,
     points: HashMap<String, PointJet>,
+    /// The speeds and constraints the motion is drawn consistent with
+    /// (read once per check).
+    consistent: Rc<Consistent>,
 }
 
 impl Draw {
@@ -61,6 +66,11 @@ impl Draw {
     /// G of body `i` from its reference point, body axes.
     pub fn centre(&self, i: usize) -> Vector3<f64> {
         self.centres[i]
+    }
+
+    /// The speeds and constraints of the check ([`Consistent`]).
+    pub(crate) fn consistent(&self) -> &Consistent {
+        &self.consistent
     }
 
     pub(crate) fn attitude(&self, frame: usize) -> Matrix3<f64> {
@@ -116,6 +126,7 @@ pub(crate) fn draw(
     d: &Derivation,
     rng: &mut ChaCha8Rng,
     given: Option<&[ParticleCloud]>,
+    consistent: &Rc<Consistent>,
 ) -> Result<(Draw, Values), VerifyError> {
     let ph = &d.physics;
     let mut values = Values::default();
@@ -203,11 +214,15 @@ pub(crate) fn draw(
             values.set(q, v, v);
         }
     }
-    super::speeds::away_from_singularities(d, &mut values, &declared);
+    consistent.away_from_singularities(&mut values, &declared);
+    // The dependent coordinates from the configuration constraints.
+    if let Some(s) = &consistent.speeds {
+        super::configuration::meet(d, &s.configuration, &mut values, &declared, rng)?;
+    }
     bind_all(d, &mut values, eqs)?;
     // The coordinates' rates from the speeds, the dependent speeds from
     // the constraints.
-    super::speeds::draw_consistent(d, &mut values)?;
+    consistent.fill(d, &mut values)?;
     let mut bodies = Vec::new();
     let mut moments = Vec::new();
     let mut centres = Vec::new();
@@ -254,6 +269,7 @@ pub(crate) fn draw(
             centres,
             attitudes,
             points,
+            consistent: consistent.clone(),
         },
         values,
     ))

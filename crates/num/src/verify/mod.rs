@@ -30,6 +30,7 @@
 
 mod bodies;
 mod claims;
+mod configuration;
 mod declared;
 mod draw;
 pub mod jet;

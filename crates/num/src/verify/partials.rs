@@ -7,31 +7,51 @@
 //! velocity for that speed is the difference of the two (exact up to
 //! rounding). These are the constrained partial velocities: the dependent
 //! speeds move with the independent one as the constraints require.
+//! The models are made once per state and speed ([`KaneWorlds`]).
+
+use std::rc::Rc;
 
 use hdot_sym::atom::Atom;
 use hdot_sym::derivation::physics::Bodies;
 use nalgebra::Vector3;
 
-use super::speeds::Speeds;
 use super::world::{Particle, World, vee};
 use super::{VerifyError, declaration};
+use crate::bind::Values;
 
 /// The model at the drawn speeds (`base`) and with one speed raised by
 /// one (`raised`), velocities consistent with the constraints in both.
 pub(crate) struct Partials<'d> {
-    base: World<'d>,
-    raised: World<'d>,
+    base: Rc<World<'d>>,
+    raised: Rc<World<'d>>,
 }
 
-/// The two models of [`Partials`] for speed `u` at the state of `w`.
+/// The models [`Partials`] are read from at one state, made once: every
+/// generalized active and inertia force of a step (two per speed, and a
+/// mass matrix measures them again at each unit rate) shares the model at
+/// the drawn speeds and each speed's raised model.
+#[derive(Default)]
+pub(crate) struct KaneWorlds<'d> {
+    /// The values with the dependent speeds and the coordinates' rates
+    /// filled in, and the model at them.
+    base: Option<(Values, Rc<World<'d>>)>,
+    /// Each speed's raised model, by speed.
+    raised: Vec<(Atom, Rc<World<'d>>)>,
+}
+
+/// The two models of [`Partials`] for speed `u` at the state of `w`, made
+/// once per state ([`KaneWorlds`]).
 ///
 /// # Errors
 /// A file without kinematic equations, a dependent speed named (its
 /// partial velocities are not those of Kane's equations), or constraints
 /// whose dependent speeds cannot be solved at the state.
 pub(crate) fn partials<'d>(w: &World<'d>, u: Atom) -> Result<Partials<'d>, VerifyError> {
+    if let Some(p) = cached(w, u) {
+        return Ok(p);
+    }
     let d = w.d;
-    let Some(speeds) = Speeds::of(d) else {
+    let Some(speeds) = &w.draw.consistent().speeds else {
         return Err(declaration(
             d,
             "a generalized active or inertia force needs the kinematic equations ([kinematics])"
@@ -53,15 +73,34 @@ pub(crate) fn partials<'d>(w: &World<'d>, u: Atom) -> Result<Partials<'d>, Verif
             "a symbol of the kinematic equations or of the constraints has no value".into(),
         )
     };
-    let mut base = w.values.clone();
-    speeds.fill(d, &mut base, 1)?.ok_or_else(unbound)?;
+    let known = w.kane.borrow().base.clone();
+    let (base, base_world) = match known {
+        Some(b) => b,
+        None => {
+            let mut base = w.values.clone();
+            speeds.fill(d, &mut base, 1)?.ok_or_else(unbound)?;
+            let world = Rc::new(World::build(d, w.draw, &base, &[])?);
+            w.kane.borrow_mut().base = Some((base.clone(), world.clone()));
+            (base, world)
+        }
+    };
     let (x, _) = base.get(u).ok_or_else(unbound)?;
     let mut raised = base.with(u, x + 1.0);
     speeds.fill(d, &mut raised, 1)?.ok_or_else(unbound)?;
+    let raised = Rc::new(World::build(d, w.draw, &raised, &[])?);
+    w.kane.borrow_mut().raised.push((u, raised.clone()));
     Ok(Partials {
-        base: World::build(d, w.draw, &base, &[])?,
-        raised: World::build(d, w.draw, &raised, &[])?,
+        base: base_world,
+        raised,
     })
+}
+
+/// The models for `u` made before at the state of `w`.
+fn cached<'d>(w: &World<'d>, u: Atom) -> Option<Partials<'d>> {
+    let k = w.kane.borrow();
+    let base = k.base.as_ref()?.1.clone();
+    let raised = k.raised.iter().find(|(v, _)| *v == u)?.1.clone();
+    Some(Partials { base, raised })
 }
 
 impl Partials<'_> {

@@ -1,9 +1,12 @@
 //! Generalized speeds drawn consistent with the derivation: the dependent
 //! speeds solved numerically from a `kane` step's constraint rows at the
-//! drawn state (Euler parameters first scaled to unit norm), and each
+//! drawn state (Euler parameters first scaled to unit norm; a
+//! configuration constraint f(q) = 0 enters as its rate, and is met by
+//! the drawn coordinates, [`super::configuration`]), and each
 //! coordinate's rates from the kinematic equations
 //! q̇ = f(q, u), order by order (the rows' rates bring in the speeds'
-//! rates, the equations' rates the coordinates' higher rates).
+//! rates, the equations' rates the coordinates' higher rates). What
+//! these are read from is read once per check ([`Consistent`]).
 
 use hdot_sym::atom::{Atom, AtomKind};
 use hdot_sym::derivation::Derivation;
@@ -16,14 +19,37 @@ use crate::bind::{Values, nth};
 use crate::verify::jet::ORDERS;
 
 /// The kinematic equations and the constraints of a derivation in the
-/// speeds: rows linear in the speeds that vanish along the motion.
+/// speeds, read once per check: rows linear in the speeds that vanish
+/// along the motion, and the configuration constraints with the
+/// coordinates they are solved for.
 #[derive(Clone, Debug)]
 pub(crate) struct Speeds {
-    kinematics: Vec<(Atom, Poly)>,
-    /// The constraint rows, coordinates' rates replaced by the kinematic
-    /// equations.
-    rows: Vec<Poly>,
+    /// The coordinates the kinematic equations give the rates of.
+    coordinates: Vec<Atom>,
+    /// `rates[n][k]`: the `n`th rate of coordinate k's kinematic equation.
+    rates: Vec<Vec<Poly>>,
+    /// `rows[n]`: the `n`th rates of the constraint rows, coordinates'
+    /// rates replaced by the kinematic equations (a configuration
+    /// constraint's row is its rate).
+    rows: Vec<Vec<Poly>>,
     pub(crate) dependent: Vec<Atom>,
+    /// The configuration constraints f(q) = 0, solved for the dependent
+    /// coordinates at a draw ([`super::configuration`]).
+    pub(crate) configuration: Configuration,
+}
+
+/// The configuration constraints of a `kane` step and the dependent
+/// coordinates listed for them.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Configuration {
+    /// The `kane` step's name.
+    pub(crate) step: String,
+    /// The constraints, abbreviations unfolded.
+    pub(crate) rows: Vec<Poly>,
+    /// The coordinates solved for.
+    pub(crate) dependent: Vec<Atom>,
+    /// `∂f_i/∂q_k` for the dependent coordinates q_k.
+    pub(crate) jacobian: Vec<Vec<Poly>>,
 }
 
 /// The names of a bracketed list of symbols (`[u_1, u_2]`).
@@ -40,23 +66,68 @@ fn names(a: &hdot_sym::parse::Ast) -> Option<Vec<Atom>> {
     }
 }
 
-/// The first step `kane([u…], constraints, [u_dep…])` whose constraints
-/// are an earlier step: that step's rows and the dependent speeds.
-fn kane_step(d: &Derivation) -> Option<(Vec<Poly>, Vec<Atom>)> {
+/// The constraint rows a `kane` step names: an earlier step (`edge`), or
+/// a `list(…)` of earlier steps and their components (`rear.x`,
+/// `front.2`, `ground`).
+fn constraint_rows(d: &Derivation, a: &hdot_sym::parse::Ast) -> Option<Vec<Poly>> {
+    let step = |name: &str| d.steps.iter().find(|t| t.name == name);
+    let whole = |name: &str| -> Option<Vec<Poly>> {
+        Some(
+            step(name)?
+                .value
+                .components()
+                .into_iter()
+                .cloned()
+                .collect(),
+        )
+    };
+    match &a.kind {
+        AstKind::Name { name, primes: 0 } => whole(name),
+        AstKind::Call { func, args } if func == "list" => {
+            let mut rows = Vec::new();
+            for item in args {
+                match &item.kind {
+                    AstKind::Name { name, primes: 0 } => rows.extend(whole(name)?),
+                    AstKind::Member(of, field, _) => {
+                        let AstKind::Name { name, primes: 0 } = &of.kind else {
+                            return None;
+                        };
+                        let all = whole(name)?;
+                        let k = match field.as_str() {
+                            "x" => 0,
+                            "y" => 1,
+                            "z" => 2,
+                            n => n.parse::<usize>().ok()?.checked_sub(1)?,
+                        };
+                        rows.push(all.get(k)?.clone());
+                    }
+                    _ => return None,
+                }
+            }
+            Some(rows)
+        }
+        _ => None,
+    }
+}
+
+/// The first step `kane([u…], constraints, [u_dep…] (, [q_dep…]) …)`
+/// whose constraints are earlier steps: its name, the rows, the
+/// dependent speeds and the dependent coordinates.
+fn kane_step(d: &Derivation) -> Option<(String, Vec<Poly>, Vec<Atom>, Vec<Atom>)> {
     d.steps.iter().find_map(|s| {
         let ast = parse(&s.formula).ok()?;
         let AstKind::Call { func, args } = &ast.kind else {
             return None;
         };
-        if func != "kane" || args.len() != 3 {
+        if func != "kane" || args.len() < 3 {
             return None;
         }
-        let AstKind::Name { name, primes: 0 } = &args[1].kind else {
-            return None;
+        let rows = constraint_rows(d, &args[1])?;
+        let coordinates = match args.get(3).map(|a| &a.kind) {
+            Some(AstKind::Vector { .. }) => names(&args[3])?,
+            _ => Vec::new(),
         };
-        let rows = d.steps.iter().find(|t| &t.name == name)?;
-        let rows = rows.value.components().into_iter().cloned().collect();
-        Some((rows, names(&args[2])?))
+        Some((s.name.clone(), rows, names(&args[2])?, coordinates))
     })
 }
 
@@ -67,22 +138,69 @@ impl Speeds {
         if kinematics.is_empty() {
             return None;
         }
-        let (rows, dependent) = kane_step(d).unwrap_or_default();
-        let rows = rows
+        let (step, rows, dependent, coordinates) = kane_step(d).unwrap_or_default();
+        let in_speeds = |r: &Poly| {
+            r.subst(&mut |a| {
+                (a.order() == 1)
+                    .then(|| kinematics.iter().find(|(q, _)| nth(*q, 1) == a))
+                    .flatten()
+                    .map(|(_, f)| f.clone())
+            })
+        };
+        let speeds = d.speeds();
+        let mut configuration = Configuration {
+            step,
+            rows: Vec::new(),
+            dependent: coordinates,
+            jacobian: Vec::new(),
+        };
+        let rows: Vec<Poly> = rows
             .iter()
             .map(|r| {
-                r.subst(&mut |a| {
-                    (a.order() == 1)
-                        .then(|| kinematics.iter().find(|(q, _)| nth(*q, 1) == a))
-                        .flatten()
-                        .map(|(_, f)| f.clone())
-                })
+                let unfolded = d.unfold(r);
+                let moves = unfolded
+                    .atoms()
+                    .iter()
+                    .any(|a| a.order() > 0 || speeds.contains(a));
+                if moves {
+                    in_speeds(r)
+                } else {
+                    let r = unfolded;
+                    // f(q) = 0: its rate is the row, linear in the speeds.
+                    let rate = in_speeds(&r.dt());
+                    configuration.rows.push(r);
+                    rate
+                }
             })
             .collect();
+        configuration.jacobian = configuration
+            .rows
+            .iter()
+            .map(|r| {
+                configuration
+                    .dependent
+                    .iter()
+                    .map(|&q| r.partial(q))
+                    .collect()
+            })
+            .collect();
+        let mut all_rows = vec![rows];
+        let mut rates = vec![
+            kinematics
+                .iter()
+                .map(|(_, f)| f.clone())
+                .collect::<Vec<_>>(),
+        ];
+        for n in 1..ORDERS {
+            all_rows.push(all_rows[n - 1].iter().map(Poly::dt).collect());
+            rates.push(rates[n - 1].iter().map(Poly::dt).collect());
+        }
         Some(Speeds {
-            kinematics,
-            rows,
+            coordinates: kinematics.iter().map(|(q, _)| *q).collect(),
+            rates,
+            rows: all_rows,
             dependent,
+            configuration,
         })
     }
 
@@ -97,21 +215,17 @@ impl Speeds {
         values: &mut Values,
         orders: usize,
     ) -> Result<Option<()>, VerifyError> {
-        let mut rows = self.rows.clone();
-        let mut rates: Vec<Poly> = self.kinematics.iter().map(|(_, f)| f.clone()).collect();
-        for n in 0..orders as u32 {
-            if !self.dependent.is_empty() && self.solve(d, values, &rows, n)?.is_none() {
+        for n in 0..orders.min(ORDERS) {
+            if !self.dependent.is_empty()
+                && self.solve(d, values, &self.rows[n], n as u32)?.is_none()
+            {
                 return Ok(None);
             }
-            for ((q, _), f) in self.kinematics.iter().zip(&rates) {
+            for (q, f) in self.coordinates.iter().zip(&self.rates[n]) {
                 let Ok((v, s)) = values.eval(f) else {
                     return Ok(None);
                 };
-                values.set(nth(*q, n + 1), v, s);
-            }
-            if n + 1 < orders as u32 {
-                rows = rows.iter().map(Poly::dt).collect();
-                rates = rates.iter().map(Poly::dt).collect();
+                values.set(nth(*q, n as u32 + 1), v, s);
             }
         }
         Ok(Some(()))
@@ -175,69 +289,95 @@ impl Speeds {
     }
 }
 
-/// Moves each drawn angle that the kinematic equations divide the sine
-/// or cosine of (the 1/sin θ of 3-1-3 Euler angles) to where that sine or
-/// cosine is at least ½ in magnitude, keeping the signs of both. Near
-/// the coordinate singularity the coordinates' rates and their own rates
-/// grow like 1/sinⁿ θ, and the particle sums cancel terms that large to
-/// the moment's size, so their round-off is amplified past any tolerance
-/// scaled to the result; the equations hold at every other attitude, so
-/// the draw loses nothing. The angles in `fixed` (values a declaration
-/// gives) are left.
-pub(crate) fn away_from_singularities(d: &Derivation, values: &mut Values, fixed: &[Atom]) {
-    let (mut by_sin, mut by_cos): (Vec<Atom>, Vec<Atom>) = (Vec::new(), Vec::new());
-    for (_, f) in d.kinematic_equations() {
-        for (m, _) in d.unfold(f).terms() {
-            for &(a, e) in m.factors() {
-                match a.kind() {
-                    AtomKind::Sin(q) if e < 0 && !by_sin.contains(&q) => by_sin.push(q),
-                    AtomKind::Cos(q) if e < 0 && !by_cos.contains(&q) => by_cos.push(q),
-                    _ => {}
+/// What a check draws consistent motions with, read from the
+/// derivation once per check (never per draw or per state): the speeds
+/// and constraints ([`Speeds`]) and the angles whose sine or cosine the
+/// kinematic equations divide by.
+#[derive(Debug, Default)]
+pub(crate) struct Consistent {
+    /// The speeds, `None` without `[kinematics]`.
+    pub(crate) speeds: Option<Speeds>,
+    /// Angles whose sine a kinematic equation divides by.
+    by_sin: Vec<Atom>,
+    /// … and whose cosine.
+    by_cos: Vec<Atom>,
+}
+
+impl Consistent {
+    /// Reads `d`'s kinematic equations and constraints.
+    pub(crate) fn of(d: &Derivation) -> Consistent {
+        let (mut by_sin, mut by_cos): (Vec<Atom>, Vec<Atom>) = (Vec::new(), Vec::new());
+        for (_, f) in d.kinematic_equations() {
+            for (m, _) in d.unfold(f).terms() {
+                for &(a, e) in m.factors() {
+                    match a.kind() {
+                        AtomKind::Sin(q) if e < 0 && !by_sin.contains(&q) => by_sin.push(q),
+                        AtomKind::Cos(q) if e < 0 && !by_cos.contains(&q) => by_cos.push(q),
+                        _ => {}
+                    }
                 }
             }
         }
-    }
-    let angles = by_sin.iter().chain(&by_cos).copied().collect::<Vec<_>>();
-    for (k, &q) in angles.iter().enumerate() {
-        if angles[..k].contains(&q) || fixed.contains(&q) {
-            continue;
+        Consistent {
+            speeds: Speeds::of(d),
+            by_sin,
+            by_cos,
         }
-        let Some((v, _)) = values.get(q) else {
-            continue;
-        };
-        let (s, c) = v.sin_cos();
-        let (sin, cos) = (by_sin.contains(&q), by_cos.contains(&q));
-        let sign = |x: f64| if x < 0.0 { -1.0 } else { 1.0 };
-        let (s2, c2) = if sin && cos && (s.abs() < 0.5 || c.abs() < 0.5) {
-            // Both divide: |sin| in [½, √3/2], so |cos| is too.
-            let m = 0.5 + (0.75_f64.sqrt() - 0.5) * s.abs();
-            (sign(s) * m, sign(c) * (1.0 - m * m).sqrt())
-        } else if sin && !cos && s.abs() < 0.5 {
-            let m = 0.5 + s.abs() / 2.0;
-            (sign(s) * m, sign(c) * (1.0 - m * m).sqrt())
-        } else if cos && !sin && c.abs() < 0.5 {
-            let m = 0.5 + c.abs() / 2.0;
-            (sign(s) * (1.0 - m * m).sqrt(), sign(c) * m)
-        } else {
-            continue;
-        };
-        let moved = s2.atan2(c2);
-        values.set(q, moved, moved);
     }
-}
 
-/// Draws the coordinates' rates from the speeds, the dependent speeds
-/// from the constraints (see the module comment); nothing without
-/// `[kinematics]`.
-pub(crate) fn draw_consistent(d: &Derivation, values: &mut Values) -> Result<(), VerifyError> {
-    super::quaternion::on_unit_sphere(d, values);
-    if let Some(s) = Speeds::of(d) {
-        let mut v = values.clone();
-        if s.fill(d, &mut v, ORDERS)?.is_some() {
-            *values = v;
+    /// Moves each drawn angle that the kinematic equations divide the
+    /// sine or cosine of (the 1/sin θ of 3-1-3 Euler angles) to where
+    /// that sine or cosine is at least ½ in magnitude, keeping the signs
+    /// of both. Near the coordinate singularity the coordinates' rates
+    /// and their own rates grow like 1/sinⁿ θ, and the particle sums
+    /// cancel terms that large to the moment's size, so their round-off
+    /// is amplified past any tolerance scaled to the result; the
+    /// equations hold at every other attitude, so the draw loses nothing.
+    /// The angles in `fixed` (values a declaration gives) are left.
+    pub(crate) fn away_from_singularities(&self, values: &mut Values, fixed: &[Atom]) {
+        let (by_sin, by_cos) = (&self.by_sin, &self.by_cos);
+        let angles = by_sin.iter().chain(by_cos).copied().collect::<Vec<_>>();
+        for (k, &q) in angles.iter().enumerate() {
+            if angles[..k].contains(&q) || fixed.contains(&q) {
+                continue;
+            }
+            let Some((v, _)) = values.get(q) else {
+                continue;
+            };
+            let (s, c) = v.sin_cos();
+            let (sin, cos) = (by_sin.contains(&q), by_cos.contains(&q));
+            let sign = |x: f64| if x < 0.0 { -1.0 } else { 1.0 };
+            let (s2, c2) = if sin && cos && (s.abs() < 0.5 || c.abs() < 0.5) {
+                // Both divide: |sin| in [½, √3/2], so |cos| is too.
+                let m = 0.5 + (0.75_f64.sqrt() - 0.5) * s.abs();
+                (sign(s) * m, sign(c) * (1.0 - m * m).sqrt())
+            } else if sin && !cos && s.abs() < 0.5 {
+                let m = 0.5 + s.abs() / 2.0;
+                (sign(s) * m, sign(c) * (1.0 - m * m).sqrt())
+            } else if cos && !sin && c.abs() < 0.5 {
+                let m = 0.5 + c.abs() / 2.0;
+                (sign(s) * (1.0 - m * m).sqrt(), sign(c) * m)
+            } else {
+                continue;
+            };
+            let moved = s2.atan2(c2);
+            values.set(q, moved, moved);
         }
     }
-    Ok(())
+
+    /// Draws the coordinates' rates from the speeds, the dependent speeds
+    /// from the constraints (see the module comment); nothing without
+    /// `[kinematics]`.
+    pub(crate) fn fill(&self, d: &Derivation, values: &mut Values) -> Result<(), VerifyError> {
+        super::quaternion::on_unit_sphere(d, values);
+        if let Some(s) = &self.speeds {
+            let mut v = values.clone();
+            if s.fill(d, &mut v, ORDERS)?.is_some() {
+                *values = v;
+            }
+        }
+        Ok(())
+    }
 }
 
 #[cfg(test)]

@@ -21,6 +21,7 @@ use super::jet::{BINOMIAL, fro, generator, hinge_jet};
 pub use super::jet::{
     MatJet, ORDERS, PointJet, VecJet, mat_mat, mat_t_vec, mat_vec, rotation_jet, vee,
 };
+use super::partials::KaneWorlds;
 pub(crate) use super::placed::CloudMoments;
 pub use super::placed::{Particle, Particles, Placed};
 use crate::bind::Values;
@@ -97,6 +98,9 @@ pub struct World<'d> {
     /// The measurements at other values made so far, shared with the
     /// worlds [`World::at`] builds from this one.
     memo: Rc<Memo>,
+    /// The models Kane's partial velocities at this state are read from,
+    /// made as they are first needed.
+    pub(crate) kane: RefCell<KaneWorlds<'d>>,
 }
 
 /// The jet of a polynomial's value (`p, ṗ, p̈, p⃛`) under `values`.
@@ -421,6 +425,7 @@ impl<'d> World<'d> {
             coordinates: Vec::new(),
             values: values.clone(),
             memo: Rc::default(),
+            kane: RefCell::default(),
         };
         if let Some((g, f)) = &ph.gravity {
             let fi = d.frames.iter().position(|x| &x.name == f).expect("frame");
