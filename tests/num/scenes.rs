@@ -292,27 +292,40 @@ fn a_cloud_whose_total_mass_overflows_is_an_error_naming_the_csv() {
     );
 }
 
-/// Issue 21: an error whose line is not known printed "line 0"
-/// (`big.csv:0: field m`, `s.toml:0: body: …`): it names the file and the
-/// field, and no line.
+/// Issue 21: an overflow of a cloud's sums named its field `-` at "line
+/// 0" (`big.csv:0`, `s.toml:0: body: …`): it names the CSV's line and
+/// column, or the scene's table that takes the bodies' sums past the
+/// largest number, at its line.
 #[test]
-fn an_error_without_a_line_prints_no_line_0() {
+fn an_overflow_names_the_csv_line_and_column_or_the_scene_table() {
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("big.csv"), "0,0,0,1.7e308\n1,0,0,1.7e308\n").unwrap();
-    std::fs::write(dir.path().join("one.csv"), "0,0,0,1e308\n").unwrap();
     let scene_path = dir.path().join("s.toml");
-    let e = Scene::from_str_at(&scene_path, "[[cloud]]\nfile = \"big.csv\"\n").unwrap_err();
     let csv = dir.path().join("big.csv");
-    let want = format!("{}: field `m`: ", csv.display());
-    assert!(e.message.contains(&want), "`{e}` lacks `{want}`");
-    // Two clouds whose masses sum past the largest number: the scene and
-    // the field, no line.
-    let text = "[[cloud]]\nfile = \"one.csv\"\n\n[[cloud]]\nfile = \"one.csv\"\n";
+    for (rows, line, column, what) in [
+        // Masses summing past the largest number: the second particle's m.
+        ("0,0,0,1.7e308\n1,0,0,1.7e308\n", 2, "m", "mass"),
+        // A header and a comment counted: the line in the file.
+        ("x,y,z,m\n# far\n0,0,0,1\n0,3e200,0,1\n", 4, "y", "inertia"),
+        ("1,0,0,1\n0,0,-2e160,1e100\n", 2, "z", "inertia"),
+    ] {
+        std::fs::write(&csv, rows).unwrap();
+        let e = Scene::from_str_at(&scene_path, "[[cloud]]\nfile = \"big.csv\"\n").unwrap_err();
+        assert_eq!((e.line, e.field.as_str()), (1, "cloud[0].file"), "{e}");
+        let want = format!(
+            "{}:{line}: field `{column}`: the particles' {what} is not finite",
+            csv.display()
+        );
+        assert!(e.message.contains(&want), "`{e}` lacks `{want}`");
+    }
+    // Two clouds whose masses sum past the largest number: the second
+    // `[[cloud]]` table, at its line.
+    std::fs::write(dir.path().join("one.csv"), "0,0,0,1e308\n").unwrap();
+    let text = "[[body]]\nshape = \"point\"\nmass = 1.0\n\n[[cloud]]\nfile = \"one.csv\"\n\n[[cloud]]\nfile = \"one.csv\"\n";
     let e = Scene::from_str_at(&scene_path, text).unwrap_err();
     let msg = e.to_string();
-    let want = format!("{}: body: ", scene_path.display());
+    let want = format!("{}:8: cloud[1]: ", scene_path.display());
     assert!(msg.starts_with(&want), "`{msg}` lacks `{want}`");
-    assert!(!msg.contains(":0:"), "{msg}");
+    assert!(msg.contains("overflow"), "{msg}");
 }
 
 /// Issue 21: a body of 1 mg and 1 mm printed its inertia tensor as zeros;

@@ -152,6 +152,8 @@ impl ParticleCloud {
             kind,
         };
         let mut cols: [Vec<f64>; 4] = Default::default();
+        // The line of each particle, for an error found in the sums.
+        let mut lines: Vec<usize> = Vec::new();
         for (i, raw) in text.lines().enumerate() {
             let line = i + 1;
             let t = raw.trim();
@@ -183,6 +185,7 @@ impl ParticleCloud {
                 }
                 cols[k].push(v);
             }
+            lines.push(line);
         }
         if cols[3].is_empty() {
             return Err(err(0, "-", CsvErrorKind::Empty));
@@ -190,10 +193,42 @@ impl ParticleCloud {
         let [x, y, z, m] = cols;
         let c = Self { x, y, z, m };
         if let Some((what, _)) = c.overflow() {
-            let field = if what == "mass" { "m" } else { "-" };
-            return Err(err(0, field, CsvErrorKind::Overflow(what)));
+            let (row, column) = c.overflow_at();
+            return Err(err(lines[row], column, CsvErrorKind::Overflow(what)));
         }
         Ok(c)
+    }
+
+    /// Where the sums of an overflowing cloud overflow: the first particle
+    /// whose mass, first or second moment takes a running sum past the
+    /// largest number, and its column (`m`, or the coordinate `x`, `y`,
+    /// `z` whose moment it is); when every running sum stays finite (the
+    /// inertia about G overflows as a difference), the particle and
+    /// coordinate with the largest second moment `m q²`.
+    fn overflow_at(&self) -> (usize, &'static str) {
+        const COORDS: [&str; 3] = ["x", "y", "z"];
+        let mut mass = 0.0_f64;
+        let mut first = [0.0_f64; 3];
+        let mut second = [0.0_f64; 3];
+        let mut largest = (0, "m", 0.0_f64);
+        for i in 0..self.len() {
+            let (p, m) = self.particle(i);
+            mass += m;
+            if !mass.is_finite() {
+                return (i, "m");
+            }
+            for k in 0..3 {
+                first[k] += m * p[k];
+                second[k] += m * p[k] * p[k];
+                if !(first[k].is_finite() && second[k].is_finite()) {
+                    return (i, COORDS[k]);
+                }
+                if m * p[k] * p[k] > largest.2 {
+                    largest = (i, COORDS[k], m * p[k] * p[k]);
+                }
+            }
+        }
+        (largest.0, largest.1)
     }
 }
 

@@ -194,16 +194,32 @@ pub(super) fn from_raw(cx: &Cx<'_>, raw: RawBodies) -> Result<Bodies, SceneError
     // The parts together must stay finite too (two masses near the
     // largest f64 sum past it).
     let all: Vec<MassProperties> = parts.iter().map(Part::mass_properties).collect();
-    match MassProperties::combine(&all) {
-        Ok(p) if props_finite(&p) => {}
-        Ok(_) | Err(crate::BodyError::NotFinite { .. }) => {
-            return Err(cx.err(
-                0,
-                "body",
-                "the mass properties of the bodies together overflow (masses summing past the largest number, or bodies too far apart)".into(),
-            ));
+    let overflows = |parts: &[MassProperties]| match MassProperties::combine(parts) {
+        Ok(p) => !props_finite(&p),
+        Err(e) => matches!(e, crate::BodyError::NotFinite { .. }),
+    };
+    if overflows(&all) {
+        // The table that takes the sums past the largest number: the last
+        // of the shortest overflowing prefix (found by bisection; the
+        // first part alone is finite, checked when it was read).
+        let (mut ok, mut bad) = (0, all.len());
+        while bad - ok > 1 {
+            let mid = (ok + bad) / 2;
+            if overflows(&all[..mid]) {
+                bad = mid;
+            } else {
+                ok = mid;
+            }
         }
-        Err(_) => {}
+        let (_, field, line) = &owners[bad - 1];
+        let table = field.strip_suffix(".of").unwrap_or(field);
+        return Err(cx.err(
+            *line,
+            table,
+            "with the tables before it, the mass properties of the bodies together overflow (masses \
+             summing past the largest number, or bodies too far apart)"
+                .into(),
+        ));
     }
     let groups = groups_of(cx, &parts, &owners)?;
     let body = if parts.is_empty() {
