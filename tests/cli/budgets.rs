@@ -128,13 +128,16 @@ fn runs_that_cannot_finish_are_refused_before_any_work() {
 }
 
 #[test]
-fn an_exploding_input_stops_on_the_budget_with_a_clear_message() {
+fn an_exploding_input_stops_on_the_budget_naming_the_integration_that_spent_it() {
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("turntable.toml"), TURNTABLE).unwrap();
     let path = dir.path().join("scene.toml");
     for input in ["exp(1000*t)", "1e4*exp(100*t)"] {
         std::fs::write(&path, scene(input)).unwrap();
         let p = path.to_str().unwrap();
+        // 50 fixed steps of rk4 are within the budget: the run is not
+        // refused, but its reference (a tight dop853 run, made first) is
+        // what cannot reach T, and the message says so.
         let args = [
             "simulate",
             p,
@@ -152,10 +155,29 @@ fn an_exploding_input_stops_on_the_budget_with_a_clear_message() {
         // Bounded by the step budget itself (deterministic); its wall time
         // is not asserted: alone it is under a second, but in the full CLI
         // suite on a loaded machine it once exceeded two minutes.
-        assert!(
-            err.contains("stopped on the run budget: more than 100000 steps"),
-            "{input}: {err} (after {took:?})"
+        let says = "stopped on the run budget: the reference run (dop853 at tol=1e-14, which the \
+                    error at T is measured against) took its 100000 steps (";
+        assert!(err.contains(says), "{input}: {err} (after {took:?})");
+        // What it spent: accepted and rejected steps adding up to the
+        // budget, and how far it came of the end time.
+        let counts = err.split(says).nth(1).expect("counts");
+        let number = |word: &str| -> u64 {
+            let before = counts.split(word).next().expect("word");
+            let digits = before
+                .rsplit(|c: char| !c.is_ascii_digit())
+                .find(|w| !w.is_empty());
+            digits.expect("a count").parse().expect("a number")
+        };
+        assert_eq!(
+            number(" accepted") + number(" rejected"),
+            100_000,
+            "{input}: {err}"
         );
+        assert!(
+            err.contains("reached only t = ") && err.contains(" of 5e-2;"),
+            "{input}: {err}"
+        );
+        assert!(err.contains("--max-steps"), "{input}: {err}");
     }
 }
 

@@ -139,3 +139,104 @@ fn a_body_with_no_declared_place_says_why() {
     let e = ds.model.position(&body, 0.0, &ds.y0).unwrap_err();
     assert!(e.contains(&body) && e.contains("not known"), "{e}");
 }
+
+/// Issue 24: the positions reach the simulate report (text and JSON) and
+/// the `--output` stream, three columns per body named after it. The
+/// double pendulum's streamed `rod2` — hung at rod 1's tip P — agrees at
+/// every step with P = l1 (sin q1, −cos q1, 0) from the same row's q1, and
+/// `rod1` stays at the fixed O.
+#[test]
+fn the_stream_and_the_report_carry_the_bodies_positions() {
+    use hdot_sim::run::{self, Output, Request};
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("double-pendulum.toml"), DOUBLE_PENDULUM).unwrap();
+    let scene = Scene::parse(
+        DOUBLE_PENDULUM_SCENE,
+        &dir.path().join("sim-double-pendulum.toml"),
+    )
+    .expect("scene");
+    let request = Request {
+        method: Some(hdot_sim::Method::Rk4),
+        step: Some(hdot_sim::Step::Fixed(1e-2)),
+        ..Request::default()
+    };
+    let plan = run::plan(&scene, &request).expect("plan");
+    let mut csv: Vec<u8> = Vec::new();
+    let report = {
+        let mut out = Output {
+            stream: Some(&mut csv),
+            ..Output::default()
+        };
+        run::run(&scene, &plan, &mut out).expect("run")
+    };
+    let header: Vec<String> = run::csv_header(&scene, plan.model)
+        .split(',')
+        .map(str::to_owned)
+        .collect();
+    let col = |name: &str| {
+        header
+            .iter()
+            .position(|h| h == name)
+            .unwrap_or_else(|| panic!("no column {name} in {header:?}"))
+    };
+    // The state's columns first (as the trajectory has them), then the
+    // bodies in declaration order.
+    let state = run::stream_header(&scene, plan.model).split(',').count();
+    assert_eq!(
+        &header[state..],
+        ["rod1.x", "rod1.y", "rod1.z", "rod2.x", "rod2.y", "rod2.z"]
+    );
+    let l1 = 1.0;
+    let rows: Vec<Vec<f64>> = String::from_utf8(csv)
+        .unwrap()
+        .lines()
+        .map(|l| l.split(',').map(|v| v.parse().expect("a number")).collect())
+        .collect();
+    assert!(rows.len() as u64 >= report.steps, "{} rows", rows.len());
+    for row in &rows {
+        assert_eq!(row.len(), header.len());
+        let q1 = row[col("q1")];
+        let got = Vector3::new(row[col("rod2.x")], row[col("rod2.y")], row[col("rod2.z")]);
+        assert_near(got, l1 * Vector3::new(q1.sin(), -q1.cos(), 0.0), l1, 1e-15);
+        for c in ["rod1.x", "rod1.y", "rod1.z"] {
+            assert_eq!(row[col(c)], 0.0);
+        }
+    }
+    // The report: the place at T, in the text and the JSON.
+    let q1 = report.final_state[report
+        .state_names
+        .iter()
+        .position(|n| n == "q1")
+        .expect("q1")];
+    let tip = report
+        .positions
+        .iter()
+        .find(|p| p.body == "rod2")
+        .and_then(|p| p.at)
+        .expect("rod2 placed");
+    assert_near(
+        Vector3::from(tip),
+        l1 * Vector3::new(q1.sin(), -q1.cos(), 0.0),
+        l1,
+        1e-15,
+    );
+    let text = report.to_string();
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("position:    rod2 at ("))
+        .unwrap_or_else(|| panic!("no position line in\n{text}"));
+    let printed: Vec<f64> = line
+        .split(['(', ')', ','])
+        .filter_map(|w| w.trim().parse().ok())
+        .collect();
+    assert_near(
+        Vector3::from_iterator(printed),
+        Vector3::from(tip),
+        l1,
+        1e-8,
+    );
+    let json: serde_json::Value = serde_json::to_value(&report).unwrap();
+    let at = &json["positions"][1];
+    assert_eq!(at["body"], "rod2");
+    assert_eq!(at["at"][0].as_f64(), Some(tip[0]));
+}

@@ -218,3 +218,73 @@ fn initial_values_that_are_not_finite_are_located() {
         assert!(msg.contains(&at), "`{msg}` lacks `{at}`");
     }
 }
+
+/// The numbers of a report line after `label`, as printed (separated by
+/// commas, spaces, brackets and parentheses; words and units skipped).
+fn printed_numbers(text: &str, label: &str) -> Vec<f64> {
+    let line = text
+        .lines()
+        .find(|l| l.starts_with(label))
+        .unwrap_or_else(|| panic!("no `{label}` line in\n{text}"));
+    line[label.len()..]
+        .split([',', ' ', '[', ']', '(', ')', '='])
+        .filter_map(|w| w.parse::<f64>().ok())
+        .collect()
+}
+
+/// `printed` is `values` to within `rel` of the largest of them: each
+/// number kept its significant digits, however small the group.
+fn assert_printed(printed: &[f64], values: &[f64], rel: f64) {
+    assert_eq!(printed.len(), values.len(), "{printed:?} for {values:?}");
+    let scale = values.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
+    assert!(scale > 0.0, "{values:?}");
+    for (p, v) in printed.iter().zip(values) {
+        assert!(
+            (p - v).abs() <= rel * scale,
+            "{p:e} printed for {v:e} ({printed:?})"
+        );
+    }
+}
+
+/// Item 7: the simulate text report printed fixed decimals — a free body
+/// turning at |ω| ~ 1e-13 rad/s printed its state as `[1.000000000000,
+/// 0.000000000000, …]`, a 1 mg shaft its reactions as `0.000000`. Each
+/// group (attitude, rates, forces, moments) keeps its significant digits.
+#[test]
+fn small_values_print_significant_digits_in_the_report() {
+    let slow = scene(
+        "name = \"slow free body\"\nkind = \"free\"\nt_end = 1.0\n[[body]]\n\
+         principal_moments = [0.6, 0.8, 1.0]\nmass = 1.0\n[initial]\n\
+         attitude = [1.0, 0.0, 0.0, 0.0]\nangular_momentum = [1e-13, 2e-14, 3e-14]\n",
+    )
+    .expect("scene");
+    let r = simulate(&slow, &Request::default()).expect("run");
+    let printed = printed_numbers(&r.to_string(), "state at T:");
+    let y = &r.final_state;
+    assert_eq!(printed.len(), 7, "{r}");
+    // 12 significant digits: within 1e-11 of each group's largest.
+    assert_printed(&printed[..4], &y[..4], 1e-11);
+    assert_printed(&printed[4..], &y[4..], 1e-11);
+    assert!(printed[4..].iter().all(|w| *w != 0.0), "{r}");
+
+    // A shaft of 1 mg with a 1 µg point off its axis, turning at 1e-3
+    // rad/s: its bearing reactions are of order 1e-18 N.
+    let shaft = scene(
+        "name = \"tiny shaft\"\nkind = \"fixed-axis\"\nt_end = 1.0\n[shaft]\n\
+         bearings = [-0.15, 0.15]\nfriction = 0.0\n[[body]]\nshape = \"disk\"\nmass = 1e-6\n\
+         radius = 1e-3\n[[body]]\nshape = \"point\"\nmass = 1e-9\nposition = [1e-3, 0.0, 1e-3]\n\
+         [initial]\nangle = 0.0\nrate = 1e-3\n[motor]\nstall_torque = 0.0\nno_load_speed = 300.0\n",
+    )
+    .expect("scene");
+    let r = simulate(&shaft, &Request::default()).expect("run");
+    let reactions = r.reactions.expect("reactions");
+    let printed = printed_numbers(&r.to_string(), "reactions:");
+    assert_eq!(printed.len(), 7, "{r}");
+    // 6 significant digits: within 1e-5 of the forces' and the moments'
+    // largest.
+    assert_printed(&printed[..4], &reactions[..4], 1e-5);
+    assert!(printed[..4].iter().any(|f| *f != 0.0), "{r}");
+    if reactions[4..].iter().any(|m| *m != 0.0) {
+        assert_printed(&printed[4..], &reactions[4..], 1e-5);
+    }
+}

@@ -138,17 +138,24 @@ pub enum SimError {
         /// The step size.
         h: f64,
     },
-    /// A run needed more steps than the run budget allows: stopped there.
-    #[error(
-        "stopped on the run budget: more than {max_steps} steps needed before t = {t:e}; the \
-         motion needs smaller steps than the budget allows up to the end time (shorten --t-end, \
-         loosen --tol or --dt, or raise the budget with --max-steps)"
-    )]
+    /// A run needed more steps than the run budget allows: stopped there,
+    /// naming which of the run's integrations spent the budget and how.
+    #[error("{}", too_many_steps(run, *max_steps, *t, *t_end, *accepted, *rejected))]
     TooManySteps {
         /// The step limit.
         max_steps: u64,
         /// Time reached.
         t: f64,
+        /// The end time the integration was to reach.
+        t_end: f64,
+        /// Steps accepted before it stopped.
+        accepted: u64,
+        /// Steps an adaptive method's error control rejected.
+        rejected: u64,
+        /// Which integration spent the budget, e.g. `the reference run
+        /// (dop853 at tol=1e-14, …)`; empty until the caller names it
+        /// ([`SimError::in_run`]).
+        run: String,
     },
     /// Stored output would exceed the memory budget.
     #[error(
@@ -222,4 +229,64 @@ pub enum SimError {
     /// Writing streamed output failed.
     #[error("writing output: {0}")]
     Output(#[source] std::io::Error),
+}
+
+/// The message of [`SimError::TooManySteps`]: which integration stopped,
+/// what it spent (accepted and rejected steps), how far it came, and what
+/// to change.
+fn too_many_steps(
+    run: &str,
+    max_steps: u64,
+    t: f64,
+    t_end: f64,
+    accepted: u64,
+    rejected: u64,
+) -> String {
+    let run = if run.is_empty() {
+        "an integration of the run"
+    } else {
+        run
+    };
+    let spent = if accepted + rejected == 0 {
+        // A fixed-step integration counts its steps before taking any.
+        format!(
+            "would need more than its {max_steps} steps to go from t = {t:e} to {t_end:e} in fixed steps"
+        )
+    } else {
+        format!(
+            "took its {max_steps} steps ({accepted} accepted, {rejected} rejected by the error control) \
+             and reached only t = {t:e} of {t_end:e}"
+        )
+    };
+    format!(
+        "stopped on the run budget: {run} {spent}; the motion needs smaller steps than the budget \
+         allows up to the end time (shorten --t-end, loosen --tol or --dt, or raise the budget with \
+         --max-steps)"
+    )
+}
+
+impl SimError {
+    /// Names the integration an error of the run budget came from (`what`,
+    /// e.g. `the reference run (dop853 at tol=1e-14)`), unless an inner
+    /// caller named it already; any other error is returned as it is.
+    pub fn in_run(self, what: impl FnOnce() -> String) -> SimError {
+        match self {
+            SimError::TooManySteps {
+                max_steps,
+                t,
+                t_end,
+                accepted,
+                rejected,
+                run,
+            } if run.is_empty() => SimError::TooManySteps {
+                max_steps,
+                t,
+                t_end,
+                accepted,
+                rejected,
+                run: what(),
+            },
+            e => e,
+        }
+    }
 }

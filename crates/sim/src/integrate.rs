@@ -251,6 +251,10 @@ where
         return Err(SimError::TooManySteps {
             max_steps: limits.max_steps,
             t: t0,
+            t_end,
+            accepted: 0,
+            rejected: 0,
+            run: String::new(),
         });
     }
     let h = span / n as f64;
@@ -696,6 +700,10 @@ where
             return Err(SimError::TooManySteps {
                 max_steps: limits.max_steps,
                 t,
+                t_end,
+                accepted: stats.steps,
+                rejected: stats.rejected,
+                run: String::new(),
             });
         }
         let last = t + 1.01 * h >= t_end;

@@ -15,8 +15,10 @@ pub struct Output<'a> {
     pub store: bool,
     /// Budget in bytes for the stored trajectory.
     pub memory_budget: u64,
-    /// Called with the current time after every step.
-    pub progress: Option<&'a mut dyn FnMut(f64)>,
+    /// Called after every step of each of the run's integrations with
+    /// what is integrated (`run`, `reference run`, `pilot run`) and the
+    /// time it reached, so that a long reference or pilot shows too.
+    pub progress: Option<&'a mut dyn FnMut(&str, f64)>,
 }
 
 impl Default for Output<'_> {
@@ -35,11 +37,16 @@ fn row_bytes(len: usize) -> u64 {
     (len * 8 + 24) as u64
 }
 
+/// Columns a streamed row carries after the recorded ones, computed
+/// from the row (`[t, y…]`): a derived scene's bodies' positions.
+pub type Columns<'c> = &'c dyn Fn(&[f64]) -> Vec<f64>;
+
 /// Records streamed/stored rows and progress inside the integrator's observer.
 pub struct Recorder<'a, 'b> {
     out: &'b mut Output<'a>,
     rows: Vec<Vec<f64>>,
     bytes: u64,
+    columns: Option<Columns<'b>>,
 }
 
 impl<'a, 'b> Recorder<'a, 'b> {
@@ -49,17 +56,28 @@ impl<'a, 'b> Recorder<'a, 'b> {
             out,
             rows: vec![],
             bytes: 0,
+            columns: None,
         }
+    }
+
+    /// Streams `columns` of each row after the row itself (the stored
+    /// trajectory keeps the row alone).
+    pub(crate) fn with_columns(mut self, columns: Columns<'b>) -> Self {
+        self.columns = Some(columns);
+        self
     }
 
     /// Streams, stores and reports one row `[t, …]`.
     pub fn record(&mut self, row: Vec<f64>) -> Result<(), SimError> {
-        if let Some(p) = self.out.progress.as_mut() {
-            p(row[0]);
-        }
+        self.tick("run", row[0]);
         if let Some(w) = self.out.stream.as_mut() {
+            let extra = self.columns.map(|f| f(&row)).unwrap_or_default();
             // `+ 0.0` turns −0 into 0: a streamed row never reads `-0e0`.
-            let line: Vec<String> = row.iter().map(|v| format!("{:e}", v + 0.0)).collect();
+            let line: Vec<String> = row
+                .iter()
+                .chain(&extra)
+                .map(|v| format!("{:e}", v + 0.0))
+                .collect();
             writeln!(w, "{}", line.join(",")).map_err(SimError::Output)?;
         }
         if self.out.store {
@@ -73,6 +91,26 @@ impl<'a, 'b> Recorder<'a, 'b> {
             self.rows.push(row);
         }
         Ok(())
+    }
+
+    /// Reports that the integration `what` reached `t` (to the progress
+    /// callback, when there is one).
+    pub fn tick(&mut self, what: &str, t: f64) {
+        if let Some(p) = self.out.progress.as_mut() {
+            p(what, t);
+        }
+    }
+
+    /// An observer for an integration that is not recorded (a reference
+    /// or pilot run): it only reports its progress as `what`.
+    pub fn observer<const N: usize>(
+        &mut self,
+        what: &'static str,
+    ) -> impl FnMut(f64, &[f64; N]) -> Result<(), SimError> + '_ {
+        move |t, _| {
+            self.tick(what, t);
+            Ok(())
+        }
     }
 
     /// Whether anything is recorded at all.
@@ -139,7 +177,16 @@ pub fn integrate_recorded<const N: usize, S: crate::System<N>>(
             }
             Ok(())
         },
-    )?;
+    )
+    .map_err(|e| {
+        e.in_run(|| {
+            let step = match step {
+                Step::Fixed(h) => format!("dt={h:e}"),
+                Step::Tolerance(t) => format!("tol={t:e}"),
+            };
+            format!("the run ({method}, {step})")
+        })
+    })?;
     Ok((y, stats, start.elapsed().as_secs_f64()))
 }
 

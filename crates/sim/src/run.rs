@@ -275,6 +275,61 @@ pub struct Report {
     /// the largest | |e| − 1 | met before it.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub unit_norms: Option<UnitNormDrift>,
+    /// Where a derived scene's declared bodies are at T, in the order of
+    /// their declarations (empty for the built-in models).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub positions: Vec<BodyPosition>,
+}
+
+/// Where one of a derivation's declared bodies is at T: its reference
+/// point (its `point`) from N's origin, in N's axes; or why that is not
+/// known (a point that moves freely, a frame whose attitude is not a
+/// function of the state).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BodyPosition {
+    /// The body's name in the derivation.
+    pub body: String,
+    /// `[x, y, z]` in N, when the body is placed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub at: Option<[f64; 3]>,
+    /// Why the body has no position, when it has none.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub unknown: Option<String>,
+}
+
+/// The positions of a derived scene's declared bodies at `(t, y)` (none
+/// for a built-in model's scene).
+fn positions_at(scene: &Scene, t: f64, y: &[f64]) -> Vec<BodyPosition> {
+    let Some(ds) = scene.derivation() else {
+        return Vec::new();
+    };
+    ds.model
+        .bodies()
+        .map(|b| {
+            let (at, unknown) = match ds.model.position(b, t, y) {
+                Ok(r) => (Some([r.x, r.y, r.z]), None),
+                Err(why) => (None, Some(why)),
+            };
+            BodyPosition {
+                body: b.to_owned(),
+                at,
+                unknown,
+            }
+        })
+        .collect()
+}
+
+/// The bodies whose positions the `--output` stream carries: those of a
+/// derived scene placed at its initial state, in declaration order.
+fn placed_bodies(scene: &Scene) -> Vec<String> {
+    let Some(ds) = scene.derivation() else {
+        return Vec::new();
+    };
+    positions_at(scene, 0.0, &ds.y0)
+        .into_iter()
+        .filter(|p| p.at.is_some())
+        .map(|p| p.body)
+        .collect()
 }
 
 /// Refuses `model` on `scene` when its entry says it does not apply.
@@ -291,13 +346,34 @@ pub fn run(scene: &Scene, plan: &Plan, out: &mut Output<'_>) -> Result<Report, S
     let entry = plan.model.entry();
     let row_len = entry.stream_header(scene).split(',').count();
     check_budget(out, plan.step, plan.t_end, row_len)?;
+    // The streamed rows carry the placed bodies' positions after the state.
+    let placed = placed_bodies(scene);
+    let columns = |row: &[f64]| -> Vec<f64> {
+        let Some(ds) = scene.derivation() else {
+            return Vec::new();
+        };
+        placed
+            .iter()
+            .flat_map(|b| {
+                let r = ds
+                    .model
+                    .position(b, row[0], &row[1..])
+                    .unwrap_or_else(|_| nalgebra::Vector3::repeat(f64::NAN));
+                [r.x, r.y, r.z]
+            })
+            .collect()
+    };
     let mut rec = Recorder::new(out);
+    if !placed.is_empty() {
+        rec = rec.with_columns(&columns);
+    }
     let o = entry.run(scene, plan, &mut rec)?;
     let mut plan = plan.clone();
     if let Some((step, why)) = o.fitted {
         plan.step = Some(step);
         plan.reason = format!("{}; {why}", plan.reason);
     }
+    let positions = positions_at(scene, plan.t_end, &o.final_state);
     let report = Report {
         scene: scene.name.clone(),
         kind: scene.kind.name(),
@@ -320,6 +396,7 @@ pub fn run(scene: &Scene, plan: &Plan, out: &mut Output<'_>) -> Result<Report, S
         constraints: o.constraints,
         velocity_constraints: o.velocity_constraints,
         unit_norms: o.unit_norms,
+        positions,
     };
     refuse_non_finite(&report)?;
     Ok(report)
@@ -347,9 +424,24 @@ impl Report {
     }
 }
 
-/// CSV header of the streamed rows of `model` on a scene.
+/// The columns of the rows `model` records on a scene (the stored
+/// trajectory): `t` and the state.
 pub fn stream_header(scene: &Scene, model: Model) -> String {
     model.entry().stream_header(scene)
+}
+
+/// The CSV header of the `--output` stream: the recorded row's columns
+/// ([`stream_header`]), then, for a derived scene, the position of each
+/// declared body placed at the start, `<body>.x,<body>.y,<body>.z` (in
+/// N, from its origin).
+pub fn csv_header(scene: &Scene, model: Model) -> String {
+    let mut header = stream_header(scene, model);
+    for b in placed_bodies(scene) {
+        for c in ["x", "y", "z"] {
+            header.push_str(&format!(",{b}.{c}"));
+        }
+    }
+    header
 }
 
 /// A NaN or infinity anywhere in a report is an error naming it.
@@ -402,6 +494,11 @@ fn refuse_non_finite(r: &Report) -> Result<(), SimError> {
         && !e.is_finite()
     {
         return bad("error at T".into());
+    }
+    for p in &r.positions {
+        if p.at.is_some_and(|a| !a.iter().all(|c| c.is_finite())) {
+            return bad(format!("position of body `{}`", p.body));
+        }
     }
     Ok(())
 }
@@ -498,61 +595,87 @@ impl fmt::Display for Report {
         )?;
         writeln!(f, "wall time:   {:.3e} s", self.wall_s)?;
         if let Some(pc) = &self.precession {
+            let rates = significant(&[pc.simulated, pc.predicted], 9);
             writeln!(
                 f,
                 "precession:  simulated φ̇ = {}, §7 predicts {} (relative difference {:.2e}, |Δθ| = {:.2e})",
-                fixed(pc.simulated, 9),
-                fixed(pc.predicted, 9),
-                pc.relative_difference,
-                pc.nutation_change
+                rates[0], rates[1], pc.relative_difference, pc.nutation_change
             )?;
         }
         if let Some(r) = &self.reactions {
-            let r: Vec<String> = r.iter().map(|v| fixed(*v, 6)).collect();
+            // Forces and moments each on their own scale.
+            let forces = significant(&r[..4], 6);
+            let moments = significant(&r[4..], 6);
             writeln!(
                 f,
                 "reactions:   A = ({}, {}), B = ({}, {}) N; ΣM_O = ({}, {}, {}) N·m",
-                r[0], r[1], r[2], r[3], r[4], r[5], r[6]
+                forces[0], forces[1], forces[2], forces[3], moments[0], moments[1], moments[2]
             )?;
         }
         if let Some(fs) = &self.frame {
-            let row = |v: &[f64]| {
-                v.iter()
-                    .map(|x| fixed(*x, 9))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            };
             let r = &fs.attitude;
+            let attitude = significant(&r.concat(), 9);
+            let row = |k: usize| attitude[3 * k..3 * k + 3].join(", ");
             writeln!(
                 f,
                 "frame {}:     attitude [[{}], [{}], [{}]], ω = ({}) rad/s",
                 fs.frame,
-                row(&r[0]),
-                row(&r[1]),
-                row(&r[2]),
-                row(&fs.angular_velocity)
+                row(0),
+                row(1),
+                row(2),
+                significant(&fs.angular_velocity, 9).join(", ")
             )?;
         }
-        let state: Vec<String> = if self.state_names.len() == self.final_state.len() {
-            self.state_names
-                .iter()
-                .zip(&self.final_state)
-                .map(|(n, v)| format!("{n} = {}", fixed(*v, 12)))
-                .collect()
-        } else {
-            self.final_state.iter().map(|v| fixed(*v, 12)).collect()
-        };
-        writeln!(f, "state at T:  [{}]", state.join(", "))
+        for p in &self.positions {
+            let body = hdot_sym::escape::terminal(&p.body);
+            match (&p.at, &p.unknown) {
+                (Some(a), _) => writeln!(
+                    f,
+                    "position:    {body} at ({}) in N (its reference point at T)",
+                    significant(a, 9).join(", ")
+                )?,
+                (None, why) => writeln!(
+                    f,
+                    "position:    {body} not known: {}",
+                    why.as_deref().unwrap_or("no place declared")
+                )?,
+            }
+        }
+        writeln!(f, "state at T:  [{}]", self.state_text().join(", "))
     }
 }
 
-/// `v` with `decimals` decimals, and no sign when it rounds to zero
-/// (`-1e-17` and `-0.0` print as `0.000000000`, never `-0.000000000`):
-/// the one formatter of the report's fixed-point numbers.
-pub fn fixed(v: f64, decimals: usize) -> String {
-    let s = format!("{v:.decimals$}");
-    match s.strip_prefix('-') {
-        Some(rest) if rest.bytes().all(|b| b == b'0' || b == b'.') => rest.to_string(),
-        _ => s,
+impl Report {
+    /// The state at T as printed: 12 significant digits; a built-in
+    /// model's attitude and rates (or a shaft's angle and rate) each on
+    /// their own scale, a derived scene's components each named and on
+    /// its own.
+    fn state_text(&self) -> Vec<String> {
+        let y = &self.final_state;
+        if self.state_names.len() == y.len() {
+            return self
+                .state_names
+                .iter()
+                .zip(y)
+                .map(|(n, v)| format!("{n} = {}", significant(&[*v], 12)[0]))
+                .collect();
+        }
+        let split = if y.len() == 7 { 4 } else { 1.min(y.len()) };
+        let mut out = significant(&y[..split], 12);
+        out.extend(significant(&y[split..], 12));
+        out
     }
+}
+
+/// The values of one quantity (a vector, a matrix, a group of forces) with
+/// `digits` significant digits, however small they all are: a value below
+/// 10⁻¹² of the group's largest — round-off of an exact zero — prints as
+/// `0`, unsigned. The numeric commands' formatter
+/// ([`hdot_num::report::fmt_num_at`]), the one formatter of the report's
+/// numbers.
+pub fn significant(xs: &[f64], digits: usize) -> Vec<String> {
+    let scale = xs.iter().fold(0.0_f64, |a, x| a.max(x.abs()));
+    xs.iter()
+        .map(|x| hdot_num::report::fmt_num_at(*x, scale, digits))
+        .collect()
 }

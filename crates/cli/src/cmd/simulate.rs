@@ -122,25 +122,27 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<ExitCode> {
             let cannot = |e| OutputError::new(format!("cannot write {}", path.display()), e);
             let f = output::AtomicFile::create(path).map_err(cannot)?;
             let mut w = BufWriter::new(f);
-            writeln!(w, "{}", run::stream_header(&scene, plan.model)).map_err(cannot)?;
+            writeln!(w, "{}", run::csv_header(&scene, plan.model)).map_err(cannot)?;
             Some(w)
         }
         None => None,
     };
     // A progress bar on a terminal for any run that lasts over a second:
-    // made when the first second has passed, moved as the run advances.
+    // made when the first second has passed, moved as each integration of
+    // the run (its reference and pilot runs too) advances, and labelled
+    // with the one under way.
     let t_end = plan.t_end;
     let started = std::time::Instant::now();
     let terminal = std::io::stderr().is_terminal();
     let mut bar: Option<indicatif::ProgressBar> = None;
     let mut calls = 0u64;
-    let mut last_tick = 0u64;
-    let mut tick = |t: f64| {
+    let mut last: (String, u64) = (String::new(), u64::MAX);
+    let mut tick = |what: &str, t: f64| {
         calls += 1;
         if bar.is_none() && calls.is_multiple_of(256) && started.elapsed().as_secs_f64() > 1.0 {
             let b = indicatif::ProgressBar::new(1000);
             b.set_style(
-                indicatif::ProgressStyle::with_template("{bar:40} {percent}% t={msg} eta {eta}")
+                indicatif::ProgressStyle::with_template("{bar:40} {percent}% {msg} eta {eta}")
                     .expect("valid template"),
             );
             bar = Some(b);
@@ -151,10 +153,15 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<ExitCode> {
             } else {
                 1000
             };
-            if pos != last_tick {
-                last_tick = pos;
+            if pos != last.1 || what != last.0 {
+                if what != last.0 {
+                    // A new integration starts again from t = 0.
+                    b.reset_eta();
+                    last.0 = what.to_string();
+                }
+                last.1 = pos;
                 b.set_position(pos);
-                b.set_message(format!("{t:.3}"));
+                b.set_message(format!("{what}: t={t:.3e} of {t_end:e}"));
             }
         }
     };
@@ -162,7 +169,7 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<ExitCode> {
         stream: file.as_mut().map(|w| w as &mut dyn Write),
         store: args.trajectory || args.html.is_some(),
         memory_budget: args.memory_budget,
-        progress: terminal.then_some(&mut tick as &mut dyn FnMut(f64)),
+        progress: terminal.then_some(&mut tick as &mut dyn FnMut(&str, f64)),
     };
     let result = run::run(&scene, &plan, &mut out);
     if let Some(b) = &bar {

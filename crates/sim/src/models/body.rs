@@ -126,7 +126,14 @@ pub fn reference_state(scene: &Scene, t: f64) -> Result<([f64; 7], String), SimE
                 t,
                 Limits::default(),
                 |_, _| Ok(()),
-            )?;
+            )
+            .map_err(|e| {
+                e.in_run(|| {
+                    format!(
+                        "the reference run (dop853 at tol={REFERENCE_TOL:e}, which the error at T is measured against)"
+                    )
+                })
+            })?;
             Ok((y, format!("dop853 at tol={REFERENCE_TOL:e}")))
         }
     }

@@ -174,17 +174,29 @@ fn integrate_n<const N: usize>(
     )
 }
 
-/// The state at `t_end` of the reference run (DOP853 at [`REFERENCE_TOL`]).
-fn reference_n<const N: usize>(ds: &DerivedScene, t_end: f64) -> Result<[f64; N], SimError> {
+/// The state at `t_end` of the reference run (DOP853 at [`REFERENCE_TOL`]),
+/// its progress reported to `observe`; a stop on the run budget names it.
+fn reference_n<const N: usize>(
+    ds: &DerivedScene,
+    t_end: f64,
+    observe: impl FnMut(f64, &[f64; N]) -> Result<(), SimError>,
+) -> Result<[f64; N], SimError> {
     integrate_n(
         &ds.model,
         Method::Dop853,
         Step::Tolerance(REFERENCE_TOL),
         start::<N>(ds),
         t_end,
-        |_, _| Ok(()),
+        observe,
     )
     .map(|(y, _)| y)
+    .map_err(|e| {
+        e.in_run(|| {
+            format!(
+                "the reference run (dop853 at tol={REFERENCE_TOL:e}, which the error at T is measured against)"
+            )
+        })
+    })
 }
 
 /// The DOP853 tolerance at which the error at `t_end` (against
@@ -204,16 +216,20 @@ fn fit_tolerance<const N: usize>(
     t_end: f64,
     target: f64,
     reference: &[f64; N],
+    rec: &mut Recorder<'_, '_>,
 ) -> Result<(f64, String), SimError> {
-    let error_at = |tol: f64| -> Result<(f64, u64), SimError> {
+    let mut error_at = |tol: f64| -> Result<(f64, u64), SimError> {
         let (y, stats) = integrate_n(
             &ds.model,
             Method::Dop853,
             Step::Tolerance(tol),
             start::<N>(ds),
             t_end,
-            |_, _| Ok(()),
-        )?;
+            rec.observer::<N>("pilot run"),
+        )
+        .map_err(|e| {
+            e.in_run(|| format!("a pilot run (dop853 at tol={tol:e}, fitting the tolerance)"))
+        })?;
         Ok((distance(ds, t_end, &y, reference), stats.evaluations))
     };
     let (lo, hi) = (1e-13, 1e-2);
@@ -330,10 +346,10 @@ fn run_n<const N: usize>(
 ) -> Result<Outcome, SimError> {
     let (method, mut step) = plan.method_step()?;
     let y0 = start::<N>(ds);
-    let reference = reference_n::<N>(ds, plan.t_end)?;
+    let reference = reference_n::<N>(ds, plan.t_end, rec.observer::<N>("reference run"))?;
     let mut report = Outcome::default();
     if let (Some(target), Method::Dop853) = (plan.fit_error, method) {
-        let (tol, why) = fit_tolerance::<N>(ds, plan.t_end, target, &reference)?;
+        let (tol, why) = fit_tolerance::<N>(ds, plan.t_end, target, &reference, rec)?;
         step = Step::Tolerance(tol);
         report.fitted = Some((step, why));
     }
@@ -416,7 +432,7 @@ fn sweep_n<const N: usize>(
     t_end: f64,
     min_time: f64,
 ) -> Result<Result<Measured, String>, SimError> {
-    let reference = reference_n::<N>(ds, t_end)?;
+    let reference = reference_n::<N>(ds, t_end, |_, _| Ok(()))?;
     let y0 = start::<N>(ds);
     let run = || integrate_n(&ds.model, method, step, y0, t_end, |_, _| Ok(()));
     Ok(match timed(min_time, run) {
