@@ -941,7 +941,10 @@ rates = { phi = 2.0 }
         .lines()
         .find(|l| l.starts_with("frame D"))
         .expect("frame line");
-    assert!(!line.contains("-0") && !line.contains("e-1"), "{line}");
+    assert!(
+        !line.contains("-0,") && !line.contains("-0]") && !line.contains("e-1"),
+        "{line}"
+    );
     assert!(line.contains("[0, "), "{line}");
 }
 
