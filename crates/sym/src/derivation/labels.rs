@@ -326,7 +326,7 @@ impl Term {
         match self {
             Term::Scalar(p) => Ok(Term::Scalar(p.pow(k))),
             v @ Term::Vector(..) if k == 1 => Ok(v),
-            v if k % 2 == 0 => Ok(Term::Scalar(v.square().pow(k / 2))),
+            v if k.is_multiple_of(2) => Ok(Term::Scalar(v.square().pow(k / 2))),
             _ => Err(format!(
                 "a vector to the odd power {k} is not defined: write an even power (H^2 is H·H)"
             )),
