@@ -110,10 +110,13 @@ fn constraint_rows(d: &Derivation, a: &hdot_sym::parse::Ast) -> Option<Vec<Poly>
     }
 }
 
+/// A `kane` step's name, its constraint rows, the dependent speeds and
+/// the dependent coordinates.
+type KaneStep = (String, Vec<Poly>, Vec<Atom>, Vec<Atom>);
+
 /// The first step `kane([u…], constraints, [u_dep…] (, [q_dep…]) …)`
-/// whose constraints are earlier steps: its name, the rows, the
-/// dependent speeds and the dependent coordinates.
-fn kane_step(d: &Derivation) -> Option<(String, Vec<Poly>, Vec<Atom>, Vec<Atom>)> {
+/// whose constraints are earlier steps ([`KaneStep`]).
+fn kane_step(d: &Derivation) -> Option<KaneStep> {
     d.steps.iter().find_map(|s| {
         let ast = parse(&s.formula).ok()?;
         let AstKind::Call { func, args } = &ast.kind else {
