@@ -18,8 +18,12 @@ pub struct Output<'a> {
     /// Called after every step of each of the run's integrations with
     /// what is integrated (`run`, `reference run`, `pilot run`) and the
     /// time it reached, so that a long reference or pilot shows too.
-    pub progress: Option<&'a mut dyn FnMut(&str, f64)>,
+    pub progress: Option<Progress<'a>>,
 }
+
+/// A run's progress callback: what is integrated (`run`, `reference run`,
+/// `pilot run`) and the time it reached.
+pub type Progress<'a> = &'a mut dyn FnMut(&str, f64);
 
 impl Default for Output<'_> {
     fn default() -> Self {
