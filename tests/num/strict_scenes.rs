@@ -66,8 +66,8 @@ fn bad_vectors_and_values_are_errors_at_the_line_of_their_key() {
         ),
         (
             "[[body]]\nshape = \"sphere\"\nradius = 1.0\nmass = 1e308\n[[body]]\nshape = \"sphere\"\nradius = 1.0\nmass = 1.7e308\n".to_string(),
-            0,
-            "body",
+            5,
+            "body[1]",
             "overflow",
         ),
     ] {
