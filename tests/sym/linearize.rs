@@ -280,7 +280,8 @@ title = "coupled, descriptor form"
 source = "written for the test"
 [symbols]
 constants = ["a", "b", "c", "k", "F"]
-time = ["x", "y", "u", "w"]
+time = ["x", "y"]
+speeds = ["u", "w"]
 [kinematics]
 x = "u"
 y = "w"
