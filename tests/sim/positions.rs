@@ -43,6 +43,16 @@ fn value(ds: &DerivedScene, y: &[f64], name: &str) -> f64 {
     y[k]
 }
 
+/// The double pendulum's scene, its derivation written beside it in `dir`.
+fn double_pendulum(dir: &tempfile::TempDir) -> Scene {
+    std::fs::write(dir.path().join("double-pendulum.toml"), DOUBLE_PENDULUM).unwrap();
+    Scene::parse(
+        DOUBLE_PENDULUM_SCENE,
+        &dir.path().join("sim-double-pendulum.toml"),
+    )
+    .expect("scene")
+}
+
 /// `got` within `tol` of `want` relative to `scale`.
 fn assert_near(got: Vector3<f64>, want: Vector3<f64>, scale: f64, tol: f64) {
     assert!((got - want).norm() <= tol * scale, "{got} against {want}");
@@ -53,12 +63,7 @@ fn assert_near(got: Vector3<f64>, want: Vector3<f64>, scale: f64, tol: f64) {
 #[test]
 fn the_second_rod_is_placed_at_the_first_rods_end() {
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("double-pendulum.toml"), DOUBLE_PENDULUM).unwrap();
-    let scene = Scene::parse(
-        DOUBLE_PENDULUM_SCENE,
-        &dir.path().join("sim-double-pendulum.toml"),
-    )
-    .expect("scene");
+    let scene = double_pendulum(&dir);
     let ds = derived(&scene);
     assert_eq!(ds.model.bodies().collect::<Vec<_>>(), ["rod1", "rod2"]);
     let l1 = 1.0;
@@ -149,12 +154,7 @@ fn a_body_with_no_declared_place_says_why() {
 fn the_stream_and_the_report_carry_the_bodies_positions() {
     use hdot_sim::run::{self, Output, Request};
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("double-pendulum.toml"), DOUBLE_PENDULUM).unwrap();
-    let scene = Scene::parse(
-        DOUBLE_PENDULUM_SCENE,
-        &dir.path().join("sim-double-pendulum.toml"),
-    )
-    .expect("scene");
+    let scene = double_pendulum(&dir);
     let request = Request {
         method: Some(hdot_sim::Method::Rk4),
         step: Some(hdot_sim::Step::Fixed(1e-2)),
