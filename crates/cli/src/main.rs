@@ -27,7 +27,13 @@ struct Cli {
     command: Command,
 }
 
+// `defer`: a subcommand's arguments are built only when it runs or its help
+// is shown, not the thirteen of them at every start (docs/performance.md).
+// Its one-line doc comment below is its `about`: the `Args` structs in
+// `cmd/` carry `//` comments, since a deferred struct's doc comment would
+// replace that line in the help.
 #[derive(Debug, Subcommand)]
+#[command(defer = true)]
 enum Command {
     // -- subcommands (one line each; keep alphabetical within a group) --
     /// Run derivations and check their expectations; print a table.
@@ -114,5 +120,42 @@ fn dispatch(cli: Cli) -> ExitCode {
                 ExitCode::from(2)
             }
         },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::CommandFactory;
+
+    /// Building a deferred subcommand (as running it or its `--help` does)
+    /// keeps the line `hdot --help` lists for it: no `Args` struct's doc
+    /// comment replaces it, and every subcommand has one.
+    #[test]
+    fn deferred_subcommands_keep_their_about() {
+        let listed: Vec<(String, String)> = super::Cli::command()
+            .get_subcommands()
+            .map(|c| {
+                let about = c.get_about().map(ToString::to_string).unwrap_or_default();
+                (c.get_name().to_owned(), about)
+            })
+            .collect();
+        let mut built = super::Cli::command();
+        built.build();
+        for (name, about) in listed {
+            assert!(
+                !about.is_empty(),
+                "`hdot {name}` has no one-line description"
+            );
+            let sub = built.find_subcommand(&name).expect("listed");
+            assert_eq!(
+                sub.get_about().map(ToString::to_string),
+                Some(about),
+                "`hdot {name} --help`"
+            );
+            assert!(
+                sub.get_long_about().is_none(),
+                "`hdot {name}` has a long description"
+            );
+        }
     }
 }

@@ -8,10 +8,10 @@ use clap::Args;
 
 use crate::catalog;
 
-/// Run derivations and check every expectation; print a table.
-///
-/// Exit status: 0 when every expectation of every derivation holds, 1 when
-/// one does not, 2 when a file cannot be loaded.
+// Run derivations and check every expectation; print a table.
+//
+// Exit status: 0 when every expectation of every derivation holds, 1 when
+// one does not, 2 when a file cannot be loaded.
 #[derive(Debug, Args)]
 pub struct CheckArgs {
     /// Derivation names, paths, or folders of derivation files (default:

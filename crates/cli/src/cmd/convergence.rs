@@ -15,7 +15,7 @@ use hdot_num::convergence::{
 
 use crate::output::{self, OutputError};
 
-/// Arguments of `hdot convergence`.
+// Arguments of `hdot convergence`.
 #[derive(Debug, Args)]
 pub struct ConvergenceArgs {
     /// Directory for the charts (`<primitive>-error-vs-{particles,time}.{svg,png}`).

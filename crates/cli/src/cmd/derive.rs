@@ -23,11 +23,11 @@ pub enum FormatArg {
     Json,
 }
 
-/// Derive the equations of one derivation and print them in textbook form.
-///
-/// Exit status: 0 when every expectation holds, 1 when one does not (the
-/// output is still printed and the failing components are named on
-/// stderr), 2 when the file cannot be read or has an error.
+// Derive the equations of one derivation and print them in textbook form.
+//
+// Exit status: 0 when every expectation holds, 1 when one does not (the
+// output is still printed and the failing components are named on
+// stderr), 2 when the file cannot be read or has an error.
 #[derive(Debug, Args)]
 pub struct DeriveArgs {
     /// A bundled derivation's name (see `hdot list`), `chain-K` (K = 1…8), or a path to a .toml file.

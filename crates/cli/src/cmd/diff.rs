@@ -25,15 +25,15 @@ pub enum FailOn {
     Presentation,
 }
 
-/// Compare two versions of derivation files step by step by canonical
-/// equality: two files (`hdot diff OLD NEW`), or every derivation file of
-/// the working tree against a git revision (`hdot diff --git REV
-/// [PATHS]`). Scenes and notes manifests are skipped.
-///
-/// Exit status: 0 when nothing differs mathematically (under
-/// `--fail-on presentation`: when nothing differs at all), 1 otherwise, 2
-/// on bad input (a version that does not load, a revision that does not
-/// exist, a path outside the repository).
+// Compare two versions of derivation files step by step by canonical
+// equality: two files (`hdot diff OLD NEW`), or every derivation file of
+// the working tree against a git revision (`hdot diff --git REV
+// [PATHS]`). Scenes and notes manifests are skipped.
+//
+// Exit status: 0 when nothing differs mathematically (under
+// `--fail-on presentation`: when nothing differs at all), 1 otherwise, 2
+// on bad input (a version that does not load, a revision that does not
+// exist, a path outside the repository).
 #[derive(Debug, Args)]
 pub struct DiffArgs {
     /// OLD and NEW derivation files; with `--git`, files or folders of the

@@ -11,7 +11,7 @@ use hdot_num::scene::Scene;
 
 use super::inertia::{NumFormat, print_report};
 
-/// Arguments of `hdot dynamics`.
+// Arguments of `hdot dynamics`.
 #[derive(Debug, Args)]
 pub struct DynamicsArgs {
     /// Scene file (TOML), e.g. docs/examples/rolling-disk.toml.

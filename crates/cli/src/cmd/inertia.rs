@@ -18,7 +18,7 @@ pub enum NumFormat {
     Json,
 }
 
-/// Arguments of `hdot inertia`.
+// Arguments of `hdot inertia`.
 #[derive(Debug, Args)]
 pub struct InertiaArgs {
     /// Scene file (TOML), e.g. docs/examples/rod-on-axle.toml.

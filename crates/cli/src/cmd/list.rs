@@ -7,7 +7,7 @@ use clap::Args;
 
 use crate::catalog;
 
-/// List the bundled derivations with their titles and sources.
+// List the bundled derivations with their titles and sources.
 #[derive(Debug, Args)]
 pub struct ListArgs {
     /// Folder of derivation files (default: ./derivations).

@@ -14,24 +14,24 @@ use hdot_sym::notes;
 use crate::output::OutputError;
 use crate::{catalog, output};
 
-/// Write lecture notes: derivations step by step, as a LaTeX document
-/// (`hdot-notes.tex`) and as Markdown with $$ math (`hdot-notes.md`);
-/// with `--slides` also LaTeX Beamer slides (`hdot-slides.tex`), with
-/// `--fragments` one LaTeX fragment per derivation (`fragments/NAME.tex`,
-/// to \input in your own document). With `--html DIR`, instead, a web
-/// site: DIR/index.html with the contents and one page per derivation,
-/// every equation as MathML (no script, nothing fetched from the network).
-///
-/// The derivations are the files and folders given (default: the
-/// derivations folder). Chapters, their order, the title and author line
-/// and the steps shown come from a notes manifest: `--manifest FILE`, or
-/// `notes.toml` in the one folder given (see docs/notes/README.md);
-/// without one, the derivations follow in file-name order.
-///
-/// Exit status: 0 when written; 2 when a derivation file or the manifest
-/// cannot be read or has an error (then nothing is written). A derivation
-/// whose expectation does not hold is still written, marked as such, and
-/// named on stderr.
+// Write lecture notes: derivations step by step, as a LaTeX document
+// (`hdot-notes.tex`) and as Markdown with $$ math (`hdot-notes.md`);
+// with `--slides` also LaTeX Beamer slides (`hdot-slides.tex`), with
+// `--fragments` one LaTeX fragment per derivation (`fragments/NAME.tex`,
+// to \input in your own document). With `--html DIR`, instead, a web
+// site: DIR/index.html with the contents and one page per derivation,
+// every equation as MathML (no script, nothing fetched from the network).
+//
+// The derivations are the files and folders given (default: the
+// derivations folder). Chapters, their order, the title and author line
+// and the steps shown come from a notes manifest: `--manifest FILE`, or
+// `notes.toml` in the one folder given (see docs/notes/README.md);
+// without one, the derivations follow in file-name order.
+//
+// Exit status: 0 when written; 2 when a derivation file or the manifest
+// cannot be read or has an error (then nothing is written). A derivation
+// whose expectation does not hold is still written, marked as such, and
+// named on stderr.
 #[derive(Debug, Args)]
 pub struct NotesArgs {
     /// Derivation files or folders of them (default: the derivations folder).

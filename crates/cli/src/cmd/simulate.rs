@@ -12,7 +12,7 @@ use hdot_sim::{Method, SimError, Step};
 
 use crate::output::{self, OutputError};
 
-/// Arguments of `hdot simulate`.
+// Arguments of `hdot simulate`.
 #[derive(Debug, Args)]
 pub struct SimulateArgs {
     /// Scene file (TOML), e.g. docs/examples/sim-heavy-top.toml.

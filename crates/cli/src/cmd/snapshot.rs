@@ -20,18 +20,18 @@ use crate::review::compare::{self, Change, Version};
 use crate::review::report::{self, FileDiff, ReportFormat};
 use crate::review::snapshot as snap;
 
-/// Record what each derivation derives in a review file
-/// (`DIR/NAME.hdot.txt`): the verdicts of check and verify, every step's
-/// equations in textbook form with their canonical forms. Commit the
-/// folder; `--check` in CI fails when a derivation's results change, and
-/// says how.
-///
-/// Exit status: 0 when every snapshot is up to date, or differs only in
-/// presentation (`--check`), or was written (`--accept`); 1 when the
-/// mathematics or a verdict of one would change, or one is new or no
-/// longer needed (`--check`; `--fail-on presentation`: any change); 2 on
-/// bad input (a derivation that does not load, a
-/// snapshot folder that is a file): then nothing is written.
+// Record what each derivation derives in a review file
+// (`DIR/NAME.hdot.txt`): the verdicts of check and verify, every step's
+// equations in textbook form with their canonical forms. Commit the
+// folder; `--check` in CI fails when a derivation's results change, and
+// says how.
+//
+// Exit status: 0 when every snapshot is up to date, or differs only in
+// presentation (`--check`), or was written (`--accept`); 1 when the
+// mathematics or a verdict of one would change, or one is new or no
+// longer needed (`--check`; `--fail-on presentation`: any change); 2 on
+// bad input (a derivation that does not load, a
+// snapshot folder that is a file): then nothing is written.
 #[derive(Debug, Args)]
 #[command(group(clap::ArgGroup::new("mode").required(true).args(["check", "accept"])))]
 pub struct SnapshotArgs {

@@ -13,7 +13,7 @@ use hdot_sim::stability::{self, Edge, Interval, MARGIN, STRICT_MARGIN, Stability
 
 use crate::output::{self, OutputError};
 
-/// Arguments of `hdot stability`.
+// Arguments of `hdot stability`.
 #[derive(Debug, Args)]
 pub struct StabilityArgs {
     /// Stability scene (TOML, `kind = "stability"`), or a bundled example's name.

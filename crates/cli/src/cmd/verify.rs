@@ -16,7 +16,7 @@ use hdot_num::verify::{Options, TOLERANCE_ULPS, check_with};
 
 use crate::catalog;
 
-/// Arguments of `hdot verify`.
+// Arguments of `hdot verify`.
 #[derive(Debug, Args)]
 pub struct VerifyArgs {
     /// Derivations to verify (names in the derivations folder, paths, or

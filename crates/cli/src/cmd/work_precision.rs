@@ -10,7 +10,7 @@ use hdot_sim::run;
 
 use crate::output::{self, OutputError};
 
-/// Arguments of `hdot work-precision`.
+// Arguments of `hdot work-precision`.
 #[derive(Debug, Args)]
 pub struct WorkPrecisionArgs {
     /// Scene file (TOML).
