@@ -84,17 +84,16 @@ fn tokenize(text: &str) -> Result<Vec<(Tok, Span)>, ParseError> {
         if c.is_whitespace() {
             it.next();
         } else if c.is_ascii_digit() {
-            let mut s = String::new();
             let mut end = i;
             while let Some(&(j, d)) = it.peek() {
                 if d.is_ascii_digit() {
-                    s.push(d);
                     end = j + 1;
                     it.next();
                 } else {
                     break;
                 }
             }
+            let s = text[i..end].to_owned();
             if s.len() > MAX_DIGITS {
                 return err(
                     Span { start: i, end },
@@ -115,18 +114,16 @@ fn tokenize(text: &str) -> Result<Vec<(Tok, Span)>, ParseError> {
             }
             out.push((Tok::Int(s), Span { start: i, end }));
         } else if c.is_alphabetic() || c == '_' {
-            let mut s = String::new();
             let mut end = i;
             while let Some(&(j, d)) = it.peek() {
                 if d.is_alphanumeric() || d == '_' {
-                    s.push(d);
                     end = j + d.len_utf8();
                     it.next();
                 } else {
                     break;
                 }
             }
-            out.push((Tok::Ident(s), Span { start: i, end }));
+            out.push((Tok::Ident(text[i..end].to_owned()), Span { start: i, end }));
         } else if c == '\'' {
             it.next();
             out.push((
@@ -280,12 +277,17 @@ impl Parser {
     fn prev_span(&self) -> Span {
         self.toks[self.pos.saturating_sub(1)].1
     }
+    /// The current token, and a step past it unless it is the end. A
+    /// token passed is never read again (only its span), so it is moved
+    /// out, not cloned.
     fn bump(&mut self) -> (Tok, Span) {
-        let t = self.toks[self.pos].clone();
         if self.pos < self.toks.len() - 1 {
             self.pos += 1;
+            let (t, span) = &mut self.toks[self.pos - 1];
+            (std::mem::replace(t, Tok::Prime), *span)
+        } else {
+            self.toks[self.pos].clone()
         }
-        t
     }
     fn eat(&mut self, c: char) -> bool {
         if *self.peek() == Tok::Sym(c) {
