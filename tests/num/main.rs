@@ -38,6 +38,10 @@ mod constrained;
 mod verify_kane;
 // Rolling constraints met by the draw, Kane's forces of the disk and the bicycles.
 mod verify_rolling;
+// verify/linearized.rs: the linearized Kane equations and their matrices, on the particles.
+mod verify_linearized;
+// A new user's trial: line bodies along x or y, equal moments, shared symbols, conserved along Kane's rates.
+mod verify_trials;
 // verify/quaternion.rs: frames turned by Euler parameters, drawn on the unit sphere.
 mod verify_quaternion;
 // verify/speeds.rs: draws kept away from the kinematic equations' singular angles.

@@ -109,7 +109,12 @@ pub fn run(args: VerifyArgs) -> anyhow::Result<ExitCode> {
                             "FAIL at {}: derived {:e}, measured {:e}",
                             w.quantity, w.derived, w.direct
                         ),
-                        None => "FAIL".into(),
+                        // A failed step without a comparison (a claim
+                        // with nothing to check it against): named, its
+                        // line below says why.
+                        None => r
+                            .first_failure()
+                            .map_or_else(|| "FAIL".into(), |s| format!("FAIL at {}", s.step)),
                     }
                 };
                 crate::outln!(

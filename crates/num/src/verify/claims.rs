@@ -29,6 +29,8 @@ pub(crate) enum Equations<'d> {
         step: &'d Step,
         unknowns: Vec<Atom>,
         items: Vec<Poly>,
+        /// The constants given values on the way ([`substituted`]).
+        special: Vec<Atom>,
     },
     /// `mass_matrix(eqs, [q1'', …])` and `forcing(eqs, [q1'', …])`.
     MassMatrix {
@@ -36,7 +38,69 @@ pub(crate) enum Equations<'d> {
         unknowns: Vec<Atom>,
         m: Vec<Poly>,
         f: Vec<Poly>,
+        special: Vec<Atom>,
     },
+}
+
+/// The constants a step's formula, or that of a step it names (and so on),
+/// gives a value with `subst(…, c = e)`: equations derived so are a special
+/// case of the file's model.
+fn substituted(d: &Derivation, s: &Step) -> Vec<Atom> {
+    fn walk(d: &Derivation, a: &hdot_sym::parse::Ast, seen: &mut Vec<String>, out: &mut Vec<Atom>) {
+        match &a.kind {
+            AstKind::Name { name, primes: 0 } => {
+                if let Some(t) = d.steps.iter().find(|t| t.name == *name)
+                    && !seen.contains(name)
+                {
+                    seen.push(name.clone());
+                    if let Ok(ast) = parse(&t.formula) {
+                        walk(d, &ast, seen, out);
+                    }
+                }
+            }
+            AstKind::Call { func, args } => {
+                for x in args {
+                    if let AstKind::Assign {
+                        name,
+                        primes: 0,
+                        value,
+                        ..
+                    } = &x.kind
+                    {
+                        if func == "subst"
+                            && let Ok(c) = d.symbols.atom(name, 0, x.span)
+                            && !c.is_time_dependent()
+                            && !out.contains(&c)
+                        {
+                            out.push(c);
+                        }
+                        walk(d, value, seen, out);
+                    } else {
+                        walk(d, x, seen, out);
+                    }
+                }
+            }
+            AstKind::Assign { value, .. } => walk(d, value, seen, out),
+            AstKind::Vector { items, .. } | AstKind::Add(items) | AstKind::Mul(items) => {
+                for x in items {
+                    walk(d, x, seen, out);
+                }
+            }
+            AstKind::Recip(x) | AstKind::Neg(x) | AstKind::Pow(x, _) | AstKind::Member(x, ..) => {
+                walk(d, x, seen, out);
+            }
+            AstKind::Cross(x, y) => {
+                walk(d, x, seen, out);
+                walk(d, y, seen, out);
+            }
+            AstKind::Num(_) | AstKind::Name { .. } => {}
+        }
+    }
+    let mut out = Vec::new();
+    if let Ok(ast) = parse(&s.formula) {
+        walk(d, &ast, &mut vec![s.name.clone()], &mut out);
+    }
+    out
 }
 
 impl Equations<'_> {
@@ -83,23 +147,20 @@ impl Equations<'_> {
         }
     }
 
-    /// Whether these equations hold wherever `c` is defined: they keep
-    /// every constant of the conserved value (equations with constants
-    /// substituted, `subst(K, I = m*r^2/2)`, are a special case along which
-    /// the general claim is not stated).
+    /// Whether these equations hold wherever `c` is defined: none of the
+    /// conserved value's constants was given a value on the way to them
+    /// (equations with constants substituted, `subst(K, I = m*r^2/2)`, are
+    /// a special case along which the general claim is not stated). A
+    /// constant the equations do not hold is no such sign: a body rolling
+    /// freely has accelerations free of its mass.
     fn covers(&self, c: &Conserved<'_>) -> bool {
-        let polys: Vec<&Poly> = match self {
-            Equations::Solved { items, .. } => items.iter().collect(),
-            Equations::MassMatrix { m, f, .. } => m.iter().chain(f).collect(),
+        let special = match self {
+            Equations::Solved { special, .. } | Equations::MassMatrix { special, .. } => special,
         };
-        let mut have = std::collections::BTreeSet::new();
-        for p in polys {
-            have.extend(constants(p));
-        }
         c.rates
             .iter()
             .flat_map(constants)
-            .all(|a| have.contains(&a))
+            .all(|a| !special.contains(&a))
     }
 
     fn unknowns(&self) -> &[Atom] {
@@ -163,6 +224,7 @@ pub(crate) fn equations(d: &Derivation) -> Vec<Equations<'_>> {
                 step: s,
                 unknowns: labels.clone(),
                 items: items.iter().map(|p| d.unfold(p)).collect(),
+                special: substituted(d, s),
             });
         }
         let Some(unknowns) = call_unknowns(d, s, "mass_matrix") else {
@@ -187,11 +249,14 @@ pub(crate) fn equations(d: &Derivation) -> Vec<Equations<'_>> {
         if f.len() != n {
             continue;
         }
+        let mut special = substituted(d, s);
+        special.extend(substituted(d, forcing));
         out.push(Equations::MassMatrix {
             names: (s.name.clone(), forcing.name.clone()),
             unknowns,
             m,
             f,
+            special,
         });
     }
     out
@@ -223,8 +288,9 @@ pub(crate) fn conserved_entry(c: &Conserved<'_>, eqs: &[Equations<'_>]) -> StepC
         means: "conserved".into(),
         conditions: String::new(),
         against: if eqs.is_empty() {
-            "its rate along the file's equations of motion: the file states none in all its constants \
-             (a step `solve(eqs, [q1'', …])` or `mass_matrix` and `forcing`)"
+            "its rate along the file's equations of motion: the file states none (a step \
+             `solve(eqs, [q1'', …])` or `mass_matrix` and `forcing`) that keeps the value's constants \
+             free (not given values by `subst`)"
                 .into()
         } else {
             format!(
@@ -271,8 +337,11 @@ pub(crate) fn compare_conserved(
         }
         // The accelerations the rules tie to the solved ones follow them,
         // and so do those of the other kind, through the kinematic
-        // equations.
+        // equations; the rates of the speeds a `kane` step's constraints
+        // make dependent follow the solved rates of the independent ones
+        // through the constraint rows' rates.
         constrain(d, &mut v, &[])?;
+        dependent_rates(d, draw, e.unknowns(), &mut v)?;
         complete_rates(d, e.unknowns(), &mut v)?;
         along.push((e, v));
     }
@@ -302,6 +371,36 @@ pub(crate) fn compare_conserved(
             Ok(out)
         })
         .collect()
+}
+
+/// With the independent speeds' rates solved, the dependent speeds' rates
+/// from the constraint rows' rates (and the coordinates' second rates from
+/// the kinematic equations' rates): without this a dependent speed keeps
+/// the rate drawn with the drawn independent rates, and a conserved energy
+/// written in it (or in the coordinates' rates) fails along the true
+/// motion.
+fn dependent_rates(
+    d: &Derivation,
+    draw: &Draw,
+    solved: &[Atom],
+    v: &mut Values,
+) -> Result<(), VerifyError> {
+    let Some(speeds) = &draw.consistent().speeds else {
+        return Ok(());
+    };
+    let rates: Vec<Atom> = d
+        .speeds()
+        .iter()
+        .map(|u| crate::bind::nth(u.base(), 1))
+        .collect();
+    if speeds.dependent.is_empty() || !solved.iter().any(|a| rates.contains(a)) {
+        return Ok(());
+    }
+    let mut w = v.clone();
+    if speeds.fill(d, &mut w, 2)?.is_some() {
+        *v = w;
+    }
+    Ok(())
 }
 
 /// After a law of motion's unknowns are set, the rates of the other kind

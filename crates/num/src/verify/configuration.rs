@@ -44,7 +44,7 @@ fn free_symbols(c: &Configuration, fixed: &[Atom]) -> Vec<Atom> {
 /// Newton's method on the constraints in the dependent coordinates from
 /// their values in `values`; true when every constraint vanishes to
 /// round-off of its terms' magnitudes.
-fn newton(c: &Configuration, values: &mut Values) -> Result<bool, VerifyError> {
+pub(crate) fn newton(c: &Configuration, values: &mut Values) -> Result<bool, VerifyError> {
     let n = c.dependent.len();
     for _ in 0..ITERATIONS {
         let mut f = DVector::zeros(n);

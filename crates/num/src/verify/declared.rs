@@ -26,7 +26,7 @@ use super::knowns::bind_knowns;
 use super::means::{against_of, frame_index, meaning_value};
 use super::speeds::Consistent;
 use super::world::World;
-use super::{Comparison, StepCheck, VerifyError, claims, declaration};
+use super::{Comparison, StepCheck, VerifyError, claims, declaration, linearized};
 use crate::bind::Values;
 use crate::cloud::ParticleCloud;
 use crate::eval::Tape;
@@ -70,13 +70,23 @@ impl Report {
         self.steps.iter().map(|s| s.max_error).fold(0.0, f64::max)
     }
 
-    /// The worst comparison over all steps.
+    /// The worst comparison of the steps that failed, or of every step
+    /// when none did: a failed check is never reported by a comparison of
+    /// a step that passed (a step can fail with a larger tolerance's error
+    /// below another's, or without any comparison — a conserved claim with
+    /// no equations of motion to take its rate along —, then `None`).
     pub fn worst(&self) -> Option<&Comparison> {
+        let failed = !self.passed();
         self.steps
             .iter()
-            .filter(|s| s.worst.is_some())
+            .filter(|s| s.worst.is_some() && (!failed || !s.passed))
             .max_by(|a, b| a.max_error.total_cmp(&b.max_error))
             .and_then(|s| s.worst.as_ref())
+    }
+
+    /// The first step that failed, when one did.
+    pub fn first_failure(&self) -> Option<&StepCheck> {
+        self.steps.iter().find(|s| !s.passed)
     }
 
     /// What the file would need for a step to be compared, when none is.
@@ -501,10 +511,20 @@ fn run(
             claims::conserved_entry(c, &eqs),
         );
     }
-    let mut rng = ChaCha8Rng::seed_from_u64(options.seed);
     let consistent = std::rc::Rc::new(Consistent::of(d));
+    let constrained = consistent
+        .speeds
+        .as_ref()
+        .map(|s| s.configuration.step.as_str())
+        .filter(|s| !s.is_empty());
+    let plan = linearized::Plan::of(d, constrained);
+    let before = per_step.len();
+    for (j, e) in plan.entries().into_iter().enumerate() {
+        per_step.insert(before + j, e);
+    }
+    let mut rng = ChaCha8Rng::seed_from_u64(options.seed);
     let mut draws = 0;
-    if !compiled.is_empty() || vanishing > 0 || !conserved.is_empty() {
+    if !compiled.is_empty() || vanishing > 0 || !conserved.is_empty() || before < per_step.len() {
         for _ in 0..options.draws.max(1) {
             let (dr, mut values) = draw(d, &mut rng, given, &consistent)?;
             apply(d, &mut values, &d.physics.motion)?;
@@ -514,11 +534,22 @@ fn run(
                 .collect::<Result<Vec<_>, _>>()?;
             let vanish = compare_vanishing(d, &dr, &values)?;
             let rates = if eqs.is_empty() {
-                Vec::new()
+                vec![Vec::new(); conserved.len()]
             } else {
                 claims::compare_conserved(d, &dr, &values, &conserved, &eqs)?
             };
-            for (k, cs) in steps.into_iter().chain(vanish).chain(rates).enumerate() {
+            let linear = if draws < linearized::DRAWS {
+                plan.compare(d, &dr, &values)?
+            } else {
+                vec![Vec::new(); plan.measured().count()]
+            };
+            for (k, cs) in steps
+                .into_iter()
+                .chain(vanish)
+                .chain(rates)
+                .chain(linear)
+                .enumerate()
+            {
                 let s = per_step.get_mut(&k).expect("inserted");
                 for cmp in cs {
                     let e = cmp.relative_error();
@@ -542,8 +573,13 @@ fn run(
         not_compared: d
             .steps
             .iter()
-            .filter(|s| s.meaning.is_none())
-            .map(|s| s.name.clone())
+            .filter(|s| s.meaning.is_none() && !plan.measured().any(|m| m == s.name))
+            .map(
+                |s| match plan.refused().iter().find(|(n, _)| *n == s.name) {
+                    Some((_, why)) => format!("{} ({why})", s.name),
+                    None => s.name.clone(),
+                },
+            )
             .collect(),
     })
 }

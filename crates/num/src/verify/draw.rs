@@ -29,7 +29,7 @@ use crate::bind::{MeasuredBody, Values, bind_all, declared_equations, nth};
 use crate::cloud::ParticleCloud;
 
 /// Highest derivative order drawn for a time symbol.
-const MAX_ORDER: u32 = 6;
+pub(crate) const MAX_ORDER: u32 = 6;
 
 /// What one draw fixes besides the symbols' values: the bodies (body axes,
 /// about the reference point), their centres, free attitudes and free
@@ -50,6 +50,9 @@ pub struct Draw {
     /// The speeds and constraints the motion is drawn consistent with
     /// (read once per check).
     consistent: Rc<Consistent>,
+    /// Whether the bodies were drawn (not given): drawn bodies are given
+    /// the equal moments their declarations state ([`equal_moments`]).
+    drawn: bool,
 }
 
 impl Draw {
@@ -98,8 +101,18 @@ pub fn symmetric(
             mirrored(cloud, n)?
         }
         Symmetry::Axisymmetric(k) => {
-            let c = axisymmetric(cloud, fold)?;
-            // z to axis k by a cyclic permutation (a proper rotation).
+            // Axis k to z, the copies turned about z, and z back to axis k
+            // (cyclic permutations, proper rotations): a cloud already on
+            // axis k (a slender rod along x, [`on_axes`]) stays on it.
+            let to_z = map_particles(cloud, |p, m| {
+                let q = match k {
+                    0 => Vector3::new(p.y, p.z, p.x),
+                    1 => Vector3::new(p.z, p.x, p.y),
+                    _ => p,
+                };
+                [(q, m)]
+            })?;
+            let c = axisymmetric(&to_z, fold)?;
             map_particles(&c, |p, m| {
                 let q = match k {
                     0 => Vector3::new(p.z, p.x, p.y),
@@ -131,14 +144,21 @@ pub(crate) fn draw(
     let ph = &d.physics;
     let mut values = Values::default();
     let mut eqs = Vec::new();
-    let mut bases = Vec::new();
+    let mut bases: Vec<ParticleCloud> = Vec::new();
     let mut folds = Vec::new();
     for (k, b) in ph.bodies.iter().enumerate() {
         let fold = rng.gen_range(3..=6);
-        let cloud = match given {
+        let cloud = match (given, twin(ph, k)) {
             // Given bodies have their symmetry already.
-            Some(g) => base_body(b, &g[k], Symmetry::None, fold)?,
-            None => base_body(b, &drawn_body(b, rng)?, b.symmetry, fold)?,
+            (Some(g), _) => base_body(b, &g[k], Symmetry::None, fold, false)?,
+            // Declared as an earlier body (two wheels sharing m_w, I_w,
+            // J_w): the same particles, or the shared symbols could not
+            // be bound from both.
+            (None, Some(j)) => bases[j].clone(),
+            (None, None) => {
+                let cloud = base_body(b, &drawn_body(b, rng)?, b.symmetry, fold, true)?;
+                declared_mass(b, &ph.bodies[..k], &bases, cloud)?
+            }
         };
         eqs.extend(body_equations(b, &cloud));
         bases.push(cloud);
@@ -270,6 +290,7 @@ pub(crate) fn draw(
             attitudes,
             points,
             consistent: consistent.clone(),
+            drawn: given.is_none(),
         },
         values,
     ))
@@ -312,6 +333,91 @@ pub(crate) fn on_axes(
     })?)
 }
 
+/// The earlier body whose declared inertia (with a symbol in it), symmetry
+/// and reference are those of body `k`, if any: it is drawn as that one.
+fn twin(ph: &hdot_sym::derivation::physics::Physics, k: usize) -> Option<usize> {
+    let b = &ph.bodies[k];
+    if b.inertia.0.iter().flatten().all(|p| p.atoms().is_empty()) {
+        return None;
+    }
+    ph.bodies[..k].iter().position(|e| {
+        e.inertia == b.inertia
+            && e.symmetry == b.symmetry
+            && e.inertia_about_centre == b.inertia_about_centre
+            && e.about_centre() == b.about_centre()
+            && e.mass == b.mass
+    })
+}
+
+/// `cloud` with the mass `b` declares when the declaration fixes it: a
+/// number (`mass = "1"`), or the mass symbol of an earlier body (whose
+/// drawn particles bound it), the particles' masses scaled to it (the
+/// inertia scales with them, and its symbols are bound from the result).
+fn declared_mass(
+    b: &Body,
+    earlier: &[Body],
+    bases: &[ParticleCloud],
+    cloud: ParticleCloud,
+) -> Result<ParticleCloud, VerifyError> {
+    let Some(mass) = &b.mass else {
+        return Ok(cloud);
+    };
+    let target = match mass.as_constant() {
+        Some(c) => c.to_f64(),
+        None => match earlier.iter().position(|e| e.mass.as_ref() == Some(mass)) {
+            Some(j) => bases[j].mass_properties().mass,
+            None => return Ok(cloud),
+        },
+    };
+    let have = cloud.mass_properties().mass;
+    if !(target > 0.0 && target.is_finite()) {
+        return Ok(cloud);
+    }
+    let f = target / have;
+    Ok(map_particles(&cloud, |p, m| [(p, m * f)])?)
+}
+
+/// `cloud` (about the point its declared inertia is about) with the equal
+/// moments of inertia the declaration states (`principal(I, I, I)`, or
+/// `principal(A, A, C)` without an axisymmetry that makes them so): each
+/// particle copied with the coordinates of the axes whose moments are
+/// declared equal exchanged — for two, a reflection in the plane between
+/// them; for three, the cyclic permutations —, each copy with its share
+/// of the mass. A declared symmetry keeps: the exchange maps the axes of
+/// equal moments onto each other. Bodies on a line (a zero moment) have
+/// their two equal moments already.
+pub(crate) fn equal_moments(b: &Body, cloud: &ParticleCloud) -> Result<ParticleCloud, VerifyError> {
+    if line_axes(b).iter().any(|z| *z) {
+        return Ok(cloud.clone());
+    }
+    let diag = |k: usize| &b.inertia.0[k][k];
+    let equal = |i: usize, j: usize| diag(i) == diag(j);
+    if equal(0, 1) && equal(1, 2) {
+        return Ok(map_particles(cloud, |p, m| {
+            [
+                (p, m / 3.0),
+                (Vector3::new(p.y, p.z, p.x), m / 3.0),
+                (Vector3::new(p.z, p.x, p.y), m / 3.0),
+            ]
+        })?);
+    }
+    let transverse = match b.symmetry {
+        Symmetry::Axisymmetric(k) => Some(((k + 1) % 3, (k + 2) % 3)),
+        _ => None,
+    };
+    for (i, j) in [(0, 1), (0, 2), (1, 2)] {
+        let already = transverse.is_some_and(|(a, c)| (a.min(c), a.max(c)) == (i, j));
+        if equal(i, j) && !already {
+            return Ok(map_particles(cloud, |p, m| {
+                let mut q = p;
+                q.swap_rows(i, j);
+                [(p, m / 2.0), (q, m / 2.0)]
+            })?);
+        }
+    }
+    Ok(cloud.clone())
+}
+
 /// A random body for the declaration `b`, before its symmetry: on the
 /// axis its zero moments of inertia require ([`line_axes`]).
 fn drawn_body(b: &Body, rng: &mut ChaCha8Rng) -> Result<ParticleCloud, VerifyError> {
@@ -326,8 +432,12 @@ fn base_body(
     cloud: &ParticleCloud,
     symmetry: Symmetry,
     fold: usize,
+    drawn: bool,
 ) -> Result<ParticleCloud, VerifyError> {
     let cloud = symmetric(cloud, symmetry, fold)?;
+    let equal = |c: ParticleCloud| {
+        if drawn { equal_moments(b, &c) } else { Ok(c) }
+    };
     // About its centre, or G declared at the reference point: G moved to
     // the origin (along the symmetry axis or in the symmetry plane, where
     // the symmetry puts it, so the symmetry is kept).
@@ -336,9 +446,9 @@ fn base_body(
         || b.mass_centre.as_ref().is_some_and(|c| c.is_zero())
     {
         let g = cloud.mass_properties().center;
-        return Ok(map_particles(&cloud, |p, m| [(p - g, m)])?);
+        return equal(map_particles(&cloud, |p, m| [(p - g, m)])?);
     }
-    Ok(cloud)
+    equal(cloud)
 }
 
 /// The body about its reference point and its centre from there: `base`
@@ -471,7 +581,8 @@ pub(crate) fn for_step(
         if attempt % 25 == 24 {
             for &i in &rebuilt {
                 let b = &ph.bodies[i];
-                draw.bases[i] = base_body(b, &drawn_body(b, rng)?, b.symmetry, draw.folds[i])?;
+                draw.bases[i] =
+                    base_body(b, &drawn_body(b, rng)?, b.symmetry, draw.folds[i], true)?;
             }
         }
         let (mut draw, mut values) = (draw.clone(), values.clone());
@@ -479,7 +590,7 @@ pub(crate) fn for_step(
         for &i in &rebuilt {
             let b = &ph.bodies[i];
             let sym = symmetry_of(i).unwrap_or(Symmetry::None);
-            let mut base = base_body(b, &draw.bases[i], sym, draw.folds[i])?;
+            let mut base = base_body(b, &draw.bases[i], sym, draw.folds[i], draw.drawn)?;
             if !m.bounds.is_empty() && attempt > 0 {
                 let mut f: [f64; 3] = std::array::from_fn(|_| 4f64.powf(rng.gen_range(-1.0..1.0)));
                 if let Symmetry::Axisymmetric(k) = symmetry_of(i).unwrap_or(b.symmetry) {

@@ -36,6 +36,7 @@ mod draw;
 pub mod jet;
 mod knowns;
 mod linear;
+mod linearized;
 pub mod means;
 pub mod motion;
 mod partials;
