@@ -94,6 +94,24 @@ fn like_terms_are_grouped() {
     );
 }
 
+/// Issue 21 item 13: unknowns declared as functions of time (a shaft's
+/// reactions A_x(t), B_x(t), as welded-rod-on-shaft.toml declares them)
+/// are grouped over their common coefficient as constant unknowns are:
+/// the moment equation prints as rod.toml's, whose reactions are
+/// constants.
+#[test]
+fn unknowns_of_time_are_grouped_as_constant_unknowns() {
+    let of_time = derived("reactions-of-time.toml");
+    assert_eq!(
+        printed(&of_time, "moment"),
+        ["a (A_x − B_x) + (1/2) m g L sin β + I′ φ\u{307}² sin β cos β"]
+    );
+    assert_eq!(
+        printed(&of_time, "moment"),
+        printed(&derived("rod.toml"), "moment")
+    );
+}
+
 /// Issue 21 item 13: the terms of what the file solves for come first in
 /// every step that holds them, even in an equation written before its
 /// `solve` (the rod's reactions A_x and B_x); a file that solves for

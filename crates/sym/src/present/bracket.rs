@@ -250,7 +250,7 @@ fn bracket_sum(
     let linear = if big {
         Vec::new()
     } else {
-        linear_groups(&parts, &timed)
+        linear_groups(&parts, &timed, &shared, &cx.pres.unknowns)
     };
     let mut linear_of: Vec<Option<(usize, bool)>> = vec![None; timed.len()];
     for (g, (_, members)) in linear.iter().enumerate() {
@@ -446,23 +446,33 @@ pub(super) fn lead_positive_inside(terms: &mut Vec<PrintTerm<'_>>) -> bool {
 /// power, and share the rest (`a A_x − a B_x`, a coefficient and the
 /// unknowns it multiplies): each group as (what they share, [(term's
 /// index, its constant, its coefficient)]), so that the group prints as
-/// one term, a (A_x − B_x). A term can be split in several ways; the
-/// largest groups are taken first, each term in one group at most, ties
-/// broken by the shared part's order (the result depends only on the
-/// terms). Linear in the terms times their factors, and a sort of the
-/// candidate groups.
+/// one term, a (A_x − B_x). The unknowns the file solves for count as
+/// constants here whether it declares them constants or functions of time
+/// (a shaft's reactions A_x(t), B_x(t)): a term whose time-dependent part
+/// is unknowns to the first power, and no other term's (`shared`, a
+/// bracket of constants over that part), is grouped as a term of
+/// constants is. A term can be split in several ways; the largest groups
+/// are taken first, each term in one group at most, ties broken by the
+/// shared part's order (the result depends only on the terms). Linear in
+/// the terms times their factors, and a sort of the candidate groups.
 #[allow(clippy::type_complexity)]
 fn linear_groups(
     parts: &[(Cow<'_, Monomial>, Rational)],
     timed: &[Monomial],
+    shared: &FxHashMap<&Monomial, Vec<(Monomial, Rational)>>,
+    unknowns: &[Atom],
 ) -> Vec<(Monomial, Vec<(usize, Monomial, Rational)>)> {
+    let unknown = |a: Atom| unknowns.contains(&a);
     let mut by_rest: BTreeMap<Monomial, Vec<(usize, Monomial, Rational)>> = BTreeMap::new();
     for (k, ((m, c), t)) in parts.iter().zip(timed).enumerate() {
-        if !t.is_one() || m.factors().len() < 2 {
+        let constants_and_unknowns = t.is_one()
+            || (t.factors().iter().all(|&(a, x)| x == 1 && unknown(a))
+                && !shared.contains_key(t));
+        if !constants_and_unknowns || m.factors().len() < 2 {
             continue;
         }
         for &(u, x) in m.factors() {
-            if x == 1 && leading_constant(u) {
+            if x == 1 && (leading_constant(u) || unknown(u)) {
                 let u = Monomial::atom(u, 1);
                 by_rest
                     .entry(m.div(&u))
