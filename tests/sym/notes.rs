@@ -448,6 +448,7 @@ latex_text_cases! {
     prose_integral_and_subscript: "I_xy = ∫xy dm" => r"$I_{xy} = \int xy$ dm";
     prose_code_word_keeps_underscore: "dt_rel(H)" => r"dt\_rel(H)";
     prose_superscripts: "sin²θ, Rᵀ, 90°" => r"$\sin^{2}\theta$, $R^{T}$, $90^{\circ}$";
+    prose_superscript_runs_are_one_script: "then E⁻¹ A, x₁₂ and y²³" => r"then $E^{-1} A$, $x_{12}$ and $y^{23}$";
     prose_primes_and_half: "I′ and ½ m v²" => r"$I'$ and $\tfrac{1}{2} m v^{2}$";
     prose_punctuation: "so — then – now … “quote” §3" => r"so --- then -- now \ldots{} ``quote'' \S{}3";
     prose_brackets_inside_a_formula: "steady when cos θ = m g L/(2 (I′ − J) Ω²)." => r"steady when $\cos \theta = m g L/(2 (I' - J) \Omega^{2})$.";

@@ -20,6 +20,7 @@
 //! assert_eq!(latex(r"50% \input{x}", Latex::Text), r"50\% \textbackslash{}input\{x\}");
 //! assert_eq!(latex(r"\def\x{\x}", Latex::Math), r"\backslash def\backslash x\{\backslash x\}");
 //! assert_eq!(latex("a'b, c", Latex::Code), r"a\textquotesingle{}b,\allowbreak{} c");
+//! assert_eq!(latex("E⁻¹ A", Latex::Math), "E^{-1} A");
 //! assert_eq!(markdown_code("a `b`"), "`` a `b` ``");
 //! use hdot_sym::escape::{python_comment, python_name, python_str};
 //! assert_eq!(python_str("it's\n"), r"'it\'s\n'");
@@ -51,9 +52,27 @@ pub enum Latex {
 /// `s` escaped for LaTeX at `to` (see [`Latex`]).
 pub fn latex(s: &str, to: Latex) -> String {
     let mut o = String::with_capacity(s.len() + 8);
-    for c in s.chars() {
+    let chars: Vec<char> = s.chars().collect();
+    let mut i = 0;
+    while i < chars.len() {
+        let c = chars[i];
+        i += 1;
         if c.is_control() && !(to == Latex::Text && matches!(c, '\n' | '\t')) {
             o.push(' ');
+            continue;
+        }
+        // A run of super- or subscripts (`E⁻¹`) is one script, `^{-1}`.
+        if to != Latex::Comment
+            && let Some((script, n)) = script_run(&chars[i - 1..])
+        {
+            if to == Latex::Math {
+                o.push_str(&script);
+            } else {
+                o.push('$');
+                o.push_str(&script);
+                o.push('$');
+            }
+            i += n - 1;
             continue;
         }
         match (to, c) {
@@ -376,6 +395,35 @@ pub(crate) fn text_symbol(c: char) -> Option<&'static str> {
         '✗' | '✘' => r"$\times$",
         _ => return None,
     })
+}
+
+/// A run of Unicode superscript (or subscript) characters at the start of
+/// `chars` (`⁻¹`, `₁₂`, `ᵀ`) as one LaTeX script, `^{-1}`: written
+/// character by character it would be `^{-}^{1}`, a double superscript
+/// and a LaTeX error. The script and how many characters it took; `None`
+/// when `chars` does not start with a super- or subscript.
+pub fn script_run(chars: &[char]) -> Option<(String, usize)> {
+    let mut mark = None;
+    let mut body = String::new();
+    let mut n = 0;
+    for &c in chars {
+        let Some(m) = unicode_math(c) else { break };
+        let (Some(inner), Some(here)) = (
+            m.get(1..)
+                .and_then(|r| r.strip_prefix('{')?.strip_suffix('}')),
+            m.chars().next().filter(|k| matches!(k, '^' | '_')),
+        ) else {
+            break;
+        };
+        if mark.is_some_and(|k| k != here) {
+            break;
+        }
+        mark = Some(here);
+        body.push_str(inner);
+        n += 1;
+    }
+    let mark = mark?;
+    Some((format!("{mark}{{{body}}}"), n))
 }
 
 /// The LaTeX math for a Unicode character that belongs in math (Greek

@@ -565,6 +565,12 @@ pub fn math_latex(s: &str) -> String {
             i += len;
             continue;
         }
+        // A run of super- or subscripts (`E⁻¹`) is one script, `^{-1}`.
+        if let Some((script, n)) = escape::script_run(&chars[i..]) {
+            push_atom(&mut o, &script);
+            i += n;
+            continue;
+        }
         let t: String = match c {
             ' ' => " ".into(),
             // A script mark with nothing to attach to (at the end, before

@@ -466,8 +466,7 @@ fn linear_groups(
     let mut by_rest: BTreeMap<Monomial, Vec<(usize, Monomial, Rational)>> = BTreeMap::new();
     for (k, ((m, c), t)) in parts.iter().zip(timed).enumerate() {
         let constants_and_unknowns = t.is_one()
-            || (t.factors().iter().all(|&(a, x)| x == 1 && unknown(a))
-                && !shared.contains_key(t));
+            || (t.factors().iter().all(|&(a, x)| x == 1 && unknown(a)) && !shared.contains_key(t));
         if !constants_and_unknowns || m.factors().len() < 2 {
             continue;
         }
