@@ -38,6 +38,14 @@ value = "2*T"
 name = "ma"
 label = "m a_G"
 value = "m*w_x"
+[[step]]
+name = "minusT"
+label = "-T"
+value = "-T"
+[[step]]
+name = "minus2"
+label = "− m H_G"
+value = "-m*H_G"
 "#;
 
 #[test]

@@ -164,18 +164,22 @@ impl Context<'_> {
     /// The words of a name label as a product, when there are two or more
     /// and each is a declared symbol or a step (earlier, or this one `own`).
     /// One word stays a name (`H'` on `dt(H)` is the rate it names).
+    /// A leading minus sign (`-m a_G`, `−T`) makes the words a product
+    /// even when there is one: a name does not start with a sign.
     fn product_words(&self, text: &str, own: &str) -> Option<Vec<Piece>> {
-        let words: Vec<&str> = text.split_whitespace().collect();
-        if words.len() < 2 {
+        let unsigned = text.strip_prefix(['-', '−']).map(str::trim_start);
+        let words: Vec<&str> = unsigned.unwrap_or(text).split_whitespace().collect();
+        if words.len() < 2 && (unsigned.is_none() || words.is_empty()) {
             return None;
         }
-        words
-            .iter()
-            .map(|w| {
+        let sign = unsigned.map(|_| Piece::Number("-1".to_owned()));
+        sign.into_iter()
+            .map(Some)
+            .chain(words.iter().map(|w| {
                 let (b, k) = label_word(w);
                 (self.symbols.get(b).is_some() || self.is_step(b) || b == own)
                     .then(|| Piece::Name(b.to_owned(), k))
-            })
+            }))
             .collect()
     }
 
@@ -209,10 +213,16 @@ impl Context<'_> {
         };
         let (label, is) = match (bare, label.is_vector() == is.is_vector()) {
             (_, false) => {
+                // A magnitude's value is not known before squaring: say
+                // what kind of thing the label is.
+                let means = match (&label, bare) {
+                    (Term::Scalar(_), true) => "a scalar (a magnitude)".to_owned(),
+                    (Term::Vector(_, f), true) => format!("a vector in frame {f}"),
+                    (_, false) => label.describe(),
+                };
                 return fail(format!(
-                    "`{text}` means {}, and the step's value is {}, so `{text} = …` would print a false \
+                    "`{text}` means {means}, and the step's value is {}, so `{text} = …` would print a false \
                      equation; label it with a name",
-                    label.describe(),
                     is.describe()
                 ));
             }
