@@ -127,7 +127,7 @@ pub mod markup {
     use std::process::Command;
 
     /// Strings of issue 21 that mean something to TeX, HTML or Markdown:
-    /// control words that read files or loop, unbalanced braces, `^^`
+    /// control words that read files or loop, unbalanced braces, blank lines, `^^`
     /// character codes, tags, entities, code fences.
     pub const TEX_HTML: &[&str] = &[
         r"\input\x",
@@ -142,6 +142,8 @@ pub mod markup {
         "&amp; &lt;b onload=\"x\"> <img src=x onerror=alert(1)> 'single' \"double\"",
         "``` \\x ` <!-- [link](javascript:x) *em* _u_",
         r"``` \x <script>alert(1)</script> ` %% & # ~ ^ _",
+        // A blank line is a paragraph break, which a heading cannot hold.
+        "a paragraph\n\nbreak \\x\n\n",
     ];
 
     /// Strings that mean something to a terminal or to a text's direction:

@@ -599,6 +599,18 @@ fn latex_plain(s: &str) -> String {
     escape::latex(s, Latex::Text)
 }
 
+/// [`latex`] of a line: an argument of a LaTeX command (`\title`,
+/// `\author`, `\section`, a frame's title) cannot hold a paragraph
+/// break, so line breaks and runs of white space are single spaces.
+pub fn latex_line(s: &str) -> String {
+    latex(&one_line(s))
+}
+
+/// `s` on one line: line breaks and runs of white space as single spaces.
+pub fn one_line(s: &str) -> String {
+    s.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
 /// Prose as LaTeX text with `$…$` math; it holds only characters pdflatex
 /// can typeset (ASCII and the accented letters of Latin-1).
 pub fn latex(s: &str) -> String {

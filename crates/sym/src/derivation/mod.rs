@@ -73,7 +73,9 @@ pub struct Derivation {
     pub name: String,
     /// The file path as given.
     pub path: String,
-    /// Title.
+    /// Title, on one line: the file's line breaks and runs of white space
+    /// are single spaces (a heading cannot hold a paragraph break: a blank
+    /// line in a LaTeX `\section{…}` ends it with an error).
     pub title: String,
     /// Where the equations come from.
     pub source: String,
@@ -485,7 +487,7 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
     Ok(Derivation {
         name,
         path: path.to_owned(),
-        title: raw.title,
+        title: crate::prose::one_line(&raw.title),
         source: raw.source,
         summary: raw.summary,
         assumptions: raw.assumptions,

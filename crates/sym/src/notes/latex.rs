@@ -51,8 +51,8 @@ pub(super) enum Target {
 /// A heading; in the article, with a plain-text PDF bookmark when the
 /// title has math.
 pub(super) fn latex_heading(cmd: &str, title: &str, target: Target) -> String {
-    let tex = prose::latex(title);
-    let plain = prose::ascii(title);
+    let tex = prose::latex_line(title);
+    let plain = prose::ascii(&prose::one_line(title));
     if target == Target::Fragment || tex == plain {
         format!("\\{cmd}{{{tex}}}")
     } else {
@@ -90,8 +90,8 @@ pub fn latex_document(doc: &Document) -> String {
     let mut o = String::new();
     generated_comment(&mut o);
     o.push_str(LATEX_PREAMBLE);
-    let _ = writeln!(o, "\\title{{{}}}", prose::latex(&doc.title));
-    let _ = writeln!(o, "\\author{{{}}}", prose::latex(&doc.author));
+    let _ = writeln!(o, "\\title{{{}}}", prose::latex_line(&doc.title));
+    let _ = writeln!(o, "\\author{{{}}}", prose::latex_line(&doc.author));
     let _ = writeln!(o, "\\date{{}}\n");
     let _ = writeln!(o, "\\begin{{document}}\n\\maketitle\n");
     if !doc.intro.trim().is_empty() {
@@ -152,7 +152,11 @@ pub(super) const LEVELS: [&str; 3] = ["section", "subsection", "subsubsection"];
 pub(super) fn latex_section(o: &mut String, s: &Section, level: usize, target: Target) {
     let _ = writeln!(o, "{}", latex_heading(LEVELS[level], &s.title, target));
     let _ = writeln!(o, "\\label{{sec:{}}}\n", label_key(&s.name));
-    let _ = writeln!(o, "\\textbf{{Source:}} {}\\\\", prose::latex(&s.source));
+    let _ = writeln!(
+        o,
+        "\\textbf{{Source:}} {}\\\\",
+        prose::latex_line(&s.source)
+    );
     let _ = writeln!(o, "\\textbf{{File:}} \\texttt{{{}}}\n", latex_code(&s.path));
     if !s.summary.is_empty() {
         let _ = writeln!(o, "{}\n", prose::latex(&s.summary));

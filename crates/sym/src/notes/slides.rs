@@ -61,8 +61,8 @@ pub fn slides_document(doc: &Document) -> String {
     let mut o = String::new();
     generated_comment(&mut o);
     o.push_str(SLIDES_PREAMBLE);
-    let _ = writeln!(o, "\\title{{{}}}", prose::latex(&doc.title));
-    let _ = writeln!(o, "\\author{{{}}}", prose::latex(&doc.author));
+    let _ = writeln!(o, "\\title{{{}}}", prose::latex_line(&doc.title));
+    let _ = writeln!(o, "\\author{{{}}}", prose::latex_line(&doc.author));
     let _ = writeln!(o, "\\date{{}}\n");
     let _ = writeln!(
         o,
@@ -82,7 +82,7 @@ pub fn slides_document(doc: &Document) -> String {
 }
 
 pub(super) fn frame_title(title: &str) -> String {
-    prose::latex(title)
+    prose::latex_line(title)
 }
 
 pub(super) fn slides_chapter(o: &mut String, c: &Chapter) {
@@ -335,8 +335,8 @@ pub(super) fn slides_step(o: &mut String, section_title: &str, st: &StepBlock) {
 /// A heading for Beamer's outline (which cannot hold every construct): the
 /// prose as LaTeX, protected.
 pub(super) fn latex_heading_plain(title: &str) -> String {
-    let tex = prose::latex(title);
-    let plain = prose::ascii(title);
+    let tex = prose::latex_line(title);
+    let plain = prose::ascii(&prose::one_line(title));
     if tex == plain {
         tex
     } else {
