@@ -393,7 +393,7 @@ refuses! {
     initial_rate_missing: TURNTABLE_SCENE.replace("rates = { theta = 0.0 }", ""), TURNTABLE
         => "`theta'` is missing";
     initial_name_misspelt: TURNTABLE_SCENE.replace("{ theta = 0.3 }", "{ thta = 0.3 }"), TURNTABLE
-        => "scene.toml: field `initial`: initial value for `thta`, which is not a coordinate";
+        => "scene.toml: field `initial`: line 15: initial value for `thta`, which is not a coordinate";
     initial_value_for_a_constant: TURNTABLE_SCENE.replace("{ theta = 0.3 }", "{ theta = 0.3, m = 1.0 }"), TURNTABLE
         => "`m`, which is not a coordinate";
     input_not_given: TURNTABLE_SCENE.replace("Omega = \"2.5\"", ""), TURNTABLE
@@ -963,4 +963,41 @@ fn an_initial_coordinate_that_is_not_finite_is_located() {
         .to_string();
     let at = format!("field `initial.coordinates.theta`: line {line}: ");
     assert!(msg.contains(&at), "`{msg}` lacks `{at}`");
+}
+
+/// Issue 21, item 9: a derived scene's errors name the scene's field and
+/// its line — a constant the derivation lacks, an input that does not
+/// parse — and an input that is NaN or infinite at t = 0 is refused at its
+/// field (it made the integration fail with "step size underflow" and no
+/// name).
+#[test]
+fn derived_scene_field_errors_name_their_line() {
+    let path = example("sim-rolling-disk.toml");
+    let original = std::fs::read_to_string(&path).unwrap();
+    for (from, to, field) in [
+        ("r = 0.1", "r = 0.1\nzz = 2.0", "constants.zz"),
+        (
+            "M_a = \"0.5*sin(t)^2*exp(-t)\"",
+            "M_a = \"0.5*sin(t)^^2\"",
+            "inputs.M_a",
+        ),
+        (
+            "M_a = \"0.5*sin(t)^2*exp(-t)\"",
+            "M_a = \"1/(t-t)\"",
+            "inputs.M_a",
+        ),
+        (
+            "M_a = \"0.5*sin(t)^2*exp(-t)\"",
+            "M_a = \"exp(1e3)\"",
+            "inputs.M_a",
+        ),
+    ] {
+        assert!(original.contains(from), "the example changed: {from}");
+        let text = original.replace(from, to);
+        let needle = to.lines().last().unwrap();
+        let line = text.lines().position(|l| l == needle).unwrap() + 1;
+        let msg = Scene::parse(&text, &path).expect_err(to).to_string();
+        let at = format!("field `{field}`: line {line}: ");
+        assert!(msg.contains(&at), "{to}: `{msg}` lacks `{at}`");
+    }
 }

@@ -203,7 +203,30 @@ impl Scene {
     }
 
     /// [`Scene::parse`] with a resolver for a derived scene's derivation.
+    /// An error of a field the scene writes names its line (one place for
+    /// every kind of scene: the checks name the field).
     pub fn parse_with(text: &str, file: &Path, resolve: Resolve<'_>) -> Result<Scene, SimError> {
+        Scene::parse_fields(text, file, resolve).map_err(|e| match e {
+            SimError::BadField {
+                file,
+                field,
+                message,
+            } if !message.starts_with("line ") => {
+                let message = match text::line_of_field(text, &field) {
+                    Some(n) => format!("line {n}: {message}"),
+                    None => message,
+                };
+                SimError::BadField {
+                    file,
+                    field,
+                    message,
+                }
+            }
+            e => e,
+        })
+    }
+
+    fn parse_fields(text: &str, file: &Path, resolve: Resolve<'_>) -> Result<Scene, SimError> {
         let mut raw: RawScene = toml::from_str(text).map_err(|e| parse_failure(text, file, e))?;
         let shared = raw.shared();
         let bad = |field: &str, message: String| bad_field(file, field, message);

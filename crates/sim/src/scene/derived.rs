@@ -67,13 +67,21 @@ pub type Resolve<'a> = &'a dyn Fn(&str) -> Result<(PathBuf, String), String>;
 
 /// The default resolver: a `file` with a `/` or ending in `.toml` is a path
 /// from the scene's folder; a bare name is `derivations/NAME.toml` in the
-/// scene's folder or any folder above it.
+/// scene's folder or any folder above it — above it on disk, not only
+/// in the path as given (`scene.toml` run in its own folder looks in the
+/// folders above the working directory too).
 pub fn resolve_near(scene: &Path, name: &str) -> Result<(PathBuf, String), String> {
     let dir = scene.parent().unwrap_or(Path::new("."));
     let candidates: Vec<PathBuf> = if name.contains('/') || name.ends_with(".toml") {
         vec![dir.join(name)]
     } else {
+        // The folders of the path as given first (shown as written), then
+        // those above it once made absolute.
+        let absolute = std::env::current_dir()
+            .map(|cwd| cwd.join(dir))
+            .unwrap_or_else(|_| dir.to_path_buf());
         dir.ancestors()
+            .chain(absolute.ancestors())
             .map(|a| a.join("derivations").join(format!("{name}.toml")))
             .collect()
     };
@@ -225,6 +233,7 @@ fn parse(
     (file, scene_text): (&Path, &str),
     resolve: Resolve<'_>,
 ) -> Result<DerivedScene, SimError> {
+    // (Scene::parse_with adds the line of the field.)
     let bad = |field: &str, message: String| SimError::BadField {
         file: file.to_path_buf(),
         field: field.to_string(),
@@ -368,9 +377,19 @@ fn parse(
     let inputs = inputs
         .into_iter()
         .map(|(k, text)| {
-            TimeFunction::parse(&text, &constants_for_inputs)
-                .map(|f| (k.clone(), f))
-                .map_err(|e| bad(&format!("inputs.{k}"), e))
+            let field = format!("inputs.{k}");
+            let f =
+                TimeFunction::parse(&text, &constants_for_inputs).map_err(|e| bad(&field, e))?;
+            // An input the run would start from as NaN or infinity fails
+            // the integration with no name: refused here, at its field.
+            let start = f.eval(0.0);
+            if !start.is_finite() {
+                return Err(bad(
+                    &field,
+                    format!("`{text}` is {start} at t = 0: an input must be finite"),
+                ));
+            }
+            Ok((k.clone(), f))
         })
         .collect::<Result<BTreeMap<_, _>, _>>()?;
     let spec = DerivedSpec {

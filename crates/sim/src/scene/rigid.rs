@@ -135,6 +135,18 @@ fn pivot(
         )
     })?;
     let o = finite3(o, "top.fixed_point", (file, text))?;
+    // The moments about O add m |OG|²: finite with room to spare.
+    if !(mass * (centre - o).norm_squared() * 1e6).is_finite() {
+        return Err(bad(
+            "top.fixed_point",
+            format!(
+                "{}the pivot {:?} is so far from the mass centre that m |OG|² (the moments \
+                 about it) is beyond the range of f64: rescale the units",
+                at_line(text, "fixed_point"),
+                [o.x, o.y, o.z]
+            ),
+        ));
+    }
     let g = g.ok_or_else(|| {
         bad(
             "g",
@@ -142,7 +154,17 @@ fn pivot(
         )
     })?;
     let gn = g.norm();
-    if !(gn > 0.0 && gn.is_finite() && g.x.hypot(g.y) <= 1e-12 * gn && g.z < 0.0) {
+    if !gn.is_finite() {
+        return Err(bad(
+            "g",
+            format!(
+                "line {g_line}: |g| of {:?} is beyond the range of f64 once squared: \
+                 rescale the units",
+                [g.x, g.y, g.z]
+            ),
+        ));
+    }
+    if !(gn > 0.0 && g.x.hypot(g.y) <= 1e-12 * gn && g.z < 0.0) {
         return Err(bad(
             "g",
             format!(
@@ -250,12 +272,26 @@ fn given_start(
         let imax = i[0].max(i[1]).max(i[2]);
         (h2 * 1e6).is_finite() && (e2 * imax * 1e6).is_finite()
     };
+    // The field at fault: the rates, or the body when its moments alone
+    // are out of range (a mass of 1e300 with ω = 60 rad/s).
+    let moments_out = !in_range(&Vector3::new(1.0, 1.0, 1.0));
     let overflow = |field: &str, v: &Vector3<f64>| {
+        let key = field.rsplit('.').next().unwrap_or(field);
+        if moments_out {
+            return bad(
+                "body",
+                format!(
+                    "the principal moments {i:?} are beyond the range of f64 once squared \
+                     (|H|² and the energy square them): rescale the units (mass, length)"
+                ),
+            );
+        }
         bad(
             field,
             format!(
-                "|H|² = Σ (I_i ω_i)² is beyond the range of f64 (components {:?}): \
+                "{}|H|² = Σ (I_i ω_i)² is beyond the range of f64 (components {:?}): \
                  rescale the units",
+                at_line(text, key),
                 [v.x, v.y, v.z]
             ),
         )

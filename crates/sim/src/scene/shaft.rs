@@ -8,6 +8,7 @@ use hdot_num::scene::{Bodies, RawBodies, bodies_from};
 use nalgebra::Vector3;
 
 use super::raw::{RawInitial, RawMotor, RawShaft};
+use super::text::at_line;
 use super::{NO_BODY, SceneKind, bad_field};
 use crate::SimError;
 use crate::systems::Shaft;
@@ -66,11 +67,36 @@ pub(super) fn read(
         ));
     }
     let no_load = motor.no_load_speed.unwrap_or(f64::INFINITY);
-    if !(motor.stall_torque.is_finite() && no_load > 0.0 && s.friction >= 0.0) {
-        return Err(bad(
-            "motor",
-            "stall torque finite, no-load speed positive, friction ≥ 0".into(),
-        ));
+    // Each value at its own field and line (NaN fails every comparison).
+    for (ok, field, key, want, got) in [
+        (
+            motor.stall_torque.is_finite(),
+            "motor.stall_torque",
+            "stall_torque",
+            "a finite torque",
+            motor.stall_torque,
+        ),
+        (
+            no_load > 0.0,
+            "motor.no_load_speed",
+            "no_load_speed",
+            "a positive speed",
+            no_load,
+        ),
+        (
+            s.friction >= 0.0 && s.friction.is_finite(),
+            "shaft.friction",
+            "friction",
+            "a finite coefficient ≥ 0",
+            s.friction,
+        ),
+    ] {
+        if !ok {
+            return Err(bad(
+                field,
+                format!("{}{want} is needed, got {got}", at_line(text, key)),
+            ));
+        }
     }
     let shaft = Shaft {
         i_z: iz,

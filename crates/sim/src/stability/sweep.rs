@@ -148,7 +148,11 @@ pub fn sweep(
     let at = |p: f64, why: String| SimError::BadField {
         file: scene.file.clone(),
         field: "sweep".into(),
-        message: format!("at {} = {p}: {why}", scene.parameter),
+        message: format!(
+            "at {} = {}: {why}",
+            scene.parameter,
+            crate::run::significant(&[p], 12)[0]
+        ),
     };
     let mut scratch = Vec::new();
     let mut eigenvalues: Vec<Vec<Complex<f64>>> = Vec::with_capacity(values.len());
