@@ -647,8 +647,8 @@ impl fmt::Display for Report {
 
 impl Report {
     /// The state at T as printed: 12 significant digits; a built-in
-    /// model's attitude and rates (or a shaft's angle and rate) each on
-    /// their own scale, a derived scene's components each named and on
+    /// model's quaternion's scalar part, its vector part and the rates (or
+    /// a shaft's angle and rate) each on their own scale, a derived scene's components each named and on
     /// its own.
     fn state_text(&self) -> Vec<String> {
         let y = &self.final_state;
@@ -660,9 +660,17 @@ impl Report {
                 .map(|(n, v)| format!("{n} = {}", significant(&[*v], 12)[0]))
                 .collect();
         }
-        let split = if y.len() == 7 { 4 } else { 1.min(y.len()) };
-        let mut out = significant(&y[..split], 12);
-        out.extend(significant(&y[split..], 12));
+        // A quaternion's scalar part, its vector part (small for a small
+        // rotation, however close the scalar part is to 1) and the rates;
+        // or an angle and its rates.
+        let groups: &[usize] = if y.len() == 7 { &[1, 4] } else { &[1] };
+        let mut out = Vec::with_capacity(y.len());
+        let mut from = 0;
+        for &to in groups.iter().chain([&y.len()]) {
+            let to = to.clamp(from, y.len());
+            out.extend(significant(&y[from..to], 12));
+            from = to;
+        }
         out
     }
 }

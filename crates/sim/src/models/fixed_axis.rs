@@ -124,8 +124,17 @@ impl ModelEntry for FixedAxis {
             out.error = Some(euclid(&y, &exact));
             out.error_basis = "measured against the closed form".into();
         } else {
+            // The shorter of a turn's time and the motion's own time
+            // constant I_z/|T_0/ω_0 + c| (a stiff friction decays in
+            // milliseconds: steps of a turn's time would be unstable).
             let w = y0[1].abs();
-            let time_scale = if w > 0.0 { 1.0 / w } else { t_end };
+            let damping = (shaft.stall_torque / shaft.no_load_speed + shaft.friction).abs();
+            let relax = if damping > 0.0 {
+                shaft.i_z / damping
+            } else {
+                f64::INFINITY
+            };
+            let time_scale = if w > 0.0 { 1.0 / w } else { t_end }.min(relax);
             out.error = Some(closed_form_estimate(
                 shaft,
                 &|t| shaft.exact(y0, t),
