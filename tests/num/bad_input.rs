@@ -17,6 +17,13 @@ fn csv_errors_name_file_line_and_field() {
             CsvErrorKind::NonPositiveMass(-1.0),
         ),
         ("0,0,0,0\n", 1, "m", CsvErrorKind::NonPositiveMass(0.0)),
+        // A subnormal mass: m x underflows, the centre would read 0.
+        (
+            "0,0,0,1e-320\n1e-10,0,0,1e-320\n",
+            1,
+            "m",
+            CsvErrorKind::TinyMass(1e-320),
+        ),
         (
             "# c\n\n0,NaN,0,1\n",
             3,

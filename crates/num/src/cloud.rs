@@ -183,6 +183,9 @@ impl ParticleCloud {
                 if k == 3 && v <= 0.0 {
                     return Err(err(line, name, CsvErrorKind::NonPositiveMass(v)));
                 }
+                if k == 3 && v < f64::MIN_POSITIVE {
+                    return Err(err(line, name, CsvErrorKind::TinyMass(v)));
+                }
                 cols[k].push(v);
             }
             lines.push(line);

@@ -16,6 +16,17 @@ pub enum BodyError {
         /// The value given.
         value: f64,
     },
+    /// A mass below f64's normal range (a subnormal): its moments
+    /// underflow, so the mass centre and inertia would be silently wrong.
+    #[error(
+        "{what}: mass {value:e} is below the normal range of f64 (about 2.2e-308): its moments underflow; rescale the units"
+    )]
+    TinyMass {
+        /// What carries the mass.
+        what: String,
+        /// The value given.
+        value: f64,
+    },
     /// A dimension is negative, zero where it must not be, or
     /// inconsistent (inner radius above outer).
     #[error("{what}: invalid dimension {field} = {value} ({reason})")]
@@ -91,6 +102,12 @@ pub enum CsvErrorKind {
     /// Mass zero or negative.
     #[error("mass must be positive, got {0}")]
     NonPositiveMass(f64),
+    /// A mass below f64's normal range: its products with the coordinates
+    /// underflow, so the sums would be silently wrong.
+    #[error(
+        "mass {0:e} is below the normal range of f64 (about 2.2e-308): its moments underflow; rescale the units"
+    )]
+    TinyMass(f64),
     /// No particle in the file.
     #[error("no particles in file")]
     Empty,

@@ -23,6 +23,12 @@ pub(crate) fn check_mass(what: &str, mass: f64) -> Result<(), BodyError> {
             value: mass,
         });
     }
+    if mass < f64::MIN_POSITIVE {
+        return Err(BodyError::TinyMass {
+            what: what.to_string(),
+            value: mass,
+        });
+    }
     Ok(())
 }
 

@@ -350,7 +350,7 @@ fn part_of(
     };
     let body = Body::try_new(shape, mass, pose).map_err(|e| {
         let field = match &e {
-            crate::BodyError::NonPositiveMass { .. } => "mass",
+            crate::BodyError::NonPositiveMass { .. } | crate::BodyError::TinyMass { .. } => "mass",
             crate::BodyError::BadDimension { field, .. }
             | crate::BodyError::NotFinite { field, .. } => field,
             _ => "-",
