@@ -505,4 +505,65 @@ fn a_scene_s_cloud_is_never_overwritten() {
         assert!(err.contains("is an input of this command"), "{flag}: {err}");
         assert_eq!(std::fs::read_to_string(&cloud).unwrap(), cloud_text);
     }
+    // work-precision refuses before its sweep: nothing is written, neither
+    // the page nor the CSV and charts (a cloud named like its CSV too).
+    let out_dir = d.join("wp");
+    let wp_cloud = d.join("s-work-precision.csv");
+    std::fs::write(&wp_cloud, cloud_text).unwrap();
+    let with_two = std::fs::read_to_string(&s).unwrap().replace(
+        "[initial]",
+        "[[cloud]]\nfile = \"s-work-precision.csv\"\n\n[initial]",
+    );
+    std::fs::write(&s, with_two).unwrap();
+    for extra in [
+        &[
+            "--out",
+            out_dir.to_str().unwrap(),
+            "--html",
+            cloud.to_str().unwrap(),
+        ][..],
+        &["--out", d.to_str().unwrap()][..],
+    ] {
+        let mut args = vec!["work-precision", s.to_str().unwrap(), "--t-end", "0.01"];
+        args.extend_from_slice(extra);
+        let out = hdot(&args);
+        let err = text(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{extra:?}: {err}");
+        assert!(
+            err.contains("is an input of this command"),
+            "{extra:?}: {err}"
+        );
+        assert!(!out_dir.exists(), "{extra:?}: {err}");
+        assert!(!d.join("s-work-precision.svg").exists(), "{extra:?}: {err}");
+        assert_eq!(std::fs::read_to_string(&cloud).unwrap(), cloud_text);
+        assert_eq!(std::fs::read_to_string(&wp_cloud).unwrap(), cloud_text);
+    }
+}
+
+/// A derived scene names its derivation by a bare name, found in a
+/// `derivations` folder at or above the scene's folder on disk: run from
+/// the scene's own folder with the scene's bare file name (a path with no
+/// folder in it), it finds the repository's `derivations/` two folders up.
+#[test]
+fn a_derived_scene_finds_its_derivation_from_its_own_folder() {
+    let folder = repo_root().join("docs/examples");
+    let out_dir = tempfile::tempdir().unwrap();
+    let out_dir = out_dir.path().to_str().unwrap();
+    for args in [
+        &["simulate", "sim-derived-heavy-top.toml", "--t-end", "0.01"][..],
+        &["stability", "stability-bicycle.toml", "--out", out_dir][..],
+    ] {
+        let out = Command::new(hdot_bin())
+            .args(args)
+            .current_dir(&folder)
+            .env_remove("HDOT_DERIVATIONS")
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{args:?}: {}{}",
+            text(&out.stdout),
+            text(&out.stderr)
+        );
+    }
 }

@@ -25,14 +25,20 @@ pub struct ConvergenceArgs {
     /// inertia error is at most T.
     #[arg(long, value_name = "T")]
     pub tol: Option<f64>,
-    /// Largest number of particles tried per discretisation.
-    #[arg(long, default_value_t = 2_000_000)]
-    pub max_particles: usize,
+    /// Largest number of particles tried per discretisation (1,000 to
+    /// 20,000,000: fewer draws no chart, more holds gigabytes).
+    #[arg(long, default_value_t = 2_000_000, value_parser = clap::value_parser!(u64).range(1_000..=MAX_PARTICLES))]
+    pub max_particles: u64,
 }
+
+/// The largest `--max-particles` (see docs/cli.md's table of limits): a
+/// discretisation of that many particles holds about a gigabyte.
+pub const MAX_PARTICLES: u64 = 20_000_000;
 
 /// Runs the sweeps. Exit 1 when some primitive cannot meet `--tol`
 /// within `--max-particles`; 2 on a bad option.
 pub fn run(args: ConvergenceArgs) -> anyhow::Result<ExitCode> {
+    let max_particles = usize::try_from(args.max_particles).unwrap_or(usize::MAX);
     if let Some(t) = args.tol
         && (t.is_nan() || t <= 0.0 || t.is_infinite())
     {
@@ -61,7 +67,7 @@ pub fn run(args: ConvergenceArgs) -> anyhow::Result<ExitCode> {
             if let Some(b) = &bar {
                 b.set_message(format!("{} {method}", shape.name()));
             }
-            let pts = sweep(shape, method, args.max_particles);
+            let pts = sweep(shape, method, max_particles);
             let orders = observed_orders(&pts);
             let last = pts.last();
             let verdict = match (last, orders.iter().rev().flatten().next()) {
@@ -81,7 +87,7 @@ pub fn run(args: ConvergenceArgs) -> anyhow::Result<ExitCode> {
             }
         }
         if let Some(tol) = args.tol {
-            match cheapest_meeting(shape, tol, &METHODS, args.max_particles) {
+            match cheapest_meeting(shape, tol, &METHODS, max_particles) {
                 Some(p) => crate::outln!(
                     "  cheapest for tol {tol:e}: {} with {} cells per parameter, {} particles, error {:.2e}",
                     p.disc.method,

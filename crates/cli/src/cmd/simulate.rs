@@ -55,12 +55,12 @@ pub struct SimulateArgs {
     pub html: Option<PathBuf>,
     /// Run budget: steps one integration may take (see docs/cli.md); a
     /// run estimated to need more is refused, one that needs more stops.
-    #[arg(long, default_value_t = hdot_sim::estimate::DEFAULT_MAX_STEPS)]
+    #[arg(long, default_value_t = hdot_sim::estimate::DEFAULT_MAX_STEPS, value_parser = clap::value_parser!(u64).range(1..))]
     pub max_steps: u64,
 }
 
 /// Errors of the input (exit 2) as opposed to failures of a run (exit 1).
-fn is_input_error(e: &SimError) -> bool {
+pub(crate) fn is_input_error(e: &SimError) -> bool {
     !matches!(
         e,
         SimError::EulerAngleSingularity { .. }

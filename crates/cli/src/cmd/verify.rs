@@ -16,15 +16,18 @@ use hdot_num::verify::{Options, TOLERANCE_ULPS, check_with};
 
 use crate::catalog;
 
+/// The largest `--bodies` (see docs/cli.md's table of limits).
+pub const MAX_BODIES: u64 = 100_000;
+
 // Arguments of `hdot verify`.
 #[derive(Debug, Args)]
 pub struct VerifyArgs {
     /// Derivations to verify (names in the derivations folder, paths, or
     /// folders of derivation files); all bundled ones when omitted.
     pub names: Vec<String>,
-    /// Random bodies per derivation (at least 1: zero would pass without
-    /// checking anything).
-    #[arg(long, default_value_t = 200, value_parser = clap::value_parser!(u64).range(1..))]
+    /// Random bodies per derivation (1 to 100,000: zero would pass without
+    /// checking anything, and each body is a full particle sum).
+    #[arg(long, default_value_t = 200, value_parser = clap::value_parser!(u64).range(1..=MAX_BODIES))]
     pub bodies: u64,
     /// Seed of the ChaCha generator.
     #[arg(long, default_value_t = 0)]

@@ -25,7 +25,7 @@ pub struct WorkPrecisionArgs {
     #[arg(long, default_value_t = 0.02, allow_negative_numbers = true)]
     pub min_time: f64,
     /// Run budget: steps one integration may take (see docs/cli.md).
-    #[arg(long, default_value_t = hdot_sim::estimate::DEFAULT_MAX_STEPS)]
+    #[arg(long, default_value_t = hdot_sim::estimate::DEFAULT_MAX_STEPS, value_parser = clap::value_parser!(u64).range(1..))]
     pub max_steps: u64,
     /// Also write the report, the chart and the table of every run as one
     /// self-contained web page.
@@ -71,11 +71,46 @@ pub fn run(args: WorkPrecisionArgs) -> anyhow::Result<ExitCode> {
             &[("the CSV", &csv), ("the chart", &svg), ("the chart", &png)],
         )?;
     }
+    // The CSV and charts, before the sweep: none may be a file the scene
+    // read (the scene, its derivation, a CSV cloud).
+    for out in [&csv, &svg, &png] {
+        hdot_num::fsio::refuse_overwriting_inputs(out, &hdot_sym::textfile::inputs())?;
+    }
     std::fs::create_dir_all(&args.out)
         .map_err(|e| OutputError::new(format!("cannot create {}", args.out.display()), e))?;
-    let rows = run::work_precision(&scene, t_end, args.min_time, |r| {
-        crate::errln!("{}", r.csv());
-    })?;
+    // A spinner on a terminal (the reference run, made first, can take
+    // seconds before the first row), counting the rows as they come.
+    let spinner = std::io::IsTerminal::is_terminal(&std::io::stderr()).then(|| {
+        let b = indicatif::ProgressBar::new_spinner();
+        b.set_message(format!("reference run and {runs} runs of the sweep"));
+        b.enable_steady_tick(std::time::Duration::from_millis(200));
+        b
+    });
+    let mut done = 0usize;
+    let result = run::work_precision(&scene, t_end, args.min_time, |r| {
+        done += 1;
+        match &spinner {
+            Some(b) => {
+                b.println(r.csv());
+                b.set_message(format!("{done} of at most {runs} runs"));
+            }
+            None => crate::errln!("{}", r.csv()),
+        }
+    });
+    if let Some(b) = &spinner {
+        b.finish_and_clear();
+    }
+    // A run that fails (the run budget spent, a motion that explodes) is a
+    // failure of the run, exit 1, as in `hdot simulate`; a scene it cannot
+    // take is an error of the input, exit 2.
+    let rows = match result {
+        Ok(rows) => rows,
+        Err(e) if crate::cmd::simulate::is_input_error(&e) => return Err(e.into()),
+        Err(e) => {
+            crate::errln!("error: {e}");
+            return Ok(ExitCode::from(1));
+        }
+    };
     // The CSV and the chart appear together or not at all.
     let mut text = format!("{}\n", run::CSV_HEADER);
     for r in &rows {

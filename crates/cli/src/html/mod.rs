@@ -65,6 +65,8 @@ pub fn refuse_page_path(
         );
     }
     hdot_num::fsio::refuse_overwriting_inputs(page, inputs)?;
+    // Every file the command has read so far (a scene's CSV clouds too).
+    hdot_num::fsio::refuse_overwriting_inputs(page, &hdot_sym::textfile::inputs())?;
     for (what, other) in outputs {
         if hdot_num::fsio::same_file(page, other) || lexical(page) == lexical(other) {
             anyhow::bail!(
