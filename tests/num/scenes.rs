@@ -374,3 +374,30 @@ fn a_scene_of_many_bodies_loads() {
     let centre = (n - 1) as f64 / 2.0;
     assert!((p.center.x - centre).abs() <= 1e-9 * centre);
 }
+
+/// Rates whose moments leave f64's range (ω = 1e200 rad/s on a shaft) are
+/// named at their field and line, not reported as a resultant moment that
+/// is "not a finite number" (issue 21 item 8, a hostile trial).
+#[test]
+fn rates_beyond_range_are_named_at_their_line() {
+    let text = std::fs::read_to_string(example("unbalanced-shaft.toml")).unwrap();
+    for (from, to, field) in [
+        (
+            "omega = [0.0, 0.0, 60.0]",
+            "omega = [0.0, 0.0, 1e200]",
+            "motion.omega",
+        ),
+        (
+            "alpha = [0.0, 0.0, 5.0]",
+            "alpha = [0.0, 0.0, 1e305]",
+            "motion.alpha",
+        ),
+    ] {
+        assert!(text.contains(from), "the example changed: {from}");
+        let bad = text.replace(from, to);
+        let line = bad.lines().position(|l| l == to).unwrap() + 1;
+        let e = Scene::from_str_at(Path::new("s.toml"), &bad).expect_err(to);
+        assert_eq!((e.line, e.field.as_str()), (line, field), "{e}");
+        assert!(e.message.contains("beyond the range of f64"), "{e}");
+    }
+}

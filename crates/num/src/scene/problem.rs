@@ -186,6 +186,25 @@ fn motion_of(cx: &Cx<'_>, m: &RawMotion, props: &MassProperties) -> Result<Probl
     };
     let omega = get("omega", &m.omega)?.unwrap_or_else(Vector3::zeros);
     let alpha = get("alpha", &m.alpha)?;
+    // ω² and α times the body's inertia and mass must stay in f64's range
+    // with room (the moments square ω): else the rates are named, at
+    // their line, not a resultant that came out infinite.
+    let scale = props.inertia_g.matrix().amax() + props.mass;
+    for (name, raw, size) in [
+        ("omega", &m.omega, omega.norm_squared()),
+        ("alpha", &m.alpha, alpha.map_or(0.0, |a| a.norm())),
+    ] {
+        if !(size * scale * 1e6).is_finite() {
+            return Err(cx.err(
+                raw.as_ref().map_or(0, |v| cx.line(v)),
+                &format!("motion.{name}"),
+                format!(
+                    "with this body's mass and inertia the moments of `{name}` are beyond the range \
+                     of f64: rescale the units"
+                ),
+            ));
+        }
+    }
     let frame_rate = get("frame_rate", &m.frame_rate)?;
     let v_g = get("v_g", &m.v_g)?;
     let a_g = get("a_g", &m.a_g)?;
