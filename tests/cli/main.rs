@@ -416,16 +416,28 @@ fn work_precision_on_a_body_at_rest_succeeds() {
     let so = text(&out.stdout);
     assert!(out.status.success(), "{so}{}", text(&out.stderr));
     assert!(so.contains("no chart"), "{so}");
+    // The rows on stderr come under the CSV's header line (issue 24's
+    // trial: they had none).
+    let se = text(&out.stderr);
+    let mut rows = se.lines();
+    assert_eq!(rows.next(), Some(hdot_sim::run::CSV_HEADER), "{se}");
+    let columns = hdot_sim::run::CSV_HEADER.split(',').count();
+    assert!(
+        rows.next().is_some_and(|r| r.split(',').count() == columns),
+        "{se}"
+    );
     assert!(dir.path().join("rest-work-precision.csv").is_file());
     assert!(!dir.path().join("rest-work-precision.svg").exists());
 }
 
 /// A derived scene run without --tol and --method fits its tolerance to
-/// the default target 1e-8: when that is not met (an inverted pendulum
-/// started at its top, written for the test, whose state at T depends on
-/// the smallest error), the exit status is 1 as with --tol 1e-8.
+/// the default target 1e-8, tightening it while its pilots miss. When no
+/// tolerance reaches it (an inverted pendulum started at its top, written
+/// for the test, whose state at T depends on the smallest error), the run
+/// is reported with a note and exits 0 — the user asked for no error
+/// (issue 24's trial: it exited 1); `--tol 1e-8`, asked for, exits 1.
 #[test]
-fn simulate_derived_default_target_not_met_exits_1() {
+fn simulate_derived_default_target_not_met_is_a_note() {
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(
         dir.path().join("top.toml"),
@@ -443,19 +455,21 @@ fn simulate_derived_default_target_not_met_exits_1() {
     .unwrap();
     let scene = scene.to_str().unwrap();
     let default = hdot(&["simulate", scene]);
-    let explicit = hdot(&["simulate", scene, "--tol", "1e-8"]);
-    assert_eq!(
-        default.status.code(),
-        explicit.status.code(),
-        "{}",
-        text(&default.stderr)
-    );
-    assert_eq!(default.status.code(), Some(1), "{}", text(&default.stdout));
+    let se = text(&default.stderr);
+    assert_eq!(default.status.code(), Some(0), "{se}");
     assert!(
-        text(&default.stderr).contains("default (--tol) error 1e-8 is not met"),
-        "{}",
-        text(&default.stderr)
+        se.contains("note: the default error 1e-8 (no --tol given) is not reached"),
+        "{se}"
     );
+    assert!(
+        text(&default.stdout).contains("a pilot at tol="),
+        "{}",
+        text(&default.stdout)
+    );
+    let explicit = hdot(&["simulate", scene, "--tol", "1e-8"]);
+    let se = text(&explicit.stderr);
+    assert_eq!(explicit.status.code(), Some(1), "{se}");
+    assert!(se.contains("the requested error 1e-8 is not met"), "{se}");
 }
 
 /// A derived scene whose derivation declares a step conserved that its

@@ -101,3 +101,42 @@ fn simulate_points_a_stability_scene_to_its_command() {
         text(&out.stderr)
     );
 }
+
+/// Issue 24's trial: a sweep from 0 to 10 in 101 values wrote its tenth
+/// value as `0.8999999999999999`; each value is the decimal meant (the
+/// double nearest to it, which the CSV's shortest form prints as such).
+#[test]
+fn stability_csv_values_are_the_decimals_of_the_sweep() {
+    let dir = tempfile::tempdir().unwrap();
+    let example = super::repo_root().join("docs/examples/stability-sleeping-top.toml");
+    let derivation = super::repo_root().join("docs/examples/derivations/sleeping-top.toml");
+    let text_of = std::fs::read_to_string(&example).unwrap();
+    let edited = text_of
+        .replace(
+            "file = \"sleeping-top\"",
+            &format!("file = {:?}", derivation.to_str().unwrap()),
+        )
+        .replace("to = 200.0\ncount = 1000", "to = 10.0\ncount = 101");
+    assert_eq!(edited.matches("10.0").count(), 1, "{edited}");
+    let scene = dir.path().join("top.toml");
+    std::fs::write(&scene, edited).unwrap();
+    let out_dir = dir.path().join("out");
+    let out = hdot(&[
+        "stability",
+        scene.to_str().unwrap(),
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let csv = std::fs::read_to_string(out_dir.join("eigenvalues.csv")).unwrap();
+    let values: Vec<&str> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').next().unwrap())
+        .collect();
+    let want: Vec<String> = (0..=100)
+        .map(|k| format!("{:?}", k as f64 / 10.0))
+        .collect();
+    assert_eq!(values, want);
+    assert_eq!(values[9], "0.9");
+}

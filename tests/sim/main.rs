@@ -49,6 +49,9 @@ mod integrate;
 mod registry;
 // Issue 21's reproducers: crashes, wrong closed forms, misplaced blame.
 mod reliability;
+// Issue 24's trial findings: drifts of quantities that start at zero, the
+// default error met, tilted gravity.
+mod trial;
 // Stability where methods fail (issue 5, item 4).
 mod stability;
 // scene.rs and run.rs: bad input, model choice (snapshots).

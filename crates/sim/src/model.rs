@@ -318,7 +318,9 @@ pub fn requested_step(req: &Request, method: Method) -> Step {
 pub struct Drift {
     /// Which invariant (`energy`, `|H|`, `H_Z`, or a derived step's name).
     pub name: String,
-    /// `|I(T) − I(0)| / |I(0)|`.
+    /// `|I(T) − I(0)| / |I(0)|`; for a derived scene's conserved step,
+    /// `|I(T) − I(0)|` over the step's size along the run (the largest sum
+    /// of its terms' magnitudes, docs/simulation.md, *Derived scenes*).
     pub relative: f64,
 }
 

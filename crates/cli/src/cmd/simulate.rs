@@ -233,23 +233,32 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<ExitCode> {
         );
         return Ok(ExitCode::from(1));
     }
-    // Without --method, --tol is the error the run must reach; a derived
-    // scene fits its tolerance to the default --tol when none is given,
-    // and that default must be reached alike.
-    let target = match (args.tol, &args.method) {
-        (_, Some(_)) => None,
-        (Some(tol), None) => Some((tol, "requested")),
-        (None, None) => report.plan.fit_error.map(|t| (t, "default (--tol)")),
-    };
-    if let Some((tol, which)) = target
-        && report.error.is_some_and(|e| e.is_nan() || e > tol)
-    {
-        crate::errln!(
-            "error: the {which} error {tol:e} is not met: error at T is {:e} ({})",
-            report.error.unwrap_or(f64::NAN),
-            report.error_basis
-        );
-        return Ok(ExitCode::from(1));
+    // Without --method, --tol is the error the run must reach. A derived
+    // scene given no --tol fits (and tightens) its tolerance to the
+    // default; a run that still misses the default is reported, not
+    // failed: the user asked for no error.
+    let missed = |tol: f64| report.error.is_some_and(|e| e.is_nan() || e > tol);
+    match (args.tol, &args.method) {
+        (Some(tol), None) if missed(tol) => {
+            crate::errln!(
+                "error: the requested error {tol:e} is not met: error at T is {:e} ({})",
+                report.error.unwrap_or(f64::NAN),
+                report.error_basis
+            );
+            return Ok(ExitCode::from(1));
+        }
+        (None, None) => {
+            if let Some(tol) = report.plan.fit_error.filter(|&t| missed(t)) {
+                crate::errln!(
+                    "note: the default error {tol:e} (no --tol given) is not reached: error at T is {:e} \
+                     ({}); the tolerance was tightened as far as its pilot runs allowed (the report's `why`). \
+                     Give --tol to require an error.",
+                    report.error.unwrap_or(f64::NAN),
+                    report.error_basis
+                );
+            }
+        }
+        _ => {}
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -78,6 +78,9 @@ pub fn run(args: WorkPrecisionArgs) -> anyhow::Result<ExitCode> {
     }
     std::fs::create_dir_all(&args.out)
         .map_err(|e| OutputError::new(format!("cannot create {}", args.out.display()), e))?;
+    // The rows as they come, under the CSV's header line (stderr: the
+    // progress of a sweep that may take minutes).
+    crate::errln!("{}", run::CSV_HEADER);
     // A spinner on a terminal (the reference run, made first, can take
     // seconds before the first row), counting the rows as they come.
     let spinner = std::io::IsTerminal::is_terminal(&std::io::stderr()).then(|| {

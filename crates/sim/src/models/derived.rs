@@ -199,6 +199,10 @@ fn reference_n<const N: usize>(
     })
 }
 
+/// How many times a fitted tolerance that misses its target is tightened
+/// (each time confirmed by one more pilot run).
+const MAX_REFITS: usize = 2;
+
 /// The DOP853 tolerance at which the error at `t_end` (against
 /// `reference`) should be `target`, measured on this scene by two pilot
 /// runs at `target` and `target/100`:
@@ -209,7 +213,12 @@ fn reference_n<const N: usize>(
 ///   the reference itself is in doubt) no fit: the smaller pilot
 ///   tolerance, and the reason says so.
 ///
-/// Whether the run then meets `target` is for its caller to check.
+/// A tolerance whose error is not measured yet is then confirmed by a
+/// pilot run at it, and while its error misses `target` tightened (to the
+/// fit's prediction from that error, at least tenfold) and confirmed
+/// again — at most [`MAX_REFITS`] times, never below `1e-13`.
+/// Whether the run then meets `target` is for its caller to check (a run
+/// at the tolerance returned reaches the error its last pilot measured).
 /// Returns the tolerance and what was measured.
 fn fit_tolerance<const N: usize>(
     ds: &DerivedScene,
@@ -248,31 +257,62 @@ fn fit_tolerance<const N: usize>(
             format!("{pilots}; the first already within {target:e}/3, so tol={ta:.1e}"),
         ));
     }
-    if !(ea > eb && eb > 0.0 && ta > tb) {
-        return Ok((
+    let shrinks = ea > eb && eb > 0.0 && ta > tb;
+    let p = if shrinks {
+        (ea / eb).ln() / (ta / tb).ln()
+    } else {
+        1.0
+    };
+    let (mut tol, mut why) = if shrinks {
+        // Never looser than the loosest pilot: beyond it the fit is an
+        // extrapolation (an error ∝ tol^0.5 fitted where both pilots
+        // already meet the request predicts tolerances that miss it).
+        let tol = (ta * (safe / ea).powf(1.0 / p)).clamp(lo, ta);
+        (
+            tol,
+            format!(
+                "{pilots}, error ∝ tol^{p:.2}, so tol={tol:.1e} for an error ≤ {target:e}/3{}",
+                if tol == lo {
+                    " (the smallest tolerance tried)"
+                } else {
+                    ""
+                }
+            ),
+        )
+    } else {
+        (
             tb,
             format!(
                 "{pilots}: the error did not shrink with the tolerance, so no fit (the motion is sensitive to \
                  small changes and the reference at tol={REFERENCE_TOL:e} may be as far off); tol={tb:.1e}"
             ),
+        )
+    };
+    // Confirm the tolerance, tightening it while it misses the target.
+    let mut known = (tol == tb).then_some(eb).or((tol == ta).then_some(ea));
+    for round in 0..=MAX_REFITS {
+        let e = match known.take() {
+            Some(e) => e,
+            None => {
+                let (e, _) = error_at(tol)?;
+                why.push_str(&format!("; a pilot at tol={tol:.1e} reached {e:.2e}"));
+                e
+            }
+        };
+        if e <= target || tol <= lo || round == MAX_REFITS {
+            break;
+        }
+        let tighter = if e > 0.0 && e.is_finite() {
+            (tol * (safe / e).powf(1.0 / p.max(0.5))).min(tol / 10.0)
+        } else {
+            tol / 10.0
+        };
+        tol = tighter.max(lo);
+        why.push_str(&format!(
+            ", more than {target:e}: tightened to tol={tol:.1e}"
         ));
     }
-    let p = (ea / eb).ln() / (ta / tb).ln();
-    // Never looser than the loosest pilot: beyond it the fit is an
-    // extrapolation (an error ∝ tol^0.5 fitted where both pilots already
-    // meet the request predicts tolerances that miss it).
-    let tol = (ta * (safe / ea).powf(1.0 / p)).clamp(lo, ta);
-    Ok((
-        tol,
-        format!(
-            "{pilots}, error ∝ tol^{p:.2}, so tol={tol:.1e} for an error ≤ {target:e}/3{}",
-            if tol == lo {
-                " (the smallest tolerance tried)"
-            } else {
-                ""
-            }
-        ),
-    ))
+    Ok((tol, why))
 }
 
 /// What the error of a derived run measures.
@@ -321,19 +361,55 @@ fn rotation_angle(r: &Matrix3<f64>) -> f64 {
     (axis.norm() / 2.0).atan2(cos)
 }
 
-/// Relative drift of each conserved quantity between `y0` and `y`.
-fn drifts(ds: &DerivedScene, y0: &[f64], t: f64, y: &[f64]) -> Vec<Drift> {
+/// The size of each conserved quantity along a run: the largest norm,
+/// over the states seen, of its components' term sizes
+/// ([`DerivedModel::conserved_size`]) — what its drift is relative to.
+struct Sizes<'a> {
+    ds: &'a DerivedScene,
+    largest: Vec<f64>,
+}
+
+impl<'a> Sizes<'a> {
+    fn new(ds: &'a DerivedScene) -> Self {
+        Sizes {
+            ds,
+            largest: vec![0.0; ds.model.conserved().len()],
+        }
+    }
+
+    /// Takes the state `(t, y)` into account.
+    fn see(&mut self, t: f64, y: &[f64]) {
+        let m = &self.ds.model;
+        for (q, s) in m.conserved().iter().zip(&mut self.largest) {
+            *s = s.max(norm(&m.conserved_size(q, t, y)));
+        }
+    }
+}
+
+fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+/// The drift of each conserved quantity between `y0` and `y` at `t`,
+/// relative to its size along the run (`sizes`, [`Sizes`]; never less
+/// than its value at either end): an energy that is zero at the start —
+/// an arm released from rest where its potential is zero — drifts
+/// relative to the kinetic and potential energies it exchanges, not to 0.
+fn drifts(ds: &DerivedScene, y0: &[f64], t: f64, y: &[f64], sizes: &Sizes<'_>) -> Vec<Drift> {
     let m = &ds.model;
     m.conserved()
         .iter()
-        .map(|q| {
+        .zip(&sizes.largest)
+        .map(|(q, &size)| {
             let a = m.conserved_value(q, 0.0, y0);
             let b = m.conserved_value(q, t, y);
-            let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
             let diff: Vec<f64> = a.iter().zip(&b).map(|(x, y)| x - y).collect();
+            let scale = size
+                .max(norm(&m.conserved_size(q, 0.0, y0)))
+                .max(norm(&m.conserved_size(q, t, y)));
             Drift {
                 name: q.name.clone(),
-                relative: norm(&diff) / norm(&a).max(norm(&b)).max(f64::MIN_POSITIVE),
+                relative: norm(&diff) / scale.max(f64::MIN_POSITIVE),
             }
         })
         .collect()
@@ -346,7 +422,15 @@ fn run_n<const N: usize>(
 ) -> Result<Outcome, SimError> {
     let (method, mut step) = plan.method_step()?;
     let y0 = start::<N>(ds);
-    let reference = reference_n::<N>(ds, plan.t_end, rec.observer::<N>("reference run"))?;
+    let mut sizes = Sizes::new(ds);
+    sizes.see(0.0, &y0);
+    let reference = {
+        let mut observe = rec.observer::<N>("reference run");
+        reference_n::<N>(ds, plan.t_end, |t, y| {
+            sizes.see(t, y);
+            observe(t, y)
+        })?
+    };
     let mut report = Outcome::default();
     if let (Some(target), Method::Dop853) = (plan.fit_error, method) {
         let (tol, why) = fit_tolerance::<N>(ds, plan.t_end, target, &reference, rec)?;
@@ -368,7 +452,7 @@ fn run_n<const N: usize>(
     report.reference = format!("dop853 at tol={REFERENCE_TOL:e} on the same derived equations");
     report.error_basis = format!("measured against the reference: {}", error_measure(ds));
     report.error = Some(distance(ds, plan.t_end, &y, &reference));
-    report.drifts = drifts(ds, &y0, plan.t_end, &y);
+    report.drifts = drifts(ds, &y0, plan.t_end, &y, &sizes);
     report.final_state = y.to_vec();
     report.state_names = ds.state_names();
     report.frame = frame_state(ds, plan.t_end, &y);
@@ -432,8 +516,13 @@ fn sweep_n<const N: usize>(
     t_end: f64,
     min_time: f64,
 ) -> Result<Result<Measured, String>, SimError> {
-    let reference = reference_n::<N>(ds, t_end, |_, _| Ok(()))?;
     let y0 = start::<N>(ds);
+    let mut sizes = Sizes::new(ds);
+    sizes.see(0.0, &y0);
+    let reference = reference_n::<N>(ds, t_end, |t, y| {
+        sizes.see(t, y);
+        Ok(())
+    })?;
     let run = || integrate_n(&ds.model, method, step, y0, t_end, |_, _| Ok(()));
     Ok(match timed(min_time, run) {
         Ok(((y, stats), wall_s)) => {
@@ -443,7 +532,7 @@ fn sweep_n<const N: usize>(
             // [`drift_columns`]).
             let energy = ds.model.conserved().iter().map(|q| q.energy.is_some());
             let (energy, others): (Vec<_>, Vec<_>) = energy
-                .zip(drifts(ds, &y0, t_end, &y))
+                .zip(drifts(ds, &y0, t_end, &y, &sizes))
                 .partition(|(e, _)| *e);
             Ok(Measured {
                 error: distance(ds, t_end, &y, &reference),

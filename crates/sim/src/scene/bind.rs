@@ -7,6 +7,7 @@ use std::path::Path;
 
 use hdot_num::bind::{MeasuredBody, bind_bodies};
 use hdot_num::scene::{Bodies, Group};
+use hdot_sym::atom::{Atom, AtomKind};
 use hdot_sym::derivation::Derivation;
 use hdot_sym::derivation::physics::{Body, Symmetry};
 use hdot_sym::poly::Poly;
@@ -21,12 +22,14 @@ const SYMMETRY_TOL: f64 = 1e-9;
 /// Binds the symbols of the derivation's `[[body]]` declarations from the
 /// scene's `[[body]]` / `[[cloud]]` tables: each group of tables (`of`)
 /// is one derivation body, written in its frame's axes with the origin at
-/// its reference point. Returns the constants bound.
+/// its reference point; `gravity` is the symbol the scene's g bound
+/// ([`check_gravity`]). Returns the constants bound, that symbol too.
 pub(super) fn bind_scene_bodies(
     d: &Derivation,
     path: &Path,
     bodies: &Bodies,
     constants: &BTreeMap<String, f64>,
+    gravity: Option<&(String, f64)>,
     file: &Path,
 ) -> Result<BTreeMap<String, f64>, SimError> {
     let groups = &bodies.groups;
@@ -157,7 +160,9 @@ pub(super) fn bind_scene_bodies(
             });
         }
     }
-    bind_bodies(d, &measured, bodies.g, constants).map_err(|e| {
+    let mut given = constants.clone();
+    given.extend(gravity.cloned());
+    let mut bound = bind_bodies(d, &measured, bodies.g, &given).map_err(|e| {
         let message = format!("{}: {e}", path.display());
         match given_by.iter().flatten().next() {
             Some(g) => bad(g, message),
@@ -167,7 +172,9 @@ pub(super) fn bind_scene_bodies(
                 message: format!("line {}: {message}", bodies.g_line),
             },
         }
-    })
+    })?;
+    bound.extend(gravity.cloned());
+    Ok(bound)
 }
 
 /// The entries of a body's declaration: its mass, the components of its
@@ -220,17 +227,24 @@ fn check_unbound(
 }
 
 /// The scene's gravity vector `g` against the derivation's declaration
-/// (`gravity = "[0, 0, -g] in N"`): declared in N, the components the file
-/// fixes (the zeros) met, and its symbols not given under `[constants]`
-/// too. The symbols are bound with the bodies'.
+/// (`gravity = "[0, 0, -g] in N"`, or tilted,
+/// `"[g*sin(beta), 0, -g*cos(beta)] in N"`): declared in N, the
+/// components the file fixes (the zeros) met, a component that is one
+/// symbol alone not given under `[constants]` too, and at most one of its
+/// symbols left to bind — the others (the tilt) under `[constants]`. That
+/// symbol is bound here from the component that fixes it best (the
+/// largest coefficient at the constants' values: a tilt of 0 leaves
+/// `g*sin(beta)` nothing to say), and every component is checked against
+/// the scene's g. Returns the symbol and its value; every error is
+/// located at the field `g` or the constant.
 pub(super) fn check_gravity(
     d: &Derivation,
     path: &Path,
     bodies: &Bodies,
     constants: &BTreeMap<String, f64>,
     file: &Path,
-) -> Result<(), SimError> {
-    let Some(g) = bodies.g else { return Ok(()) };
+) -> Result<Option<(String, f64)>, SimError> {
+    let Some(g) = bodies.g else { return Ok(None) };
     let bad = |field: &str, message: String| SimError::BadField {
         file: file.to_path_buf(),
         field: field.to_string(),
@@ -263,35 +277,125 @@ pub(super) fn check_gravity(
             ),
         ));
     }
-    for (k, p) in v.0.iter().enumerate() {
-        if p.atoms().is_empty() {
-            let x = p.eval(&mut |_| 0.0);
-            if (x - g[k]).abs() > 1e-12 * g.norm() {
-                return Err(bad(
-                    "g",
-                    format!(
-                        "line {line}: {} declares gravity {declared}: the scene's g = [{}, {}, {}] \
-                         must point along it (space Z up: g = [0.0, 0.0, -9.81])",
-                        path.display(),
-                        g.x,
-                        g.y,
-                        g.z
-                    ),
-                ));
-            }
-        }
-        if let Some(a) = p.atoms().iter().find(|a| constants.contains_key(a.name())) {
+    let scene_g = format!("[{}, {}, {}]", g.x, g.y, g.z);
+    let mut unknown: Vec<&'static str> = Vec::new();
+    for p in &v.0 {
+        let atoms = p.atoms();
+        if let [a] = atoms[..]
+            && constants.contains_key(a.name())
+        {
             return Err(bad(
                 &format!("constants.{}", a.name()),
                 format!(
                     "`{}` is also bound by the scene's g (line {line}, gravity {declared}): give it \
-                     once",
+                     once, under `[constants]` or by g",
                     a.name()
                 ),
             ));
         }
+        for a in atoms {
+            if !constants.contains_key(a.name()) && !unknown.contains(&a.name()) {
+                unknown.push(a.name());
+            }
+        }
     }
-    Ok(())
+    let symbols = v.0.iter().any(|p| !p.atoms().is_empty());
+    if unknown.is_empty() && symbols {
+        return Err(bad(
+            "g",
+            format!(
+                "line {line}: {} declares gravity {declared}, whose symbols are all under \
+                 `[constants]`, and the scene's g = {scene_g} would bind one of them again: give \
+                 each once — leave g out, or leave the symbol for g's size out of `[constants]`",
+                path.display()
+            ),
+        ));
+    }
+    if unknown.len() > 1 {
+        let names = unknown.join(", ");
+        return Err(bad(
+            "g",
+            format!(
+                "line {line}: {} declares gravity {declared}, whose symbols {names} the scene's g = \
+                 {scene_g} cannot all fix: give all of them but one under `[constants]` (a tilt, \
+                 say `{} = 0.3`) and g along the direction they give, or leave g out and give them \
+                 all under `[constants]`",
+                path.display(),
+                unknown[1]
+            ),
+        ));
+    }
+    let value = |name: &str| constants.get(name).copied().unwrap_or(f64::NAN);
+    let eval = |p: &Poly, bound: Option<(&str, f64)>| {
+        p.eval(&mut |a: Atom| {
+            let x = |q: Atom| match bound {
+                Some((n, v)) if n == q.name() => v,
+                _ => value(q.name()),
+            };
+            match a.kind() {
+                AtomKind::Sin(q) => x(q).sin(),
+                AtomKind::Cos(q) => x(q).cos(),
+                _ => x(a),
+            }
+        })
+    };
+    // The unknown from the component whose coefficient in it is largest.
+    let bound = match unknown.first() {
+        None => None,
+        Some(&name) => {
+            let u =
+                v.0.iter()
+                    .flat_map(|p| p.atoms())
+                    .find(|a| a.name() == name);
+            let u = u.expect("an atom of gravity");
+            let linear = |p: &Poly| {
+                !p.atoms().iter().any(|a| a.name() == name && *a != u)
+                    && p.terms().iter().all(|(m, _)| m.exponent(u) <= 1)
+            };
+            let best = (0..3)
+                .filter(|&k| linear(&v.0[k]))
+                .map(|k| (k, eval(&v.0[k].partial(u), None)))
+                .filter(|(_, c)| c.is_finite() && *c != 0.0)
+                .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()));
+            let Some((k, c)) = best else {
+                return Err(bad(
+                    "g",
+                    format!(
+                        "line {line}: {} declares gravity {declared}: no component is linear in \
+                         `{name}` with a coefficient other than 0 at the constants' values, so the \
+                         scene's g cannot fix it: give `{name}` under `[constants]` and leave g out",
+                        path.display()
+                    ),
+                ));
+            };
+            let rest = eval(&v.0[k], Some((name, 0.0)));
+            Some((name.to_string(), (g[k] - rest) / c))
+        }
+    };
+    let at = bound.as_ref().map(|(n, x)| (n.as_str(), *x));
+    let along: Vec<f64> = v.0.iter().map(|p| eval(p, at)).collect();
+    let miss = (0..3).any(|k| {
+        let d = (along[k] - g[k]).abs();
+        d.is_nan() || d > 1e-9 * g.norm()
+    });
+    if miss {
+        let fixed = bound
+            .as_ref()
+            .map(|(n, x)| format!(" (with {n} = {x} from it)"))
+            .unwrap_or_default();
+        return Err(bad(
+            "g",
+            format!(
+                "line {line}: {} declares gravity {declared}: the scene's g = {scene_g}{fixed} must \
+                 point along it, [{}, {}, {}] at the constants' values (space Z up: g = [0.0, 0.0, -9.81])",
+                path.display(),
+                along[0],
+                along[1],
+                along[2]
+            ),
+        ));
+    }
+    Ok(bound)
 }
 
 /// Whether the measured body has the symmetry `b` declares (about its

@@ -369,8 +369,8 @@ fn parse(
             ),
         ));
     }
-    check_gravity(&d, &path, bodies, &constants, file)?;
-    let bound = bind_scene_bodies(&d, &path, bodies, &constants, file)?;
+    let from_g = check_gravity(&d, &path, bodies, &constants, file)?;
+    let bound = bind_scene_bodies(&d, &path, bodies, &constants, from_g.as_ref(), file)?;
     let from_bodies: Vec<String> = bound.keys().cloned().collect();
     constants.extend(bound);
     let constants_for_inputs = constants.clone();

@@ -15,8 +15,10 @@
 //! positive, for conservative systems such as a sleeping top — are found
 //! on the grid and their ends refined by bisection ([`Interval`]).
 //!
-//! `scene.rs` reads the file; `sweep.rs` holds the numerics.
+//! `scene.rs` reads the file; `grid.rs` spaces the values; `sweep.rs`
+//! holds the numerics.
 
+mod grid;
 mod scene;
 mod sweep;
 

@@ -290,18 +290,10 @@ impl StabilityScene {
     }
 
     /// The sweep's values: `count` evenly spaced from `from` to `to`
-    /// (both included, the last exactly `to`).
+    /// (both included, the last exactly `to`), each the double nearest to
+    /// the decimal it stands for (`grid.rs`: 0.9, not 0.8999999999999999).
     pub fn values(&self) -> Vec<f64> {
-        let n = self.count - 1;
-        (0..=n)
-            .map(|k| {
-                if k == n {
-                    self.to
-                } else {
-                    self.from + (self.to - self.from) * (k as f64 / n as f64)
-                }
-            })
-            .collect()
+        super::grid::values(self.from, self.to, self.count)
     }
 }
 

@@ -496,6 +496,28 @@ impl DerivedModel {
         out
     }
 
+    /// The size of a conserved quantity's components at `(t, y)`: per
+    /// component the sum of its terms' magnitudes, `Σ |c · monomial|` —
+    /// for an energy T + V, the kinetic and potential energies it is made
+    /// of, which stay apart from zero when their sum is zero.
+    pub fn conserved_size(&self, q: &Conserved, t: f64, y: &[f64]) -> Vec<f64> {
+        let c = &q.compiled;
+        let mut inputs = vec![0.0; c.tape.atoms().len()];
+        let mut out = vec![0.0; c.tape.outputs()];
+        // The inputs as the tape gathers them at `(t, y)`, then the terms'
+        // magnitudes at them.
+        c.tape.eval_at(
+            y,
+            |slots| {
+                self.given_into(c, t, y, slots);
+                inputs.copy_from_slice(slots);
+            },
+            &mut out,
+        );
+        c.tape.eval_abs(&inputs, &mut out);
+        out
+    }
+
     /// Why the equations break down at `(t, y)`, if they do: a divisor
     /// `sin q`/`cos q` below `1e-9` in size, or a mass matrix with a
     /// reciprocal condition number below `1e-13`.
