@@ -30,13 +30,15 @@ mod bind;
 mod derived;
 mod holds;
 mod raw;
+mod resolve;
 mod rigid;
 mod shaft;
 mod text;
 
-pub use derived::{DerivedScene, Resolve, resolve_near};
+pub use derived::DerivedScene;
 pub use holds::{Pivot, Rigid};
 use raw::{OwnTables, RawScene};
+pub use resolve::{Resolve, resolve_near};
 use text::{at_line_after, line_of};
 
 /// Relative residual of §7's relation under which a heavy top counts as
