@@ -40,6 +40,8 @@ mod verify_kane;
 mod verify_rolling;
 // verify/linearized.rs: the linearized Kane equations and their matrices, on the particles.
 mod verify_linearized;
+// verify/expressed.rs: a frame's vector in another's axes, from the drawn rotations.
+mod verify_expressed;
 // A new user's trial: line bodies along x or y, equal moments, shared symbols, conserved along Kane's rates.
 mod verify_trials;
 // verify/quaternion.rs: frames turned by Euler parameters, drawn on the unit sphere.

@@ -26,7 +26,7 @@ use super::knowns::bind_knowns;
 use super::means::{against_of, frame_index, meaning_value};
 use super::speeds::Consistent;
 use super::world::World;
-use super::{Comparison, StepCheck, VerifyError, claims, declaration, linearized};
+use super::{Comparison, StepCheck, VerifyError, claims, declaration, expressed, linearized};
 use crate::bind::Values;
 use crate::cloud::ParticleCloud;
 use crate::eval::Tape;
@@ -522,6 +522,11 @@ fn run(
     for (j, e) in plan.entries().into_iter().enumerate() {
         per_step.insert(before + j, e);
     }
+    let expressed = expressed::read(d);
+    let at = per_step.len();
+    for (j, e) in expressed.iter().enumerate() {
+        per_step.insert(at + j, e.entry(d));
+    }
     let mut rng = ChaCha8Rng::seed_from_u64(options.seed);
     let mut draws = 0;
     if !compiled.is_empty() || vanishing > 0 || !conserved.is_empty() || before < per_step.len() {
@@ -543,11 +548,16 @@ fn run(
             } else {
                 vec![Vec::new(); plan.measured().count()]
             };
+            let attitudes = expressed
+                .iter()
+                .map(|e| e.compare(d, &dr, &values))
+                .collect::<Result<Vec<_>, _>>()?;
             for (k, cs) in steps
                 .into_iter()
                 .chain(vanish)
                 .chain(rates)
                 .chain(linear)
+                .chain(attitudes)
                 .enumerate()
             {
                 let s = per_step.get_mut(&k).expect("inserted");
@@ -573,7 +583,11 @@ fn run(
         not_compared: d
             .steps
             .iter()
-            .filter(|s| s.meaning.is_none() && !plan.measured().any(|m| m == s.name))
+            .filter(|s| {
+                s.meaning.is_none()
+                    && !plan.measured().any(|m| m == s.name)
+                    && !expressed.iter().any(|e| e.name() == s.name)
+            })
             .map(
                 |s| match plan.refused().iter().find(|(n, _)| *n == s.name) {
                     Some((_, why)) => format!("{} ({why})", s.name),

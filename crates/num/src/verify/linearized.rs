@@ -161,6 +161,16 @@ impl<'d> Plan<'d> {
                 "kane" if plan.kane.is_none() => plan.read_kane(d, s, args, constrained_step),
                 "jacobian" => plan.read_jacobian(d, s, args),
                 "subst" => plan.read_subst(d, s, &s.formula, args),
+                "state_matrix" | "state_mass" if plan.kane.is_some() => {
+                    let k = plan.kane.map_or("", |k| k.name.as_str());
+                    plan.refused.push((
+                        s.name.clone(),
+                        format!(
+                            "the state-space form of `{k}`'s matrices, which are compared: E = diag(I, M) \
+                             (or I), A from −[K C] and the kinematic rows"
+                        ),
+                    ));
+                }
                 _ => {}
             }
         }
@@ -220,6 +230,40 @@ impl<'d> Plan<'d> {
         });
         if !linear {
             return refuse(self, "it is not linear in its deviations".into());
+        }
+        // The configuration constraints it names (`ground`): the draw
+        // solves the dependent coordinates from them.
+        if let Some(AstKind::Call { func, args: rows }) = args.get(1).map(|a| &a.kind)
+            && func == "list"
+        {
+            for r in rows {
+                let AstKind::Name { name, primes: 0 } = &r.kind else {
+                    continue;
+                };
+                let Some(t) = d
+                    .steps
+                    .iter()
+                    .find(|t| t.name == *name && t.meaning.is_none())
+                else {
+                    continue;
+                };
+                let moves = t.values().iter().any(|p| {
+                    d.unfold(p)
+                        .atoms()
+                        .iter()
+                        .any(|a| a.order() > 0 || d.speeds().contains(a))
+                });
+                if !moves {
+                    self.refused.push((
+                        name.clone(),
+                        format!(
+                            "a configuration constraint of `{}`: the draw solves the dependent coordinates \
+                             from it, so it vanishes at every drawn state by construction",
+                            s.name
+                        ),
+                    ));
+                }
+            }
         }
         self.kane = Some(s);
         self.speeds = speeds;

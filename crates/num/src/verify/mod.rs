@@ -33,6 +33,7 @@ mod claims;
 mod configuration;
 mod declared;
 mod draw;
+mod expressed;
 pub mod jet;
 mod knowns;
 mod linear;
