@@ -7,21 +7,13 @@
 //! long, two bodies), and a cone rolling with its apex fixed.
 
 use crate::load;
-use hdot_num::verify::{Options, Report, check};
+use hdot_num::verify::{Options, check};
 use hdot_tests::{fixed_point, frame, point, top_frames};
 
 const OPTS: Options = Options {
     draws: 12,
     seed: 11,
 };
-
-fn failed(r: &Report) -> Vec<&str> {
-    r.steps
-        .iter()
-        .filter(|s| !s.passed)
-        .map(|s| s.step.as_str())
-        .collect()
-}
 
 /// x = r θ: the centre's position is a rule in the coordinates, so δθ
 /// moves G by r along the incline.
@@ -86,13 +78,13 @@ fn lagrange_without_the_rolling_rule_fails_naming_the_step() {
         "value = \"lagrange(m*x'^2/2 + B*theta'^2/2, V, [theta])\"",
     );
     let r = check(&load(&wrong), &OPTS).unwrap();
-    assert_eq!(failed(&r), ["L"], "{r:#?}");
+    assert_eq!(r.failed(), ["L"], "{r:#?}");
     let worst = r.worst().expect("a comparison");
     assert!(worst.quantity.starts_with("L"), "{worst:?}");
     // The weight's generalized force without the rolling rule's factor r.
     let wrong = INCLINE.replace("x = r*theta)\"", "x = theta)\"");
     let r = check(&load(&wrong), &OPTS).unwrap();
-    assert_eq!(failed(&r), ["V", "L"], "{r:#?}");
+    assert_eq!(r.failed(), ["V", "L"], "{r:#?}");
 }
 
 /// Three gears on fixed axes: ψ̇ = −k φ̇ and χ̇ = −j ψ̇, so δφ turns ψ by
@@ -209,7 +201,7 @@ fn mutants_of_the_gear_train_fail_at_the_mutated_step() {
     for (from, to, expected) in mutants {
         assert!(GEARS.contains(from), "{from}");
         let r = check(&load(&GEARS.replace(from, to)), &OPTS).unwrap();
-        let bad = failed(&r);
+        let bad = r.failed();
         for s in expected {
             assert!(bad.contains(s), "{from} → {to}: {bad:?}");
         }
@@ -287,7 +279,7 @@ fn a_rolling_cone_passes_with_the_generalized_force_of_phi() {
     // step from ω on fails, Lagrange's equation among them.
     let wrong = CONE.replace("psi' = -phi'/cos(gamma))\"", "psi' = -phi')\"");
     let r = check(&load(&wrong), &OPTS).unwrap();
-    let bad = failed(&r);
+    let bad = r.failed();
     for s in ["omega_r", "T", "lagrange", "mass_matrix", "p_phi"] {
         assert!(bad.contains(&s), "{bad:?}");
     }

@@ -77,12 +77,7 @@ fn a_rod_with_a_moment_about_its_axis_in_the_steps_fails_there() {
             "value = \"principal(J, J, I) * angvel(F)\"",
         );
     let r = check(&load(&wrong), &OPTS).unwrap_or_else(|e| panic!("{e}"));
-    let failed: Vec<&str> = r
-        .steps
-        .iter()
-        .filter(|s| !s.passed)
-        .map(|s| s.step.as_str())
-        .collect();
+    let failed = r.failed();
     assert_eq!(failed, ["H", "T", "M", "L"], "{r:#?}");
 }
 

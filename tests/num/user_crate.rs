@@ -68,12 +68,7 @@ fn the_library_entry_point_checks_a_derivation_written_here() {
     assert!(r.passed(), "{r:#?}");
     assert_eq!(r.steps.len(), 4);
     let r = check(&WRONG, &Options { draws: 20, seed: 5 }).unwrap();
-    let failed: Vec<&str> = r
-        .steps
-        .iter()
-        .filter(|s| !s.passed)
-        .map(|s| s.step.as_str())
-        .collect();
+    let failed = r.failed();
     // H and what is built from it; the momentum does not use the tensor.
     assert_eq!(failed, ["H", "M", "T"]);
 }

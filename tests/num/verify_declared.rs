@@ -110,12 +110,7 @@ fn a_wrong_step_fails_naming_the_step_and_component() {
     ));
     let r = check(&d, &OPTS).unwrap();
     assert!(!r.passed());
-    let bad: Vec<&str> = r
-        .steps
-        .iter()
-        .filter(|s| !s.passed)
-        .map(|s| s.step.as_str())
-        .collect();
+    let bad = r.failed();
     assert!(bad.contains(&"M"), "{bad:?}");
     let worst = r.worst().expect("a comparison");
     assert!(
@@ -501,22 +496,12 @@ fn a_rolling_wheel_with_a_driving_torque_passes() {
     // A wrong rolling rule fails at the constraint (and where it is used).
     let wrong = WHEEL.replace("x' = r*theta'", "x' = -r*theta'");
     let r = check(&load(&wrong), &OPTS).unwrap();
-    let failed: Vec<&str> = r
-        .steps
-        .iter()
-        .filter(|s| !s.passed)
-        .map(|s| s.step.as_str())
-        .collect();
+    let failed = r.failed();
     assert!(failed.contains(&"[motion] vanishes"), "{failed:?}");
     // The torque with the wrong sign fails in Lagrange's equation only.
     let wrong = WHEEL.replace("list(M_a))\"", "list(-M_a))\"");
     let r = check(&load(&wrong), &OPTS).unwrap();
-    let failed: Vec<&str> = r
-        .steps
-        .iter()
-        .filter(|s| !s.passed)
-        .map(|s| s.step.as_str())
-        .collect();
+    let failed = r.failed();
     assert_eq!(failed, ["L"]);
 }
 
@@ -587,12 +572,7 @@ fn a_struck_body_written_here_passes_and_a_wrong_one_fails() {
         "value = \"solve(principal(Bm, A, C)",
     ));
     let r = check(&d, &OPTS).unwrap();
-    let failed: Vec<&str> = r
-        .steps
-        .iter()
-        .filter(|s| !s.passed)
-        .map(|s| s.step.as_str())
-        .collect();
+    let failed = r.failed();
     assert_eq!(failed, ["w"]);
     assert!(r.worst().unwrap().quantity.starts_with("w."));
     // The moment arm about the wrong point (r_P taken as zero).
@@ -687,12 +667,7 @@ fn a_matrix_known_binds_the_moments_of_the_whole() {
     let wrong = GYROSTAT.replace("Cp = C - J)", "Cp = C + J)");
     assert_ne!(wrong, GYROSTAT);
     let r = check(&load(&wrong), &OPTS).unwrap();
-    let failed: Vec<&str> = r
-        .steps
-        .iter()
-        .filter(|s| !s.passed)
-        .map(|s| s.step.as_str())
-        .collect();
+    let failed = r.failed();
     assert_eq!(failed, ["euler"], "{r:#?}");
 
     // A matrix known that the bodies contradict is an error naming it.

@@ -31,11 +31,6 @@ fn a_wrong_value_of_the_axle_s_component_fails() {
     };
     *p = p.scale(&factor);
     let r = check(&d, &OPTS).unwrap_or_else(|e| panic!("{e}"));
-    let failed: Vec<&str> = r
-        .steps
-        .iter()
-        .filter(|s| !s.passed)
-        .map(|s| s.step.as_str())
-        .collect();
+    let failed = r.failed();
     assert_eq!(failed, ["a_z"]);
 }

@@ -66,12 +66,7 @@ fn a_perturbed_entry_of_a_linearized_matrix_fails() {
     for step in ["M", "C", "Kq", "K_0", "K_2"] {
         let d = perturbed(step, 10_000);
         let r = check(&d, &Options { draws: 1, seed: 24 }).unwrap_or_else(|e| panic!("{e}"));
-        let failed: Vec<&str> = r
-            .steps
-            .iter()
-            .filter(|s| !s.passed)
-            .map(|s| s.step.as_str())
-            .collect();
+        let failed = r.failed();
         assert_eq!(failed, [step], "{step}");
         let worst = r.worst().expect("a comparison");
         assert!(

@@ -166,12 +166,7 @@ fn the_rolling_disks_contact_is_at_rest_along_its_rules() {
     let wrong = text.replace("\"x' = r*phi'*cos(psi)\"", "\"x' = -r*phi'*cos(psi)\"");
     assert_ne!(wrong, text);
     let r = check(&load(&wrong), &options()).unwrap_or_else(|e| panic!("{e}"));
-    let failed: Vec<&str> = r
-        .steps
-        .iter()
-        .filter(|s| !s.passed)
-        .map(|s| s.step.as_str())
-        .collect();
+    let failed = r.failed();
     // The contact moving, Kane's equations measured on that motion fail too.
     assert_eq!(failed, ["K", "M", "f", "[motion] vanishes"]);
 }

@@ -54,12 +54,7 @@ fn a_consistent_sign_error_in_a_reaction_fails() {
     ] {
         let d = load(&with(from, to));
         let r = check(&d, &options()).unwrap_or_else(|e| panic!("{e}"));
-        let failed: Vec<&str> = r
-            .steps
-            .iter()
-            .filter(|s| !s.passed)
-            .map(|s| s.step.as_str())
-            .collect();
+        let failed = r.failed();
         assert!(failed.contains(&"reactions"), "{from} → {to}: {failed:?}");
         assert!(
             failed.contains(&"R_A") && failed.contains(&"R_B"),
@@ -69,12 +64,7 @@ fn a_consistent_sign_error_in_a_reaction_fails() {
     // The drive's couple with its sign slipped: only the list fails.
     let d = load(&with("moments.z - M.z", "moments.z + M.z"));
     let r = check(&d, &options()).unwrap_or_else(|e| panic!("{e}"));
-    let failed: Vec<&str> = r
-        .steps
-        .iter()
-        .filter(|s| !s.passed)
-        .map(|s| s.step.as_str())
-        .collect();
+    let failed = r.failed();
     assert_eq!(failed, ["reactions"]);
 }
 

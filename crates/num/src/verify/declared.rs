@@ -65,6 +65,15 @@ impl Report {
         self.steps.iter().all(|s| s.passed)
     }
 
+    /// The names of the compared steps that failed, in the file's order.
+    pub fn failed(&self) -> Vec<&str> {
+        self.steps
+            .iter()
+            .filter(|s| !s.passed)
+            .map(|s| s.step.as_str())
+            .collect()
+    }
+
     /// The largest relative error.
     pub fn max_error(&self) -> f64 {
         self.steps.iter().map(|s| s.max_error).fold(0.0, f64::max)
