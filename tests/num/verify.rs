@@ -246,3 +246,24 @@ fn a_step_inside_a_meaning_is_refused_at_its_place() {
         assert!(e.contains(&format!(":{col}")), "{e}");
     }
 }
+
+/// A meaning not defined at a draw (rolling-disk's `reaction` is measured
+/// along `[0, -1/L, 0]`, and the 21st draw of seed 0 binds L = 0 from a body
+/// centred on its pivot) is not compared there — the report says so —
+/// instead of failing on a NaN; the step still fails when it is wrong.
+#[test]
+fn a_meaning_undefined_at_a_draw_is_not_compared_there() {
+    let d = derivation("rolling-disk");
+    let o = Options { draws: 21, seed: 0 };
+    let r = declared(&d, &o).unwrap();
+    assert!(r.passed(), "{:?}", r.failed());
+    let reaction = r.steps.iter().find(|s| s.step == "reaction").unwrap();
+    assert!(
+        reaction.against.contains("not compared at 1 of 21 draws"),
+        "{}",
+        reaction.against
+    );
+    assert!(r.max_error().is_finite());
+    let wrong = mutated(&d, "reaction", "*", 0);
+    assert_eq!(declared(&wrong, &o).unwrap().failed(), ["reaction"]);
+}
