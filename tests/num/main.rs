@@ -50,6 +50,8 @@ mod verify_quaternion;
 mod verify_singular_draws;
 // Line bodies and point masses: moments of inertia declared zero.
 mod line_bodies;
+// The bundled multibody derivations' steps on the particles (issue 24, item 7).
+mod verify_bundled;
 // Mutated derivations rejected by verification (issue 9).
 mod mutation;
 // A user's own crate: check(&derivation, &Options) and verify::strategy.

@@ -167,6 +167,20 @@ fn the_rolling_disks_contact_is_at_rest_along_its_rules() {
     assert_ne!(wrong, text);
     let r = check(&load(&wrong), &options()).unwrap_or_else(|e| panic!("{e}"));
     let failed = r.failed();
-    // The contact moving, Kane's equations measured on that motion fail too.
-    assert_eq!(failed, ["K", "M", "f", "[motion] vanishes"]);
+    // The contact moving, every step measured on that motion that holds
+    // only when it rolls fails too.
+    assert_eq!(
+        failed,
+        [
+            "contact",
+            "no_slip",
+            "dependent",
+            "K",
+            "M",
+            "f",
+            "v_G",
+            "E",
+            "[motion] vanishes"
+        ]
+    );
 }
