@@ -248,6 +248,16 @@ const VANISHING: &[(&str, &str, &str)] = &[
         "the contact's velocity, zero along every rolling motion whatever its sign",
     ),
     (
+        "disk-rolling-on-plane",
+        "express(rolling(disk, C), A)",
+        "the contact's velocity, zero along every rolling motion whatever its sign",
+    ),
+    (
+        "disk-rolling-on-plane",
+        "list(contact.x, contact.y)",
+        "the no-slip rows, zero along every rolling motion whatever their sign",
+    ),
+    (
         "disk-on-its-rim",
         "h - r*cos(theta)",
         "the configuration constraint, zero at every drawn configuration; −f = 0 is f = 0",
