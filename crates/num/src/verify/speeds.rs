@@ -14,6 +14,7 @@ use hdot_sym::parse::{AstKind, parse};
 use hdot_sym::poly::Poly;
 use nalgebra::{DMatrix, DVector};
 
+use super::prepared::{Prepared, Resolved};
 use super::{VerifyError, declaration};
 use crate::bind::{Values, nth};
 use crate::verify::jet::ORDERS;
@@ -26,12 +27,15 @@ use crate::verify::jet::ORDERS;
 pub(crate) struct Speeds {
     /// The coordinates the kinematic equations give the rates of.
     coordinates: Vec<Atom>,
-    /// `rates[n][k]`: the `n`th rate of coordinate k's kinematic equation.
-    rates: Vec<Vec<Poly>>,
+    /// `rates[n]`, polynomial k: the `n`th rate of coordinate k's
+    /// kinematic equation.
+    rates: Vec<Prepared>,
     /// `rows[n]`: the `n`th rates of the constraint rows, coordinates'
     /// rates replaced by the kinematic equations (a configuration
-    /// constraint's row is its rate).
-    rows: Vec<Vec<Poly>>,
+    /// constraint's row is its rate). Both prepared once: they are
+    /// evaluated at every draw and at every state a linearisation
+    /// measures ([`Prepared`]).
+    rows: Vec<Prepared>,
     pub(crate) dependent: Vec<Atom>,
     /// The configuration constraints f(q) = 0, solved for the dependent
     /// coordinates at a draw ([`super::configuration`]).
@@ -200,8 +204,8 @@ impl Speeds {
         }
         Some(Speeds {
             coordinates: kinematics.iter().map(|(q, _)| *q).collect(),
-            rates,
-            rows: all_rows,
+            rates: rates.iter().map(|r| Prepared::new(r)).collect(),
+            rows: all_rows.iter().map(|r| Prepared::new(r)).collect(),
             dependent,
             configuration,
         })
@@ -219,46 +223,60 @@ impl Speeds {
         orders: usize,
     ) -> Result<Option<()>, VerifyError> {
         for n in 0..orders.min(ORDERS) {
-            if !self.dependent.is_empty()
-                && self.solve(d, values, &self.rows[n], n as u32)?.is_none()
-            {
+            if !self.dependent.is_empty() && self.solve(d, values, n as u32)?.is_none() {
                 return Ok(None);
             }
-            for (q, f) in self.coordinates.iter().zip(&self.rates[n]) {
-                let Ok((v, s)) = values.eval(f) else {
+            let rates = &self.rates[n];
+            let mut at = rates.resolve(values);
+            for (k, q) in self.coordinates.iter().enumerate() {
+                let Ok((v, s)) = rates.eval(k, &at) else {
                     return Ok(None);
                 };
-                values.set(nth(*q, n as u32 + 1), v, s);
+                let rate = nth(*q, n as u32 + 1);
+                values.set(rate, v, s);
+                // A later equation that reads this rate reads it set.
+                if let Some(slot) = rates.slot(rate) {
+                    at[slot] = values.get(rate);
+                }
             }
         }
         Ok(Some(()))
     }
 
-    /// The dependent speeds' `n`th rates from `rows` (the rows' `n`th
-    /// rates, linear in them): least squares, exact when the rows are
+    /// The dependent speeds' `n`th rates from the rows' `n`th rates
+    /// (linear in them): least squares, exact when the rows are
     /// consistent.
     fn solve(
         &self,
         d: &Derivation,
         values: &mut Values,
-        rows: &[Poly],
         n: u32,
     ) -> Result<Option<()>, VerifyError> {
+        let rows = &self.rows[n as usize];
         let deps: Vec<Atom> = self.dependent.iter().map(|&u| nth(u, n)).collect();
         for &u in &deps {
             values.set(u, 0.0, 0.0);
         }
-        let eval = |v: &Values| -> Option<Vec<(f64, f64)>> {
-            rows.iter().map(|r| v.eval(r).ok()).collect()
+        let eval = |at: &Resolved| -> Option<Vec<(f64, f64)>> {
+            (0..rows.len()).map(|i| rows.eval(i, at).ok()).collect()
         };
-        let Some(r0) = eval(values) else {
+        let mut at = rows.resolve(values);
+        let Some(r0) = eval(&at) else {
             return Ok(None);
         };
         let mut a = DMatrix::zeros(rows.len(), deps.len());
         for (j, &u) in deps.iter().enumerate() {
-            let Some(rj) = eval(&values.with(u, 1.0)) else {
+            // The rows with `u` at 1 (of size 1), the others at 0.
+            let slot = rows.slot(u);
+            if let Some(k) = slot {
+                at[k] = Some((1.0, 1.0));
+            }
+            let Some(rj) = eval(&at) else {
                 return Ok(None);
             };
+            if let Some(k) = slot {
+                at[k] = Some((0.0, 0.0));
+            }
             for (i, (x, _)) in rj.iter().enumerate() {
                 a[(i, j)] = x - r0[i].0;
             }
