@@ -14,7 +14,7 @@ use hdot_sym::parse::{AstKind, parse};
 use hdot_sym::poly::Poly;
 use nalgebra::{DMatrix, DVector};
 
-use super::prepared::{Prepared, Resolved};
+use super::prepared::Prepared;
 use super::{VerifyError, declaration};
 use crate::bind::{Values, nth};
 use crate::verify::jet::ORDERS;
@@ -36,6 +36,9 @@ pub(crate) struct Speeds {
     /// evaluated at every draw and at every state a linearisation
     /// measures ([`Prepared`]).
     rows: Vec<Prepared>,
+    /// `coefficients[n]`, polynomial `i · dependent.len() + j`: row i's
+    /// coefficient of dependent speed j's `n`th rate in `rows[n]`.
+    coefficients: Vec<Prepared>,
     pub(crate) dependent: Vec<Atom>,
     /// The configuration constraints f(q) = 0, solved for the dependent
     /// coordinates at a draw ([`super::configuration`]).
@@ -206,6 +209,17 @@ impl Speeds {
             coordinates: kinematics.iter().map(|(q, _)| *q).collect(),
             rates: rates.iter().map(|r| Prepared::new(r)).collect(),
             rows: all_rows.iter().map(|r| Prepared::new(r)).collect(),
+            coefficients: all_rows
+                .iter()
+                .enumerate()
+                .map(|(n, rows)| {
+                    let of: Vec<Poly> = rows
+                        .iter()
+                        .flat_map(|r| dependent.iter().map(move |&u| r.partial(nth(u, n as u32))))
+                        .collect();
+                    Prepared::new(&of)
+                })
+                .collect(),
             dependent,
             configuration,
         })
@@ -257,33 +271,30 @@ impl Speeds {
         for &u in &deps {
             values.set(u, 0.0, 0.0);
         }
-        let eval = |at: &Resolved| -> Option<Vec<(f64, f64)>> {
-            (0..rows.len()).map(|i| rows.eval(i, at).ok()).collect()
-        };
-        let mut at = rows.resolve(values);
-        let Some(r0) = eval(&at) else {
+        let at = rows.resolve(values);
+        let Some(r0) = (0..rows.len())
+            .map(|i| rows.eval(i, &at).ok())
+            .collect::<Option<Vec<(f64, f64)>>>()
+        else {
             return Ok(None);
         };
+        // The rows are linear in the rates solved for: their matrix is
+        // the coefficients, evaluated (not the rows evaluated again with
+        // each rate at one).
+        let coefficients = &self.coefficients[n as usize];
+        let at = coefficients.resolve(values);
         let mut a = DMatrix::zeros(rows.len(), deps.len());
-        for (j, &u) in deps.iter().enumerate() {
-            // The rows with `u` at 1 (of size 1), the others at 0.
-            let slot = rows.slot(u);
-            if let Some(k) = slot {
-                at[k] = Some((1.0, 1.0));
-            }
-            let Some(rj) = eval(&at) else {
-                return Ok(None);
-            };
-            if let Some(k) = slot {
-                at[k] = Some((0.0, 0.0));
-            }
-            for (i, (x, _)) in rj.iter().enumerate() {
-                a[(i, j)] = x - r0[i].0;
+        for i in 0..rows.len() {
+            for j in 0..deps.len() {
+                let Ok((x, _)) = coefficients.eval(i * deps.len() + j, &at) else {
+                    return Ok(None);
+                };
+                a[(i, j)] = x;
             }
         }
         let b = DVector::from_iterator(r0.len(), r0.iter().map(|(x, _)| -x));
         let scale: f64 = r0.iter().map(|(_, s)| s).sum::<f64>() + 1.0;
-        let svd = a.clone().svd(true, true);
+        let svd = a.svd(true, true);
         let smax = svd.singular_values.max();
         let smin = svd.singular_values.min();
         if deps.len() > rows.len() || smin <= 1e-9 * smax.max(f64::MIN_POSITIVE) {
