@@ -69,3 +69,28 @@ fn a_solution_holds_a_coefficient_s_sum_once_as_a_textbook_writes_it() {
         hdot_sym::render::Format::Unicode
     ));
 }
+
+/// After an operating point at a multiple of π/2 the printed angle is its
+/// deviation from there: the step says so (its own or an earlier step's
+/// point, for the angles its value still holds), after the file's doc.
+#[test]
+fn a_step_says_what_its_angles_stand_for_after_an_operating_point_at_pi() {
+    let path = repo_root().join("tests/sym/newcomer/double-pendulum-upright.toml");
+    let d = load(&path).unwrap_or_else(|e| panic!("{e}"));
+    let doc = |name: &str| d.steps.iter().find(|s| s.name == name).unwrap().doc.clone();
+    assert_eq!(
+        doc("upright"),
+        "both links above the pivot; q1 stands for q1 − π, its deviation from the operating point"
+    );
+    assert_eq!(
+        doc("folded"),
+        "q1 stands for q1 + π/2 and q2 for q2 − 3π/2, their deviations from the operating point"
+    );
+    // The stiffness holds cos q2 at q2 = 0 only through constants; the
+    // mass matrix holds no angle: neither names one.
+    assert_eq!(doc("stiffness"), "");
+    assert_eq!(doc("mass"), "");
+    let text = hdot_sym::render::render(&d, hdot_sym::render::Format::Latex);
+    // The note opens the second step's sentence: q1 keeps its case.
+    assert!(text.contains("\\quad q1 stands for q1 +"), "{text}");
+}

@@ -399,6 +399,8 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
     cx.unknowns = cx.solve_targets(&raw.steps);
     let mut steps = Vec::new();
     let mut seen: HashMap<String, ()> = HashMap::new();
+    // Per step, the angles its value is written in the deviation of.
+    let mut shifted: HashMap<String, Vec<(String, i64)>> = HashMap::new();
     for s in &raw.steps {
         if seen.insert(s.name.get_ref().clone(), ()).is_some() {
             return Err(cx.diag_string(
@@ -464,6 +466,7 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
             None => None,
         };
         cx.check_label(s, &value, label_math.as_ref())?;
+        let doc = deviations_said(&mut shifted, s, &value);
         cx.bind(s.name.get_ref(), value.clone());
         steps.push(Step {
             name: s.name.get_ref().clone(),
@@ -471,7 +474,7 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
                 .label
                 .as_ref()
                 .map_or_else(|| s.name.get_ref().clone(), |l| l.get_ref().clone()),
-            doc: s.doc.clone(),
+            doc,
             formula: s.value.get_ref().clone(),
             show: s.show,
             label_math,
@@ -499,4 +502,44 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
         speeds: cx.speeds.clone(),
         loads: cx.loads.clone(),
     })
+}
+
+/// The step's doc, with what its printed angles stand for when its value
+/// is written in the deviation of some from an operating point at a
+/// multiple of π/2 (`kane(…, q = pi)`: q stands for q − π) — the value's
+/// own or an earlier step's it names — recorded in `shifted` for later
+/// steps. Only angles the value still holds are named.
+fn deviations_said(
+    shifted: &mut HashMap<String, Vec<(String, i64)>>,
+    s: &raw::RawStep,
+    value: &Value,
+) -> String {
+    let text = s.value.get_ref();
+    if !text.contains("pi") && shifted.is_empty() {
+        return s.doc.clone();
+    }
+    let Ok(ast) = crate::parse::parse(text) else {
+        return s.doc.clone();
+    };
+    let mut angles = operating::shifted_angles(&ast, shifted);
+    let held: std::collections::BTreeSet<&str> = value
+        .components()
+        .into_iter()
+        .flat_map(|p| p.atoms())
+        .map(|a| match a.kind() {
+            crate::atom::AtomKind::Sin(x) | crate::atom::AtomKind::Cos(x) => x.name(),
+            _ => a.name(),
+        })
+        .collect();
+    angles.retain(|(q, _)| held.contains(q.as_str()));
+    if angles.is_empty() {
+        return s.doc.clone();
+    }
+    let note = operating::deviation_note(&angles);
+    shifted.insert(s.name.get_ref().clone(), angles);
+    if s.doc.is_empty() {
+        note
+    } else {
+        format!("{}; {note}", s.doc)
+    }
 }

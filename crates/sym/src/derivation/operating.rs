@@ -222,3 +222,106 @@ impl OperatingPoint {
         Ok(out)
     }
 }
+
+/// The angles a step's value is written in the deviation of: those its
+/// own `kane(…, q = pi)` or `linearize(x, q = pi/2)` give a multiple k ≠ 0
+/// of π/2, and those of the earlier steps it names (`earlier`, by step
+/// name), in the order met, each with its k.
+pub(crate) fn shifted_angles(
+    ast: &Ast,
+    earlier: &std::collections::HashMap<String, Vec<(String, i64)>>,
+) -> Vec<(String, i64)> {
+    fn walk(
+        a: &Ast,
+        earlier: &std::collections::HashMap<String, Vec<(String, i64)>>,
+        out: &mut Vec<(String, i64)>,
+    ) {
+        let mut add = |name: &str, k: i64| {
+            if !out.iter().any(|(n, _)| n == name) {
+                out.push((name.to_owned(), k));
+            }
+        };
+        match &a.kind {
+            AstKind::Num(_) => {}
+            AstKind::Name { name, .. } => {
+                for (n, k) in earlier.get(name).into_iter().flatten() {
+                    add(n, *k);
+                }
+            }
+            AstKind::Call { func, args } => {
+                if matches!(func.as_str(), "kane" | "linearize") {
+                    for r in args {
+                        if let AstKind::Assign {
+                            name,
+                            primes: 0,
+                            value,
+                            ..
+                        } = &r.kind
+                            && let Some(k) = crate::derivation::ops::quarter_turns(value)
+                            && k != 0
+                        {
+                            add(name, k);
+                        }
+                    }
+                }
+                for r in args {
+                    walk(r, earlier, out);
+                }
+            }
+            AstKind::Assign { value, .. } => walk(value, earlier, out),
+            AstKind::Vector { items, .. } | AstKind::Add(items) | AstKind::Mul(items) => {
+                for x in items {
+                    walk(x, earlier, out);
+                }
+            }
+            AstKind::Recip(x) | AstKind::Neg(x) | AstKind::Pow(x, _) | AstKind::Member(x, ..) => {
+                walk(x, earlier, out)
+            }
+            AstKind::Cross(x, y) => {
+                walk(x, earlier, out);
+                walk(y, earlier, out);
+            }
+        }
+    }
+    let mut out = Vec::new();
+    walk(ast, earlier, &mut out);
+    out
+}
+
+/// What a printed step says of the angles it is written in the deviation
+/// of (`shifted`, each with its multiple k of π/2, those the value holds):
+/// "q stands for q − π, its deviation from the operating point".
+pub(crate) fn deviation_note(shifted: &[(String, i64)]) -> String {
+    let offset = |k: i64| -> String {
+        let (sign, k) = if k < 0 { ("+", -k) } else { ("−", k) };
+        let v = match (k % 2, k / 2) {
+            (0, 1) => "π".to_owned(),
+            (0, h) => format!("{h}π"),
+            (_, 0) => "π/2".to_owned(),
+            _ => format!("{k}π/2"),
+        };
+        format!("{sign} {v}")
+    };
+    let parts: Vec<String> = shifted
+        .iter()
+        .enumerate()
+        .map(|(i, (q, k))| {
+            if i == 0 {
+                format!("{q} stands for {q} {}", offset(*k))
+            } else {
+                format!("{q} for {q} {}", offset(*k))
+            }
+        })
+        .collect();
+    let what = if shifted.len() == 1 {
+        "its deviation"
+    } else {
+        "their deviations"
+    };
+    let list = match parts.as_slice() {
+        [one] => one.clone(),
+        [init @ .., last] => format!("{} and {last}", init.join(", ")),
+        [] => String::new(),
+    };
+    format!("{list}, {what} from the operating point")
+}

@@ -59,13 +59,24 @@ pub(super) fn sentence(s: &str) -> String {
 
 /// The text with a capital first letter, unless it begins with notation
 /// that a capital would change: a function name before its argument
-/// (`tan γ = …` stays `tan γ`).
+/// (`tan γ = …` stays `tan γ`), or a symbol — a lone letter other than the
+/// article `a` (`q stands for q − π`: Q would be another symbol), a Greek
+/// letter's name (`theta`, not Θ) or a name with a subscript or digit
+/// (`u_1`, `q2`).
 pub(super) fn capitalise(s: &str) -> String {
     let first = s
         .split(|c: char| !c.is_ascii_alphabetic())
         .next()
         .unwrap_or("");
     if prose::FUNCTIONS.contains(&first) && s[first.len()..].starts_with(' ') {
+        return s.to_owned();
+    }
+    let word = s.split([' ', ',', ';', ':', '.']).next().unwrap_or("");
+    let symbol = (first.len() == 1 && first != "a" && word == first)
+        || (first == word && crate::symbols::greek(first).is_some())
+        || (word.len() == first.len() + 1 && word.ends_with(|c: char| c.is_ascii_digit()))
+        || word[first.len()..].starts_with('_') && !first.is_empty();
+    if symbol {
         return s.to_owned();
     }
     let mut cs = s.chars();
@@ -109,4 +120,26 @@ pub(super) const COEFFICIENTS_INTRO: &str = "The results written by name in the 
 /// [`COEFFICIENTS_INTRO`] with the size.
 pub(super) fn coefficients_intro() -> String {
     COEFFICIENTS_INTRO.replace("{NAMED}", &crate::document::NAMED_ABOVE.to_string())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::capitalise;
+
+    #[test]
+    fn a_sentence_opening_with_a_symbol_keeps_its_case() {
+        for (text, want) in [
+            ("q stands for q − π", "q stands for q − π"),
+            ("theta is the lean", "theta is the lean"),
+            ("u_1 is the spin", "u_1 is the spin"),
+            ("q2 is the second angle", "q2 is the second angle"),
+            ("tan γ = v/r", "tan γ = v/r"),
+            ("a disk rolls", "A disk rolls"),
+            ("the lean", "The lean"),
+            ("thetas are angles", "Thetas are angles"),
+            ("", ""),
+        ] {
+            assert_eq!(capitalise(text), want, "{text}");
+        }
+    }
 }
