@@ -242,15 +242,30 @@ fn yes() -> bool {
     true
 }
 
+/// What to write for a required field a table left out, by field name:
+/// appended to the reader's "missing field" error.
+const MISSING_FIELD_HINTS: &[(&str, &str)] = &[(
+    "inertia",
+    "every [[body]] states its inertia tensor about its point in its frame's axes: \
+     `principal(A, B, C)`, `inertia(I_x, I_y, I_z, I_xy, I_yz, I_zx)` with products of inertia, \
+     or `principal(0, 0, 0)` for a point mass (docs/derivation-format.md, `[[body]]`)",
+)];
+
 pub(crate) fn parse(path: &str, text: &str) -> Result<RawFile, Diagnostic> {
     toml::from_str::<RawFile>(text).map_err(|e| {
         let span = e.span().unwrap_or(0..0);
+        let message = e.message().trim();
+        let hint = MISSING_FIELD_HINTS
+            .iter()
+            .find(|(f, _)| message == format!("missing field `{f}`"))
+            .map(|(_, h)| format!(": {h}"))
+            .unwrap_or_default();
         Diagnostic::at(
             path,
             text,
             span.start,
             span.end,
-            format!("invalid derivation file: {}", e.message().trim()),
+            format!("invalid derivation file: {message}{hint}"),
         )
     })
 }
