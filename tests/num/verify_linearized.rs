@@ -30,7 +30,25 @@ fn the_linearized_bicycle_agrees_with_the_particles() {
             .find(|s| s.step == m)
             .unwrap_or_else(|| panic!("{m} is not compared: {:?}", r.not_compared));
         assert!(s.passed, "{m}: {:?}", s.worst);
-        assert!(s.worst.is_some(), "{m}: no comparison made");
+        let w = s
+            .worst
+            .as_ref()
+            .unwrap_or_else(|| panic!("{m}: no comparison made"));
+        // `--steps` states the bound the worst comparison was held to,
+        // and it holds the difference.
+        let (_, bound) = s
+            .against
+            .split_once("|derived − measured| ≤ ")
+            .unwrap_or_else(|| panic!("{m} states no tolerance: {}", s.against));
+        let bound: f64 = bound
+            .split(' ')
+            .next()
+            .and_then(|b| b.parse().ok())
+            .expect("a number");
+        assert!(
+            bound > 0.0 && (w.derived - w.direct).abs() <= bound,
+            "{m}: {w:?} beyond {bound}"
+        );
     }
     for m in MATRICES {
         assert!(

@@ -602,6 +602,11 @@ fn run(
         // A step measured at no draw has not been checked.
         s.passed &= s.worst.is_some();
     }
+    linearized::Plan::state_bounds(
+        per_step
+            .range_mut(before..before + plan.measured().count())
+            .map(|(_, s)| s),
+    );
     let mut steps: Vec<StepCheck> = per_step.into_values().collect();
     steps.extend(d.steps.iter().filter_map(|s| claims::zero_label(d, s)));
     Ok(Report {

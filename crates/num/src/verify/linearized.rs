@@ -452,6 +452,23 @@ impl<'d> Plan<'d> {
             .collect()
     }
 
+    /// States in each measured step's `against` (its [`Plan::entries`]
+    /// entry, after the draws) the bound its worst comparison was held
+    /// to: the estimate plus [`TOLERANCE_ULPS`] of round-off. The scale
+    /// folds the estimate in, so the relative error alone reads ~1e-17.
+    pub(crate) fn state_bounds<'a>(entries: impl Iterator<Item = &'a mut StepCheck>) {
+        for s in entries {
+            if let Some(c) = &s.worst {
+                let bound = TOLERANCE_ULPS * f64::EPSILON * c.scale;
+                s.against.push_str(&format!(
+                    "; tolerance used at {}: |derived − measured| ≤ {bound:.3e} (|measured| {:.3e})",
+                    c.quantity,
+                    c.direct.abs()
+                ));
+            }
+        }
+    }
+
     /// Every measured step's comparisons in one draw, in the order of
     /// [`Plan::entries`].
     pub(crate) fn compare(

@@ -7,6 +7,8 @@
 //! velocity for that speed is the difference of the two (exact up to
 //! rounding). These are the constrained partial velocities: the dependent
 //! speeds move with the independent one as the constraints require.
+//! Their sums over a body's particles (`Σ m δv`, `Σ m a · δv`) are formed
+//! from the body's particle sums (the particles are `r = r_P + R q`).
 //! The models are made once per state and speed ([`KaneWorlds`]).
 
 use std::rc::Rc;
@@ -15,7 +17,7 @@ use hdot_sym::atom::Atom;
 use hdot_sym::derivation::physics::Bodies;
 use nalgebra::Vector3;
 
-use super::world::{Particle, World, vee};
+use super::world::{Placed, World, vee};
 use super::{VerifyError, declaration};
 use crate::bind::Values;
 
@@ -104,13 +106,30 @@ fn cached<'d>(w: &World<'d>, u: Atom) -> Option<Partials<'d>> {
 }
 
 impl Partials<'_> {
-    /// Each particle of `b` with its partial velocity and the magnitude of
-    /// the terms of the two velocities it is the difference of.
-    pub(crate) fn particles(&self, b: Bodies) -> impl Iterator<Item = (Vector3<f64>, f64)> + '_ {
-        self.raised
-            .particles(b)
-            .zip(self.base.particles(b))
-            .map(|(p, q): (Particle<'_>, Particle<'_>)| (p.r[1] - q.r[1], p.mag[1] + q.mag[1]))
+    /// `Σ m δv` over the particles of `b` (δv each particle's partial
+    /// velocity) and the sum of their magnitudes, from each body's
+    /// particle sums ([`super::placed::Placed::partial_momentum`]).
+    pub(crate) fn momentum(&self, b: Bodies) -> (Vector3<f64>, f64) {
+        self.raised.placed(b).iter().zip(self.base.placed(b)).fold(
+            (Vector3::zeros(), 0.0),
+            |(v, m), (r, q)| {
+                let (bv, bm) = Placed::partial_momentum(r, q);
+                (v + bv, m + bm)
+            },
+        )
+    }
+
+    /// `Σ m a · δv` over the particles of `b`, a their accelerations in
+    /// `w` (the model at the same instant), and the sum of the magnitudes
+    /// of its terms ([`super::placed::Placed::partial_power`]).
+    pub(crate) fn inertia(&self, w: &World<'_>, b: Bodies) -> (f64, f64) {
+        w.placed(b)
+            .iter()
+            .zip(self.raised.placed(b).iter().zip(self.base.placed(b)))
+            .fold((0.0, 0.0), |(v, m), (p, (r, q))| {
+                let (bv, bm) = p.partial_power::<2>(r, q);
+                (v + bv, m + bm)
+            })
     }
 
     /// The partial velocity of point `name` and its magnitude.

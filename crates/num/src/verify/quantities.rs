@@ -509,12 +509,9 @@ fn speed(a: &Arg) -> hdot_sym::atom::Atom {
 fn generalized_active_force(w: &World<'_>, a: &[Arg]) -> Out {
     let (b, pv) = (bodies(&a[0]), partials(w, speed(&a[1]))?);
     let g = w.gravity;
-    let (mut v, mut s) = pv
-        .particles(b)
-        .zip(w.particles(b))
-        .fold((0.0, 0.0), |(v, s), ((vr, mag), p)| {
-            (v + p.m * g.dot(&vr), s + p.m * g.norm() * mag)
-        });
+    // Σ m g · δv = g · Σ m δv over the particles.
+    let (momentum, mag) = pv.momentum(b);
+    let (mut v, mut s) = (g.dot(&momentum), g.norm() * mag);
     for load in w.d.loads.iter().filter(|l| acts_on(w.d, l, b)) {
         let (f, size, (vr, mag)) = match load {
             Load::Force {
@@ -542,13 +539,8 @@ fn generalized_active_force(w: &World<'_>, a: &[Arg]) -> Out {
 
 fn generalized_inertia_force(w: &World<'_>, a: &[Arg]) -> Out {
     let (b, pv) = (bodies(&a[0]), partials(w, speed(&a[1]))?);
-    let (v, s) = pv
-        .particles(b)
-        .zip(w.particles(b))
-        .fold((0.0, 0.0), |(v, s), ((vr, mag), p)| {
-            (v - p.m * p.r[2].dot(&vr), s + p.m * p.mag[2] * mag)
-        });
-    Ok((Measured::Scalar(v), s))
+    let (v, s) = pv.inertia(w, b);
+    Ok((Measured::Scalar(-v), s))
 }
 
 /// The material point of one body at a point's place: `r = r_O + R q`

@@ -574,7 +574,7 @@ impl<'d> World<'d> {
     }
 
     /// The bodies `bodies` names, placed at the instant.
-    fn placed(&self, bodies: Bodies) -> &[Placed<'d>] {
+    pub(crate) fn placed(&self, bodies: Bodies) -> &[Placed<'d>] {
         let range = match bodies {
             Bodies::One(i) => i..i + 1,
             Bodies::System => 0..self.bodies.len(),
