@@ -213,7 +213,7 @@ pub fn name_of(p: &Path) -> String {
 /// that name, the generated scaling family `chain-K`.
 pub fn target(dir: &Dir, arg: &str) -> anyhow::Result<Entry> {
     if let Some(k) = hdot_sym::chain::parse_name(arg)
-        && resolve(dir, arg).is_err()
+        && !matches!(find(dir, arg), Ok(Some(_)))
     {
         return Ok(Entry::Chain(k));
     }
@@ -228,6 +228,28 @@ pub fn load(dir: &Dir, arg: &str) -> anyhow::Result<Result<Derivation, Diagnosti
 /// Resolves `NAME` (a derivation of `dir`) or `PATH` (an existing file, or
 /// anything containing a path separator or ending in `.toml`).
 pub fn resolve(dir: &Dir, arg: &str) -> anyhow::Result<Entry> {
+    if let Some(entry) = find(dir, arg)? {
+        return Ok(entry);
+    }
+    // Only the error lists the known names: reading every file of the
+    // folder to classify it costs more than deriving chain-4, which
+    // `target` tries here first.
+    let names: Vec<String> = all(dir)
+        .unwrap_or_default()
+        .iter()
+        .map(Entry::name)
+        .collect();
+    bail!(
+        "unknown derivation `{arg}`; known: {}, chain-1 … chain-{} (or give a path to a .toml file)",
+        names.join(", "),
+        hdot_sym::chain::MAX_K
+    )
+}
+
+/// [`resolve`] without the error of a name that is not there: `None` when
+/// `dir` has no derivation called `arg` (an error for a folder, a missing
+/// path or a file that is not a derivation).
+fn find(dir: &Dir, arg: &str) -> anyhow::Result<Option<Entry>> {
     let p = Path::new(arg);
     if p.is_dir() {
         bail!(
@@ -239,31 +261,18 @@ pub fn resolve(dir: &Dir, arg: &str) -> anyhow::Result<Entry> {
             bail!("no such derivation file: {arg}");
         }
         not_a_derivation(p, arg)?;
-        return Ok(Entry::File(p.to_owned()));
+        return Ok(Some(Entry::File(p.to_owned())));
     }
-    match dir {
+    Ok(match dir {
         Dir::Folder(d) => {
             let candidate = d.join(format!("{arg}.toml"));
-            if candidate.is_file() {
-                return Ok(Entry::File(candidate));
-            }
+            candidate.is_file().then_some(Entry::File(candidate))
         }
-        Dir::Bundled => {
-            if let Some((n, t)) = bundled::DERIVATIONS.iter().find(|(n, _)| *n == arg) {
-                return Ok(Entry::Bundled(n, t));
-            }
-        }
-    }
-    let names: Vec<String> = all(dir)
-        .unwrap_or_default()
-        .iter()
-        .map(Entry::name)
-        .collect();
-    bail!(
-        "unknown derivation `{arg}`; known: {}, chain-1 … chain-{} (or give a path to a .toml file)",
-        names.join(", "),
-        hdot_sym::chain::MAX_K
-    )
+        Dir::Bundled => bundled::DERIVATIONS
+            .iter()
+            .find(|(n, _)| *n == arg)
+            .map(|(n, t)| Entry::Bundled(n, t)),
+    })
 }
 
 /// Refuses a notes manifest or a scene given where a derivation is
@@ -314,7 +323,7 @@ pub fn bundled_scene(arg: &Path) -> Option<(String, &'static str)> {
 pub fn derivation_finder(path: &Path) -> impl Fn(&str) -> Result<(PathBuf, String), String> + '_ {
     move |name: &str| {
         hdot_sim::scene::resolve_near(path, name).or_else(|near| {
-            let Ok(entry) = resolve(&derivations_dir(None), name) else {
+            let Ok(Some(entry)) = find(&derivations_dir(None), name) else {
                 return Err(near);
             };
             match entry {
