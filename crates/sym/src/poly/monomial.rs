@@ -97,9 +97,19 @@ impl Monomial {
 
     /// The product of two monomials (no trigonometric reduction).
     pub fn mul(&self, other: &Monomial) -> Monomial {
+        self.merge(other, 1)
+    }
+
+    /// `self · other^sign` (`sign` is 1 or −1) in one merge of the two
+    /// sorted factor lists. The result starts inline and spills to the
+    /// heap only when it has more factors than the inline room: reserving
+    /// the two lengths' sum put every product or quotient of long
+    /// monomials on the heap (a chain-6 term divided by its rates has
+    /// 13 + 10 factors in and 3 out).
+    fn merge(&self, other: &Monomial, sign: Exp) -> Monomial {
         crate::work::monomial_product();
         let (a, b) = (&self.0, &other.0);
-        let mut out = SmallVec::with_capacity(a.len() + b.len());
+        let mut out: SmallVec<[(Atom, Exp); 12]> = SmallVec::new();
         let (mut i, mut j) = (0, 0);
         while i < a.len() && j < b.len() {
             match a[i].0.cmp(&b[j].0) {
@@ -108,11 +118,11 @@ impl Monomial {
                     i += 1;
                 }
                 std::cmp::Ordering::Greater => {
-                    out.push(b[j]);
+                    out.push((b[j].0, sign * b[j].1));
                     j += 1;
                 }
                 std::cmp::Ordering::Equal => {
-                    let e = limits::add_exponents(a[i].1, b[j].1);
+                    let e = limits::add_exponents(a[i].1, sign * b[j].1);
                     if e != 0 {
                         out.push((a[i].0, e));
                     }
@@ -122,7 +132,11 @@ impl Monomial {
             }
         }
         out.extend_from_slice(&a[i..]);
-        out.extend_from_slice(&b[j..]);
+        if sign == 1 {
+            out.extend_from_slice(&b[j..]);
+        } else {
+            out.extend(b[j..].iter().map(|&(x, e)| (x, -e)));
+        }
         Monomial(out)
     }
 
@@ -132,7 +146,7 @@ impl Monomial {
     pub(crate) fn mul_without(&self, a: Atom, other: &Monomial) -> Monomial {
         crate::work::monomial_product();
         let (x, y) = (&self.0, &other.0);
-        let mut out = SmallVec::with_capacity(x.len() + y.len());
+        let mut out = SmallVec::new();
         let (mut i, mut j) = (0, 0);
         // The exponent of x[i] once a is divided out.
         let own = |i: usize| if x[i].0 == a { x[i].1 - 1 } else { x[i].1 };
@@ -216,7 +230,7 @@ impl Monomial {
 
     /// `self / other`.
     pub fn div(&self, other: &Monomial) -> Monomial {
-        self.mul(&Monomial(other.0.iter().map(|&(a, e)| (a, -e)).collect()))
+        self.merge(other, -1)
     }
 
     /// True when some `sin`, `cos` or sum atom has a negative exponent.
