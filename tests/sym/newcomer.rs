@@ -94,3 +94,10 @@ fn a_step_says_what_its_angles_stand_for_after_an_operating_point_at_pi() {
     // The note opens the second step's sentence: q1 keeps its case.
     assert!(text.contains("\\quad q1 stands for q1 +"), "{text}");
 }
+
+/// sin and cos of sums of angles are written out by the addition
+/// formulas, in values and expectations alike.
+#[test]
+fn sines_and_cosines_of_sums_of_angles_can_be_written() {
+    holds("sums-of-angles", 3 + 1 + 1);
+}

@@ -57,6 +57,7 @@
 //! [`Frame`] and through the derivation language, so it can change without
 //! breaking a user crate.
 
+pub mod angle_sum;
 pub mod atom;
 pub mod chain;
 pub mod course;

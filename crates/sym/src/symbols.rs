@@ -120,7 +120,9 @@ impl Symbols {
         let AstKind::Name { name, primes: 0 } = &arg.kind else {
             return Err(ParseError {
                 span: arg.span,
-                message: format!("`{func}` takes a single angle symbol, such as `{func}(theta)`"),
+                message: format!(
+                    "`{func}` takes an angle: a symbol, or a sum of integer multiples of angle symbols and of pi/2, such as `{func}(theta)` or `{func}(q1 + q2)`"
+                ),
             });
         };
         let q = self.atom(name, 0, arg.span)?;
@@ -130,6 +132,21 @@ impl Symbols {
             Atom::cos(q)
         }
         .expect("order-0 symbol"))
+    }
+
+    /// `sin(x)` / `cos(x)` as a polynomial: of a declared angle its atom,
+    /// of a sum of integer multiples of angles and of π/2 (`cos(q1 + q2)`,
+    /// `sin(2*theta)`) the addition formulas' expansion
+    /// ([`crate::angle_sum`]).
+    pub fn trig_poly(&self, func: &str, args: &[Ast], span: Span) -> Result<Poly, ParseError> {
+        if let [arg] = args
+            && !matches!(arg.kind, AstKind::Name { .. })
+            && let Some(p) =
+                crate::angle_sum::expand(func, arg, &|name, at| self.atom(name, 0, at))?
+        {
+            return Ok(p);
+        }
+        self.trig(func, args, span).map(Poly::atom)
     }
 
     /// A divisor `/d` (see [`Poly::inverse_divisor`]): each factor becomes
@@ -190,8 +207,11 @@ impl Symbols {
                 e.push(Node::Atom(a))
             }
             AstKind::Call { func, args } if func == "sin" || func == "cos" => {
-                let a = self.trig(func, args, ast.span)?;
-                e.push(Node::Atom(a))
+                let p = self.trig_poly(func, args, ast.span)?;
+                match p.as_atom() {
+                    Some(a) => e.push(Node::Atom(a)),
+                    None => e.poly_node(&p),
+                }
             }
             AstKind::Call { func, .. } => {
                 return fail(
