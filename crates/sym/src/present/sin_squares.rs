@@ -83,37 +83,42 @@ pub(super) fn merge_trig_squares(ts: &mut Terms) {
 /// and a bucket is split by comparing the rests factor by factor, so hash
 /// collisions cost time, never correctness.
 fn chains(ts: &mut Terms, hashes: &[u64], cos: Atom) -> Vec<Chain> {
-    let mut buckets: FxHashMap<u64, SmallVec<[usize; 2]>> =
-        FxHashMap::with_capacity_and_hasher(ts.len(), Default::default());
-    // Each term's exponent of cos, read once.
-    let exps: Vec<i32> = ts.iter().map(|t| t.0.exponent(cos)).collect();
-    for (i, &e) in exps.iter().enumerate() {
-        if e != 0 {
-            let rest = hashes[i].wrapping_sub(factor_hash(cos, e));
-            buckets.entry(rest).or_default().push(i);
-        }
-    }
-    if buckets.is_empty() {
+    // Each term's exponent of cos, read once (by bisection: the factors
+    // are sorted by atom).
+    let exps: Vec<i32> = ts
+        .iter()
+        .map(|t| {
+            let fs = t.0.factors();
+            fs.binary_search_by(|f| f.0.cmp(&cos))
+                .map_or(0, |k| fs[k].1)
+        })
+        .collect();
+    let with_cos = exps.iter().filter(|&&e| e != 0).count();
+    if with_cos == 0 {
         return Vec::new();
     }
+    let mut buckets = Buckets::with_room(with_cos, ts.len());
     for (i, &e) in exps.iter().enumerate() {
-        if e == 0
-            && let Some(b) = buckets.get_mut(&hashes[i])
-        {
-            b.push(i);
+        if e != 0 {
+            buckets.insert(hashes[i].wrapping_sub(factor_hash(cos, e)), i);
+        }
+    }
+    for (i, &e) in exps.iter().enumerate() {
+        if e == 0 {
+            buckets.join(hashes[i], i);
         }
     }
     let mut out: Vec<Chain> = Vec::new();
-    for (_, mut bucket) in buckets {
+    for mut bucket in buckets.shared() {
         while bucket.len() > 1 {
             let first = bucket[0];
-            let (same, other): (SmallVec<[usize; 2]>, SmallVec<[usize; 2]>) = bucket
+            let (same, other): (SmallVec<[usize; 4]>, SmallVec<[usize; 4]>) = bucket
                 .into_iter()
                 .partition(|&i| same_rest(&ts[i].0, &ts[first].0, cos));
             if same.len() > 1 {
                 let m = &ts[first].0;
                 let rest = m.without(cos, m.exponent(cos));
-                let chain = same.iter().map(|&i| (ts[i].0.exponent(cos), i)).collect();
+                let chain = same.iter().map(|&i| (exps[i], i)).collect();
                 out.push((rest, chain));
             }
             bucket = other;
@@ -137,6 +142,84 @@ fn chains(ts: &mut Terms, hashes: &[u64], cos: Atom) -> Vec<Chain> {
     }
     out.sort_unstable_by_key(|(_, c)| c[0].1);
     out
+}
+
+/// An empty slot of [`Buckets`], the end of a term list.
+const NONE: u32 = u32::MAX;
+
+/// Terms grouped by a 64-bit key (the hash of each term's rest): an
+/// open-addressed table of the keys, each slot with the list of its terms
+/// threaded through `next`. Flat arrays and no allocation per key:
+/// [`chains`] groups every term of a result once or twice per angle.
+struct Buckets {
+    /// Per slot: its key.
+    keys: Vec<u64>,
+    /// Per slot: the term added last (`NONE`: an empty slot).
+    heads: Vec<u32>,
+    /// Per slot: how many terms it has.
+    counts: Vec<u32>,
+    /// Per term: the term added to its slot before it (`NONE`: the first).
+    next: Vec<u32>,
+}
+
+impl Buckets {
+    /// Room for up to `keys` distinct keys over the terms `0..terms`, the
+    /// table at most half full (a probe always ends on an empty slot).
+    fn with_room(keys: usize, terms: usize) -> Buckets {
+        let slots = (2 * keys).next_power_of_two().max(16);
+        Buckets {
+            keys: vec![0; slots],
+            heads: vec![NONE; slots],
+            counts: vec![0; slots],
+            next: vec![NONE; terms],
+        }
+    }
+
+    /// The slot of `key`: where it is, or the empty slot where it goes.
+    fn slot(&self, key: u64) -> usize {
+        let mask = self.heads.len() - 1;
+        let mut s = (key ^ (key >> 32)) as usize & mask;
+        while self.heads[s] != NONE && self.keys[s] != key {
+            s = (s + 1) & mask;
+        }
+        s
+    }
+
+    /// Adds term `i` under `key`.
+    fn insert(&mut self, key: u64, i: usize) {
+        let s = self.slot(key);
+        self.keys[s] = key;
+        self.push(s, i);
+    }
+
+    /// Adds term `i` under `key` when some term is there already.
+    fn join(&mut self, key: u64, i: usize) {
+        let s = self.slot(key);
+        if self.heads[s] != NONE {
+            self.push(s, i);
+        }
+    }
+
+    fn push(&mut self, s: usize, i: usize) {
+        self.next[i] = self.heads[s];
+        self.heads[s] = i as u32;
+        self.counts[s] += 1;
+    }
+
+    /// The terms of each key that has two or more.
+    fn shared(&self) -> impl Iterator<Item = SmallVec<[usize; 4]>> + '_ {
+        (0..self.heads.len())
+            .filter(|&s| self.counts[s] > 1)
+            .map(|s| {
+                let mut terms = SmallVec::new();
+                let mut i = self.heads[s];
+                while i != NONE {
+                    terms.push(i as usize);
+                    i = self.next[i as usize];
+                }
+                terms
+            })
+    }
 }
 
 /// A hash of `m`: the sum of its factors' hashes, so that the hash of `m`
