@@ -101,3 +101,23 @@ fn a_step_says_what_its_angles_stand_for_after_an_operating_point_at_pi() {
 fn sines_and_cosines_of_sums_of_angles_can_be_written() {
     holds("sums-of-angles", 3 + 1 + 1);
 }
+
+/// A matrix prints in the terminal as a grid in brackets, its columns
+/// aligned (the trial's 4 × 4 matrix printed as 16 lines).
+#[test]
+fn a_matrix_prints_as_a_grid_in_the_terminal() {
+    let path = repo_root().join("tests/sym/newcomer/double-pendulum-upright.toml");
+    let d = load(&path).unwrap_or_else(|e| panic!("{e}"));
+    let text = hdot_sym::render::render(&d, hdot_sym::render::Format::Unicode);
+    let rows: Vec<&str> = text
+        .lines()
+        .skip_while(|l| !l.contains("stiffness = ⎡"))
+        .take(2)
+        .collect();
+    assert_eq!(rows.len(), 2, "{text}");
+    assert!(rows[0].ends_with('⎤') && rows[1].ends_with('⎦'), "{rows:?}");
+    // The second column starts at the same place on both rows.
+    let col = |r: &str, w: &str| r.rfind(w).unwrap();
+    assert_eq!(col(rows[0], "−m g l"), col(rows[1], "−m g l"), "{rows:?}");
+    assert!(!text.contains("stiffness_11"), "{text}");
+}

@@ -4,7 +4,7 @@
 
 use std::fmt::Write;
 
-use crate::document::{Backend, Document, Equation, Section, VANISHES, Verdict};
+use crate::document::{Backend, Document, Equation, Section, StepBlock, VANISHES, Verdict};
 use crate::print::{self, unicode_symbol};
 use crate::prose;
 
@@ -92,6 +92,8 @@ pub fn unicode_section(s: &Section) -> String {
         }
         if st.vanishes() {
             let _ = writeln!(o, "   {VANISHES}");
+        } else if let Some(grid) = matrix_grid(st) {
+            o.push_str(&grid);
         } else {
             for e in &st.equations {
                 let _ = writeln!(o, "   {}", equation_unicode(e));
@@ -137,4 +139,78 @@ fn doc_suffix(doc: &str) -> String {
     } else {
         format!("  — {}", prose::unicode(doc))
     }
+}
+
+/// The widest matrix printed as a grid, in columns of the terminal: wider
+/// (or with an entry that is not one line), its entries are printed one
+/// per line, `M_11 = …`.
+pub const GRID_WIDTH: usize = 100;
+
+/// A matrix result (`mass_matrix`, `jacobian`, an inertia tensor) as a
+/// grid in brackets, its name on the middle row, the columns aligned:
+///
+/// ```text
+///        ⎡ I cos² θ + I′ sin² θ  0   I cos θ ⎤
+///    M = ⎢ 0                     I′  0       ⎥
+///        ⎣ I cos θ               0   I       ⎦
+/// ```
+///
+/// `None` for a result that is not a matrix of at least two entries, is
+/// labelled 0, or is wider than [`GRID_WIDTH`].
+fn matrix_grid(st: &StepBlock) -> Option<String> {
+    let (rows, cols) = st.shape?;
+    if rows * cols < 2 || st.equations.len() != rows * cols || st.heading.is_zero() {
+        return None;
+    }
+    let cells: Vec<String> = st
+        .equations
+        .iter()
+        .map(|e| print::unicode(&e.rhs))
+        .collect();
+    if cells.iter().any(|c| c.contains('\n')) {
+        return None;
+    }
+    let widths: Vec<usize> = (0..cols)
+        .map(|j| {
+            (0..rows)
+                .map(|i| width(&cells[i * cols + j]))
+                .max()
+                .unwrap_or(0)
+        })
+        .collect();
+    let name = format!("{} = ", st.heading.unicode());
+    let pad = width(&name);
+    if 3 + pad + widths.iter().sum::<usize>() + 2 * cols + 2 > GRID_WIDTH {
+        return None;
+    }
+    let mut o = String::new();
+    for i in 0..rows {
+        let (l, r) = match (rows, i) {
+            (1, _) => ('[', ']'),
+            (_, 0) => ('⎡', '⎤'),
+            (n, i) if i + 1 == n => ('⎣', '⎦'),
+            _ => ('⎢', '⎥'),
+        };
+        let lead = if i == (rows - 1) / 2 {
+            name.clone()
+        } else {
+            " ".repeat(pad)
+        };
+        let row: Vec<String> = (0..cols)
+            .map(|j| {
+                let c = &cells[i * cols + j];
+                format!("{c}{}", " ".repeat(widths[j] - width(c)))
+            })
+            .collect();
+        let _ = writeln!(o, "   {lead}{l} {} {r}", row.join("  "));
+    }
+    Some(o)
+}
+
+/// Columns `s` takes in a terminal: its characters less the combining
+/// marks (the dot of θ̇ sits on its letter).
+fn width(s: &str) -> usize {
+    s.chars()
+        .filter(|c| !('\u{300}'..='\u{36f}').contains(c))
+        .count()
 }
