@@ -180,6 +180,7 @@ fn the_rolling_disks_contact_is_at_rest_along_its_rules() {
             "f",
             "v_G",
             "E",
+            "dE",
             "[motion] vanishes"
         ]
     );

@@ -109,7 +109,17 @@ fn the_bicycle_s_eight_kane_equations_agree_with_the_particles() {
     let compared = passing(NONLINEAR, 2);
     has(
         &compared,
-        &["rear", "front", "K_all", "M_all", "f_all", "E"],
+        &[
+            "rear",
+            "rear_z",
+            "rear_height",
+            "front",
+            "K_all",
+            "M_all",
+            "f_all",
+            "E",
+            "power",
+        ],
     );
 }
 

@@ -490,7 +490,7 @@ pub(crate) fn is_law(m: &Meaning) -> bool {
                 | Quantity::GeneralizedActiveForce => true,
                 _ => false,
             },
-            Meaning::Applied(_) => true,
+            Meaning::Applied(_) | Meaning::AppliedVector(..) => true,
             Meaning::Sum(t) => t.iter().all(|(_, x)| walk(x, required)),
             Meaning::List(items) => items.iter().all(|x| {
                 let mut r = false;

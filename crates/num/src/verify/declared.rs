@@ -310,23 +310,32 @@ fn compare_step(
             let (v, s) = meaning_value(&w, x)?;
             Ok((v.components(&w, None), s))
         };
+        // Solved for the speeds' rates (u̇): the dependent speeds' rates and
+        // the coordinates' accelerations follow them, as for `mass_matrix`.
+        let speeds = labels.iter().all(|a| d.speeds().contains(&a.base()));
+        let follow = |vals: &mut Values| -> Result<(), VerifyError> {
+            if speeds {
+                draw.consistent().fill(d, vals)?;
+            }
+            constrain(d, vals, &c.meaning.given)
+        };
         let mut solved = values.clone();
         for (a, (v, s)) in labels.iter().zip(derived.iter().zip(&dscale)) {
             solved.set(*a, *v, *s);
         }
-        constrain(d, &mut solved, &c.meaning.given)?;
+        follow(&mut solved)?;
         let (residual, rscale) = at(&solved)?;
         let mut zero = solved.clone();
         for a in labels {
             zero.set(*a, 0.0, 0.0);
         }
-        constrain(d, &mut zero, &c.meaning.given)?;
+        follow(&mut zero)?;
         let (x0, _) = at(&zero)?;
         let mut scale = rscale;
         for (j, a) in labels.iter().enumerate() {
             let mut unit = zero.clone();
             unit.set(*a, 1.0, 1.0);
-            constrain(d, &mut unit, &c.meaning.given)?;
+            follow(&mut unit)?;
             let (xj, _) = at(&unit)?;
             let col: f64 = xj
                 .iter()

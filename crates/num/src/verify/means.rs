@@ -63,7 +63,7 @@ pub static COMBINATORS: &[Combinator] = &[
     Combinator {
         name: "applied",
         call: "applied(e)",
-        doc: "a scalar the file states rather than measures (an applied torque `M_a`, a given generalized force), evaluated at the drawn values",
+        doc: "a scalar or a vector the file states rather than measures (an applied torque `M_a`, a given generalized force; a rotor's momentum `[0, 0, h] in B`, which is not a declared body, and its rate), evaluated at the drawn values",
         eval: applied,
     },
     Combinator {
@@ -118,7 +118,7 @@ fn combinator(m: &Meaning) -> &'static Combinator {
         Meaning::Scaled(..) => "*",
         Meaning::List(_) => "list",
         Meaning::Along(..) => "along",
-        Meaning::Applied(_) => "applied",
+        Meaning::Applied(_) | Meaning::AppliedVector(..) => "applied",
         Meaning::Solves(_) => "solves",
         Meaning::MassMatrix(..) => "mass_matrix",
         Meaning::Forcing(..) => "forcing",
@@ -306,11 +306,23 @@ fn along(w: &World<'_>, m: &Meaning) -> Valued {
 }
 
 fn applied(w: &World<'_>, m: &Meaning) -> Valued {
-    let Meaning::Applied(p) = m else {
-        unreachable!("the entry of applied")
-    };
-    let (v, s) = w.values.eval(p)?;
-    Ok((Val::Scalar(v), s))
+    match m {
+        Meaning::Applied(p) => {
+            let (v, s) = w.values.eval(p)?;
+            Ok((Val::Scalar(v), s))
+        }
+        Meaning::AppliedVector(e, f) => {
+            let (mut c, mut s) = ([0.0; 3], 0.0);
+            for (k, p) in e.0.iter().enumerate() {
+                let (v, size) = w.values.eval(p)?;
+                c[k] = v;
+                s += size;
+            }
+            let r = w.frames[frame_index(w.d, f)][0];
+            Ok((Val::Vector(r * Vector3::from(c)), s))
+        }
+        _ => unreachable!("the entry of applied"),
+    }
 }
 
 /// `solves`, `mass_matrix` and `forcing` measure X; the step's comparison
@@ -390,6 +402,7 @@ pub(crate) fn against_of(m: &Meaning) -> String {
             format!("central differences in {e} of {}", against_of(x))
         }
         Meaning::Sign(x) => format!("the sign of {}", against_of(x)),
+        Meaning::Applied(_) | Meaning::AppliedVector(..) => "the value the file states".into(),
         Meaning::Scaled(_, x) => against_of(x),
         Meaning::Sum(terms) => terms
             .iter()

@@ -42,6 +42,7 @@ pub mod means;
 pub mod motion;
 mod partials;
 mod placed;
+mod power;
 mod prepared;
 pub mod quantities;
 mod quaternion;

@@ -150,6 +150,13 @@ pub static REGISTRY: &[Measure] = &[
         compute: potential_energy,
     },
     Measure {
+        quantity: Quantity::EnergyRate,
+        call: "energy_rate(body)",
+        doc: "Σ m v · (a − g): the rate of `kinetic_energy(body)` plus `potential_energy(body, O)` about a fixed point O (g = 0 without `gravity`); `energy_rate(system) - u_1*K_1 - …`, with K_r Kane's −(F_r + F_r*) measured as below, is the power balance dE/dt − Σ u_r K_r",
+        measured_as: "Σ m v · (a − g)",
+        compute: super::power::energy_rate,
+    },
+    Measure {
         quantity: Quantity::GeneralizedForce,
         call: "generalized_force(body, q)",
         doc: "Σ m a · ∂r/∂q (the left side of Lagrange's equation for q); ∂r/∂q moves the coordinates `[motion]`'s rules tie to q with it (*Conditions*, below)",

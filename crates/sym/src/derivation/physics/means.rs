@@ -251,11 +251,23 @@ impl MeaningParser<'_, '_> {
             }
             "applied" => {
                 let [e] = args else {
-                    return self.err(ast, "applied(e) takes one scalar expression");
+                    return self.err(ast, "applied(e) takes one scalar or vector expression");
                 };
                 no_step_names(self.cx, e, self.base)?;
-                let p = self.cx.scalar(e, self.base)?;
-                Ok(Meaning::Applied(self.cx.unfold(&p)))
+                match self.cx.eval(e, self.base)? {
+                    Value::Scalar(p) => Ok(Meaning::Applied(self.cx.unfold(&p))),
+                    Value::Vector(v, f) => Ok(Meaning::AppliedVector(
+                        Vec3(v.0.map(|c| self.cx.unfold(&c))),
+                        f,
+                    )),
+                    v => self.err(
+                        e,
+                        format!(
+                            "applied(e) takes a scalar or a vector expression, found {}",
+                            v.describe()
+                        ),
+                    ),
+                }
             }
             "solves" => {
                 if args.len() != 1 {

@@ -114,6 +114,9 @@ pub enum Quantity {
     WeightMoment,
     /// −Σ m g · (r − r_P).
     PotentialEnergy,
+    /// Σ m v · (a − g): the rate of the kinetic energy plus the weight's
+    /// potential energy about a fixed point.
+    EnergyRate,
     /// Σ m a · ∂r/∂q.
     GeneralizedForce,
     /// Σ m v · ∂r/∂q (= ∂T/∂q̇).
@@ -185,6 +188,7 @@ pub static QUANTITIES: &[QuantitySig] = &[
     sig(Q::Weight,                      "weight",                         &[K::Body],                      S::Vector),
     sig(Q::WeightMoment,                "weight_moment",                  &[K::Body, K::Point],            S::Vector),
     sig(Q::PotentialEnergy,             "potential_energy",               &[K::Body, K::Point],            S::Scalar),
+    sig(Q::EnergyRate,                  "energy_rate",                    &[K::Body],                      S::Scalar),
     sig(Q::GeneralizedForce,            "generalized_force",              &[K::Body, K::Coordinate],       S::Scalar),
     sig(Q::GeneralizedMomentum,         "generalized_momentum",           &[K::Body, K::Coordinate],       S::Scalar),
     sig(Q::GeneralizedWeight,           "generalized_weight",             &[K::Body, K::Coordinate],       S::Scalar),
@@ -262,6 +266,10 @@ pub enum Meaning {
     /// `applied(e)`: a scalar the file states (an applied torque or
     /// generalized force such as `M_a`), evaluated, not measured.
     Applied(Poly),
+    /// `applied(e)` of a vector expression: a vector the file states (a
+    /// rotor's momentum h in the body's axes, its gyroscopic torque),
+    /// evaluated, not measured; its components and their frame.
+    AppliedVector(Vec3, String),
     /// `e * X`, `X / e`: a meaning times a scalar expression of the
     /// file's symbols (not a number: numbers go in [`Meaning::Sum`]).
     Scaled(Poly, Box<Meaning>),
@@ -291,6 +299,7 @@ impl Meaning {
             | Meaning::Coefficient(..)
             | Meaning::Sign(_) => Shape::Scalar,
             Meaning::List(items) => Shape::List(items.len()),
+            Meaning::AppliedVector(..) => Shape::Vector,
             Meaning::Solves(x)
             | Meaning::MassMatrix(x, _)
             | Meaning::Forcing(x, _)
@@ -314,7 +323,7 @@ impl Meaning {
             | Meaning::Coefficient(m, _)
             | Meaning::Sign(m) => m.quantities(),
             Meaning::List(items) => items.iter().flat_map(Meaning::quantities).collect(),
-            Meaning::Applied(_) => Vec::new(),
+            Meaning::Applied(_) | Meaning::AppliedVector(..) => Vec::new(),
         }
     }
 }
