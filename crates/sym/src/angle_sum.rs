@@ -25,7 +25,8 @@ type Multiple = (String, Span, i64);
 fn read(ast: &Ast) -> Option<(Vec<Multiple>, i64)> {
     fn walk(a: &Ast, sign: i64, out: &mut Vec<Multiple>, turns: &mut i64) -> bool {
         if let Some(k) = crate::derivation::ops::quarter_turns(a) {
-            *turns += sign * k;
+            // Only turns modulo 4 count, which wrapping keeps.
+            *turns = turns.wrapping_add(sign.wrapping_mul(k));
             return true;
         }
         match &a.kind {
@@ -40,8 +41,10 @@ fn read(ast: &Ast) -> Option<(Vec<Multiple>, i64)> {
                 let mut name = None;
                 for it in items {
                     match &it.kind {
+                        // Saturating: a product past i64 is refused as a
+                        // multiple past MAX_MULTIPLE, never an overflow.
                         AstKind::Num(r) if r.is_integer() && r.to_f64().abs() <= 1e6 => {
-                            k *= r.to_f64() as i64;
+                            k = k.saturating_mul(r.to_f64() as i64);
                         }
                         AstKind::Name { name: n, primes: 0 } if name.is_none() => {
                             name = Some((n.clone(), it.span));
