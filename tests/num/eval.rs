@@ -220,6 +220,86 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 64, rng_seed: proptest::test_runner::RngSeed::Fixed(1), ..ProptestConfig::default() })]
+
+    /// Outputs whose terms share factors (a monomial with positive and
+    /// negative powers times a random sum, times a difference, and plus a
+    /// term lacking the factor) are evaluated with the common factors taken
+    /// out of the sum and multiplied once: they still equal the reference
+    /// within the tolerance scaled by Σ |terms|, folded constants or not.
+    #[test]
+    fn common_factors_taken_out_keep_the_reference(
+        seed in any::<u64>(),
+        xs in prop::collection::vec(-3.0..3.0f64, 9),
+        fold in any::<bool>(),
+    ) {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let leaves = ["a", "b", "x", "y", "z", "x'", "sin(y)", "cos(y)"];
+        let common = (0..rng.gen_range(1..4))
+            .map(|_| {
+                let leaf = leaves[rng.gen_range(0..leaves.len())];
+                match rng.gen_range(0..3) {
+                    0 => format!("{leaf}^{}", rng.gen_range(2..4)),
+                    // Division by constants, sin and cos only.
+                    1 => format!("1/{}", ["a", "b", "sin(y)", "cos(y)"][rng.gen_range(0..4)]),
+                    _ => leaf.to_string(),
+                }
+            })
+            .collect::<Vec<_>>()
+            .join("*");
+        let sum = expression(&mut rng);
+        let polys = [
+            poly(&format!("({common})*({sum})")),
+            poly(&format!("({common})*({sum}) + 1")),
+            poly(&format!("({common})*({sum})*(x - y)")),
+        ];
+        let value = |a: Atom| {
+            let k = leaves.iter().position(|&n| n == a.to_string()).unwrap_or(8);
+            let v = xs[k % xs.len()];
+            if v.abs() < 0.1 { 0.5 } else { v }
+        };
+        let tape = if fold {
+            Tape::compile_with(&polys, &mut |a| (a.name() == "a").then(|| value(a)))
+        } else {
+            Tape::compile(&polys)
+        };
+        let r = agrees_with_reference(&tape, &polys, &mut |a| value(a));
+        prop_assert!(r.is_ok(), "{}: {}", polys[0], r.unwrap_err());
+    }
+}
+
+/// A factor common to the terms of several outputs is multiplied once
+/// per output after its sum, and computed once: `x·y/sin z` of the four
+/// terms of two outputs costs its two products and one reciprocal, not
+/// products per term.
+#[test]
+fn a_common_factor_is_taken_out_of_the_sums() {
+    let polys = [
+        poly("x*y*x'/sin(z) + 2*x*y*y'/sin(z)"),
+        poly("3*x*y/sin(z) - x*y*x'*y'/sin(z)"),
+    ];
+    let tape = Tape::compile(&polys);
+    // 1/sin z, x·y, x·y·(1/sin z), in some order.
+    assert_eq!(tape.len(), 3, "{} instructions", tape.len());
+    let inputs: Vec<f64> = tape
+        .atoms()
+        .iter()
+        .map(|a| match a.to_string().as_str() {
+            "x" => 1.5,
+            "y" => -0.25,
+            "sin(z)" => 4.0,
+            "x'" => 0.5,
+            _ => 3.0,
+        })
+        .collect();
+    let mut out = [0.0; 2];
+    tape.eval(&inputs, &mut out);
+    let c = 1.5 * -0.25 / 4.0;
+    assert!((out[0] - c * (0.5 + 2.0 * 3.0)).abs() <= 4.0 * f64::EPSILON * c.abs() * 6.5);
+    assert!((out[1] - c * (3.0 - 0.5 * 3.0)).abs() <= 4.0 * f64::EPSILON * c.abs() * 4.5);
+}
+
 /// The inputs gathered from a state by the tape's plan (components, one
 /// `sin_cos` per angle, the rest given by a closure) give the bits the
 /// same inputs passed in full give; an output equal to an earlier one is

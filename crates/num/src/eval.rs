@@ -4,11 +4,13 @@
 //! program: each distinct atom is one input slot, each distinct power of an
 //! atom is computed once (by products and at most one reciprocal), a prefix
 //! of factors shared by several monomials is computed once into a slot
-//! (the rest of a monomial is multiplied in a register), and each output is
-//! accumulated with a compensated (Neumaier) sum. Atoms whose values are
-//! fixed at compile time (a model's constants, [`Tape::compile_with`]) are
-//! folded into the coefficients. Evaluating is then a loop over a few arrays
-//! with no hashing and no allocation beyond one scratch buffer.
+//! (the rest of a monomial is multiplied in a register), the factors common
+//! to every term of an output are multiplied once after its sum, and each
+//! output is accumulated with a compensated (Neumaier) sum. Atoms whose
+//! values are fixed at compile time (a model's constants,
+//! [`Tape::compile_with`]) are folded into the coefficients. Evaluating is
+//! then a loop over a few arrays with no hashing and no allocation beyond
+//! one scratch buffer.
 //!
 //! ## Why hand-written
 //!
@@ -112,9 +114,10 @@ fn emit_mul(ops: &mut Ops, next: &mut u32, a: u32, b: u32) -> u32 {
     *next - 1
 }
 
-/// The number of factors of a term multiplied in a register: every term
-/// has exactly this many (padded with the slot holding 1, an exact
-/// product), so evaluating a term is a fixed, branch-free product.
+/// The most factors of a term multiplied in a register. Every term of a
+/// tape has the same number, the tape's width (at most this; padded with
+/// the slot holding 1, an exact product), so evaluating a term is a fixed,
+/// branch-free product.
 const WIDTH: usize = 4;
 
 /// A term of an output: `coef · slot[f₀] · slot[f₁] · …`, the factors
@@ -126,10 +129,12 @@ struct Term {
     factors: [u32; WIDTH],
 }
 
-/// Output `out` is the sum of `terms[start..end]` (at least one term).
+/// Output `out` is `slot[scale]` (the factors common to its terms) times
+/// the sum of `terms[start..end]` (at least one term).
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Sum {
     out: u32,
+    scale: u32,
     start: u32,
     end: u32,
 }
@@ -142,9 +147,11 @@ struct Sum {
 struct Outputs {
     /// No terms: structurally zero.
     zeros: Vec<u32>,
+    /// `(out, term)`: a single term has no common factor taken out.
     ones: Vec<(u32, Term)>,
-    twos: Vec<(u32, [Term; 2])>,
-    threes: Vec<(u32, [Term; 3])>,
+    /// `(out, scale, terms)`, as in [`Sum`].
+    twos: Vec<(u32, u32, [Term; 2])>,
+    threes: Vec<(u32, u32, [Term; 3])>,
     longer: Vec<Sum>,
 }
 
@@ -158,8 +165,8 @@ impl Outputs {
             let t = &terms[s.start as usize..s.end as usize];
             match *t {
                 [a] => o.ones.push((s.out, a)),
-                [a, b] => o.twos.push((s.out, [a, b])),
-                [a, b, c] => o.threes.push((s.out, [a, b, c])),
+                [a, b] => o.twos.push((s.out, s.scale, [a, b])),
+                [a, b, c] => o.threes.push((s.out, s.scale, [a, b, c])),
                 _ => o.longer.push(*s),
             }
         }
@@ -171,11 +178,53 @@ impl Outputs {
 /// coefficient.
 type FoldedTerm = (Vec<(Atom, i32)>, f64);
 
+/// Takes out of `terms` (the terms of one output) the factors common to
+/// all of them, and returns those: each atom every term has with an
+/// exponent of the same sign, to the smallest such power (`x²y + x³/z` →
+/// `x²`; `θ̇/sin θ` out of `a ψ̇ θ̇/sin θ + b φ̇ θ̇ cos θ/sin θ`). Nothing
+/// is taken out of fewer than two terms. The output is then the product
+/// of the common factors times the sum of what is left: fewer products
+/// per term, and other bits than multiplying every term out, within the
+/// same bound (a few ulps of `Σ |terms|`).
+fn take_common(terms: &mut [FoldedTerm]) -> Vec<(Atom, i32)> {
+    let [(first, _), rest @ ..] = &*terms else {
+        return Vec::new();
+    };
+    let mut common = first.clone();
+    if rest.is_empty() {
+        return Vec::new();
+    }
+    for (m, _) in rest {
+        common.retain_mut(|(a, e)| match m.iter().find(|(b, _)| b == a) {
+            Some(&(_, f)) if f.signum() == e.signum() => {
+                *e = if *e > 0 { (*e).min(f) } else { (*e).max(f) };
+                true
+            }
+            _ => false,
+        });
+        if common.is_empty() {
+            return common;
+        }
+    }
+    for (m, _) in terms.iter_mut() {
+        m.retain_mut(|(a, e)| match common.iter().find(|(b, _)| b == a) {
+            Some(&(_, c)) => {
+                *e -= c;
+                *e != 0
+            }
+            None => true,
+        });
+    }
+    common
+}
+
 /// A compiled set of polynomials.
 ///
 /// Invariant: slots `0..atoms.len()` are the inputs in [`Tape::atoms`]
 /// order, slot `atoms.len()` holds 1 during an evaluation; every
-/// instruction writes a slot above every slot it reads; each output is
+/// instruction writes a slot above every slot it reads; every term
+/// multiplies `width` factors (its own, padded with the slot of 1); each
+/// output is
 /// either one of `outputs`' classes (a sum of four terms or more has its
 /// terms in `terms[start..end]`), or in its `zeros` (no terms:
 /// structurally zero), or in `aliases` as `(k, j)` (j < k): the same
@@ -185,6 +234,7 @@ pub struct Tape {
     atoms: Vec<Atom>,
     ops: Ops,
     terms: Vec<Term>,
+    width: usize,
     sums: Outputs,
     outputs: usize,
     aliases: Vec<(usize, usize)>,
@@ -249,7 +299,9 @@ impl Tape {
     /// evaluation, not a reciprocal power and three products.
     ///
     /// An output equal to an earlier one (a symmetric mass matrix's
-    /// M_ji = M_ij) is computed once and copied.
+    /// M_ji = M_ij) is computed once and copied. The factors common to all
+    /// the terms of an output are multiplied once, after its sum (see
+    /// `take_common`).
     pub fn compile_with(polys: &[Poly], known: &mut dyn FnMut(Atom) -> Option<f64>) -> Tape {
         let mut value: HashMap<Atom, Option<f64>> = HashMap::new();
         let mut first: HashMap<&Poly, usize> = HashMap::new();
@@ -267,7 +319,7 @@ impl Tape {
         for &(k, _) in &aliases {
             aliased[k] = true;
         }
-        let folded: Vec<Vec<FoldedTerm>> = polys
+        let mut folded: Vec<Vec<FoldedTerm>> = polys
             .iter()
             .enumerate()
             .map(|(k, p)| {
@@ -296,10 +348,11 @@ impl Tape {
                 out
             })
             .collect();
+        let commons: Vec<Vec<(Atom, i32)>> = folded.iter_mut().map(|p| take_common(p)).collect();
         let mut atoms: Vec<Atom> = Vec::new();
         let mut atom_slot: HashMap<Atom, u32> = HashMap::new();
-        for p in &folded {
-            for (m, _) in p {
+        for (p, common) in folded.iter().zip(&commons) {
+            for m in std::iter::once(common).chain(p.iter().map(|(m, _)| m)) {
                 for &(a, _) in m {
                     atom_slot.entry(a).or_insert_with(|| {
                         atoms.push(a);
@@ -325,8 +378,28 @@ impl Tape {
             }
         }
         let mut terms = Vec::new();
+        let mut width = 1;
         let (mut sums, mut zeros) = (Vec::new(), Vec::new());
-        for (k, p) in folded.iter().enumerate() {
+        for (k, (p, common)) in folded.iter().zip(&commons).enumerate() {
+            // The product of the common factors, a slot (shared with an
+            // equal prefix or common product elsewhere).
+            let mut scale = one;
+            for j in 0..common.len() {
+                let key = &common[..=j];
+                if let Some(&s) = prefixes.get(key) {
+                    scale = s;
+                    continue;
+                }
+                let (a, e) = common[j];
+                let pw = power_slot(a, e, &atom_slot, &mut powers, &mut ops, &mut next);
+                let s = if j == 0 {
+                    pw
+                } else {
+                    emit_mul(&mut ops, &mut next, scale, pw)
+                };
+                prefixes.insert(key.to_vec(), s);
+                scale = s;
+            }
             let start = terms.len() as u32;
             for (factors, c) in p {
                 let mut shared = (0..factors.len())
@@ -360,6 +433,7 @@ impl Tape {
                     .map(|&(a, e)| power_slot(a, e, &atom_slot, &mut powers, &mut ops, &mut next));
                 for (k, s) in acc.into_iter().chain(own).enumerate() {
                     slots[k] = s;
+                    width = width.max(k + 1);
                 }
                 terms.push(Term {
                     coef: *c,
@@ -370,6 +444,7 @@ impl Tape {
             if end > start {
                 sums.push(Sum {
                     out: k as u32,
+                    scale,
                     start,
                     end,
                 });
@@ -382,6 +457,7 @@ impl Tape {
             ops,
             sums: Outputs::of(&sums, &terms, zeros),
             terms,
+            width,
             outputs: polys.len(),
             aliases,
             slots: next as usize,
@@ -631,23 +707,37 @@ impl Tape {
         for &[dst, a, b] in &self.ops.muls {
             s.set(dst, s.get(a) * s.get(b));
         }
-        self.sum_terms::<ABS, S>(s, out);
+        match self.width {
+            1 => self.sum_terms::<ABS, 1, S>(s, out),
+            2 => self.sum_terms::<ABS, 2, S>(s, out),
+            3 => self.sum_terms::<ABS, 3, S>(s, out),
+            _ => self.sum_terms::<ABS, WIDTH, S>(s, out),
+        }
         for &(k, j) in &self.aliases {
             out[k] = out[j];
         }
     }
 
-    /// Each output's terms, summed with an exact error term (Knuth's
-    /// TwoSum: no branch; the same error Neumaier's comparison finds),
-    /// from the first term on. A sum of one or two terms is added plainly:
-    /// `x + e` of TwoSum rounds back to `x`, so the bits are the same.
+    /// Each output's terms (`W` factors each: the tape's width), summed
+    /// with an exact error term (Knuth's TwoSum: no branch; the same error
+    /// Neumaier's comparison finds), from the first term on, then
+    /// multiplied by the output's common factors. A sum of one or two terms
+    /// is added plainly: `x + e` of TwoSum rounds back to `x`, so the bits
+    /// are the same.
     #[inline(always)]
-    fn sum_terms<const ABS: bool, S: Slots + ?Sized>(&self, s: &S, out: &mut [f64]) {
+    fn sum_terms<const ABS: bool, const W: usize, S: Slots + ?Sized>(
+        &self,
+        s: &S,
+        out: &mut [f64],
+    ) {
         let term = |t: &Term| {
-            let [a, b, c, d] = t.factors;
-            let v = t.coef * s.get(a) * s.get(b) * s.get(c) * s.get(d);
+            let mut v = t.coef;
+            for &f in &t.factors[..W] {
+                v *= s.get(f);
+            }
             if ABS { v.abs() } else { v }
         };
+        let scale = |k: u32| if ABS { s.get(k).abs() } else { s.get(k) };
         // TwoSum: `sum + v` and its exact error added to `comp`.
         let add = |(sum, comp): (f64, f64), v: f64| {
             let x = sum + v;
@@ -662,18 +752,18 @@ impl Tape {
         for (k, t) in &o.ones {
             out[*k as usize] = term(t) + 0.0;
         }
-        for (k, [t, u]) in &o.twos {
-            out[*k as usize] = term(t) + term(u) + 0.0;
+        for (k, c, [t, u]) in &o.twos {
+            out[*k as usize] = (term(t) + term(u)) * scale(*c) + 0.0;
         }
-        for (k, [t, u, v]) in &o.threes {
+        for (k, c, [t, u, v]) in &o.threes {
             let (sum, comp) = add(add((term(t), 0.0), term(u)), term(v));
-            out[*k as usize] = sum + comp;
+            out[*k as usize] = (sum + comp) * scale(*c) + 0.0;
         }
-        for s in &o.longer {
-            let terms = &self.terms[s.start as usize..s.end as usize];
+        for r in &o.longer {
+            let terms = &self.terms[r.start as usize..r.end as usize];
             if let [t, rest @ ..] = terms {
                 let (sum, comp) = rest.iter().fold((term(t), 0.0), |acc, u| add(acc, term(u)));
-                out[s.out as usize] = sum + comp;
+                out[r.out as usize] = (sum + comp) * scale(r.scale) + 0.0;
             }
         }
     }
