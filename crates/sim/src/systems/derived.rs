@@ -468,15 +468,34 @@ impl DerivedModel {
                 self.eval(c, t, y, qdd);
                 Some(())
             }
-            Form::MassMatrix(mf, solve) => {
-                // M and f on the stack (n ≤ MAX_DOF): no allocation.
-                let mut buf = [0.0; MAX_DOF * MAX_DOF + MAX_DOF];
-                let out = &mut buf[..n * n + n];
-                self.eval(mf, t, y, out);
-                solve.solve(out, qdd)
+            // M and f on the stack, in a buffer sized for n ≤ 3 when it
+            // fits: clearing the one sized for MAX_DOF (42 slots) was a
+            // `memset` call of ~35 instructions per evaluation.
+            Form::MassMatrix(mf, solve) if n <= 3 => {
+                self.mass_matrix_accelerations::<{ 3 * 3 + 3 }>(mf, solve, t, y, qdd)
             }
+            Form::MassMatrix(mf, solve) => self
+                .mass_matrix_accelerations::<{ MAX_DOF * MAX_DOF + MAX_DOF }>(mf, solve, t, y, qdd),
             Form::Multiplier(..) => None,
         }
+    }
+
+    /// q̈ from `M q̈ = f`, M and f evaluated into a buffer of `L ≥ n² + n`
+    /// slots on the stack (no allocation).
+    #[inline(always)]
+    fn mass_matrix_accelerations<const L: usize>(
+        &self,
+        mf: &Compiled,
+        solve: &MassSolve,
+        t: f64,
+        y: &[f64],
+        qdd: &mut [f64],
+    ) -> Option<()> {
+        let n = self.dof();
+        let mut buf = [0.0; L];
+        let out = &mut buf[..n * n + n];
+        self.eval(mf, t, y, out);
+        solve.solve(out, qdd)
     }
 
     /// A constant whose value makes the equations singular for every
