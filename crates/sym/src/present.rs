@@ -31,7 +31,8 @@
 //!
 //! Where each part lives: this file the whole (fold, group by the collect
 //! list, order the groups, split fractions by content); `present/fold.rs`
-//! rule 1; `present/bracket.rs` one group with its bracket;
+//! rule 1; `present/bracket.rs` one group with its bracket
+//! (`present/constants.rs` a bracket of constants, directly);
 //! `present/known.rs` rule 3; `present/order.rs` the order of factors;
 //! `present/sin_squares.rs` the choice of sin² θ or 1 − cos² θ.
 //!
@@ -61,6 +62,7 @@ use crate::poly::{Monomial, Poly};
 use crate::rational::Rational;
 
 mod bracket;
+mod constants;
 mod fold;
 mod known;
 mod order;

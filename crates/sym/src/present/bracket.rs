@@ -11,6 +11,7 @@ use std::collections::BTreeMap;
 use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
 
+use super::constants::constants_group;
 use super::known::{factor_by, known_factor_node};
 use super::order::{constant_next, constants_of_one_family, conventional, leading_constant};
 use super::{Context, PLAIN_ABOVE};
@@ -25,6 +26,21 @@ use crate::rational::Rational;
 /// is divided by constants carries its ratio in front, `(m g l/I′) sin θ`,
 /// whether it stands alone or in a bracket (one rule for a constant ratio).
 pub(super) fn group_node(
+    e: &mut Expr,
+    key: &Monomial,
+    terms: &[(Monomial, Rational)],
+    cx: &Context<'_>,
+    ratios: bool,
+) -> Id {
+    // A bracket of constants (chain-6 has thousands) takes a direct path.
+    if let Some(id) = constants_group(e, key, terms, cx) {
+        return id;
+    }
+    general_group(e, key, terms, cx, ratios)
+}
+
+/// [`group_node`] by the general rules.
+fn general_group(
     e: &mut Expr,
     key: &Monomial,
     terms: &[(Monomial, Rational)],
@@ -150,22 +166,6 @@ pub(super) fn group_node(
     if terms.len() == 1 {
         number = terms[0].2.abs();
     }
-
-    let factors = cx.ranks.print.sorted(&outer);
-    let mut ids = Vec::new();
-    if !number.is_one() || (factors.is_empty() && bracket.is_empty()) {
-        ids.push(e.push(Node::Num(number)));
-    }
-    // Constant symbols lead, in conventional order (mass, inertia,
-    // gravity, then by name: m g l, I′ θ̇); constants named by a Greek
-    // letter (a constant rate Ω) and sin/cos (even of a constant angle)
-    // follow the bracket with the rates.
-    let leading = leading_constant;
-    let mut lead: Vec<(Atom, i32)> = factors.iter().copied().filter(|f| leading(f.0)).collect();
-    cx.ranks.sort_constants(&mut lead, order);
-    for (a, x) in lead {
-        ids.push(e.atom_pow(a, x));
-    }
     // A bracket of sines and cosines only follows the rates, as the
     // bracket of like terms does: I′ φ̇ (1 + cos² θ).
     let trig_only = terms.len() > 1
@@ -178,6 +178,37 @@ pub(super) fn group_node(
                     .iter()
                     .all(|&(a, x)| is_trig(a) || x == t.1.exponent(a))
         });
+    group_product(e, &outer, &number, negative, bracket, trig_only, cx)
+}
+
+/// A group's node from its parts: `[number] [constants] (bracket) [rates,
+/// sin, cos]` (the bracket after the rates when `trig_only`), negated
+/// when `negative`. `outer` is what multiplies the bracket.
+pub(super) fn group_product(
+    e: &mut Expr,
+    outer: &Monomial,
+    number: &Rational,
+    negative: bool,
+    bracket: Vec<Id>,
+    trig_only: bool,
+    cx: &Context<'_>,
+) -> Id {
+    let order = &cx.pres.constant_order[..];
+    let factors = cx.ranks.print.sorted(outer);
+    let mut ids = Vec::new();
+    if !number.is_one() || (factors.is_empty() && bracket.is_empty()) {
+        ids.push(e.push(Node::Num(number.clone())));
+    }
+    // Constant symbols lead, in conventional order (mass, inertia,
+    // gravity, then by name: m g l, I′ θ̇); constants named by a Greek
+    // letter (a constant rate Ω) and sin/cos (even of a constant angle)
+    // follow the bracket with the rates.
+    let leading = leading_constant;
+    let mut lead: Vec<(Atom, i32)> = factors.iter().copied().filter(|f| leading(f.0)).collect();
+    cx.ranks.sort_constants(&mut lead, order);
+    for (a, x) in lead {
+        ids.push(e.atom_pow(a, x));
+    }
     if !trig_only {
         ids.extend(bracket.iter().copied());
     }
@@ -211,7 +242,6 @@ fn bracket_sum(
 ) -> (Id, bool) {
     let order = &cx.pres.constant_order[..];
     let plain = common.is_one() && inv.is_one();
-    let mut negative = false;
     // Terms that share their time-dependent part (the same rates, sin
     // and cos) and differ in constants are one term of that part with
     // a bracket of constants: ((I_2 − A_3) ω_3 − h) ω_2/I_1.
@@ -353,6 +383,14 @@ fn bracket_sum(
         };
         nodes.push((id, c.is_negative(), top, follows));
     }
+    sum_of_nodes(e, nodes)
+}
+
+/// The sum of a bracket's term nodes, each as (node, negative, highest
+/// derivative order, has a part that follows a bracket), in bracket
+/// order; and whether its sign went in front of the bracket.
+pub(super) fn sum_of_nodes(e: &mut Expr, mut nodes: Vec<(Id, bool, u32, bool)>) -> (Id, bool) {
+    let mut negative = false;
     // Grouping may leave every term negative (−J s − (C − A) Ω): the
     // sign goes in front of the bracket, −(J s + (C − A) Ω) (rule 4),
     // the terms in bracket order.
@@ -511,7 +549,10 @@ fn linear_groups(
 /// positive powers and without a sine: the same factors with `common`'s exponents taken off, those left
 /// at zero dropped (print order is by atom, and a cosine follows the sine
 /// of its angle, neither of which a division without a sine changes).
-fn quotient_in_order(sorted: &[(Atom, i32)], common: &Monomial) -> SmallVec<[(Atom, i32); 16]> {
+pub(super) fn quotient_in_order(
+    sorted: &[(Atom, i32)],
+    common: &Monomial,
+) -> SmallVec<[(Atom, i32); 16]> {
     sorted
         .iter()
         .filter_map(|&(a, x)| {

@@ -95,6 +95,11 @@ impl Ranks {
             .filter(|&r| r != u32::MAX)
     }
 
+    /// Whether `a` is a [`leading_constant`] among this result's atoms.
+    pub(super) fn is_leading_constant(&self, a: Atom) -> bool {
+        self.conv(a).is_some()
+    }
+
     /// Leading constants sorted by [`constant_class`].
     pub(super) fn sort_constants(&self, fs: &mut [(Atom, i32)], order: &[String]) {
         if fs.iter().all(|f| self.conv(f.0).is_some()) {
