@@ -7,13 +7,14 @@
 //! those of the bodies a derived scene gives (`hdot-sim`'s derived
 //! scenes), so neither reaches into the other.
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::BTreeMap;
 
 use hdot_sym::atom::{Atom, AtomKind};
 use hdot_sym::derivation::Derivation;
 use hdot_sym::derivation::physics::Body;
 use hdot_sym::poly::Poly;
 use nalgebra::{Matrix3, Vector3};
+use rustc_hash::FxHashMap;
 
 /// Why symbols could not be bound.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -42,9 +43,15 @@ fn declaration(d: &Derivation, message: String) -> BindError {
 
 /// Values of symbols (constants, and time symbols with their derivative
 /// order) and bounds on their sizes.
+///
+/// Looked up for every factor of every term a verification evaluates, so
+/// keyed by Fx (an atom is a small integer; the std's SipHash was a
+/// quarter of the nonlinear bicycle's instructions); the map's order is
+/// never what a result depends on (every iteration below is per entry,
+/// sorted or collected into an ordered map).
 #[derive(Clone, Debug, Default)]
 pub struct Values {
-    map: HashMap<Atom, (f64, f64)>,
+    map: FxHashMap<Atom, (f64, f64)>,
 }
 
 /// The `n`th derivative of a time atom.
