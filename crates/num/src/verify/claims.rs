@@ -308,7 +308,10 @@ pub(crate) fn conserved_entry(c: &Conserved<'_>, eqs: &[Equations<'_>]) -> StepC
 }
 
 /// The rate of each conserved step along each set of equations, in one
-/// draw: zero for a true claim.
+/// draw: zero for a true claim. Only the equations some conserved step is
+/// compared along are solved: a file that states equations of motion and
+/// no conserved step (the bicycle's mass matrix and forcing, 72
+/// polynomials) solves none of them.
 pub(crate) fn compare_conserved(
     d: &Derivation,
     draw: &Draw,
@@ -316,6 +319,13 @@ pub(crate) fn compare_conserved(
     conserved: &[Conserved<'_>],
     eqs: &[Equations<'_>],
 ) -> Result<Vec<Vec<Comparison>>, VerifyError> {
+    let eqs: Vec<&Equations<'_>> = eqs
+        .iter()
+        .filter(|e| conserved.iter().any(|c| e.covers(c)))
+        .collect();
+    if eqs.is_empty() {
+        return Ok(vec![Vec::new(); conserved.len()]);
+    }
     let mut values = values.clone();
     constrain(d, &mut values, &[])?;
     let w = World::build(d, draw, &values, &[])?;
