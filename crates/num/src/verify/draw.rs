@@ -22,6 +22,7 @@ use rand_chacha::ChaCha8Rng;
 
 use super::bodies::{axisymmetric, map_particles, mirrored, random_body, random_rotation};
 use super::jet::{ORDERS, PointJet};
+use super::partials::KaneCache;
 use super::speeds::Consistent;
 use super::world::CloudMoments;
 use super::{VerifyError, declaration};
@@ -53,6 +54,8 @@ pub struct Draw {
     /// Whether the bodies were drawn (not given): drawn bodies are given
     /// the equal moments their declarations state ([`equal_moments`]).
     drawn: bool,
+    /// The partial velocities measured in this draw, by state.
+    kane: KaneCache,
 }
 
 impl Draw {
@@ -69,6 +72,11 @@ impl Draw {
     /// G of body `i` from its reference point, body axes.
     pub fn centre(&self, i: usize) -> Vector3<f64> {
         self.centres[i]
+    }
+
+    /// The partial velocities measured in this draw ([`KaneCache`]).
+    pub(crate) fn kane_cache(&self) -> &KaneCache {
+        &self.kane
     }
 
     /// The speeds and constraints of the check ([`Consistent`]).
@@ -291,6 +299,7 @@ pub(crate) fn draw(
             points,
             consistent: consistent.clone(),
             drawn: given.is_none(),
+            kane: KaneCache::default(),
         },
         values,
     ))

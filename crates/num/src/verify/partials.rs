@@ -9,51 +9,180 @@
 //! speeds move with the independent one as the constraints require.
 //! Their sums over a body's particles (`Σ m δv`, `Σ m a · δv`) are formed
 //! from the body's particle sums (the particles are `r = r_P + R q`).
-//! The models are made once per state and speed ([`KaneWorlds`]).
+//! The models are made once per state and speed in a draw ([`KaneCache`]).
 
+use std::cell::RefCell;
+use std::collections::HashMap;
 use std::rc::Rc;
 
-use hdot_sym::atom::Atom;
-use hdot_sym::derivation::physics::Bodies;
+use hdot_sym::atom::{Atom, AtomKind};
+use hdot_sym::derivation::Derivation;
+use hdot_sym::derivation::physics::{Bodies, FrameMotion, PointKind};
+use hdot_sym::poly::Poly;
 use nalgebra::Vector3;
+use rustc_hash::FxHashMap;
 
-use super::world::{Placed, World, vee};
+use super::placed::PartialVelocity;
+use super::speeds::Speeds;
+use super::world::{World, vee};
 use super::{VerifyError, declaration};
-use crate::bind::Values;
+use crate::bind::{Values, nth};
 
-/// The model at the drawn speeds (`base`) and with one speed raised by
-/// one (`raised`), velocities consistent with the constraints in both.
-pub(crate) struct Partials<'d> {
-    base: Rc<World<'d>>,
-    raised: Rc<World<'d>>,
+/// Kane's partial velocities for one speed at one state: of each body
+/// ([`PartialVelocity`]), of each point and of each frame (N's axes), with
+/// their magnitudes — the model with the speed raised by one less the
+/// model at the drawn speeds, both consistent with the constraints.
+pub(crate) struct Partials {
+    bodies: Vec<PartialVelocity>,
+    points: HashMap<String, (Vector3<f64>, f64)>,
+    frames: Vec<(Vector3<f64>, f64)>,
 }
 
-/// The models [`Partials`] are read from at one state, made once: every
-/// generalized active and inertia force of a step (two per speed, and a
-/// mass matrix measures them again at each unit rate) shares the model at
-/// the drawn speeds and each speed's raised model.
+/// The state partial velocities are a function of: every bound atom with
+/// the bits of its value and size when the models' positions and
+/// velocities, or the drawing of the dependent speeds and the
+/// coordinates' rates, can read it ([`velocity_reads`]), the others by
+/// their presence only.
+type StateKey = Vec<(Atom, u64, u64)>;
+
+/// The models at the drawn speeds, made once per world: every generalized
+/// active and inertia force a world measures (two per speed) shares it.
 #[derive(Default)]
 pub(crate) struct KaneWorlds<'d> {
+    /// The world's [`StateKey`].
+    key: Option<Rc<StateKey>>,
     /// The values with the dependent speeds and the coordinates' rates
     /// filled in, and the model at them.
     base: Option<(Values, Rc<World<'d>>)>,
-    /// Each speed's raised model, by speed.
-    raised: Vec<(Atom, Rc<World<'d>>)>,
 }
 
-/// The two models of [`Partials`] for speed `u` at the state of `w`, made
-/// once per state ([`KaneWorlds`]).
+/// Each speed's [`Partials`] by the state they were measured at, kept by
+/// a draw for all the worlds built with it: the worlds of one draw differ
+/// mostly in what partial velocities do not read (the unit rates a mass
+/// matrix is measured at, the steps `kane`, `mass_matrix`, `forcing` and a
+/// power balance all measure at the drawn state), so each state's models
+/// are made once per draw, not once per world (the nonlinear bicycle made
+/// 108 models per draw for 9 distinct ones). A clone starts empty (a
+/// draw changed for a step's conditions is another draw).
+#[derive(Default)]
+pub(crate) struct KaneCache(RefCell<FxHashMap<StateKey, BySpeed>>);
+
+/// The partial velocities of one state, by speed.
+type BySpeed = Vec<(Atom, Rc<Partials>)>;
+
+impl Clone for KaneCache {
+    fn clone(&self) -> KaneCache {
+        KaneCache::default()
+    }
+}
+
+impl std::fmt::Debug for KaneCache {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "KaneCache({} states)", self.0.borrow().len())
+    }
+}
+
+/// The atoms [`Values::get`] reads for `a`: a sine or cosine its angle, a
+/// sum of constants its terms' atoms.
+fn read_atoms(a: Atom, out: &mut Vec<Atom>) {
+    match a.kind() {
+        AtomKind::Var { .. } => out.push(a),
+        AtomKind::Sin(q) | AtomKind::Cos(q) => out.push(q),
+        AtomKind::Sum { sum, .. } => {
+            for b in sum.atoms() {
+                read_atoms(b, out);
+            }
+        }
+    }
+}
+
+/// The atoms a model's positions and velocities (the orders partial
+/// velocities read) are computed from — the frames' angles and their
+/// rates, the hinge axes, the Euler parameters' direction cosines and
+/// their rates, the angular velocities, the points' offsets and their
+/// rates — and those the dependent speeds and the coordinates' rates are
+/// drawn from ([`Speeds::reads`]), with the speeds; sorted. Read once per
+/// check.
+pub(crate) fn velocity_reads(d: &Derivation, speeds: &Speeds) -> Vec<Atom> {
+    let mut polys: Vec<Poly> = Vec::new();
+    let mut atoms: Vec<Atom> = speeds.reads();
+    atoms.extend(d.speeds().iter().copied());
+    for (i, motion) in d.physics.frames.iter().enumerate() {
+        let angle = match motion {
+            FrameMotion::Inertial => None,
+            FrameMotion::Rotation { angle, .. } => Some(*angle),
+            FrameMotion::Hinge { axis, angle, .. } => {
+                polys.extend(axis.0.iter().cloned());
+                Some(*angle)
+            }
+            FrameMotion::Quaternion { .. } => {
+                let (_, c) = d.frames[i].parent.as_ref().expect("a turned frame");
+                for p in c.0.iter().flatten() {
+                    polys.push(p.dt());
+                    polys.push(p.clone());
+                }
+                None
+            }
+            FrameMotion::AngularVelocity => {
+                polys.extend(d.frames[i].omega.0.iter().cloned());
+                None
+            }
+        };
+        if let Some(q) = angle {
+            atoms.push(q);
+            if q.is_time_dependent() {
+                atoms.push(nth(q, 1));
+            }
+        }
+    }
+    for p in &d.physics.points {
+        match &p.kind {
+            PointKind::Fixed(v, _) => polys.extend(v.0.iter().cloned()),
+            PointKind::From { at, .. } => {
+                for c in &at.0 {
+                    polys.push(c.dt());
+                    polys.push(c.clone());
+                }
+            }
+            PointKind::Free => {}
+        }
+    }
+    atoms.extend(polys.iter().flat_map(Poly::atoms));
+    let mut out = Vec::new();
+    for a in atoms {
+        read_atoms(a, &mut out);
+    }
+    out.sort_unstable();
+    out.dedup();
+    out
+}
+
+/// The [`StateKey`] of `values` ([`velocity_reads`] `reads`).
+fn state_key(reads: &[Atom], values: &Values) -> StateKey {
+    values
+        .bits()
+        .into_iter()
+        .map(|(a, v, s)| {
+            if reads.binary_search(&a).is_ok() {
+                (a, v, s)
+            } else {
+                (a, 0, 0)
+            }
+        })
+        .collect()
+}
+
+/// The partial velocities for speed `u` at the state of `w`, made once
+/// per state and draw ([`KaneCache`]).
 ///
 /// # Errors
 /// A file without kinematic equations, a dependent speed named (its
 /// partial velocities are not those of Kane's equations), or constraints
 /// whose dependent speeds cannot be solved at the state.
-pub(crate) fn partials<'d>(w: &World<'d>, u: Atom) -> Result<Partials<'d>, VerifyError> {
-    if let Some(p) = cached(w, u) {
-        return Ok(p);
-    }
+pub(crate) fn partials(w: &World<'_>, u: Atom) -> Result<Rc<Partials>, VerifyError> {
     let d = w.d;
-    let Some(speeds) = &w.draw.consistent().speeds else {
+    let consistent = w.draw.consistent();
+    let Some(speeds) = &consistent.speeds else {
         return Err(declaration(
             d,
             "a generalized active or inertia force needs the kinematic equations ([kinematics])"
@@ -68,6 +197,23 @@ pub(crate) fn partials<'d>(w: &World<'d>, u: Atom) -> Result<Partials<'d>, Verif
                  independent speeds"
             ),
         ));
+    }
+    let known = w.kane.borrow().key.clone();
+    let key = match known {
+        Some(k) => k,
+        None => {
+            let k = Rc::new(state_key(consistent.velocity_reads(), &w.values));
+            w.kane.borrow_mut().key = Some(k.clone());
+            k
+        }
+    };
+    let cache = &w.draw.kane_cache().0;
+    if let Some(p) = cache
+        .borrow()
+        .get(key.as_slice())
+        .and_then(|ps| ps.iter().find(|(v, _)| *v == u))
+    {
+        return Ok(p.1.clone());
     }
     let unbound = || {
         declaration(
@@ -89,63 +235,91 @@ pub(crate) fn partials<'d>(w: &World<'d>, u: Atom) -> Result<Partials<'d>, Verif
     let (x, _) = base.get(u).ok_or_else(unbound)?;
     let mut raised = base.with(u, x + 1.0);
     speeds.fill(d, &mut raised, 1)?.ok_or_else(unbound)?;
-    let raised = Rc::new(World::build(d, w.draw, &raised, &[])?);
-    w.kane.borrow_mut().raised.push((u, raised.clone()));
-    Ok(Partials {
-        base: base_world,
-        raised,
-    })
+    let raised = World::build(d, w.draw, &raised, &[])?;
+    let p = Rc::new(Partials::between(&raised, &base_world));
+    cache
+        .borrow_mut()
+        .entry(key.as_ref().clone())
+        .or_default()
+        .push((u, p.clone()));
+    Ok(p)
 }
 
-/// The models for `u` made before at the state of `w`.
-fn cached<'d>(w: &World<'d>, u: Atom) -> Option<Partials<'d>> {
-    let k = w.kane.borrow();
-    let base = k.base.as_ref()?.1.clone();
-    let raised = k.raised.iter().find(|(v, _)| *v == u)?.1.clone();
-    Some(Partials { base, raised })
+/// The range of [`World::placed`]`(b)` among `n` bodies.
+fn range(b: Bodies, n: usize) -> std::ops::Range<usize> {
+    match b {
+        Bodies::One(i) => i..i + 1,
+        Bodies::System => 0..n,
+    }
 }
 
-impl Partials<'_> {
+impl Partials {
+    /// The model `raised` less the model `base`.
+    fn between(raised: &World<'_>, base: &World<'_>) -> Partials {
+        let omega = |w: &World<'_>, f: usize| {
+            let r = &w.frames[f];
+            (vee(&(r[1] * r[0].transpose())), r[1].norm())
+        };
+        Partials {
+            bodies: raised
+                .bodies
+                .iter()
+                .zip(&base.bodies)
+                .map(|(r, q)| PartialVelocity::of(r, q))
+                .collect(),
+            points: base
+                .points
+                .iter()
+                .map(|(name, q)| {
+                    let p = &raised.points[name];
+                    (name.clone(), (p.r[1] - q.r[1], p.mag[1] + q.mag[1]))
+                })
+                .collect(),
+            frames: (0..base.frames.len())
+                .map(|f| {
+                    let ((p, ps), (q, qs)) = (omega(raised, f), omega(base, f));
+                    (p - q, ps + qs)
+                })
+                .collect(),
+        }
+    }
+
     /// `Σ m δv` over the particles of `b` (δv each particle's partial
     /// velocity) and the sum of their magnitudes, from each body's
-    /// particle sums ([`super::placed::Placed::partial_momentum`]).
-    pub(crate) fn momentum(&self, b: Bodies) -> (Vector3<f64>, f64) {
-        self.raised.placed(b).iter().zip(self.base.placed(b)).fold(
-            (Vector3::zeros(), 0.0),
-            |(v, m), (r, q)| {
-                let (bv, bm) = Placed::partial_momentum(r, q);
+    /// particle sums in `w` ([`super::placed::Placed::partial_momentum`]).
+    pub(crate) fn momentum(&self, w: &World<'_>, b: Bodies) -> (Vector3<f64>, f64) {
+        let own = &self.bodies[range(b, self.bodies.len())];
+        w.placed(b)
+            .iter()
+            .zip(own)
+            .fold((Vector3::zeros(), 0.0), |(v, m), (q, p)| {
+                let (bv, bm) = q.partial_momentum(p);
                 (v + bv, m + bm)
-            },
-        )
+            })
     }
 
     /// `Σ m a · δv` over the particles of `b`, a their accelerations in
     /// `w` (the model at the same instant), and the sum of the magnitudes
     /// of its terms ([`super::placed::Placed::partial_power`]).
     pub(crate) fn inertia(&self, w: &World<'_>, b: Bodies) -> (f64, f64) {
+        let own = &self.bodies[range(b, self.bodies.len())];
         w.placed(b)
             .iter()
-            .zip(self.raised.placed(b).iter().zip(self.base.placed(b)))
-            .fold((0.0, 0.0), |(v, m), (p, (r, q))| {
-                let (bv, bm) = p.partial_power::<2>(r, q);
+            .zip(own)
+            .fold((0.0, 0.0), |(v, m), (q, p)| {
+                let (bv, bm) = q.partial_power::<2>(p);
                 (v + bv, m + bm)
             })
     }
 
     /// The partial velocity of point `name` and its magnitude.
     pub(crate) fn point(&self, name: &str) -> (Vector3<f64>, f64) {
-        let (p, q) = (&self.raised.points[name], &self.base.points[name]);
-        (p.r[1] - q.r[1], p.mag[1] + q.mag[1])
+        self.points[name]
     }
 
     /// The partial angular velocity of frame `f` (N's axes) and its
     /// magnitude.
     pub(crate) fn frame(&self, f: usize) -> (Vector3<f64>, f64) {
-        let omega = |w: &World<'_>| {
-            let r = &w.frames[f];
-            (vee(&(r[1] * r[0].transpose())), r[1].norm())
-        };
-        let ((p, ps), (q, qs)) = (omega(&self.raised), omega(&self.base));
-        (p - q, ps + qs)
+        self.frames[f]
     }
 }

@@ -61,6 +61,31 @@ pub struct Placed<'d> {
     pub(super) dr: Vec<Vec<DisplacementTerm>>,
 }
 
+/// A body's partial velocity for one speed ([`super::partials`]):
+/// `δv = δv_P + δṘ q` of each particle, the body in the model with the
+/// speed raised less the body in the model at the drawn speeds (two models
+/// of one instant and one draw), and the magnitudes of δv, `e + f |q|`:
+/// the reference point's and the attitude's summed over the two models.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PartialVelocity {
+    dv: Vector3<f64>,
+    dr: Matrix3<f64>,
+    e: f64,
+    f: f64,
+}
+
+impl PartialVelocity {
+    /// The body `raised` less the body `base`.
+    pub(crate) fn of(raised: &Placed<'_>, base: &Placed<'_>) -> PartialVelocity {
+        PartialVelocity {
+            dv: raised.reference.r[1] - base.reference.r[1],
+            dr: raised.frame[1] - base.frame[1],
+            e: raised.reference.mag[1] + base.reference.mag[1],
+            f: raised.norms[1] + base.norms[1],
+        }
+    }
+}
+
 impl<'d> Placed<'d> {
     /// The number of particles.
     pub fn len(&self) -> usize {
@@ -101,18 +126,16 @@ impl<'d> Placed<'d> {
     }
 
     /// `Σ m δv` over the body's particles, `δv = v⁺ − v` each particle's
-    /// velocity in `raised` less its velocity in `base` (the same body in
-    /// two models of one instant: a partial velocity,
-    /// [`super::partials`]), and `Σ m |δv|ₘ` with each particle's
-    /// magnitudes those of [`Particle::mag`] summed over the two. With
-    /// `v = v_P + Ṙ q`: `δv = δv_P + δṘ q`, so the sum is
-    /// `M δv_P + δṘ S` ([`CloudMoments`]).
-    pub(crate) fn partial_momentum(raised: &Placed<'_>, base: &Placed<'_>) -> (Vector3<f64>, f64) {
-        let s = base.moments;
-        let dv = raised.reference.r[1] - base.reference.r[1];
-        let dr = raised.frame[1] - base.frame[1];
-        let (e, f) = Placed::partial_magnitudes(raised, base);
-        (dv * s.mass + dr * s.first, e * s.mass + f * s.distance[0])
+    /// partial velocity ([`PartialVelocity`]), and `Σ m |δv|ₘ` with each
+    /// particle's magnitudes those of [`Particle::mag`] summed over the two
+    /// models. With `δv = δv_P + δṘ q` the sum is `M δv_P + δṘ S`
+    /// ([`CloudMoments`]).
+    pub(crate) fn partial_momentum(&self, p: &PartialVelocity) -> (Vector3<f64>, f64) {
+        let s = self.moments;
+        (
+            p.dv * s.mass + p.dr * s.first,
+            p.e * s.mass + p.f * s.distance[0],
+        )
     }
 
     /// `Σ m r⁽ᴼᴿᴰᴱᴿ⁾ · δv` over the body's particles, `r⁽ᴼᴿᴰᴱᴿ⁾` in this
@@ -122,29 +145,16 @@ impl<'d> Placed<'d> {
     /// `M a·b + a·(B S) + b·(A S) + Σ m (A q)·(B q)`, the last term
     /// `Σ_ij (A J)_ij B_ij` (`J = Σ m q qᵀ`) — the particles' own sum,
     /// regrouped.
-    pub(crate) fn partial_power<const ORDER: usize>(
-        &self,
-        raised: &Placed<'_>,
-        base: &Placed<'_>,
-    ) -> (f64, f64) {
+    pub(crate) fn partial_power<const ORDER: usize>(&self, p: &PartialVelocity) -> (f64, f64) {
         let s = self.moments;
         let (a, am) = (self.reference.r[ORDER], &self.frame[ORDER]);
-        let b = raised.reference.r[1] - base.reference.r[1];
-        let bm = raised.frame[1] - base.frame[1];
+        let (b, bm) = (p.dv, p.dr);
         let own = (am * s.second).component_mul(&bm).sum();
         let v = a.dot(&b) * s.mass + a.dot(&(bm * s.first)) + b.dot(&(am * s.first)) + own;
         let (c, d) = (self.reference.mag[ORDER], self.norms[ORDER]);
-        let (e, f) = Placed::partial_magnitudes(raised, base);
+        let (e, f) = (p.e, p.f);
         let mag = c * e * s.mass + (c * f + d * e) * s.distance[0] + d * f * s.distance[1];
         (v, mag)
-    }
-
-    /// A particle's `|δv|ₘ` is `e + f |q|`: (e, f).
-    fn partial_magnitudes(raised: &Placed<'_>, base: &Placed<'_>) -> (f64, f64) {
-        (
-            raised.reference.mag[1] + base.reference.mag[1],
-            raised.norms[1] + base.norms[1],
-        )
     }
 
     /// The particles, placed at the instant.

@@ -74,6 +74,11 @@ impl Prepared {
         self.atoms.iter().map(|&a| values.get(a)).collect()
     }
 
+    /// The atoms the polynomials hold.
+    pub(crate) fn atoms(&self) -> &[Atom] {
+        &self.atoms
+    }
+
     /// The slot of atom `a` in a [`Resolved`], if a polynomial holds it.
     pub(crate) fn slot(&self, a: Atom) -> Option<usize> {
         self.atoms.iter().position(|&b| b == a)

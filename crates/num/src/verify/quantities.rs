@@ -517,7 +517,7 @@ fn generalized_active_force(w: &World<'_>, a: &[Arg]) -> Out {
     let (b, pv) = (bodies(&a[0]), partials(w, speed(&a[1]))?);
     let g = w.gravity;
     // Σ m g · δv = g · Σ m δv over the particles.
-    let (momentum, mag) = pv.momentum(b);
+    let (momentum, mag) = pv.momentum(w, b);
     let (mut v, mut s) = (g.dot(&momentum), g.norm() * mag);
     for load in w.d.loads.iter().filter(|l| acts_on(w.d, l, b)) {
         let (f, size, (vr, mag)) = match load {

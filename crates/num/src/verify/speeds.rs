@@ -225,6 +225,18 @@ impl Speeds {
         })
     }
 
+    /// The atoms [`Speeds::fill`] reads for the speeds and the
+    /// coordinates' first rates (order 0): the constraint rows, their
+    /// coefficients in the dependent speeds and the kinematic equations,
+    /// as held (a sine or cosine as itself).
+    pub(crate) fn reads(&self) -> Vec<Atom> {
+        [&self.rows[0], &self.coefficients[0], &self.rates[0]]
+            .iter()
+            .flat_map(|p| p.atoms().iter().copied())
+            .chain(self.dependent.iter().copied())
+            .collect()
+    }
+
     /// Fills in `values`, for derivative orders below `orders`: the
     /// dependent speeds' rates solved from the rows' rates, then the
     /// coordinates' next rates from the kinematic equations' rates. The
@@ -329,6 +341,9 @@ impl Speeds {
 pub(crate) struct Consistent {
     /// The speeds, `None` without `[kinematics]`.
     pub(crate) speeds: Option<Speeds>,
+    /// The atoms partial velocities are a function of
+    /// ([`super::partials::velocity_reads`]); empty without speeds.
+    velocity_reads: Vec<Atom>,
     /// Angles whose sine a kinematic equation divides by.
     by_sin: Vec<Atom>,
     /// … and whose cosine.
@@ -350,11 +365,21 @@ impl Consistent {
                 }
             }
         }
+        let speeds = Speeds::of(d);
         Consistent {
-            speeds: Speeds::of(d),
+            velocity_reads: speeds
+                .as_ref()
+                .map(|s| super::partials::velocity_reads(d, s))
+                .unwrap_or_default(),
+            speeds,
             by_sin,
             by_cos,
         }
+    }
+
+    /// The atoms partial velocities are a function of, sorted.
+    pub(crate) fn velocity_reads(&self) -> &[Atom] {
+        &self.velocity_reads
     }
 
     /// Moves each drawn angle that the kinematic equations divide the
