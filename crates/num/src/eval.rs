@@ -38,10 +38,11 @@
 //! assert_eq!(out[0], 3.0 * 4.0 * 4.0 - 2.0);
 //! ```
 
-use std::collections::HashMap;
-
 use hdot_sym::atom::{Atom, AtomKind};
 use hdot_sym::poly::Poly;
+// The compiler's maps are looked up, never iterated: Fx (an atom is a
+// small integer; SipHash was half of compiling the bicycle's steps).
+use rustc_hash::FxHashMap;
 
 /// The instructions of a tape; operands and destinations are slot
 /// indices. Powers are products (by squaring) of the atom or of its
@@ -62,8 +63,8 @@ struct Ops {
 fn power_slot(
     a: Atom,
     e: i32,
-    atom_slot: &HashMap<Atom, u32>,
-    powers: &mut HashMap<(Atom, i32), u32>,
+    atom_slot: &FxHashMap<Atom, u32>,
+    powers: &mut FxHashMap<(Atom, i32), u32>,
     ops: &mut Ops,
     next: &mut u32,
 ) -> u32 {
@@ -303,8 +304,8 @@ impl Tape {
     /// the terms of an output are multiplied once, after its sum (see
     /// `take_common`).
     pub fn compile_with(polys: &[Poly], known: &mut dyn FnMut(Atom) -> Option<f64>) -> Tape {
-        let mut value: HashMap<Atom, Option<f64>> = HashMap::new();
-        let mut first: HashMap<&Poly, usize> = HashMap::new();
+        let mut value: FxHashMap<Atom, Option<f64>> = FxHashMap::default();
+        let mut first: FxHashMap<&Poly, usize> = FxHashMap::default();
         let mut aliases = Vec::new();
         for (k, p) in polys.iter().enumerate() {
             match first.get(p) {
@@ -327,7 +328,7 @@ impl Tape {
                     return Vec::new();
                 }
                 let mut out: Vec<FoldedTerm> = Vec::new();
-                let mut index: HashMap<Vec<(Atom, i32)>, usize> = HashMap::new();
+                let mut index: FxHashMap<Vec<(Atom, i32)>, usize> = FxHashMap::default();
                 for (m, c) in p.terms() {
                     let mut coef = c.to_f64();
                     let mut rest = Vec::new();
@@ -350,7 +351,7 @@ impl Tape {
             .collect();
         let commons: Vec<Vec<(Atom, i32)>> = folded.iter_mut().map(|p| take_common(p)).collect();
         let mut atoms: Vec<Atom> = Vec::new();
-        let mut atom_slot: HashMap<Atom, u32> = HashMap::new();
+        let mut atom_slot: FxHashMap<Atom, u32> = FxHashMap::default();
         for (p, common) in folded.iter().zip(&commons) {
             for m in std::iter::once(common).chain(p.iter().map(|(m, _)| m)) {
                 for &(a, _) in m {
@@ -364,12 +365,12 @@ impl Tape {
         let one = atoms.len() as u32;
         let mut next = one + 1;
         let mut ops = Ops::default();
-        let mut powers: HashMap<(Atom, i32), u32> = HashMap::new();
-        let mut prefixes: HashMap<Vec<(Atom, i32)>, u32> = HashMap::new();
+        let mut powers: FxHashMap<(Atom, i32), u32> = FxHashMap::default();
+        let mut prefixes: FxHashMap<Vec<(Atom, i32)>, u32> = FxHashMap::default();
         // How many terms share each prefix: only a shared one is stored in
         // a slot; a term's own factors are multiplied in a register (a
         // chain of stored products is a chain of store-to-load latencies).
-        let mut uses: HashMap<&[(Atom, i32)], usize> = HashMap::new();
+        let mut uses: FxHashMap<&[(Atom, i32)], usize> = FxHashMap::default();
         for p in &folded {
             for (factors, _) in p {
                 for j in 0..factors.len() {

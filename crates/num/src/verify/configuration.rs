@@ -46,11 +46,14 @@ fn free_symbols(c: &Configuration, fixed: &[Atom]) -> Vec<Atom> {
 /// round-off of its terms' magnitudes.
 pub(crate) fn newton(c: &Configuration, values: &mut Values) -> Result<bool, VerifyError> {
     let n = c.dependent.len();
+    // `c.prepared`: the rows, then the Jacobian row by row.
+    let (p, rows) = (&c.prepared, c.rows.len());
     for _ in 0..ITERATIONS {
+        let at = p.resolve(values);
         let mut f = DVector::zeros(n);
         let mut met = true;
-        for (i, r) in c.rows.iter().enumerate() {
-            let (v, s) = values.eval(r)?;
+        for i in 0..rows {
+            let (v, s) = p.eval(i, &at)?;
             f[i] = v;
             met &= v.abs() <= TOLERANCE_ULPS * f64::EPSILON * s.max(f64::MIN_POSITIVE);
         }
@@ -59,8 +62,8 @@ pub(crate) fn newton(c: &Configuration, values: &mut Values) -> Result<bool, Ver
         }
         let mut j = DMatrix::zeros(n, n);
         for (i, row) in c.jacobian.iter().enumerate() {
-            for (k, p) in row.iter().enumerate() {
-                j[(i, k)] = values.eval(p)?.0;
+            for k in 0..row.len() {
+                j[(i, k)] = p.eval(rows + i * row.len() + k, &at)?.0;
             }
         }
         let Some(step) = j.lu().solve(&f) else {

@@ -22,7 +22,7 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
 use super::draw::{Draw, apply, constrain, draw, for_step};
-use super::knowns::bind_knowns;
+use super::knowns::world_with_knowns;
 use super::means::{against_of, frame_index, meaning_value};
 use super::speeds::Consistent;
 use super::world::World;
@@ -120,9 +120,7 @@ fn compare_vanishing(
 ) -> Result<Vec<Vec<Comparison>>, VerifyError> {
     let mut values = values.clone();
     constrain(d, &mut values, &[])?;
-    let w = World::build(d, draw, &values, &[])?;
-    bind_knowns(d, &w, &mut values)?;
-    let w = World::build(d, draw, &values, &[])?;
+    let w = world_with_knowns(d, draw, &mut values, &[])?;
     d.physics
         .vanishes
         .iter()
@@ -254,9 +252,7 @@ fn compare_step(
     };
     let mut values = values.clone();
     constrain(d, &mut values, &c.meaning.given)?;
-    let w = World::build(d, draw, &values, &coordinate(&c.meaning.meaning))?;
-    bind_knowns(d, &w, &mut values)?;
-    let w = World::build(d, draw, &values, &coordinate(&c.meaning.meaning))?;
+    let w = world_with_knowns(d, draw, &mut values, &coordinate(&c.meaning.meaning))?;
     let (derived, dscale) = c.eval(d, &values)?;
     if let Meaning::MassMatrix(x, unknowns) | Meaning::Forcing(x, unknowns) = &c.meaning.meaning {
         let at = |vals: &Values| -> Result<(Vec<f64>, f64), VerifyError> {

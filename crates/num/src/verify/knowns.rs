@@ -9,9 +9,26 @@ use hdot_sym::derivation::{Derivation, Value};
 use nalgebra::Vector3;
 
 use super::VerifyError;
+use super::draw::Draw;
 use super::means::{frame_index, meaning_value};
 use super::world::{ORDERS, World, mat_t_vec, vee};
 use crate::bind::{Values, bind_all, nth};
+
+/// The model at `values` once the symbols of `[[known]]` are bound into
+/// `values` from the model before them ([`bind_knowns`]); one model when
+/// the file declares none.
+pub(crate) fn world_with_knowns<'d>(
+    d: &'d Derivation,
+    draw: &'d Draw,
+    values: &mut Values,
+    coordinates: &[Atom],
+) -> Result<World<'d>, VerifyError> {
+    if !d.physics.knowns.is_empty() {
+        let w = World::build(d, draw, values, coordinates)?;
+        bind_knowns(d, &w, values)?;
+    }
+    World::build(d, draw, values, coordinates)
+}
 
 /// Binds the symbols of `[[known]]` from the measured quantities (and
 /// their time derivatives, for point and frame kinematics).

@@ -54,6 +54,9 @@ pub(crate) struct KaneWorlds<'d> {
     /// The values with the dependent speeds and the coordinates' rates
     /// filled in, and the model at them.
     base: Option<(Values, Rc<World<'d>>)>,
+    /// The partial velocities this world has read, by speed (found
+    /// without hashing its key again).
+    read: BySpeed,
 }
 
 /// Each speed's [`Partials`] by the state they were measured at, kept by
@@ -198,6 +201,9 @@ pub(crate) fn partials(w: &World<'_>, u: Atom) -> Result<Rc<Partials>, VerifyErr
             ),
         ));
     }
+    if let Some((_, p)) = w.kane.borrow().read.iter().find(|(v, _)| *v == u) {
+        return Ok(p.clone());
+    }
     let known = w.kane.borrow().key.clone();
     let key = match known {
         Some(k) => k,
@@ -208,12 +214,13 @@ pub(crate) fn partials(w: &World<'_>, u: Atom) -> Result<Rc<Partials>, VerifyErr
         }
     };
     let cache = &w.draw.kane_cache().0;
-    if let Some(p) = cache
+    let found = cache
         .borrow()
         .get(key.as_slice())
-        .and_then(|ps| ps.iter().find(|(v, _)| *v == u))
-    {
-        return Ok(p.1.clone());
+        .and_then(|ps| ps.iter().find(|(v, _)| *v == u).map(|(_, p)| p.clone()));
+    if let Some(p) = found {
+        w.kane.borrow_mut().read.push((u, p.clone()));
+        return Ok(p);
     }
     let unbound = || {
         declaration(
@@ -242,6 +249,7 @@ pub(crate) fn partials(w: &World<'_>, u: Atom) -> Result<Rc<Partials>, VerifyErr
         .entry(key.as_ref().clone())
         .or_default()
         .push((u, p.clone()));
+    w.kane.borrow_mut().read.push((u, p.clone()));
     Ok(p)
 }
 

@@ -57,6 +57,10 @@ pub(crate) struct Configuration {
     pub(crate) dependent: Vec<Atom>,
     /// `∂f_i/∂q_k` for the dependent coordinates q_k.
     pub(crate) jacobian: Vec<Vec<Poly>>,
+    /// The rows, then the Jacobian's entries row by row, prepared once:
+    /// Newton's method evaluates them at every draw and at every state a
+    /// linearisation measures ([`Prepared`]).
+    pub(crate) prepared: Prepared,
 }
 
 /// The names of a bracketed list of symbols (`[u_1, u_2]`).
@@ -163,6 +167,7 @@ impl Speeds {
             rows: Vec::new(),
             dependent: coordinates,
             jacobian: Vec::new(),
+            prepared: Prepared::default(),
         };
         let rows: Vec<Poly> = rows
             .iter()
@@ -194,6 +199,14 @@ impl Speeds {
                     .collect()
             })
             .collect();
+        configuration.prepared = Prepared::new(
+            &configuration
+                .rows
+                .iter()
+                .chain(configuration.jacobian.iter().flatten())
+                .cloned()
+                .collect::<Vec<_>>(),
+        );
         let mut all_rows = vec![rows];
         let mut rates = vec![
             kinematics

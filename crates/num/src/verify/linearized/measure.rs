@@ -13,10 +13,8 @@ use hdot_sym::poly::Poly;
 
 use super::super::configuration;
 use super::super::draw::{Draw, MAX_ORDER};
-use super::super::jet::ORDERS;
-use super::super::knowns::bind_knowns;
+use super::super::knowns::world_with_knowns;
 use super::super::quantities::{Measured, measure};
-use super::super::world::World;
 use super::super::{Comparison, TOLERANCE_ULPS, VerifyError, declaration};
 use super::{Inferred, Kind, Plan};
 use crate::bind::{Values, nth};
@@ -194,7 +192,9 @@ impl Plan<'_> {
                 ),
             ));
         }
-        if speeds.fill(d, &mut v, ORDERS)?.is_none() {
+        // The forces read the models' accelerations: the rates to the
+        // second (the jerk the models also carry is not read).
+        if speeds.fill(d, &mut v, 2)?.is_none() {
             return Err(declaration(
                 d,
                 format!(
@@ -219,11 +219,7 @@ impl Plan<'_> {
         values: &Values,
     ) -> Result<(Vec<f64>, f64), VerifyError> {
         let mut values = values.clone();
-        if !d.physics.knowns.is_empty() {
-            let w = World::build(d, draw, &values, &[])?;
-            bind_knowns(d, &w, &mut values)?;
-        }
-        let w = World::build(d, draw, &values, &[])?;
+        let w = world_with_knowns(d, draw, &mut values, &[])?;
         let mut out = Vec::with_capacity(self.speeds.len());
         let mut scale = 0.0;
         for &u in &self.speeds {
