@@ -310,8 +310,9 @@ fn words(s: &str, out: &mut Vec<Piece>) {
     // at the first punctuation instead, as plain words would be.
     let mut k = 0;
     while k < toks.len() {
-        let spans = [run_end(&toks, k, true), run_end(&toks, k, false)];
-        let made = spans.iter().find_map(|&end| formula(&toks, k, end, out));
+        let made = [true, false]
+            .into_iter()
+            .find_map(|brackets| formula(&toks, k, run_end(&toks, k, brackets), out));
         match made {
             Some(end) => k = end,
             None => {
@@ -390,6 +391,9 @@ fn formula(toks: &[Tok], k: usize, end: usize, out: &mut Vec<Piece>) -> Option<u
     // article: `a`, and `A` opening a sentence before a word (`A disk`).
     let lone = |i: usize| {
         let t = &toks[i];
+        if t.kind != Kind::Atom {
+            return false;
+        }
         let c: Vec<char> = t.core.chars().collect();
         let article = t.core == "A"
             && (i == 0 || toks[i - 1].trail.ends_with(['.', ':', ';', '!', '?']))
@@ -510,11 +514,13 @@ pub fn math_latex(s: &str) -> String {
     let chars: Vec<char> = s.chars().collect();
     let mut o = String::new();
     let mut i = 0;
-    // Whether `o` ends with a control word, so that a letter must be spaced.
+    // Whether `o` ends with a control word (a backslash and letters), so
+    // that a letter must be spaced: read back over the letters at its end
+    // only, not the whole formula at every atom.
     let push_atom = |o: &mut String, t: &str| {
-        let ends_cmd = o.rsplit('\\').next().is_some_and(|w| {
-            o.contains('\\') && !w.is_empty() && w.chars().all(|c| c.is_ascii_alphabetic())
-        });
+        let letters = o.bytes().rev().take_while(u8::is_ascii_alphabetic).count();
+        let ends_cmd =
+            letters > 0 && o.len() > letters && { o.as_bytes()[o.len() - letters - 1] == b'\\' };
         if ends_cmd && t.starts_with(|c: char| c.is_ascii_alphabetic()) {
             o.push(' ');
         }
