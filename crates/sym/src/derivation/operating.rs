@@ -249,7 +249,7 @@ pub(crate) fn shifted_angles(
                 }
             }
             AstKind::Call { func, args } => {
-                if matches!(func.as_str(), "kane" | "linearize") {
+                if crate::derivation::ops::takes_operating_point(func) {
                     for r in args {
                         if let AstKind::Assign {
                             name,

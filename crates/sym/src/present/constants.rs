@@ -160,9 +160,19 @@ mod tests {
     /// has hundreds of such brackets) print the same both ways.
     #[test]
     fn brackets_of_constants_as_the_general_rules_write_them() {
-        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../derivations");
-        let mut files: Vec<_> = std::fs::read_dir(&dir)
-            .expect("the bundled derivations")
+        // The bundled derivations and the files written for the tests
+        // (textbook, lecturer and newcomer problems; the verify tests').
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+        let dirs = [
+            "derivations",
+            "tests/sym/textbook",
+            "tests/sym/lecturer",
+            "tests/sym/newcomer",
+            "tests/num/derivations",
+        ];
+        let mut files: Vec<_> = dirs
+            .iter()
+            .flat_map(|d| std::fs::read_dir(root.join(d)).expect("a folder of derivations"))
             .map(|f| f.expect("a directory entry").path())
             .filter(|p| p.extension().is_some_and(|x| x == "toml"))
             .collect();

@@ -55,6 +55,17 @@ pub(crate) struct Op {
     pub eval: fn(&Call<'_, '_>) -> R<Value>,
 }
 
+/// The operations that take an operating point (`name = value`
+/// arguments) at which an angle given a multiple of π/2 is shifted, so
+/// that their result is in the angle's deviation from it
+/// (`derivation::operating::shifted_angles`).
+pub(crate) static AT_OPERATING_POINT: &[&Op] = &[&kane::KANE, &linearize::LINEARIZE];
+
+/// Whether `func` names one of [`AT_OPERATING_POINT`].
+pub(crate) fn takes_operating_point(func: &str) -> bool {
+    AT_OPERATING_POINT.iter().any(|op| op.names.contains(&func))
+}
+
 /// Every operation, in the order of the docs table.
 pub(crate) static OPS: &[&Op] = &[
     &trig::SIN_COS,
