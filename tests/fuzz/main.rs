@@ -2,13 +2,15 @@
 //! half-valid input for the derivation parser and evaluator, the scene
 //! parsers (numeric and simulation) and the CSV reader. Each input must be
 //! accepted or refused with an error; a panic, an abort or a hang is a
-//! failure. proptest shrinks a failing input to a small one and records
-//! its seed in `tests/fuzz/*.proptest-regressions`.
+//! failure. proptest shrinks a failing input to a small one and prints it;
+//! a failure worth keeping becomes a plain test in `corpus`.
 //!
-//! CI runs a few dozen cases per target (seconds). A long run:
+//! CI runs a few dozen cases per target (seconds), always the same ones
+//! (one fixed seed, [`hdot_tests::proptest_config`]). A long run with a
+//! new seed:
 //!
 //! ```text
-//! PROPTEST_CASES=100000 cargo test --release -p hdot-tests --test fuzz
+//! PROPTEST_RNG_SEED=$RANDOM PROPTEST_CASES=100000 cargo test --release -p hdot-tests --test fuzz
 //! ```
 //!
 //! `corpus` keeps the cases of issue 13 as plain tests.
@@ -20,16 +22,12 @@ mod hostile;
 
 use proptest::test_runner::Config;
 
-/// The proptest configuration of every target: `PROPTEST_CASES` cases
-/// (64 when unset, as in CI), no forking.
+/// The proptest configuration of every target: 64 cases from the fixed
+/// seed unless `PROPTEST_CASES` and `PROPTEST_RNG_SEED` say otherwise, no
+/// failure files.
 pub fn config() -> Config {
-    let cases = std::env::var("PROPTEST_CASES")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(64);
     Config {
-        cases,
         failure_persistence: None,
-        ..Config::default()
+        ..hdot_tests::proptest_config(64)
     }
 }

@@ -59,7 +59,7 @@ fn repeated_moments_give_the_canonical_basis() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+    #![proptest_config(hdot_tests::proptest_config(64))]
 
     /// Parallel axes: the tensor about any point from the tensor about G
     /// equals the direct particle sum about that point.

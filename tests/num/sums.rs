@@ -46,7 +46,7 @@ fn close(a: Vector3<f64>, b: Vector3<f64>, scale: f64) -> bool {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+    #![proptest_config(hdot_tests::proptest_config(64))]
 
     /// H_G = I_G ω, H_O = r̄ × m v̄ + H_G, T, ΣF = m ā and
     /// Ḣ_G = I α + ω × (I ω) equal the direct particle sums.

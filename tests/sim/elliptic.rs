@@ -64,6 +64,8 @@ fn cn_vanishes_at_k() {
 }
 
 proptest! {
+    #![proptest_config(hdot_tests::proptest_config(256))]
+
     #[test]
     fn pythagorean_identities(u in argument(), m in parameter()) {
         let (sn, cn, dn) = sncndn(u, m);

@@ -131,7 +131,7 @@ fn steady_top_is_a_solution_of_the_heavy_top_equations() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 24, .. ProptestConfig::default() })]
+    #![proptest_config(hdot_tests::proptest_config(24))]
     #[test]
     fn elliptic_matches_dop853_for_random_bodies(i in asymmetric_moments(), w in angular_velocity()) {
         let w0 = Vector3::from(w);

@@ -1,5 +1,5 @@
-//! Laws of the algebra, for every input (proptest, seeded by proptest's
-//! deterministic default RNG and persisted failures).
+//! Laws of the algebra, for every input (proptest, from the fixed seed of
+//! `hdot_tests::proptest_config`).
 
 use hdot_sym::{Atom, AtomKind, Expr, Node, Poly};
 use proptest::prelude::*;
@@ -8,9 +8,8 @@ use crate::strategies::{Tree, build, expr, point, symbols, tree, value_at};
 
 fn config() -> ProptestConfig {
     ProptestConfig {
-        cases: 192,
         failure_persistence: None,
-        ..ProptestConfig::default()
+        ..hdot_tests::proptest_config(192)
     }
 }
 

@@ -235,7 +235,7 @@ fn product_of_sums(n: usize) -> String {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 64, failure_persistence: None, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { failure_persistence: None, ..hdot_tests::proptest_config(64) })]
 
     /// Exponents near the integer limits never wrap: a product either
     /// holds the exact sum or fails with the exponent limit.

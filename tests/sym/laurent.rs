@@ -10,9 +10,8 @@ use crate::strategies::{expr, point, value_at};
 
 fn config() -> ProptestConfig {
     ProptestConfig {
-        cases: 160,
         failure_persistence: None,
-        ..ProptestConfig::default()
+        ..hdot_tests::proptest_config(160)
     }
 }
 

@@ -117,6 +117,9 @@ pub fn latex_math_char(c: char) -> String {
         '\\' => r"\backslash ".into(),
         '~' => r"\sim ".into(),
         '^' => r"\hat{}".into(),
+        // A backtick means nothing in math, and in a Markdown page it
+        // would open a code span across the `$`: the grave accent it is.
+        '`' => r"\grave{}".into(),
         c if c.is_control() => " ".into(),
         c if c.is_ascii() => c.to_string(),
         c => {
