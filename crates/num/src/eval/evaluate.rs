@@ -1,0 +1,239 @@
+//! Evaluating a [`Tape`](super::Tape): the inputs gathered from a state
+//! vector, the instructions, then each output's compensated sum, in a
+//! buffer on the stack sized for the tape (or one kept per thread).
+
+use super::{Tape, Term, Trig, WIDTH};
+
+/// A buffer of slots an evaluation reads and writes: a fixed array of
+/// `N` (a power of two ≥ the tape's slots) indexed by masking, so the
+/// compiler needs no bounds check per operand, or a slice (checked).
+trait Slots {
+    fn get(&self, i: u32) -> f64;
+    fn set(&mut self, i: u32, v: f64);
+}
+
+impl<const N: usize> Slots for [f64; N] {
+    #[inline(always)]
+    fn get(&self, i: u32) -> f64 {
+        self[i as usize & (N - 1)]
+    }
+    #[inline(always)]
+    fn set(&mut self, i: u32, v: f64) {
+        self[i as usize & (N - 1)] = v;
+    }
+}
+
+impl Slots for [f64] {
+    #[inline(always)]
+    fn get(&self, i: u32) -> f64 {
+        self[i as usize]
+    }
+    #[inline(always)]
+    fn set(&mut self, i: u32, v: f64) {
+        self[i as usize] = v;
+    }
+}
+
+/// The largest tape [`Tape::eval_at`] evaluates in a buffer on the
+/// stack (32 KB); a larger one uses a buffer kept per thread.
+const STACK_SLOTS: usize = 4096;
+
+thread_local! {
+    /// The slots of tapes larger than [`STACK_SLOTS`], reused.
+    static SCRATCH: std::cell::Cell<Vec<f64>> = const { std::cell::Cell::new(Vec::new()) };
+}
+
+/// # Evaluation
+impl Tape {
+    /// Evaluates every output. `inputs[i]` is the value of `atoms()[i]`.
+    ///
+    /// # Panics
+    /// When `inputs.len() != atoms().len()` or `out.len() != outputs()`.
+    pub fn eval(&self, inputs: &[f64], out: &mut [f64]) {
+        let mut scratch = Vec::new();
+        self.eval_with(inputs, &mut scratch, out, false);
+    }
+
+    /// The sum of the magnitudes of the terms, `Σ |c · monomial|`, per
+    /// output: the natural scale of the round-off in [`Tape::eval`].
+    pub fn eval_abs(&self, inputs: &[f64], out: &mut [f64]) {
+        let mut scratch = Vec::new();
+        self.eval_with(inputs, &mut scratch, out, true);
+    }
+
+    /// [`Tape::eval`] (or, with `abs`, [`Tape::eval_abs`]) reusing `scratch`.
+    pub fn eval_with(&self, inputs: &[f64], scratch: &mut Vec<f64>, out: &mut [f64], abs: bool) {
+        assert_eq!(inputs.len(), self.atoms.len(), "one input per atom");
+        scratch.clear();
+        scratch.extend_from_slice(inputs);
+        scratch.resize(self.slots, 0.0);
+        self.eval_slots(scratch, out, abs);
+    }
+
+    /// The number of slots [`Tape::eval_slots`] needs.
+    pub fn slots(&self) -> usize {
+        self.slots
+    }
+
+    /// [`Tape::eval_with`] on a buffer the caller provides (on the stack,
+    /// say) whose first `atoms().len()` entries hold the inputs; the rest
+    /// is overwritten.
+    ///
+    /// # Panics
+    /// When `slots.len() < self.slots()` or `out.len() != outputs()`.
+    pub fn eval_slots(&self, slots: &mut [f64], out: &mut [f64], abs: bool) {
+        let scratch = &mut slots[..self.slots];
+        if abs {
+            self.run::<true, [f64]>(scratch, out);
+        } else {
+            self.run::<false, [f64]>(scratch, out);
+        }
+    }
+
+    /// Evaluates every output at the state vector `x`: the inputs planned
+    /// by [`Tape::plan_inputs`] gathered from it, then the [`Input::Given`]
+    /// ones written by `given` into the slice it is given
+    /// (`atoms().len()` slots, input i at index i). The gathering and the
+    /// evaluation are one call, in a buffer on the stack sized for this
+    /// tape (no allocation, no shared scratch buffer, no bounds check per
+    /// operand); a tape of more than 4096 slots uses a buffer kept per
+    /// thread instead.
+    ///
+    /// # Panics
+    /// When `out.len() != outputs()`, or `x` is shorter than a planned
+    /// component.
+    #[inline]
+    pub fn eval_at(&self, x: &[f64], given: impl FnOnce(&mut [f64]), out: &mut [f64]) {
+        match self.slots {
+            0..=16 => self.eval_on_stack::<16>(x, given, out),
+            17..=32 => self.eval_on_stack::<32>(x, given, out),
+            33..=64 => self.eval_on_stack::<64>(x, given, out),
+            65..=128 => self.eval_on_stack::<128>(x, given, out),
+            129..=256 => self.eval_on_stack::<256>(x, given, out),
+            257..=1024 => self.eval_on_stack::<1024>(x, given, out),
+            1025..=STACK_SLOTS => self.eval_on_stack::<STACK_SLOTS>(x, given, out),
+            _ => self.eval_on_heap(x, given, out),
+        }
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn eval_on_heap(&self, x: &[f64], given: impl FnOnce(&mut [f64]), out: &mut [f64]) {
+        // Taken out of the thread's cell while in use: a `given` that
+        // evaluates another tape gets a buffer of its own.
+        let mut buf = SCRATCH.take();
+        buf.clear();
+        buf.resize(self.slots, 0.0);
+        self.gather_into::<[f64]>(&mut buf, x);
+        given(&mut buf[..self.atoms.len()]);
+        self.run::<false, [f64]>(&mut buf, out);
+        SCRATCH.set(buf);
+    }
+
+    // Not inlined: each size keeps a stack frame of its own (one frame
+    // holding every size's buffer would probe 40 KB of stack per call).
+    #[inline(never)]
+    fn eval_on_stack<const N: usize>(
+        &self,
+        x: &[f64],
+        given: impl FnOnce(&mut [f64]),
+        out: &mut [f64],
+    ) {
+        debug_assert!(self.slots <= N && N.is_power_of_two());
+        let mut buf = [0.0; N];
+        self.gather_into(&mut buf, x);
+        given(&mut buf[..self.atoms.len()]);
+        self.run::<false, [f64; N]>(&mut buf, out);
+    }
+
+    /// The planned inputs from `x`.
+    #[inline(always)]
+    fn gather_into<S: Slots + ?Sized>(&self, s: &mut S, x: &[f64]) {
+        for &(slot, i) in &self.gather.copies {
+            s.set(slot, x[i as usize]);
+        }
+        for t in &self.gather.trig {
+            match *t {
+                Trig::Both { i, sin, cos } => {
+                    let (a, b) = x[i as usize].sin_cos();
+                    s.set(sin, a);
+                    s.set(cos, b);
+                }
+                Trig::Sin { i, slot } => s.set(slot, x[i as usize].sin()),
+                Trig::Cos { i, slot } => s.set(slot, x[i as usize].cos()),
+            }
+        }
+    }
+
+    /// The instructions, then each output's sum, on `s` (inputs filled).
+    #[inline(always)]
+    fn run<const ABS: bool, S: Slots + ?Sized>(&self, s: &mut S, out: &mut [f64]) {
+        assert_eq!(out.len(), self.outputs, "one output per polynomial");
+        s.set(self.atoms.len() as u32, 1.0);
+        for &(dst, src) in &self.ops.recips {
+            s.set(dst, 1.0 / s.get(src));
+        }
+        for &[dst, a, b] in &self.ops.muls {
+            s.set(dst, s.get(a) * s.get(b));
+        }
+        match self.width {
+            1 => self.sum_terms::<ABS, 1, S>(s, out),
+            2 => self.sum_terms::<ABS, 2, S>(s, out),
+            3 => self.sum_terms::<ABS, 3, S>(s, out),
+            _ => self.sum_terms::<ABS, WIDTH, S>(s, out),
+        }
+        for &(k, j) in &self.aliases {
+            out[k] = out[j];
+        }
+    }
+
+    /// Each output's terms (`W` factors each: the tape's width), summed
+    /// with an exact error term (Knuth's TwoSum: no branch; the same error
+    /// Neumaier's comparison finds), from the first term on, then
+    /// multiplied by the output's common factors. A sum of one or two terms
+    /// is added plainly: `x + e` of TwoSum rounds back to `x`, so the bits
+    /// are the same.
+    #[inline(always)]
+    fn sum_terms<const ABS: bool, const W: usize, S: Slots + ?Sized>(
+        &self,
+        s: &S,
+        out: &mut [f64],
+    ) {
+        let term = |t: &Term| {
+            let mut v = t.coef;
+            for &f in &t.factors[..W] {
+                v *= s.get(f);
+            }
+            if ABS { v.abs() } else { v }
+        };
+        let scale = |k: u32| if ABS { s.get(k).abs() } else { s.get(k) };
+        // TwoSum: `sum + v` and its exact error added to `comp`.
+        let add = |(sum, comp): (f64, f64), v: f64| {
+            let x = sum + v;
+            let bv = x - sum;
+            (x, comp + ((sum - (x - bv)) + (v - bv)))
+        };
+        let o = &self.sums;
+        for &k in &o.zeros {
+            out[k as usize] = 0.0;
+        }
+        // `+ 0.0` as the compensated sum's last step adds it: −0 → +0.
+        for (k, t) in &o.ones {
+            out[*k as usize] = term(t) + 0.0;
+        }
+        for (k, c, [t, u]) in &o.twos {
+            out[*k as usize] = (term(t) + term(u)) * scale(*c) + 0.0;
+        }
+        for (k, c, [t, u, v]) in &o.threes {
+            let (sum, comp) = add(add((term(t), 0.0), term(u)), term(v));
+            out[*k as usize] = (sum + comp) * scale(*c) + 0.0;
+        }
+        for r in &o.longer {
+            let terms = &self.terms[r.start as usize..r.end as usize];
+            if let [t, rest @ ..] = terms {
+                let (sum, comp) = rest.iter().fold((term(t), 0.0), |acc, u| add(acc, term(u)));
+                out[r.out as usize] = (sum + comp) * scale(r.scale) + 0.0;
+            }
+        }
+    }
+}
