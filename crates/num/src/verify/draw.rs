@@ -584,6 +584,9 @@ pub(crate) fn for_step(
         .collect();
     const TRIES: usize = 500;
     let mut draw = draw.clone();
+    // Each rebuilt body in the step's symmetry, made once per body drawn
+    // (not per try: only the stretch differs between tries).
+    let mut symmetric: Vec<ParticleCloud> = Vec::new();
     for attempt in 0..TRIES {
         // A body no stretch can bring into the class (a lamina, for
         // A > B > C with its thin axis first) is drawn anew.
@@ -593,22 +596,39 @@ pub(crate) fn for_step(
                 draw.bases[i] =
                     base_body(b, &drawn_body(b, rng)?, b.symmetry, draw.folds[i], true)?;
             }
+            symmetric.clear();
         }
-        let (mut draw, mut values) = (draw.clone(), values.clone());
+        if symmetric.is_empty() {
+            symmetric = rebuilt
+                .iter()
+                .map(|&i| {
+                    let sym = symmetry_of(i).unwrap_or(Symmetry::None);
+                    base_body(
+                        &ph.bodies[i],
+                        &draw.bases[i],
+                        sym,
+                        draw.folds[i],
+                        draw.drawn,
+                    )
+                })
+                .collect::<Result<_, _>>()?;
+        }
+        let mut values = values.clone();
         let mut eqs = Vec::new();
-        for &i in &rebuilt {
+        let mut bases = Vec::with_capacity(rebuilt.len());
+        for (&i, sym_base) in rebuilt.iter().zip(&symmetric) {
             let b = &ph.bodies[i];
-            let sym = symmetry_of(i).unwrap_or(Symmetry::None);
-            let mut base = base_body(b, &draw.bases[i], sym, draw.folds[i], draw.drawn)?;
-            if !m.bounds.is_empty() && attempt > 0 {
+            let base = if !m.bounds.is_empty() && attempt > 0 {
                 let mut f: [f64; 3] = std::array::from_fn(|_| 4f64.powf(rng.gen_range(-1.0..1.0)));
                 if let Symmetry::Axisymmetric(k) = symmetry_of(i).unwrap_or(b.symmetry) {
                     f[(k + 2) % 3] = f[(k + 1) % 3];
                 }
-                base = map_particles(&base, |p, m| {
+                map_particles(sym_base, |p, m| {
                     [(Vector3::new(f[0] * p.x, f[1] * p.y, f[2] * p.z), m)]
-                })?;
-            }
+                })?
+            } else {
+                sym_base.clone()
+            };
             let e = body_equations(b, &base);
             for (p, ..) in &e {
                 for a in p.atoms() {
@@ -616,7 +636,7 @@ pub(crate) fn for_step(
                 }
             }
             eqs.extend(e);
-            draw.bases[i] = base;
+            bases.push(base);
         }
         bind_all(d, &mut values, eqs)?;
         apply(d, &mut values, &ph.motion)?;
@@ -627,6 +647,10 @@ pub(crate) fn for_step(
         }
         if !holds {
             continue;
+        }
+        let mut draw = draw.clone();
+        for (&i, base) in rebuilt.iter().zip(bases) {
+            draw.bases[i] = base;
         }
         for &i in &rebuilt {
             let (cloud, c) = place(d, &ph.bodies[i], &draw.bases[i], &values)?;
