@@ -131,6 +131,31 @@ impl Values {
         out
     }
 
+    /// A fingerprint of every value's and size's bits that does not
+    /// depend on the map's order (a sum of one hash per entry, no sort):
+    /// values with the same bits have the same fingerprint; whether they
+    /// are the same is [`Values::same_bits`].
+    pub(crate) fn fingerprint(&self) -> u64 {
+        use std::hash::{Hash, Hasher};
+        self.map.iter().fold(0u64, |h, (a, (v, s))| {
+            let mut f = rustc_hash::FxHasher::default();
+            (a, v.to_bits(), s.to_bits()).hash(&mut f);
+            h.wrapping_add(f.finish())
+        })
+    }
+
+    /// Whether `other` binds the same atoms to values and sizes of the
+    /// same bits (what [`Values::bits`] of both would say, unsorted).
+    pub(crate) fn same_bits(&self, other: &Values) -> bool {
+        self.map.len() == other.map.len()
+            && self.map.iter().all(|(a, (v, s))| {
+                other
+                    .map
+                    .get(a)
+                    .is_some_and(|(w, t)| w.to_bits() == v.to_bits() && t.to_bits() == s.to_bits())
+            })
+    }
+
     pub(crate) fn unset(&mut self, a: Atom) {
         self.map.remove(&a);
     }

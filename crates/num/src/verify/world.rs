@@ -38,43 +38,14 @@ pub(crate) type Measurement = (Vec<f64>, f64);
 /// measure the same 25 worlds four times. A measurement is a function of
 /// the draw, the coordinates, the values and the meaning, so a repeat is
 /// looked up, and its bits are those a new world would give.
-/// Keyed by a fingerprint of the values' bits; each entry holds the bits
-/// themselves, compared in full.
+/// Keyed by the values' fingerprint ([`Values::fingerprint`], no sort of
+/// the values per lookup); each entry holds the values themselves, their
+/// bits compared in full ([`Values::same_bits`]).
 #[derive(Default)]
 struct Memo(RefCell<HashMap<u64, Vec<MemoEntry>>>);
 
-/// The bits of the values, the meaning, and what it measured.
-type MemoEntry = (Vec<(Atom, u64, u64)>, Meaning, Measurement);
-
-/// A fingerprint of `bits`: a multiplicative mix per word (the values of
-/// one step differ in a few words, and a full comparison follows), where
-/// the standard hasher would cost a tenth of the whole verification.
-fn fingerprint(bits: &[(Atom, u64, u64)]) -> u64 {
-    use std::hash::{Hash, Hasher};
-    struct Mix(u64);
-    impl Hasher for Mix {
-        fn finish(&self) -> u64 {
-            self.0
-        }
-        fn write(&mut self, bytes: &[u8]) {
-            for b in bytes {
-                self.write_u64(u64::from(*b));
-            }
-        }
-        fn write_u32(&mut self, w: u32) {
-            self.write_u64(u64::from(w));
-        }
-        fn write_u64(&mut self, w: u64) {
-            self.0 = (self.0.rotate_left(5) ^ w).wrapping_mul(0x517c_c1b7_2722_0a95);
-        }
-        fn write_usize(&mut self, w: usize) {
-            self.write_u64(w as u64);
-        }
-    }
-    let mut h = Mix(0);
-    bits.hash(&mut h);
-    h.finish()
-}
+/// The values, the meaning, and what it measured.
+type MemoEntry = (Values, Meaning, Measurement);
 
 /// The model at one instant.
 pub struct World<'d> {
@@ -478,22 +449,20 @@ impl<'d> World<'d> {
         x: &Meaning,
         measure: impl FnOnce(&World<'d>) -> Result<Measurement, VerifyError>,
     ) -> Result<Measurement, VerifyError> {
-        let bits = values.bits();
-        let key = fingerprint(&bits);
+        let key = values.fingerprint();
         if let Some(found) = self.memo.0.borrow().get(&key).and_then(|e| {
             e.iter()
-                .find(|(b, m, _)| *b == bits && m == x)
+                .find(|(b, m, _)| m == x && b.same_bits(values))
                 .map(|(_, _, measured)| measured.clone())
         }) {
             return Ok(found);
         }
         let measured = measure(&self.at(values)?)?;
-        self.memo
-            .0
-            .borrow_mut()
-            .entry(key)
-            .or_default()
-            .push((bits, x.clone(), measured.clone()));
+        self.memo.0.borrow_mut().entry(key).or_default().push((
+            values.clone(),
+            x.clone(),
+            measured.clone(),
+        ));
         Ok(measured)
     }
 
