@@ -9,7 +9,8 @@
 //! these are read from is read once per check ([`Consistent`]).
 
 use hdot_sym::atom::{Atom, AtomKind};
-use hdot_sym::derivation::Derivation;
+use hdot_sym::derivation::physics::{Arg, Meaning, Rule};
+use hdot_sym::derivation::{Derivation, Load};
 use hdot_sym::parse::{AstKind, parse};
 use hdot_sym::poly::Poly;
 use nalgebra::{DMatrix, DVector};
@@ -357,6 +358,8 @@ pub(crate) struct Consistent {
     /// The atoms partial velocities are a function of
     /// ([`super::partials::velocity_reads`]); empty without speeds.
     velocity_reads: Vec<Atom>,
+    /// The orders of rates a draw is filled to ([`fill_orders`]).
+    orders: usize,
     /// Angles whose sine a kinematic equation divides by.
     by_sin: Vec<Atom>,
     /// … and whose cosine.
@@ -385,6 +388,7 @@ impl Consistent {
                 .map(|s| super::partials::velocity_reads(d, s))
                 .unwrap_or_default(),
             speeds,
+            orders: fill_orders(d),
             by_sin,
             by_cos,
         }
@@ -442,12 +446,91 @@ impl Consistent {
         super::quaternion::on_unit_sphere(d, values);
         if let Some(s) = &self.speeds {
             let mut v = values.clone();
-            if s.fill(d, &mut v, ORDERS)?.is_some() {
+            if s.fill(d, &mut v, self.orders)?.is_some() {
                 *values = v;
             }
         }
         Ok(())
     }
+}
+
+/// How many orders of rates [`Consistent::fill`] makes consistent
+/// ([`Speeds::fill`]: order n solves the dependent speeds' nth rates and
+/// gives the coordinates' (n+1)th). The models' quantities read the
+/// motion to the accelerations — the coordinates' second rates and the
+/// speeds' first, orders 0 and 1 — and the rates above them only as the
+/// jerk, which only a `[[known]]`'s kinematic jet reads; a derived value,
+/// a step's value (compared, or checked to vanish), a meaning's or a
+/// load's expression reads the rates it holds. Every
+/// order is filled for a file with `[[known]]` or with rules that set a
+/// time symbol (`[motion]`, a step's `given`: their rates are applied to
+/// the sixth). The rates above are left as drawn, read by nothing; the
+/// rows' third rates were a third of the linearised bicycle's
+/// verification.
+fn fill_orders(d: &Derivation) -> usize {
+    fn meaning_polys<'m>(m: &'m Meaning, out: &mut Vec<&'m Poly>) {
+        match m {
+            Meaning::Quantity(_, args) => {
+                for a in args {
+                    if let Arg::Vector(v, _) = a {
+                        out.extend(&v.0);
+                    }
+                }
+            }
+            Meaning::Sum(terms) => terms.iter().for_each(|(_, x)| meaning_polys(x, out)),
+            Meaning::Along(x, v, _) => {
+                out.extend(&v.0);
+                meaning_polys(x, out);
+            }
+            Meaning::List(xs) => xs.iter().for_each(|x| meaning_polys(x, out)),
+            Meaning::Applied(p) => out.push(p),
+            Meaning::AppliedVector(v, _) => out.extend(&v.0),
+            Meaning::Scaled(p, x) => {
+                out.push(p);
+                meaning_polys(x, out);
+            }
+            Meaning::Solves(x)
+            | Meaning::MassMatrix(x, _)
+            | Meaning::Forcing(x, _)
+            | Meaning::Linear(x)
+            | Meaning::Rate(_, x)
+            | Meaning::Coefficient(x, _)
+            | Meaning::Sign(x) => meaning_polys(x, out),
+        }
+    }
+    let sets_time = |r: &Rule| r.target.is_time_dependent();
+    let meanings = d.steps.iter().filter_map(|s| s.meaning.as_ref());
+    if !d.physics.knowns.is_empty()
+        || d.physics.motion.iter().any(sets_time)
+        || meanings.clone().any(|m| m.given.iter().any(sets_time))
+    {
+        return ORDERS;
+    }
+    let mut polys: Vec<&Poly> = Vec::new();
+    for s in &d.steps {
+        polys.extend(s.values());
+    }
+    for m in meanings {
+        meaning_polys(&m.meaning, &mut polys);
+        polys.extend(m.bounds.iter().map(|(p, _)| p));
+    }
+    for l in &d.loads {
+        match l {
+            Load::Force { force: v, .. } | Load::Torque { torque: v, .. } => polys.extend(&v.0),
+        }
+    }
+    let mut atoms: Vec<Atom> = polys.iter().flat_map(|p| p.atoms()).collect();
+    atoms.sort_unstable();
+    atoms.dedup();
+    // An abbreviation reads what its definition reads.
+    let read = atoms
+        .iter()
+        .flat_map(|&a| d.unfold(&Poly::atom(a)).atoms())
+        .filter(|a| a.is_time_dependent())
+        .map(|a| a.order() as usize + 1)
+        .max()
+        .unwrap_or(0);
+    read.clamp(2, ORDERS)
 }
 
 #[cfg(test)]
