@@ -90,8 +90,9 @@ struct Sum {
 struct Outputs {
     /// No terms: structurally zero.
     zeros: Vec<u32>,
-    /// `(out, term)`: a single term has no common factor taken out.
-    ones: Vec<(u32, Term)>,
+    /// `(out, coef, scale)`: a single term, `coef · slot[scale]` (all its
+    /// factors taken out).
+    ones: Vec<(u32, f64, u32)>,
     /// `(out, scale, terms)`, as in [`Sum`].
     twos: Vec<(u32, u32, [Term; 2])>,
     threes: Vec<(u32, u32, [Term; 3])>,

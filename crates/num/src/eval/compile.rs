@@ -77,7 +77,7 @@ impl Outputs {
         for s in sums {
             let t = &terms[s.start as usize..s.end as usize];
             match *t {
-                [a] => o.ones.push((s.out, a)),
+                [a] => o.ones.push((s.out, a.coef, s.scale)),
                 [a, b] => o.twos.push((s.out, s.scale, [a, b])),
                 [a, b, c] => o.threes.push((s.out, s.scale, [a, b, c])),
                 _ => o.longer.push(*s),
@@ -94,19 +94,22 @@ type FoldedTerm = (Vec<(Atom, i32)>, f64);
 /// Takes out of `terms` (the terms of one output) the factors common to
 /// all of them, and returns those: each atom every term has with an
 /// exponent of the same sign, to the smallest such power (`x²y + x³/z` →
-/// `x²`; `θ̇/sin θ` out of `a ψ̇ θ̇/sin θ + b φ̇ θ̇ cos θ/sin θ`). Nothing
-/// is taken out of fewer than two terms. The output is then the product
+/// `x²`; `θ̇/sin θ` out of `a ψ̇ θ̇/sin θ + b φ̇ θ̇ cos θ/sin θ`). A
+/// single term gives all its factors (what is left is its coefficient):
+/// its product is a slot, shared with equal prefixes, and the term sets
+/// no width for the others (`I φ̇ θ̇ sin θ` made the heavy top's mass
+/// matrix three factors wide). The output is then the product
 /// of the common factors times the sum of what is left: fewer products
 /// per term, and other bits than multiplying every term out, within the
 /// same bound (a few ulps of `Σ |terms|`).
 fn take_common(terms: &mut [FoldedTerm]) -> Vec<(Atom, i32)> {
-    let [(first, _), rest @ ..] = &*terms else {
+    let [(first, _), rest @ ..] = terms else {
         return Vec::new();
     };
-    let mut common = first.clone();
     if rest.is_empty() {
-        return Vec::new();
+        return std::mem::take(first);
     }
+    let mut common = first.clone();
     for (m, _) in rest {
         common.retain_mut(|(a, e)| match m.iter().find(|(b, _)| b == a) {
             Some(&(_, f)) if f.signum() == e.signum() => {

@@ -218,8 +218,9 @@ impl Tape {
             out[k as usize] = 0.0;
         }
         // `+ 0.0` as the compensated sum's last step adds it: −0 → +0.
-        for (k, t) in &o.ones {
-            out[*k as usize] = term(t) + 0.0;
+        for &(k, c, f) in &o.ones {
+            let c = if ABS { c.abs() } else { c };
+            out[k as usize] = c * scale(f) + 0.0;
         }
         for (k, c, [t, u]) in &o.twos {
             out[*k as usize] = (term(t) + term(u)) * scale(*c) + 0.0;

@@ -452,7 +452,7 @@ impl DerivedModel {
         }
         let n = self.dof();
         dy[..n].copy_from_slice(&y[n..2 * n]);
-        self.accelerations(t, y, &mut dy[n..2 * n])
+        self.second_order_accelerations(t, y, &mut dy[n..2 * n])
     }
 
     /// The accelerations q̈ at `(t, y)` of a second-order model; `None`
@@ -462,6 +462,13 @@ impl DerivedModel {
         if self.is_first_order() {
             return None;
         }
+        self.second_order_accelerations(t, y, qdd)
+    }
+
+    /// [`DerivedModel::accelerations`] of a model known to be of second
+    /// order.
+    #[inline(always)]
+    fn second_order_accelerations(&self, t: f64, y: &[f64], qdd: &mut [f64]) -> Option<()> {
         let n = self.dof();
         match &self.form {
             Form::Explicit(c) => {

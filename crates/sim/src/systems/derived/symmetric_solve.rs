@@ -27,10 +27,37 @@ pub(super) struct MassSolve {
 }
 
 /// `lower[i][j]` (j < i): the entry L_ij of the factor can be non-zero
-/// (M_ij has terms, or the elimination of an earlier column fills it).
+/// (M_ij has terms, or the elimination of an earlier column fills it);
+/// `bits`: the same entries of the first three rows, bit `3 i + j`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Pattern {
     lower: [[bool; MAX_DOF]; MAX_DOF],
+    bits: u32,
+}
+
+/// Which entries of L can be non-zero, as [`ldl_fixed`] reads them: a
+/// [`Pattern`] read per entry, or (n ≤ 3) one fixed in the type, [`Bits`],
+/// for which every test of the pattern is folded away when compiled.
+trait Lower: Copy {
+    fn at(self, i: usize, j: usize) -> bool;
+}
+
+impl Lower for &Pattern {
+    #[inline(always)]
+    fn at(self, i: usize, j: usize) -> bool {
+        self.lower[i][j]
+    }
+}
+
+/// A pattern of at most three rows as the bits of [`Pattern::bits`].
+#[derive(Clone, Copy)]
+struct Bits<const B: u32>;
+
+impl<const B: u32> Lower for Bits<B> {
+    #[inline(always)]
+    fn at(self, i: usize, j: usize) -> bool {
+        B >> (3 * i + j) & 1 == 1
+    }
 }
 
 /// # Planning
@@ -58,12 +85,16 @@ impl Pattern {
     /// `entry(i, j)` can, or when L_ik and L_jk can for some k < j.
     fn of(n: usize, entry: impl Fn(usize, usize) -> bool) -> Pattern {
         let mut lower = [[false; MAX_DOF]; MAX_DOF];
+        let mut bits = 0;
         for j in 0..n {
             for i in j + 1..n {
                 lower[i][j] = entry(i, j) || (0..j).any(|k| lower[i][k] && lower[j][k]);
+                if i < 3 && lower[i][j] {
+                    bits |= 1 << (3 * i + j);
+                }
             }
         }
-        Pattern { lower }
+        Pattern { lower, bits }
     }
 }
 
@@ -73,17 +104,29 @@ impl MassSolve {
     /// leaving q̈ in `x`; `None` when M is singular (a zero pivot of the
     /// general elimination). LDLᵀ when planned and every pivot is
     /// positive; otherwise the general elimination with partial pivoting.
+    /// For n ≤ 3 the pattern selects an instance of the factorisation with
+    /// the pattern in its type (no test of it per entry: the heavy top's
+    /// solve spent ~35 of its ~110 instructions in such tests).
     #[inline]
     pub(super) fn solve(&self, mf: &[f64], x: &mut [f64]) -> Option<()> {
+        // Bits 3, 6 and 7: L_10, L_20 and L_21 (filled when both others are).
         let done = match &self.ldl {
             None => None,
-            Some(p) => match self.n {
-                1 => ldl_fixed::<1>(p, mf, x),
-                2 => ldl_fixed::<2>(p, mf, x),
-                3 => ldl_fixed::<3>(p, mf, x),
-                4 => ldl_fixed::<4>(p, mf, x),
-                5 => ldl_fixed::<5>(p, mf, x),
-                6 => ldl_fixed::<6>(p, mf, x),
+            Some(p) => match (self.n, p.bits) {
+                (1, _) => ldl_fixed::<1, _>(Bits::<0>, mf, x),
+                (2, 0) => ldl_fixed::<2, _>(Bits::<0>, mf, x),
+                (2, _) => ldl_fixed::<2, _>(Bits::<8>, mf, x),
+                (3, 0) => ldl_fixed::<3, _>(Bits::<0>, mf, x),
+                (3, 8) => ldl_fixed::<3, _>(Bits::<8>, mf, x),
+                (3, 64) => ldl_fixed::<3, _>(Bits::<64>, mf, x),
+                (3, 128) => ldl_fixed::<3, _>(Bits::<128>, mf, x),
+                (3, 136) => ldl_fixed::<3, _>(Bits::<136>, mf, x),
+                (3, 192) => ldl_fixed::<3, _>(Bits::<192>, mf, x),
+                (3, 200) => ldl_fixed::<3, _>(Bits::<200>, mf, x),
+                (3, _) => ldl_fixed::<3, _>(p, mf, x),
+                (4, _) => ldl_fixed::<4, _>(p, mf, x),
+                (5, _) => ldl_fixed::<5, _>(p, mf, x),
+                (6, _) => ldl_fixed::<6, _>(p, mf, x),
                 _ => None,
             },
         };
@@ -99,9 +142,8 @@ impl MassSolve {
 // Index loops read as the factorisation is written (rows i, j and k).
 #[allow(clippy::needless_range_loop)]
 #[inline(always)]
-fn ldl_fixed<const N: usize>(p: &Pattern, mf: &[f64], x: &mut [f64]) -> Option<()> {
+fn ldl_fixed<const N: usize, L: Lower>(p: L, mf: &[f64], x: &mut [f64]) -> Option<()> {
     let (m, f) = (&mf[..N * N], &mf[N * N..N * N + N]);
-    let lower = &p.lower;
     // c[i][j] = L_ij d_j, l[i][j] = L_ij (j < i), r[j] = 1 / d_j.
     let mut c = [[0.0; N]; N];
     let mut l = [[0.0; N]; N];
@@ -109,7 +151,7 @@ fn ldl_fixed<const N: usize>(p: &Pattern, mf: &[f64], x: &mut [f64]) -> Option<(
     for j in 0..N {
         let mut d = m[j * N + j];
         for k in 0..j {
-            if lower[j][k] {
+            if p.at(j, k) {
                 d -= l[j][k] * c[j][k];
             }
         }
@@ -119,10 +161,10 @@ fn ldl_fixed<const N: usize>(p: &Pattern, mf: &[f64], x: &mut [f64]) -> Option<(
         }
         r[j] = 1.0 / d;
         for i in j + 1..N {
-            if lower[i][j] {
+            if p.at(i, j) {
                 let mut s = m[i * N + j];
                 for k in 0..j {
-                    if lower[i][k] && lower[j][k] {
+                    if p.at(i, k) && p.at(j, k) {
                         s -= l[i][k] * c[j][k];
                     }
                 }
@@ -135,7 +177,7 @@ fn ldl_fixed<const N: usize>(p: &Pattern, mf: &[f64], x: &mut [f64]) -> Option<(
     for i in 0..N {
         let mut s = f[i];
         for k in 0..i {
-            if lower[i][k] {
+            if p.at(i, k) {
                 s -= l[i][k] * z[k];
             }
         }
@@ -145,7 +187,7 @@ fn ldl_fixed<const N: usize>(p: &Pattern, mf: &[f64], x: &mut [f64]) -> Option<(
     for i in (0..N).rev() {
         let mut s = z[i] * r[i];
         for k in i + 1..N {
-            if lower[k][i] {
+            if p.at(k, i) {
                 s -= l[k][i] * y[k];
             }
         }
@@ -237,12 +279,12 @@ mod tests {
 
     fn ldl_fixed_dyn(n: usize, p: &Pattern, mf: &[f64], x: &mut [f64]) -> Option<()> {
         match n {
-            1 => ldl_fixed::<1>(p, mf, x),
-            2 => ldl_fixed::<2>(p, mf, x),
-            3 => ldl_fixed::<3>(p, mf, x),
-            4 => ldl_fixed::<4>(p, mf, x),
-            5 => ldl_fixed::<5>(p, mf, x),
-            _ => ldl_fixed::<6>(p, mf, x),
+            1 => ldl_fixed::<1, _>(p, mf, x),
+            2 => ldl_fixed::<2, _>(p, mf, x),
+            3 => ldl_fixed::<3, _>(p, mf, x),
+            4 => ldl_fixed::<4, _>(p, mf, x),
+            5 => ldl_fixed::<5, _>(p, mf, x),
+            _ => ldl_fixed::<6, _>(p, mf, x),
         }
     }
 
@@ -259,8 +301,8 @@ mod tests {
         assert!(!sparse.lower[2][1], "no fill");
         let dense = Pattern::of(3, |_, _| true);
         let (mut a, mut b) = ([0.0; 3], [0.0; 3]);
-        ldl_fixed::<3>(&sparse, &mf, &mut a).unwrap();
-        ldl_fixed::<3>(&dense, &mf, &mut b).unwrap();
+        ldl_fixed::<3, _>(&sparse, &mf, &mut a).unwrap();
+        ldl_fixed::<3, _>(&dense, &mf, &mut b).unwrap();
         assert_eq!(a, b);
         // Fill: L_21 from L_10 and L_20.
         let fill = Pattern::of(3, |i, j| j == 0 && i > 0);
