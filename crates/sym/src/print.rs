@@ -106,6 +106,10 @@ struct Cached<'a> {
     pows: std::cell::RefCell<rustc_hash::FxHashMap<(Atom, u32), (String, u32)>>,
     nums: std::cell::RefCell<rustc_hash::FxHashMap<Rational, (String, u32)>>,
     measure: Option<&'a dyn Fn(&str) -> u32>,
+    /// The measures of the signs and separators written (static texts,
+    /// keyed by address and length): a long result writes the same few
+    /// tens of thousands of times, and measuring each was 3 % of chain-6.
+    seps: std::cell::RefCell<Vec<(usize, usize, u32)>>,
     written: std::cell::Cell<u32>,
 }
 
@@ -120,6 +124,7 @@ impl<'a> Cached<'a> {
             pows: Default::default(),
             nums: Default::default(),
             measure,
+            seps: Default::default(),
             written: Default::default(),
         }
     }
@@ -135,9 +140,25 @@ impl<'a> Cached<'a> {
         self.written.set(self.written.get() + width);
     }
 
-    /// Appends `text` (a sign, a separator, a bracket), measured.
-    fn push(&self, out: &mut String, text: &str) {
-        self.push_measured(out, text, self.measure_of(text));
+    /// Appends `text` (a sign, a separator, a bracket), measured once per
+    /// distinct text.
+    fn push(&self, out: &mut String, text: &'static str) {
+        let width = match self.measure {
+            None => 0,
+            Some(m) => {
+                let key = (text.as_ptr() as usize, text.len());
+                let mut seps = self.seps.borrow_mut();
+                match seps.iter().find(|s| (s.0, s.1) == key) {
+                    Some(s) => s.2,
+                    None => {
+                        let w = m(text);
+                        seps.push((key.0, key.1, w));
+                        w
+                    }
+                }
+            }
+        };
+        self.push_measured(out, text, width);
     }
 
     /// Appends the text of a composite (a fraction, a power of a bracket)
@@ -146,7 +167,7 @@ impl<'a> Cached<'a> {
     /// `written` is taken back.
     fn push_composite(&self, out: &mut String, text: &str, mark: u32) {
         self.written.set(mark);
-        self.push(out, text);
+        self.push_measured(out, text, self.measure_of(text));
     }
 
     /// Appends the atom's text without copying it out of the cache.

@@ -96,6 +96,7 @@ fn pieces(
         too_long,
         additive,
         scratch: Default::default(),
+        lens: Default::default(),
     };
     let mut out = Vec::new();
     let mut lead = String::new();
@@ -153,6 +154,10 @@ fn sum_terms(e: &Expr, id: Id, style: &Cached) -> Vec<(Prefix, Id, bool)> {
     }
 }
 
+/// The number of terms from which a bracket is taken as too long for a
+/// line before it is measured ([`Splitter::speculate`]).
+const SPECULATE: usize = 6;
+
 /// Splits terms into pieces (see [`measured_pieces`]).
 struct Splitter<'a, 's> {
     e: &'a Expr,
@@ -166,6 +171,8 @@ struct Splitter<'a, 's> {
     /// its length: one buffer for all pieces, grown once, where a string
     /// per piece grew by doubling (a chain-8 result has 10⁵ pieces).
     scratch: std::cell::Cell<String>,
+    /// The text lengths of the brackets compared ([`Splitter::text_len`]).
+    lens: std::cell::RefCell<rustc_hash::FxHashMap<Id, usize>>,
 }
 
 impl Splitter<'_, '_> {
@@ -184,6 +191,29 @@ impl Splitter<'_, '_> {
         inner: usize,
         out: &mut Vec<(String, usize, u32)>,
     ) {
+        if self.additive && self.speculate(id, bracketed) {
+            // Broken first, and joined back when the whole fits: a long
+            // term is written once, not whole, then its bracket again to
+            // choose it, then piece by piece. The pieces joined by spaces
+            // are the whole term's text, and its measure their sum.
+            let start = out.len();
+            let split = self.split(id, lead, trail, first, inner, out);
+            debug_assert!(split, "a speculated term has a bracket");
+            let w: u32 = out[start..].iter().map(|p| p.2).sum();
+            if !(self.too_long)(w) && out.len() > start + 1 {
+                let len = out[start..].iter().map(|p| p.0.len() + 1).sum::<usize>();
+                let mut text = String::with_capacity(len);
+                for (k, (piece, _, _)) in out.drain(start..).enumerate() {
+                    if k > 0 {
+                        text.push(' ');
+                    }
+                    text.push_str(&piece);
+                }
+                debug_assert_eq!(w, (self.measure)(&text), "a measure not additive: {text}");
+                out.push((text, first, w));
+            }
+            return;
+        }
         let mut text = self.scratch.take();
         text.clear();
         text.push_str(lead);
@@ -208,6 +238,25 @@ impl Splitter<'_, '_> {
         self.scratch.set(text);
     }
 
+    /// Whether the term at `id` is broken before it is measured: a product
+    /// with no denominator (or a bracketed sum alone) holding a bracketed
+    /// sum of at least [`SPECULATE`] terms, which is most often too long for
+    /// a line. Only what it costs depends on this, never the pieces.
+    fn speculate(&self, id: Id, bracketed: bool) -> bool {
+        let e = self.e;
+        let big = |f: &Id| matches!(e.node(*f), Node::Add(ts) if ts.len() >= SPECULATE);
+        match e.node(id) {
+            Node::Mul(fs) if !bracketed => {
+                fs.iter().any(big)
+                    && !fs
+                        .iter()
+                        .any(|f| matches!(e.node(*f), Node::Pow(_, k) if *k < 0))
+            }
+            Node::Add(ts) if bracketed => ts.len() >= SPECULATE,
+            _ => false,
+        }
+    }
+
     /// A product term broken inside its longest bracketed sum (see
     /// [`break_pieces`]); false (nothing pushed) when the term has no such
     /// bracket.
@@ -230,23 +279,27 @@ impl Splitter<'_, '_> {
         let is_den = |f: &Id| matches!(e.node(*f), Node::Pow(_, k) if *k < 0);
         let (dens, factors): (Vec<Id>, Vec<Id>) = factors.iter().partition(|f| is_den(f));
         // The longest bracket: the one a break helps most (the first of
-        // equals).
-        let Some(j) = factors
-            .iter()
-            .enumerate()
-            .filter(|(_, f)| matches!(e.node(**f), Node::Add(_)))
-            .map(|(k, &f)| {
-                let mut text = String::new();
-                write(e, f, style, &mut text);
-                (k, text.len())
-            })
-            .fold(None, |best: Option<(usize, usize)>, (k, n)| match best {
-                Some((_, m)) if m >= n => best,
-                _ => Some((k, n)),
-            })
-            .map(|(k, _)| k)
-        else {
-            return false;
+        // equals). A term with one bracket (most) is not written to
+        // choose it; each bracket's length is written once per node.
+        let brackets = || {
+            factors
+                .iter()
+                .enumerate()
+                .filter(|(_, f)| matches!(e.node(**f), Node::Add(_)))
+        };
+        let j = match brackets().count() {
+            0 => return false,
+            1 => brackets().next().map_or(0, |(k, _)| k),
+            _ => {
+                let mut best: Option<(usize, usize)> = None;
+                for (k, &f) in brackets() {
+                    let n = self.text_len(f);
+                    if best.is_none_or(|(_, m)| n > m) {
+                        best = Some((k, n));
+                    }
+                }
+                best.map_or(0, |(k, _)| k)
+            }
         };
         let terms = sum_terms(e, factors[j], style);
         let (l, r) = style.inner.parens();
@@ -296,6 +349,20 @@ impl Splitter<'_, '_> {
         after.push_str(trail);
         self.bracket_terms(terms, before, after, first, inner, out);
         true
+    }
+
+    /// The length in bytes of the text of node `id`, written once per node.
+    fn text_len(&self, id: Id) -> usize {
+        if let Some(&n) = self.lens.borrow().get(&id) {
+            return n;
+        }
+        let mut text = self.scratch.take();
+        text.clear();
+        write(self.e, id, self.style, &mut text);
+        let n = text.len();
+        self.scratch.set(text);
+        self.lens.borrow_mut().insert(id, n);
+        n
     }
 
     /// The pieces of a bracket's terms: `before` (up to the opening
