@@ -53,10 +53,16 @@ pub(super) fn merge_trig_squares(ts: &mut Terms) {
     let mut hashes: Vec<u64> = ts.iter().map(|t| monomial_hash(&t.0)).collect();
     for q in angles {
         if let (Some(cos), Some(sin)) = (Atom::cos(q), Atom::sin(q)) {
-            let mut found = chains(ts, &hashes, cos);
-            if factor_sin_squares(ts, &mut hashes, &found, cos, sin) {
+            let mut found = chains(ts, &hashes, cos, None);
+            if let Some(rewrite) = factor_sin_squares(ts, &mut hashes, &found, cos, sin) {
                 changed = true;
-                found = chains(ts, &hashes, cos);
+                found = patched(ts, &hashes, found, &rewrite, cos, sin);
+                #[cfg(debug_assertions)]
+                {
+                    let mut again = chains(&mut ts.clone(), &hashes, cos, None);
+                    again.retain(|(_, c)| c.iter().any(|&(_, i)| !ts[i].1.is_zero()));
+                    debug_assert_eq!(found, again, "chains patched after a rewrite");
+                }
             }
             // Unchanged terms have the same chains: they are found once.
             changed |= merge_pairs(ts, &mut hashes, &found, cos, sin);
@@ -82,43 +88,42 @@ pub(super) fn merge_trig_squares(ts: &mut Terms) {
 /// [`monomial_hash`] of term i; no rest is built until a chain is found),
 /// and a bucket is split by comparing the rests factor by factor, so hash
 /// collisions cost time, never correctness.
-fn chains(ts: &mut Terms, hashes: &[u64], cos: Atom) -> Vec<Chain> {
+///
+/// `among`: only these terms (ascending indices) are looked at, as
+/// [`patched`] asks; `None`, all of them.
+fn chains(ts: &mut Terms, hashes: &[u64], cos: Atom, among: Option<&[usize]>) -> Vec<Chain> {
+    // The j-th term looked at.
+    let at = |j: usize| among.map_or(j, |m| m[j]);
+    let n = among.map_or(ts.len(), <[usize]>::len);
     // Each term's exponent of cos, read once (by bisection: the factors
     // are sorted by atom).
-    let exps: Vec<i32> = ts
-        .iter()
-        .map(|t| {
-            let fs = t.0.factors();
-            fs.binary_search_by(|f| f.0.cmp(&cos))
-                .map_or(0, |k| fs[k].1)
-        })
-        .collect();
+    let exps: Vec<i32> = (0..n).map(|j| exponent(&ts[at(j)].0, cos)).collect();
     let with_cos = exps.iter().filter(|&&e| e != 0).count();
     if with_cos == 0 {
         return Vec::new();
     }
-    let mut buckets = Buckets::with_room(with_cos, ts.len());
-    for (i, &e) in exps.iter().enumerate() {
+    let mut buckets = Buckets::with_room(with_cos, n);
+    for (j, &e) in exps.iter().enumerate() {
         if e != 0 {
-            buckets.insert(hashes[i].wrapping_sub(factor_hash(cos, e)), i);
+            buckets.insert(hashes[at(j)].wrapping_sub(factor_hash(cos, e)), j);
         }
     }
-    for (i, &e) in exps.iter().enumerate() {
+    for (j, &e) in exps.iter().enumerate() {
         if e == 0 {
-            buckets.join(hashes[i], i);
+            buckets.join(hashes[at(j)], j);
         }
     }
     let mut out: Vec<Chain> = Vec::new();
     for mut bucket in buckets.shared() {
         while bucket.len() > 1 {
-            let first = bucket[0];
+            let first = at(bucket[0]);
             let (same, other): (SmallVec<[usize; 4]>, SmallVec<[usize; 4]>) = bucket
                 .into_iter()
-                .partition(|&i| same_rest(&ts[i].0, &ts[first].0, cos));
+                .partition(|&j| same_rest(&ts[at(j)].0, &ts[first].0, cos));
             if same.len() > 1 {
                 let m = &ts[first].0;
                 let rest = m.without(cos, m.exponent(cos));
-                let chain = same.iter().map(|&i| (exps[i], i)).collect();
+                let chain = same.iter().map(|&j| (exps[j], at(j))).collect();
                 out.push((rest, chain));
             }
             bucket = other;
@@ -138,6 +143,71 @@ fn chains(ts: &mut Terms, hashes: &[u64], cos: Atom) -> Vec<Chain> {
             } else {
                 k += 1;
             }
+        }
+    }
+    out.sort_unstable_by_key(|(_, c)| c[0].1);
+    out
+}
+
+/// The exponent of `a` in `m` (0 when absent), by bisection: the factors
+/// are sorted by atom.
+fn exponent(m: &Monomial, a: Atom) -> i32 {
+    let fs = m.factors();
+    fs.binary_search_by(|f| f.0.cmp(&a)).map_or(0, |k| fs[k].1)
+}
+
+/// What [`factor_sin_squares`] rewrote: for each term before it, its
+/// index after (`None`: removed); the terms it added are the last
+/// `added` of the terms.
+struct Rewrite {
+    moved: Vec<Option<usize>>,
+    added: usize,
+}
+
+/// The chains of `cos` after [`factor_sin_squares`] rewrote some of
+/// `before` (the chains it was given), found without searching every term
+/// again. A rewritten chain's terms are gone; each new term is `X sin²ᵏ θ
+/// cosᵉ θ`, so a chain it belongs to has a rest whose power of sin θ is
+/// one of the new terms'. The terms with such a power of sin θ are chained
+/// again ([`chains`] among them); every other chain has the terms it had
+/// (none of them was removed or added), under their new indices. The same
+/// chains, in the same order, as [`chains`] of all the terms, but for a
+/// chain of zero coefficients only (terms added into an equal one by
+/// [`chains`] before the rewrite, with nothing left to merge or rewrite;
+/// debug builds check).
+fn patched(
+    ts: &mut Terms,
+    hashes: &[u64],
+    before: Vec<Chain>,
+    rewrite: &Rewrite,
+    cos: Atom,
+    sin: Atom,
+) -> Vec<Chain> {
+    let mut powers: SmallVec<[i32; 4]> = ts[ts.len() - rewrite.added..]
+        .iter()
+        .map(|t| exponent(&t.0, sin))
+        .collect();
+    powers.sort_unstable();
+    powers.dedup();
+    let again: Vec<usize> = (0..ts.len())
+        .filter(|&i| powers.contains(&exponent(&ts[i].0, sin)))
+        .collect();
+    let mut out = chains(ts, hashes, cos, Some(&again));
+    for (rest, mut chain) in before {
+        if powers.contains(&exponent(&rest, sin)) {
+            continue;
+        }
+        // A chain rewritten is gone (all its terms were removed); any
+        // other has all its terms still.
+        let mut kept = true;
+        for c in &mut chain {
+            match rewrite.moved[c.1] {
+                Some(i) => c.1 = i,
+                None => kept = false,
+            }
+        }
+        if kept {
+            out.push((rest, chain));
         }
     }
     out.sort_unstable_by_key(|(_, c)| c[0].1);
@@ -249,14 +319,14 @@ fn same_rest(a: &Monomial, b: &Monomial, cos: Atom) -> bool {
 
 /// Each chain as a polynomial P(cos) (exponent → coefficient), divided by
 /// (1 − cos²) as often as that leaves the fewest terms (fewer than
-/// before). True when a chain was rewritten.
+/// before). What was rewritten, when a chain was.
 fn factor_sin_squares(
     ts: &mut Terms,
     hashes: &mut Vec<u64>,
     chains: &[Chain],
     cos: Atom,
     sin: Atom,
-) -> bool {
+) -> Option<Rewrite> {
     let mut removed: Vec<usize> = Vec::new();
     let mut added: Terms = Vec::new();
     for (rest, chain) in chains {
@@ -301,12 +371,16 @@ fn factor_sin_squares(
         );
     }
     if removed.is_empty() {
-        return false;
+        return None;
     }
-    remove_indices(ts, hashes, &removed);
+    let moved = remove_indices(ts, hashes, &removed);
     hashes.extend(added.iter().map(|t| monomial_hash(&t.0)));
+    let added_len = added.len();
     ts.extend(added);
-    true
+    Some(Rewrite {
+        moved,
+        added: added_len,
+    })
 }
 
 /// `p / (1 − x²)` when it divides exactly (Laurent exponents allowed).
@@ -372,22 +446,31 @@ fn merge_pairs(
     true
 }
 
-/// Removes the terms at `indices` (any order, no repeats), and their hashes.
-fn remove_indices(ts: &mut Terms, hashes: &mut Vec<u64>, indices: &[usize]) {
-    let mut gone = vec![false; ts.len()];
+/// Removes the terms at `indices` (any order, no repeats), and their
+/// hashes: for each term before, its index after (`None`: removed).
+fn remove_indices(ts: &mut Terms, hashes: &mut Vec<u64>, indices: &[usize]) -> Vec<Option<usize>> {
+    let mut moved: Vec<Option<usize>> = vec![Some(0); ts.len()];
     for &i in indices {
-        gone[i] = true;
+        moved[i] = None;
+    }
+    let mut kept = 0;
+    for m in &mut moved {
+        if m.is_some() {
+            *m = Some(kept);
+            kept += 1;
+        }
     }
     let mut k = 0;
     ts.retain(|_| {
         k += 1;
-        !gone[k - 1]
+        moved[k - 1].is_some()
     });
     let mut k = 0;
     hashes.retain(|_| {
         k += 1;
-        !gone[k - 1]
+        moved[k - 1].is_some()
     });
+    moved
 }
 
 /// Adds the coefficients of equal monomials into the first of them and
