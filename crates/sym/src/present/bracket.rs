@@ -268,13 +268,22 @@ fn bracket_sum(
             .map(|(m, _)| m.split(|a| !leading_constant(a)).0)
             .collect()
     };
+    // Most parts share with none: the parts of each time-dependent part
+    // are counted first, and only those of a part shared by two or more
+    // are divided and kept.
+    let mut count: FxHashMap<&Monomial, u32> = FxHashMap::default();
+    for t in &timed {
+        if !t.is_one() {
+            *count.entry(t).or_default() += 1;
+        }
+    }
     let mut shared: FxHashMap<&Monomial, Vec<(Monomial, Rational)>> = FxHashMap::default();
     for ((m, c), t) in parts.iter().zip(&timed) {
-        if !t.is_one() {
+        if count.get(t).is_some_and(|&n| n > 1) {
             shared.entry(t).or_default().push((m.div(t), c.clone()));
         }
     }
-    shared.retain(|_, v| v.len() > 1);
+    drop(count);
     // A coefficient shared by constants (a A_x − a B_x): one term,
     // a (A_x − B_x); the first of them stands for all.
     let linear = if big {
@@ -293,25 +302,42 @@ fn bracket_sum(
     // I′ φ̇ (1 + cos² θ), not I′ φ̇ + I′ φ̇ cos² θ.
     // (Parts are distinct, so without a sine or cosine in any of them no
     // two share what is left once sin and cos are taken out.)
+    // (Each part is split once; only the rests of two parts or more are
+    // kept, with the sin and cos of each.)
     let mut alike: FxHashMap<Monomial, Vec<(Monomial, Rational)>> = FxHashMap::default();
     let mut alike_of: Vec<Option<Monomial>> = vec![None; timed.len()];
     let any_trig = parts
         .iter()
         .any(|(m, _)| m.factors().iter().any(|f| is_trig(f.0)));
-    for (k, ((m, c), t)) in parts.iter().zip(&timed).enumerate() {
-        if !any_trig || shared.contains_key(t) || linear_of[k].is_some() {
-            continue;
+    if any_trig {
+        let mut splits: Vec<Option<(Monomial, Monomial)>> = Vec::with_capacity(parts.len());
+        for (k, ((m, _), t)) in parts.iter().zip(&timed).enumerate() {
+            let split = if shared.contains_key(t) || linear_of[k].is_some() {
+                None
+            } else {
+                Some(m.split(is_trig)).filter(|(_, rest)| !rest.is_one())
+            };
+            splits.push(split);
         }
-        let (trig, rest) = m.split(is_trig);
-        if !rest.is_one() {
-            alike
-                .entry(rest.clone())
-                .or_default()
-                .push((trig, c.clone()));
-            alike_of[k] = Some(rest);
+        let mut count: FxHashMap<&Monomial, u32> = FxHashMap::default();
+        for (_, rest) in splits.iter().flatten() {
+            *count.entry(rest).or_default() += 1;
+        }
+        let several: Vec<bool> = splits
+            .iter()
+            .map(|s| s.as_ref().is_some_and(|(_, rest)| count[rest] > 1))
+            .collect();
+        drop(count);
+        for (k, (split, (_, c))) in splits.into_iter().zip(&parts).enumerate() {
+            if let (true, Some((trig, rest))) = (several[k], split) {
+                alike
+                    .entry(rest.clone())
+                    .or_default()
+                    .push((trig, c.clone()));
+                alike_of[k] = Some(rest);
+            }
         }
     }
-    alike.retain(|_, v| v.len() > 1);
     // Dividing by `common` keeps the print order of a term's other factors
     // unless it takes away a sine, next to which its cosine was placed (a
     // positive power of `common` is in every term; a negative one, a
