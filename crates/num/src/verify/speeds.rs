@@ -9,7 +9,7 @@
 //! these are read from is read once per check ([`Consistent`]).
 
 use hdot_sym::atom::{Atom, AtomKind};
-use hdot_sym::derivation::physics::{Arg, Meaning, Rule};
+use hdot_sym::derivation::physics::Rule;
 use hdot_sym::derivation::{Derivation, Load};
 use hdot_sym::parse::{AstKind, parse};
 use hdot_sym::poly::Poly;
@@ -468,36 +468,6 @@ impl Consistent {
 /// rows' third rates were a third of the linearised bicycle's
 /// verification.
 fn fill_orders(d: &Derivation) -> usize {
-    fn meaning_polys<'m>(m: &'m Meaning, out: &mut Vec<&'m Poly>) {
-        match m {
-            Meaning::Quantity(_, args) => {
-                for a in args {
-                    if let Arg::Vector(v, _) = a {
-                        out.extend(&v.0);
-                    }
-                }
-            }
-            Meaning::Sum(terms) => terms.iter().for_each(|(_, x)| meaning_polys(x, out)),
-            Meaning::Along(x, v, _) => {
-                out.extend(&v.0);
-                meaning_polys(x, out);
-            }
-            Meaning::List(xs) => xs.iter().for_each(|x| meaning_polys(x, out)),
-            Meaning::Applied(p) => out.push(p),
-            Meaning::AppliedVector(v, _) => out.extend(&v.0),
-            Meaning::Scaled(p, x) => {
-                out.push(p);
-                meaning_polys(x, out);
-            }
-            Meaning::Solves(x)
-            | Meaning::MassMatrix(x, _)
-            | Meaning::Forcing(x, _)
-            | Meaning::Linear(x)
-            | Meaning::Rate(_, x)
-            | Meaning::Coefficient(x, _)
-            | Meaning::Sign(x) => meaning_polys(x, out),
-        }
-    }
     let sets_time = |r: &Rule| r.target.is_time_dependent();
     let meanings = d.steps.iter().filter_map(|s| s.meaning.as_ref());
     if !d.physics.knowns.is_empty()
@@ -511,7 +481,7 @@ fn fill_orders(d: &Derivation) -> usize {
         polys.extend(s.values());
     }
     for m in meanings {
-        meaning_polys(&m.meaning, &mut polys);
+        m.meaning.expressions(&mut polys);
         polys.extend(m.bounds.iter().map(|(p, _)| p));
     }
     for l in &d.loads {

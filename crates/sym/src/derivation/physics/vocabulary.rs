@@ -308,6 +308,40 @@ impl Meaning {
         }
     }
 
+    /// Every expression it holds (a vector argument's components, an
+    /// applied expression, a scale factor), appended to `out`: what it
+    /// reads of the motion besides its quantities.
+    pub fn expressions<'m>(&'m self, out: &mut Vec<&'m Poly>) {
+        match self {
+            Meaning::Quantity(_, args) => {
+                for a in args {
+                    if let Arg::Vector(v, _) = a {
+                        out.extend(&v.0);
+                    }
+                }
+            }
+            Meaning::Sum(terms) => terms.iter().for_each(|(_, x)| x.expressions(out)),
+            Meaning::Along(x, v, _) => {
+                out.extend(&v.0);
+                x.expressions(out);
+            }
+            Meaning::List(xs) => xs.iter().for_each(|x| x.expressions(out)),
+            Meaning::Applied(p) => out.push(p),
+            Meaning::AppliedVector(v, _) => out.extend(&v.0),
+            Meaning::Scaled(p, x) => {
+                out.push(p);
+                x.expressions(out);
+            }
+            Meaning::Solves(x)
+            | Meaning::MassMatrix(x, _)
+            | Meaning::Forcing(x, _)
+            | Meaning::Linear(x)
+            | Meaning::Rate(_, x)
+            | Meaning::Coefficient(x, _)
+            | Meaning::Sign(x) => x.expressions(out),
+        }
+    }
+
     /// Every quantity it uses, with its arguments.
     pub fn quantities(&self) -> Vec<(Quantity, &[Arg])> {
         match self {
