@@ -146,6 +146,8 @@ struct Gather {
     /// `(slot, i)`: slot ← x[i].
     copies: Vec<(u32, u32)>,
     trig: Vec<Trig>,
+    /// One more than the largest component read: the shortest state.
+    components: usize,
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -177,6 +179,9 @@ impl Tape {
         for (slot, &a) in self.atoms.iter().enumerate() {
             let slot = slot as u32;
             let source = input(a);
+            if let Input::Component(i) | Input::Sin(i) | Input::Cos(i) = source {
+                g.components = g.components.max(i + 1);
+            }
             match source {
                 Input::Component(i) => g.copies.push((slot, i as u32)),
                 Input::Sin(i) | Input::Cos(i) => {

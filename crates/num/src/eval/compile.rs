@@ -301,7 +301,7 @@ impl Tape {
                 zeros.push(k as u32);
             }
         }
-        Tape {
+        let tape = Tape {
             atoms,
             ops,
             sums: Outputs::of(&sums, &terms, zeros),
@@ -311,6 +311,39 @@ impl Tape {
             aliases,
             slots: next as usize,
             gather: Gather::default(),
-        }
+        };
+        // The evaluation reads and writes slots and outputs unchecked.
+        assert!(tape.indices_in_bounds(), "a tape's indices are in bounds");
+        tape
+    }
+
+    /// Whether every slot an instruction, a term or a scale reads or
+    /// writes is below `slots`, and every output index below `outputs`:
+    /// what lets the evaluation index its buffers unchecked.
+    fn indices_in_bounds(&self) -> bool {
+        let slot = |i: u32| (i as usize) < self.slots;
+        let output = |k: u32| (k as usize) < self.outputs;
+        let term = |t: &Term| t.factors.iter().all(|&i| slot(i));
+        let o = &self.sums;
+        slot(self.atoms.len() as u32)
+            && self.ops.recips.iter().all(|&(d, s)| slot(d) && slot(s))
+            && self.ops.muls.iter().flatten().all(|&i| slot(i))
+            && o.zeros.iter().all(|&k| output(k))
+            && o.ones.iter().all(|&(k, _, f)| output(k) && slot(f))
+            && o.twos
+                .iter()
+                .all(|(k, f, t)| output(*k) && slot(*f) && t.iter().all(term))
+            && o.threes
+                .iter()
+                .all(|(k, f, t)| output(*k) && slot(*f) && t.iter().all(term))
+            && o.longer.iter().all(|r| {
+                output(r.out)
+                    && slot(r.scale)
+                    && r.start <= r.end
+                    && (r.end as usize) <= self.terms.len()
+                    && self.terms[r.start as usize..r.end as usize]
+                        .iter()
+                        .all(term)
+            })
     }
 }

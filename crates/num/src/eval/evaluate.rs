@@ -4,33 +4,57 @@
 
 use super::{Tape, Term, Trig, WIDTH};
 
-/// A buffer of slots an evaluation reads and writes: a fixed array of
-/// `N` (a power of two ≥ the tape's slots) indexed by masking, so the
-/// compiler needs no bounds check per operand, or a slice (checked).
+/// A buffer of slots an evaluation reads and writes: a fixed array on the
+/// stack, or a slice. Read and written unchecked: the operands and
+/// destinations of a tape are below its `slots` (checked once when it is
+/// compiled, [`Tape::indices_in_bounds`]) and [`Tape::run`] checks once per
+/// evaluation that the buffer has that many. A check or mask per operand
+/// was about 45 of the heavy top's 366 instructions in the tape.
 trait Slots {
-    fn get(&self, i: u32) -> f64;
-    fn set(&mut self, i: u32, v: f64);
+    fn len(&self) -> usize;
+    /// # Safety
+    /// `i < self.len()`.
+    unsafe fn get(&self, i: u32) -> f64;
+    /// # Safety
+    /// `i < self.len()`.
+    unsafe fn set(&mut self, i: u32, v: f64);
 }
 
 impl<const N: usize> Slots for [f64; N] {
     #[inline(always)]
-    fn get(&self, i: u32) -> f64 {
-        self[i as usize & (N - 1)]
+    fn len(&self) -> usize {
+        N
     }
     #[inline(always)]
-    fn set(&mut self, i: u32, v: f64) {
-        self[i as usize & (N - 1)] = v;
+    unsafe fn get(&self, i: u32) -> f64 {
+        debug_assert!((i as usize) < N);
+        // SAFETY: the caller's contract.
+        unsafe { *self.get_unchecked(i as usize) }
+    }
+    #[inline(always)]
+    unsafe fn set(&mut self, i: u32, v: f64) {
+        debug_assert!((i as usize) < N);
+        // SAFETY: the caller's contract.
+        unsafe { *self.get_unchecked_mut(i as usize) = v }
     }
 }
 
 impl Slots for [f64] {
     #[inline(always)]
-    fn get(&self, i: u32) -> f64 {
-        self[i as usize]
+    fn len(&self) -> usize {
+        <[f64]>::len(self)
     }
     #[inline(always)]
-    fn set(&mut self, i: u32, v: f64) {
-        self[i as usize] = v;
+    unsafe fn get(&self, i: u32) -> f64 {
+        debug_assert!((i as usize) < self.len());
+        // SAFETY: the caller's contract.
+        unsafe { *self.get_unchecked(i as usize) }
+    }
+    #[inline(always)]
+    unsafe fn set(&mut self, i: u32, v: f64) {
+        debug_assert!((i as usize) < self.len());
+        // SAFETY: the caller's contract.
+        unsafe { *self.get_unchecked_mut(i as usize) = v }
     }
 }
 
@@ -147,40 +171,67 @@ impl Tape {
     }
 
     /// The planned inputs from `x`.
+    ///
+    /// # Panics
+    /// When `s` has fewer than the tape's slots, or `x` is shorter than a
+    /// planned component.
     #[inline(always)]
     fn gather_into<S: Slots + ?Sized>(&self, s: &mut S, x: &[f64]) {
-        for &(slot, i) in &self.gather.copies {
-            s.set(slot, x[i as usize]);
-        }
-        for t in &self.gather.trig {
-            match *t {
-                Trig::Both { i, sin, cos } => {
-                    let (a, b) = x[i as usize].sin_cos();
-                    s.set(sin, a);
-                    s.set(cos, b);
+        let g = &self.gather;
+        assert!(s.len() >= self.slots, "a buffer of the tape's slots");
+        assert!(
+            x.len() >= g.components,
+            "a state of every planned component"
+        );
+        // SAFETY: a planned slot is an input's, below the tape's slots, and
+        // `s` has them; a planned component is below `g.components`, and
+        // `x` has them (both checked above).
+        unsafe {
+            let x = |i: u32| *x.get_unchecked(i as usize);
+            for &(slot, i) in &g.copies {
+                s.set(slot, x(i));
+            }
+            for t in &g.trig {
+                match *t {
+                    Trig::Both { i, sin, cos } => {
+                        let (a, b) = x(i).sin_cos();
+                        s.set(sin, a);
+                        s.set(cos, b);
+                    }
+                    Trig::Sin { i, slot } => s.set(slot, x(i).sin()),
+                    Trig::Cos { i, slot } => s.set(slot, x(i).cos()),
                 }
-                Trig::Sin { i, slot } => s.set(slot, x[i as usize].sin()),
-                Trig::Cos { i, slot } => s.set(slot, x[i as usize].cos()),
             }
         }
     }
 
     /// The instructions, then each output's sum, on `s` (inputs filled).
+    ///
+    /// # Panics
+    /// When `s` has fewer than the tape's slots, or `out.len() != outputs()`.
     #[inline(always)]
     fn run<const ABS: bool, S: Slots + ?Sized>(&self, s: &mut S, out: &mut [f64]) {
         assert_eq!(out.len(), self.outputs, "one output per polynomial");
-        s.set(self.atoms.len() as u32, 1.0);
-        for &(dst, src) in &self.ops.recips {
-            s.set(dst, 1.0 / s.get(src));
-        }
-        for &[dst, a, b] in &self.ops.muls {
-            s.set(dst, s.get(a) * s.get(b));
-        }
-        match self.width {
-            1 => self.sum_terms::<ABS, 1, S>(s, out),
-            2 => self.sum_terms::<ABS, 2, S>(s, out),
-            3 => self.sum_terms::<ABS, 3, S>(s, out),
-            _ => self.sum_terms::<ABS, WIDTH, S>(s, out),
+        assert!(s.len() >= self.slots, "a buffer of the tape's slots");
+        // SAFETY: every operand and destination of an instruction, and the
+        // slot of 1, is below the tape's slots (`indices_in_bounds`, checked
+        // when compiled), and `s` has them (checked above); so are the
+        // term's and scale's slots and the output indices `sum_terms` reads
+        // and writes, and `out` has the tape's outputs.
+        unsafe {
+            s.set(self.atoms.len() as u32, 1.0);
+            for &(dst, src) in &self.ops.recips {
+                s.set(dst, 1.0 / s.get(src));
+            }
+            for &[dst, a, b] in &self.ops.muls {
+                s.set(dst, s.get(a) * s.get(b));
+            }
+            match self.width {
+                1 => self.sum_terms::<ABS, 1, S>(s, out),
+                2 => self.sum_terms::<ABS, 2, S>(s, out),
+                3 => self.sum_terms::<ABS, 3, S>(s, out),
+                _ => self.sum_terms::<ABS, WIDTH, S>(s, out),
+            }
         }
         for &(k, j) in &self.aliases {
             out[k] = out[j];
@@ -193,20 +244,28 @@ impl Tape {
     /// multiplied by the output's common factors. A sum of one or two terms
     /// is added plainly: `x + e` of TwoSum rounds back to `x`, so the bits
     /// are the same.
+    ///
+    /// # Safety
+    /// `s` has at least the tape's slots, and `out` its outputs.
     #[inline(always)]
-    fn sum_terms<const ABS: bool, const W: usize, S: Slots + ?Sized>(
+    unsafe fn sum_terms<const ABS: bool, const W: usize, S: Slots + ?Sized>(
         &self,
         s: &S,
         out: &mut [f64],
     ) {
+        // SAFETY: the slots of a term's factors and of a scale are below the
+        // tape's slots, and an output's index below its outputs
+        // (`indices_in_bounds`); `s` and `out` have them (the contract).
+        let get = |i: u32| unsafe { s.get(i) };
+        let mut put = |k: u32, v: f64| unsafe { *out.get_unchecked_mut(k as usize) = v };
         let term = |t: &Term| {
             let mut v = t.coef;
             for &f in &t.factors[..W] {
-                v *= s.get(f);
+                v *= get(f);
             }
             if ABS { v.abs() } else { v }
         };
-        let scale = |k: u32| if ABS { s.get(k).abs() } else { s.get(k) };
+        let scale = |k: u32| if ABS { get(k).abs() } else { get(k) };
         // TwoSum: `sum + v` and its exact error added to `comp`.
         let add = |(sum, comp): (f64, f64), v: f64| {
             let x = sum + v;
@@ -215,25 +274,25 @@ impl Tape {
         };
         let o = &self.sums;
         for &k in &o.zeros {
-            out[k as usize] = 0.0;
+            put(k, 0.0);
         }
         // `+ 0.0` as the compensated sum's last step adds it: −0 → +0.
         for &(k, c, f) in &o.ones {
             let c = if ABS { c.abs() } else { c };
-            out[k as usize] = c * scale(f) + 0.0;
+            put(k, c * scale(f) + 0.0);
         }
         for (k, c, [t, u]) in &o.twos {
-            out[*k as usize] = (term(t) + term(u)) * scale(*c) + 0.0;
+            put(*k, (term(t) + term(u)) * scale(*c) + 0.0);
         }
         for (k, c, [t, u, v]) in &o.threes {
             let (sum, comp) = add(add((term(t), 0.0), term(u)), term(v));
-            out[*k as usize] = (sum + comp) * scale(*c) + 0.0;
+            put(*k, (sum + comp) * scale(*c) + 0.0);
         }
         for r in &o.longer {
             let terms = &self.terms[r.start as usize..r.end as usize];
             if let [t, rest @ ..] = terms {
                 let (sum, comp) = rest.iter().fold((term(t), 0.0), |acc, u| add(acc, term(u)));
-                out[r.out as usize] = (sum + comp) * scale(r.scale) + 0.0;
+                put(r.out, (sum + comp) * scale(r.scale) + 0.0);
             }
         }
     }
