@@ -270,8 +270,34 @@ impl PrintRanks {
         terms: &'t [(Monomial, Rational)],
         derivative_first: bool,
     ) -> Vec<PrintTerm<'t>> {
+        self.sort_with(terms, derivative_first, true)
+    }
+
+    /// [`PrintRanks::sort`] without each term's factors in print order
+    /// (every factor list empty): the order alone, for a caller that
+    /// writes few of the terms itself and finds their factors with
+    /// [`PrintRanks::sorted`] (a presented bracket whose terms mostly go
+    /// into sub-brackets that sort their own).
+    pub(crate) fn sort_unfactored<'t>(
+        &self,
+        terms: &'t [(Monomial, Rational)],
+        derivative_first: bool,
+    ) -> Vec<PrintTerm<'t>> {
+        self.sort_with(terms, derivative_first, false)
+    }
+
+    fn sort_with<'t>(
+        &self,
+        terms: &'t [(Monomial, Rational)],
+        derivative_first: bool,
+        factors: bool,
+    ) -> Vec<PrintTerm<'t>> {
         if !terms.iter().all(|t| self.covers(&t.0)) {
-            return PrintRanks::of(terms.iter().map(|t| &t.0)).sort(terms, derivative_first);
+            return PrintRanks::of(terms.iter().map(|t| &t.0)).sort_with(
+                terms,
+                derivative_first,
+                factors,
+            );
         }
         // Every term's key in one flat array (its slice `start..end`), so
         // that no key is allocated on its own.
@@ -296,7 +322,12 @@ impl PrintRanks {
             .iter()
             .map(|k| {
                 let i = k.2 as usize;
-                (self.factors_of(&key(k)[1..]), &terms[i].0, &terms[i].1)
+                let fs = if factors {
+                    self.factors_of(&key(k)[1..])
+                } else {
+                    SmallVec::new()
+                };
+                (fs, &terms[i].0, &terms[i].1)
             })
             .collect()
     }

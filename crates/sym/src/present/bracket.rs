@@ -14,6 +14,7 @@ use smallvec::SmallVec;
 use super::constants::constants_group;
 use super::known::{factor_by, known_factor_node};
 use super::order::{constant_next, constants_of_one_family, conventional, leading_constant};
+use super::timed::{self, Classes};
 use super::{Context, PLAIN_ABOVE};
 use crate::atom::{Atom, AtomKind};
 use crate::expr::{Expr, Id, Node, PrintTerm};
@@ -49,7 +50,10 @@ fn general_group(
 ) -> Id {
     let known = &cx.pres.factors[..];
     let order = &cx.pres.constant_order[..];
-    let mut terms = cx.ranks.print.sort(terms, true);
+    // The order only: most terms of a large bracket are written inside a
+    // shared bracket of constants, which sorts its own (`bracket_sum`
+    // finds the factors of the terms it writes).
+    let mut terms = cx.ranks.print.sort_unfactored(terms, true);
     if ratios && terms.len() == 1 {
         let m = key.mul(terms[0].1);
         let mut f: SmallVec<[(Atom, i32); 16]> = cx.ranks.print.sorted(&m).into_iter().collect();
@@ -258,40 +262,64 @@ fn bracket_sum(
             }
         })
         .collect();
-    // The part that follows a bracket (rates, sin and cos, constant
-    // rates named by Greek letters: J s + (C − A) Ω).
-    let timed: Vec<Monomial> = if big {
-        Vec::new()
-    } else {
-        parts
+    // Parts that are products of sines and cosines only (the bracket of
+    // like terms, I′ φ̇ (1 + cos² θ)) are each their own time-dependent
+    // part: distinct, so none is shared; none is a term of constants, so
+    // none shares a coefficient; nothing is left once sin and cos are
+    // out, so none is a like term. No maps are built for them.
+    let simple = big
+        || parts
             .iter()
-            .map(|(m, _)| m.split(|a| !leading_constant(a)).0)
-            .collect()
+            .all(|(m, _)| m.factors().iter().all(|f| is_trig(f.0)));
+    // The part that follows a bracket (rates, sin and cos, constant
+    // rates named by Greek letters: J s + (C − A) Ω), as a class of the
+    // parts that share it (present/timed.rs; none when `simple`).
+    let lead = |a: Atom| cx.ranks.leads(a);
+    let classes = if simple {
+        Classes::none()
+    } else {
+        Classes::of(&parts, &lead)
     };
-    // Most parts share with none: the parts of each time-dependent part
-    // are counted first, and only those of a part shared by two or more
-    // are divided and kept.
-    let mut count: FxHashMap<&Monomial, u32> = FxHashMap::default();
-    for t in &timed {
-        if !t.is_one() {
-            *count.entry(t).or_default() += 1;
+    // Most parts share with none: only the parts of a time-dependent part
+    // shared by two or more are divided and kept, under that part (built
+    // once, from the first of them).
+    let mut slot: Vec<u32> = vec![timed::NONE; classes.size.len()];
+    let mut shared: Vec<(Monomial, Vec<(Monomial, Rational)>)> = Vec::new();
+    for (k, (m, c)) in parts.iter().enumerate() {
+        if k < classes.of.len() && classes.shared(k) {
+            let class = classes.of[k] as usize;
+            let (t, rest) = timed::split(m, &lead);
+            if slot[class] == timed::NONE {
+                slot[class] = shared.len() as u32;
+                shared.push((t, Vec::new()));
+            }
+            shared[slot[class] as usize].1.push((rest, c.clone()));
         }
     }
-    let mut shared: FxHashMap<&Monomial, Vec<(Monomial, Rational)>> = FxHashMap::default();
-    for ((m, c), t) in parts.iter().zip(&timed) {
-        if count.get(t).is_some_and(|&n| n > 1) {
-            shared.entry(t).or_default().push((m.div(t), c.clone()));
-        }
-    }
-    drop(count);
     // A coefficient shared by constants (a A_x − a B_x): one term,
     // a (A_x − B_x); the first of them stands for all.
-    let linear = if big {
+    let linear = if simple {
         Vec::new()
     } else {
-        linear_groups(&parts, &timed, &shared, &cx.pres.unknowns)
+        let unknowns = &cx.pres.unknowns[..];
+        // Whether each part is a term of constants, or of unknowns to the
+        // first power that no other part shares.
+        let constants_and_unknowns: Vec<bool> = parts
+            .iter()
+            .enumerate()
+            .map(|(k, (m, _))| {
+                classes.of[k] == timed::NONE
+                    || (!unknowns.is_empty()
+                        && !classes.shared(k)
+                        && m.factors()
+                            .iter()
+                            .filter(|f| !lead(f.0))
+                            .all(|&(a, x)| x == 1 && unknowns.contains(&a)))
+            })
+            .collect();
+        linear_groups(&parts, &constants_and_unknowns, unknowns)
     };
-    let mut linear_of: Vec<Option<(usize, bool)>> = vec![None; timed.len()];
+    let mut linear_of: Vec<Option<(usize, bool)>> = vec![None; classes.of.len()];
     for (g, (_, members)) in linear.iter().enumerate() {
         for (j, f) in members.iter().enumerate() {
             linear_of[f.0] = Some((g, j == 0));
@@ -305,14 +333,15 @@ fn bracket_sum(
     // (Each part is split once; only the rests of two parts or more are
     // kept, with the sin and cos of each.)
     let mut alike: FxHashMap<Monomial, Vec<(Monomial, Rational)>> = FxHashMap::default();
-    let mut alike_of: Vec<Option<Monomial>> = vec![None; timed.len()];
-    let any_trig = parts
-        .iter()
-        .any(|(m, _)| m.factors().iter().any(|f| is_trig(f.0)));
+    let mut alike_of: Vec<Option<Monomial>> = vec![None; classes.of.len()];
+    let any_trig = !simple
+        && parts
+            .iter()
+            .any(|(m, _)| m.factors().iter().any(|f| is_trig(f.0)));
     if any_trig {
         let mut splits: Vec<Option<(Monomial, Monomial)>> = Vec::with_capacity(parts.len());
-        for (k, ((m, _), t)) in parts.iter().zip(&timed).enumerate() {
-            let split = if shared.contains_key(t) || linear_of[k].is_some() {
+        for (k, (m, _)) in parts.iter().enumerate() {
+            let split = if classes.shared(k) || linear_of[k].is_some() {
                 None
             } else {
                 Some(m.split(is_trig)).filter(|(_, rest)| !rest.is_one())
@@ -350,11 +379,11 @@ fn bracket_sum(
     // (node, negative, highest derivative order, has a part that
     // follows a bracket)
     let mut nodes: Vec<(Id, bool, u32, bool)> = Vec::with_capacity(terms.len());
-    for (k, ((sorted, _, _), (m, c))) in terms.iter().zip(&parts).enumerate() {
+    for (k, ((_, term, _), (m, c))) in terms.iter().zip(&parts).enumerate() {
         let top = m.factors().iter().map(|f| f.0.order()).max().unwrap_or(0);
-        let follows = match timed.get(k) {
+        let follows = match classes.of.get(k) {
             None => m.factors().iter().any(|&(a, _)| !leading_constant(a)),
-            Some(t) => {
+            Some(&class) => {
                 if let Some((g, first)) = linear_of[k] {
                     if first {
                         let (x, members) = &linear[g];
@@ -379,8 +408,9 @@ fn bracket_sum(
                     }
                     continue;
                 }
-                if let Some(sub) = shared.get_mut(t) {
+                if classes.shared(k) {
                     // The first term of the shared part stands for all of them.
+                    let (t, sub) = &mut shared[slot[class as usize] as usize];
                     if !sub.is_empty() {
                         let sub = std::mem::take(sub);
                         let id = group_node(e, t, &sub, cx, ratios);
@@ -388,13 +418,13 @@ fn bracket_sum(
                     }
                     continue;
                 }
-                !t.is_one()
+                class != timed::NONE
             }
         };
         let mut f: SmallVec<[(Atom, i32); 16]> = if plain {
-            sorted.iter().copied().collect()
+            cx.ranks.print.sorted(term).into_iter().collect()
         } else if common_keeps_order {
-            quotient_in_order(sorted, common)
+            quotient_in_order(&cx.ranks.print.sorted(term), common)
         } else {
             cx.ranks.print.sorted(m).into_iter().collect()
         };
@@ -522,16 +552,13 @@ pub(super) fn lead_positive_inside(terms: &mut Vec<PrintTerm<'_>>) -> bool {
 #[allow(clippy::type_complexity)]
 fn linear_groups(
     parts: &[(Cow<'_, Monomial>, Rational)],
-    timed: &[Monomial],
-    shared: &FxHashMap<&Monomial, Vec<(Monomial, Rational)>>,
+    constants_and_unknowns: &[bool],
     unknowns: &[Atom],
 ) -> Vec<(Monomial, Vec<(usize, Monomial, Rational)>)> {
     let unknown = |a: Atom| unknowns.contains(&a);
     let mut by_rest: BTreeMap<Monomial, Vec<(usize, Monomial, Rational)>> = BTreeMap::new();
-    for (k, ((m, c), t)) in parts.iter().zip(timed).enumerate() {
-        let constants_and_unknowns = t.is_one()
-            || (t.factors().iter().all(|&(a, x)| x == 1 && unknown(a)) && !shared.contains_key(t));
-        if !constants_and_unknowns || m.factors().len() < 2 {
+    for (k, ((m, c), &candidate)) in parts.iter().zip(constants_and_unknowns).enumerate() {
+        if !candidate || m.factors().len() < 2 {
             continue;
         }
         for &(u, x) in m.factors() {

@@ -95,6 +95,16 @@ impl Ranks {
             .filter(|&r| r != u32::MAX)
     }
 
+    /// [`leading_constant`] of `a`, read from the table when `a` is
+    /// among this result's atoms.
+    pub(super) fn leads(&self, a: Atom) -> bool {
+        if self.print.rank(a).is_some() {
+            self.conv(a).is_some()
+        } else {
+            leading_constant(a)
+        }
+    }
+
     /// Whether `a` is a [`leading_constant`] among this result's atoms.
     pub(super) fn is_leading_constant(&self, a: Atom) -> bool {
         self.conv(a).is_some()

@@ -476,7 +476,8 @@ fn remove_indices(ts: &mut Terms, hashes: &mut Vec<u64>, indices: &[usize]) -> V
 /// Adds the coefficients of equal monomials into the first of them and
 /// drops zero coefficients, keeping the order of first appearance.
 fn add_equal_monomials(ts: &mut Terms) {
-    let mut first: FxHashMap<&Monomial, usize> = FxHashMap::default();
+    let mut first: FxHashMap<&Monomial, usize> =
+        FxHashMap::with_capacity_and_hasher(ts.len(), Default::default());
     let mut moves: Vec<(usize, usize)> = Vec::new();
     for (i, (m, _)) in ts.iter().enumerate() {
         match first.get(m) {
