@@ -24,6 +24,7 @@ pub use super::jet::{
 use super::partials::KaneWorlds;
 pub(crate) use super::placed::CloudMoments;
 pub use super::placed::{Particle, Particles, Placed};
+use super::prepared::Prepared;
 use crate::bind::Values;
 
 /// A meaning measured at other values of the symbols: its components (N's
@@ -76,39 +77,53 @@ pub struct World<'d> {
 
 /// The jet of a polynomial's value (`p, ṗ, p̈, p⃛`) under `values`.
 pub(crate) fn poly_jet(p: &Poly, values: &Values) -> Result<[f64; ORDERS], VerifyError> {
-    let derivatives = derivatives(p);
+    let rates = rates(p, ORDERS);
+    let at = rates.prepared.resolve(values);
     let mut out = [0.0; ORDERS];
-    for (o, q) in out.iter_mut().zip(derivatives.iter()) {
-        *o = values.eval(q)?.0;
+    for (k, o) in out.iter_mut().enumerate() {
+        *o = rates.prepared.eval(k, &at)?.0;
     }
     Ok(out)
 }
 
-/// `p` and its first `ORDERS − 1` time derivatives. A world is built for
-/// every value a linearisation or a sign measures (hundreds per body), and
-/// always from the same few polynomials of the file (Ω of a frame, where a
-/// point sits): each is differentiated once per thread and looked up by
-/// address afterwards, the hit confirmed by equality (an address can be
-/// reused by another derivation's polynomial once the first is dropped).
-fn derivatives(p: &Poly) -> std::rc::Rc<[Poly; ORDERS]> {
-    type Known = HashMap<usize, (Poly, std::rc::Rc<[Poly; ORDERS]>)>;
+/// A polynomial and its first time derivatives ([`rates`]).
+pub(crate) struct Rates {
+    /// `p, ṗ, p̈, …`
+    pub(crate) polys: Vec<Poly>,
+    /// The same, prepared: a world reads each atom once for the whole jet
+    /// ([`Prepared`], the bits of [`Values::eval`]).
+    pub(crate) prepared: Prepared,
+}
+
+/// `p` and its time derivatives, at least `count` of them in all. A world
+/// is built for every value a linearisation or a sign measures (hundreds
+/// per body), and the `[motion]` rules are applied at every draw, step and
+/// state measured, always from the same few polynomials of the file (Ω of
+/// a frame, where a point sits, a rule's value): each is differentiated
+/// once per thread and looked up by address afterwards, the hit confirmed
+/// by equality (an address can be reused by another derivation's
+/// polynomial once the first is dropped).
+pub(crate) fn rates(p: &Poly, count: usize) -> Rc<Rates> {
+    type Known = HashMap<usize, (Poly, Rc<Rates>)>;
     thread_local! {
-        static KNOWN: std::cell::RefCell<Known> = Default::default();
+        static KNOWN: RefCell<Known> = Default::default();
     }
     let key = p as *const Poly as usize;
     KNOWN.with(|k| {
         let mut k = k.borrow_mut();
-        if let Some((q, d)) = k.get(&key)
-            && q == p
-        {
-            return d.clone();
+        let mut d = match k.get(&key) {
+            Some((q, d)) if q == p && d.polys.len() >= count => return d.clone(),
+            Some((q, d)) if q == p => d.polys.clone(),
+            _ => vec![p.clone()],
+        };
+        while d.len() < count {
+            let next = d[d.len() - 1].dt();
+            d.push(next);
         }
-        let mut d: [Poly; ORDERS] = std::array::from_fn(|_| Poly::zero());
-        d[0] = p.clone();
-        for n in 1..ORDERS {
-            d[n] = d[n - 1].dt();
-        }
-        let d = std::rc::Rc::new(d);
+        let d = Rc::new(Rates {
+            prepared: Prepared::new(&d),
+            polys: d,
+        });
         // Bounded: a long-running process verifying many files starts over.
         if k.len() >= 4096 {
             k.clear();
