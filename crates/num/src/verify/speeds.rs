@@ -147,8 +147,13 @@ fn kane_step(d: &Derivation) -> Option<KaneStep> {
 }
 
 impl Speeds {
-    /// The derivation's speeds, or `None` without `[kinematics]`.
-    pub(crate) fn of(d: &Derivation) -> Option<Speeds> {
+    /// The derivation's speeds, or `None` without `[kinematics]`; ready to
+    /// [`Speeds::fill`] `orders` orders (at most [`ORDERS`]). The rows'
+    /// rates above are neither differentiated nor their coefficients taken
+    /// (the linearised bicycle's fourth-order coefficients were a fifth of
+    /// its verification, filled to two orders).
+    pub(crate) fn of(d: &Derivation, orders: usize) -> Option<Speeds> {
+        let orders = orders.clamp(1, ORDERS);
         let kinematics = d.kinematic_equations().to_vec();
         if kinematics.is_empty() {
             return None;
@@ -215,7 +220,7 @@ impl Speeds {
                 .map(|(_, f)| f.clone())
                 .collect::<Vec<_>>(),
         ];
-        for n in 1..ORDERS {
+        for n in 1..orders {
             all_rows.push(all_rows[n - 1].iter().map(Poly::dt).collect());
             rates.push(rates[n - 1].iter().map(Poly::dt).collect());
         }
@@ -262,7 +267,8 @@ impl Speeds {
         values: &mut Values,
         orders: usize,
     ) -> Result<Option<()>, VerifyError> {
-        for n in 0..orders.min(ORDERS) {
+        debug_assert!(orders <= self.rows.len(), "speeds made for fewer orders");
+        for n in 0..orders.min(self.rows.len()) {
             if !self.dependent.is_empty() && self.solve(d, values, n as u32)?.is_none() {
                 return Ok(None);
             }
@@ -381,14 +387,17 @@ impl Consistent {
                 }
             }
         }
-        let speeds = Speeds::of(d);
+        // At least two (`fill_orders`): a linearisation's states and a
+        // conserved step's solved rates are filled to two.
+        let orders = fill_orders(d);
+        let speeds = Speeds::of(d, orders);
         Consistent {
             velocity_reads: speeds
                 .as_ref()
                 .map(|s| super::partials::velocity_reads(d, s))
                 .unwrap_or_default(),
             speeds,
-            orders: fill_orders(d),
+            orders,
             by_sin,
             by_cos,
         }
@@ -518,7 +527,7 @@ mod tests {
     fn disk_rolls_along_its_heading_at_the_drawn_speeds() {
         let text = include_str!("../../../../derivations/disk-rolling-on-plane.toml");
         let d = load_str("disk-rolling-on-plane.toml", text).expect("the disk derives");
-        let s = Speeds::of(&d).expect("the disk has speeds");
+        let s = Speeds::of(&d, ORDERS).expect("the disk has speeds");
         assert_eq!(s.dependent, [Atom::time("u_4", 0), Atom::time("u_5", 0)]);
         let mut rng = ChaCha8Rng::seed_from_u64(24);
         for _ in 0..20 {
