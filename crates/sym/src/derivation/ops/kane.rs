@@ -178,14 +178,19 @@ fn load_terms(
     let Some(lin) = lin else {
         return Ok(us
             .iter()
-            .map(|&u| v.map(|p| coefficient(p, u)).dot(&f))
+            .map(|&u| dot(&v.map(|p| coefficient(p, u)), &f))
             .collect());
     };
     let v = lin.vec(&v, Linear::positional)?;
     let f = lin.vec(&f, Linear::full)?;
     us.iter()
-        .map(|&u| lin.full(&v.map(|p| coefficient(p, u)).dot(&f)))
+        .map(|&u| lin.full(&dot(&v.map(|p| coefficient(p, u)), &f)))
         .collect()
+}
+
+/// `a · b` accumulated in one sum ([`Poly::sum_of_products`]).
+fn dot(a: &Vec3, b: &Vec3) -> Poly {
+    Poly::sum_of_products(a.0.iter().zip(&b.0))
 }
 
 /// An error when a declared speed that is neither listed nor dependent
@@ -324,7 +329,8 @@ fn body_terms(
         .map(|&u| {
             let vr: Vec3 = vg.map(|p| coefficient(p, u));
             let wr: Vec3 = w.map(|p| coefficient(p, u));
-            let e = &vr.dot(&force) + &wr.dot(&hdot);
+            let e =
+                Poly::sum_of_products(vr.0.iter().zip(&force.0).chain(wr.0.iter().zip(&hdot.0)));
             match lin {
                 Some(lin) => lin.full(&e),
                 None => Ok(e),
