@@ -58,6 +58,17 @@ impl Slots for [f64] {
     }
 }
 
+/// Marks a loop of a tape's evaluation as one LLVM must not unroll: an
+/// empty optimisation barrier (`black_box` of `()`, no instruction) in its
+/// body. The loops of a small tape (the state's copies, the reciprocals,
+/// the products, the outputs of one term) run one to three times, and
+/// unrolled by two or four they paid a set-up and a remainder test of ~12
+/// instructions each per evaluation.
+#[inline(always)]
+fn once_per_iteration() {
+    std::hint::black_box(());
+}
+
 /// The largest tape [`Tape::eval_at`] evaluates in a buffer on the
 /// stack (32 KB); a larger one uses a buffer kept per thread.
 const STACK_SLOTS: usize = 4096;
@@ -190,6 +201,7 @@ impl Tape {
             let x = |i: u32| *x.get_unchecked(i as usize);
             for &(slot, i) in &g.copies {
                 s.set(slot, x(i));
+                once_per_iteration();
             }
             for t in &g.trig {
                 match *t {
@@ -222,9 +234,11 @@ impl Tape {
             s.set(self.atoms.len() as u32, 1.0);
             for &(dst, src) in &self.ops.recips {
                 s.set(dst, 1.0 / s.get(src));
+                once_per_iteration();
             }
             for &[dst, a, b] in &self.ops.muls {
                 s.set(dst, s.get(a) * s.get(b));
+                once_per_iteration();
             }
             match self.width {
                 1 => self.sum_terms::<ABS, 1, S>(s, out),
@@ -275,11 +289,13 @@ impl Tape {
         let o = &self.sums;
         for &k in &o.zeros {
             put(k, 0.0);
+            once_per_iteration();
         }
         // `+ 0.0` as the compensated sum's last step adds it: −0 → +0.
         for &(k, c, f) in &o.ones {
             let c = if ABS { c.abs() } else { c };
             put(k, c * scale(f) + 0.0);
+            once_per_iteration();
         }
         for (k, c, [t, u]) in &o.twos {
             put(*k, (term(t) + term(u)) * scale(*c) + 0.0);
