@@ -116,59 +116,54 @@ pub(super) fn equation_lines(lhs: &str, rhs: &Expr, width: f32) -> Vec<String> {
         return vec![format!("{lhs} &= {printed}")];
     }
     // Each piece is measured once; a line's width is the running sum of
-    // its pieces' (see [`width_units`]), never re-measured.
+    // its pieces' (see [`width_units`]), never re-measured. Each line is
+    // written once, its lead first (`lhs &= `, `&\quad `), into a string
+    // as long as the line before it: a chain-8 result has 10⁵ lines.
     let budget_units = budget * 100.0;
     const REOPEN: &str = r"\left. ";
     let mut lines: Vec<String> = Vec::new();
-    let mut current = String::new();
+    let mut current = String::with_capacity(lhs.len() + 64);
+    current.push_str(lhs);
+    current.push_str(" &= ");
+    // Where the line's text starts, after its lead.
+    let mut text_start = current.len();
     let mut current_units = 0u32;
     let pieces = print::measured_pieces(rhs, &print::Latex, &width_units, &|units| {
         units as f32 / 100.0 > budget
     });
     for (piece, depth, units) in pieces {
-        if !current.is_empty() && (current_units + units) as f32 > budget_units {
-            let mut line = std::mem::take(&mut current);
-            current_units = 0;
+        if current.len() > text_start && (current_units + units) as f32 > budget_units {
+            let next = String::with_capacity(current.len() + 16);
+            let mut line = std::mem::replace(&mut current, next);
+            current.push_str(r"&\quad ");
             if depth > 0 {
                 for _ in 0..depth {
                     line.push_str(r" \right.");
+                }
+                text_start = current.len();
+                for _ in 0..depth {
                     current.push_str(REOPEN);
                 }
                 // `{}` keeps the sign that follows binary.
                 current.push_str("{} ");
-                current_units = width_units(&current);
+                current_units = width_units(&current[text_start..]);
+            } else {
+                if piece.starts_with("+ ") || piece.starts_with("- ") {
+                    current.push_str("{} ");
+                }
+                text_start = current.len();
+                current_units = 0;
             }
             lines.push(line);
         }
-        if !current.is_empty() && !current.ends_with(' ') {
+        if current.len() > text_start && !current.ends_with(' ') {
             current.push(' ');
         }
         current.push_str(&piece);
         current_units += units;
     }
     lines.push(current);
-    // Each line is its lead and its text, copied once (a chain-8 result
-    // has 10⁵ lines: `format!` was 4 % of its time).
     lines
-        .into_iter()
-        .enumerate()
-        .map(|(k, l)| {
-            let lead: &[&str] = if k == 0 {
-                &[lhs, " &= "]
-            } else if l.starts_with("+ ") || l.starts_with("- ") {
-                &[r"&\quad ", "{} "]
-            } else {
-                &[r"&\quad "]
-            };
-            let mut line =
-                String::with_capacity(lead.iter().map(|s| s.len()).sum::<usize>() + l.len());
-            for s in lead {
-                line.push_str(s);
-            }
-            line.push_str(&l);
-            line
-        })
-        .collect()
 }
 
 // ------------------------------------------------------------- pieces --
