@@ -111,59 +111,76 @@ fn printed_if_fits(rhs: &Expr, budget: f32) -> Option<String> {
 /// own. A break inside d brackets closes the line with d `\right.` and
 /// opens the next with d `\left.`, so that every line is balanced.
 pub(super) fn equation_lines(lhs: &str, rhs: &Expr, width: f32) -> Vec<String> {
+    let mut text = String::new();
+    let mut starts = vec![0];
+    write_equation_lines(&mut text, lhs, rhs, width, "", &mut starts);
+    starts.push(text.len());
+    starts
+        .windows(2)
+        .map(|w| text[w[0]..w[1]].to_owned())
+        .collect()
+}
+
+/// [`equation_lines`] appended to `o`, `sep` between two lines, each line
+/// written there once, its lead first (`lhs &= `, `&\quad `): a chain-8
+/// result has 10⁵ lines, which are neither strings of their own nor
+/// copied. The position in `o` where each line after the first starts
+/// (after its `sep`) is pushed to `starts`.
+fn write_equation_lines(
+    o: &mut String,
+    lhs: &str,
+    rhs: &Expr,
+    width: f32,
+    sep: &str,
+    starts: &mut Vec<usize>,
+) {
     let budget = (width - math_width(lhs)).max(24.0);
+    o.push_str(lhs);
+    o.push_str(" &= ");
     if let Some(printed) = printed_if_fits(rhs, budget) {
-        return vec![format!("{lhs} &= {printed}")];
+        o.push_str(&printed);
+        return;
     }
     // Each piece is measured once; a line's width is the running sum of
-    // its pieces' (see [`width_units`]), never re-measured. Each line is
-    // written once, its lead first (`lhs &= `, `&\quad `), into a string
-    // as long as the line before it: a chain-8 result has 10⁵ lines.
+    // its pieces' (see [`width_units`]), never re-measured.
     let budget_units = budget * 100.0;
     const REOPEN: &str = r"\left. ";
-    let mut lines: Vec<String> = Vec::new();
-    let mut current = String::with_capacity(lhs.len() + 64);
-    current.push_str(lhs);
-    current.push_str(" &= ");
     // Where the line's text starts, after its lead.
-    let mut text_start = current.len();
-    let mut current_units = 0u32;
+    let mut text_start = o.len();
+    let mut units_so_far = 0u32;
     let pieces = print::measured_pieces(rhs, &print::Latex, &width_units, &|units| {
         units as f32 / 100.0 > budget
     });
-    for (piece, depth, units) in pieces {
-        if current.len() > text_start && (current_units + units) as f32 > budget_units {
-            let next = String::with_capacity(current.len() + 16);
-            let mut line = std::mem::replace(&mut current, next);
-            current.push_str(r"&\quad ");
+    for (piece, depth, units) in pieces.iter() {
+        if o.len() > text_start && (units_so_far + units) as f32 > budget_units {
+            for _ in 0..depth {
+                o.push_str(r" \right.");
+            }
+            o.push_str(sep);
+            starts.push(o.len());
+            o.push_str(r"&\quad ");
             if depth > 0 {
+                text_start = o.len();
                 for _ in 0..depth {
-                    line.push_str(r" \right.");
-                }
-                text_start = current.len();
-                for _ in 0..depth {
-                    current.push_str(REOPEN);
+                    o.push_str(REOPEN);
                 }
                 // `{}` keeps the sign that follows binary.
-                current.push_str("{} ");
-                current_units = width_units(&current[text_start..]);
+                o.push_str("{} ");
+                units_so_far = width_units(&o[text_start..]);
             } else {
                 if piece.starts_with("+ ") || piece.starts_with("- ") {
-                    current.push_str("{} ");
+                    o.push_str("{} ");
                 }
-                text_start = current.len();
-                current_units = 0;
+                text_start = o.len();
+                units_so_far = 0;
             }
-            lines.push(line);
         }
-        if current.len() > text_start && !current.ends_with(' ') {
-            current.push(' ');
+        if o.len() > text_start && !o.ends_with(' ') {
+            o.push(' ');
         }
-        current.push_str(&piece);
-        current_units += units;
+        o.push_str(piece);
+        units_so_far += units;
     }
-    lines.push(current);
-    lines
 }
 
 // ------------------------------------------------------------- pieces --
@@ -314,15 +331,14 @@ pub(super) fn named_list(s: &StepBlock) -> Option<(String, usize)> {
 ///
 /// [`Section::coefficients`]: crate::document::Section::coefficients
 pub(super) fn write_coefficient_lines(o: &mut String, s: &crate::document::Section, width: f32) {
-    let mut first = true;
-    for (e, _) in s.coefficients() {
-        for line in equation_lines(&e.lhs.latex(), &e.rhs, width) {
-            if !first {
-                o.push_str(" \\\\\n");
-            }
-            first = false;
-            o.push_str(&line);
+    const SEP: &str = " \\\\\n";
+    let mut starts = Vec::new();
+    for (k, (e, _)) in s.coefficients().into_iter().enumerate() {
+        if k > 0 {
+            o.push_str(SEP);
         }
+        starts.clear();
+        write_equation_lines(o, &e.lhs.latex(), &e.rhs, width, SEP, &mut starts);
     }
 }
 

@@ -44,9 +44,60 @@ pub fn break_pieces(
 ) -> Vec<(String, bool)> {
     let measure = |text: &str| u32::from(too_long(text));
     pieces(e, style, &measure, &|long| long != 0, false)
-        .into_iter()
-        .map(|(text, depth, _)| (text, depth > 0))
+        .iter()
+        .map(|(text, depth, _)| (text.to_owned(), depth > 0))
         .collect()
+}
+
+/// The pieces of a broken expression ([`measured_pieces`]): their texts
+/// one after another in one string, a space between two, and each
+/// piece's span in it, depth and measure. One string for all the pieces,
+/// not one per piece (a chain-8 result has 10⁵ pieces), and the pieces of
+/// a term joined back are one span, never copied.
+#[derive(Debug, Default)]
+pub struct Pieces {
+    text: String,
+    spans: Vec<Span>,
+}
+
+/// A piece of [`Pieces`]: its bytes `start..end` in the text, the number
+/// of brackets a break before it falls inside, and its measure.
+#[derive(Clone, Copy, Debug)]
+struct Span {
+    start: usize,
+    end: usize,
+    depth: usize,
+    measure: u32,
+}
+
+impl Pieces {
+    /// Each piece's text, depth and measure, in order.
+    pub fn iter(&self) -> impl Iterator<Item = (&str, usize, u32)> {
+        self.spans
+            .iter()
+            .map(|s| (&self.text[s.start..s.end], s.depth, s.measure))
+    }
+
+    /// The number of pieces.
+    pub fn len(&self) -> usize {
+        self.spans.len()
+    }
+
+    /// Whether there is no piece.
+    pub fn is_empty(&self) -> bool {
+        self.spans.is_empty()
+    }
+
+    /// Where the next piece's text starts: after a space when a piece is
+    /// before it. Returns the text's length before that space, to truncate
+    /// back to.
+    fn open(&mut self) -> (usize, usize) {
+        let mark = self.text.len();
+        if !self.spans.is_empty() {
+            self.text.push(' ');
+        }
+        (mark, self.text.len())
+    }
 }
 
 /// [`break_pieces`]' pieces with the number of brackets a break before
@@ -69,7 +120,7 @@ pub fn measured_pieces(
     style: &dyn Style,
     measure: &dyn Fn(&str) -> u32,
     too_long: &dyn Fn(u32) -> bool,
-) -> Vec<(String, usize, u32)> {
+) -> Pieces {
     pieces(e, style, measure, too_long, true)
 }
 
@@ -82,11 +133,20 @@ fn pieces(
     measure: &dyn Fn(&str) -> u32,
     too_long: &dyn Fn(u32) -> bool,
     additive: bool,
-) -> Vec<(String, usize, u32)> {
+) -> Pieces {
     if e.is_empty() {
         let zero = style.num(&Rational::ZERO);
-        let w = measure(&zero);
-        return vec![(zero, 0, w)];
+        let measure = measure(&zero);
+        let end = zero.len();
+        return Pieces {
+            text: zero,
+            spans: vec![Span {
+                start: 0,
+                end,
+                depth: 0,
+                measure,
+            }],
+        };
     }
     let cached = Cached::new(style, additive.then_some(measure));
     let splitter = Splitter {
@@ -98,7 +158,7 @@ fn pieces(
         scratch: Default::default(),
         lens: Default::default(),
     };
-    let mut out = Vec::new();
+    let mut out = Pieces::default();
     let mut lead = String::new();
     for (prefix, id, bracketed) in sum_terms(e, e.root(), &cached) {
         lead.clear();
@@ -167,9 +227,8 @@ struct Splitter<'a, 's> {
     /// Whether `measure` is additive: a piece's measure is then summed
     /// while it is written (`style.written`), not taken of the whole.
     additive: bool,
-    /// The buffer each piece is written into before it is copied out at
-    /// its length: one buffer for all pieces, grown once, where a string
-    /// per piece grew by doubling (a chain-8 result has 10⁵ pieces).
+    /// The buffer a bracket is written into to compare lengths
+    /// ([`Splitter::text_len`]).
     scratch: std::cell::Cell<String>,
     /// The text lengths of the brackets compared ([`Splitter::text_len`]).
     lens: std::cell::RefCell<rustc_hash::FxHashMap<Id, usize>>,
@@ -189,53 +248,72 @@ impl Splitter<'_, '_> {
         trail: &str,
         first: usize,
         inner: usize,
-        out: &mut Vec<(String, usize, u32)>,
+        out: &mut Pieces,
     ) {
         if self.additive && self.speculate(id, bracketed) {
             // Broken first, and joined back when the whole fits: a long
             // term is written once, not whole, then its bracket again to
-            // choose it, then piece by piece. The pieces joined by spaces
-            // are the whole term's text, and its measure their sum.
-            let start = out.len();
+            // choose it, then piece by piece. The pieces with the spaces
+            // between them are the whole term's text, and its measure
+            // their sum.
+            let start = out.spans.len();
             let split = self.split(id, lead, trail, first, inner, out);
             debug_assert!(split, "a speculated term has a bracket");
-            let w: u32 = out[start..].iter().map(|p| p.2).sum();
-            if !(self.too_long)(w) && out.len() > start + 1 {
-                let len = out[start..].iter().map(|p| p.0.len() + 1).sum::<usize>();
-                let mut text = String::with_capacity(len);
-                for (k, (piece, _, _)) in out.drain(start..).enumerate() {
-                    if k > 0 {
-                        text.push(' ');
-                    }
-                    text.push_str(&piece);
-                }
-                debug_assert_eq!(w, (self.measure)(&text), "a measure not additive: {text}");
-                out.push((text, first, w));
+            let w: u32 = out.spans[start..].iter().map(|p| p.measure).sum();
+            if !(self.too_long)(w) && out.spans.len() > start + 1 {
+                let whole = Span {
+                    start: out.spans[start].start,
+                    end: out.text.len(),
+                    depth: first,
+                    measure: w,
+                };
+                out.spans.truncate(start);
+                debug_assert_eq!(
+                    w,
+                    (self.measure)(&out.text[whole.start..whole.end]),
+                    "a measure not additive: {}",
+                    &out.text[whole.start..whole.end]
+                );
+                out.spans.push(whole);
             }
             return;
         }
-        let mut text = self.scratch.take();
-        text.clear();
+        let (mark, start) = out.open();
+        let text = &mut out.text;
         text.push_str(lead);
         self.style.written.set(0);
         if bracketed {
-            paren(self.e, id, self.style, &mut text);
+            paren(self.e, id, self.style, text);
         } else {
-            write(self.e, id, self.style, &mut text);
+            write(self.e, id, self.style, text);
         }
         text.push_str(trail);
         let w = if self.additive {
             let w = (self.measure)(lead) + self.style.written.get() + (self.measure)(trail);
-            debug_assert_eq!(w, (self.measure)(&text), "a measure not additive: {text}");
+            debug_assert_eq!(
+                w,
+                (self.measure)(&text[start..]),
+                "a measure not additive: {}",
+                &text[start..]
+            );
             w
         } else {
-            (self.measure)(&text)
+            (self.measure)(&text[start..])
         };
         // A term too long with no bracket to break inside is one piece.
-        if !((self.too_long)(w) && self.split(id, lead, trail, first, inner, out)) {
-            out.push((text.as_str().to_owned(), first, w));
+        let bracket = (self.too_long)(w).then(|| self.bracket(id)).flatten();
+        if let Some(bracket) = bracket {
+            out.text.truncate(mark);
+            self.split_at(bracket, lead, trail, first, inner, out);
+        } else {
+            let end = out.text.len();
+            out.spans.push(Span {
+                start,
+                end,
+                depth: first,
+                measure: w,
+            });
         }
-        self.scratch.set(text);
     }
 
     /// Whether the term at `id` is broken before it is measured: a product
@@ -267,40 +345,29 @@ impl Splitter<'_, '_> {
         trail: &str,
         first: usize,
         inner: usize,
-        out: &mut Vec<(String, usize, u32)>,
+        out: &mut Pieces,
     ) -> bool {
-        let (e, style) = (self.e, self.style);
-        let factors: &[Id] = match e.node(id) {
-            Node::Mul(factors) => factors,
-            // A bracketed sum alone (after a minus sign: −(a + b + …)).
-            Node::Add(_) => std::slice::from_ref(&id),
-            _ => return false,
-        };
-        let is_den = |f: &Id| matches!(e.node(*f), Node::Pow(_, k) if *k < 0);
-        let (dens, factors): (Vec<Id>, Vec<Id>) = factors.iter().partition(|f| is_den(f));
-        // The longest bracket: the one a break helps most (the first of
-        // equals). A term with one bracket (most) is not written to
-        // choose it; each bracket's length is written once per node.
-        let brackets = || {
-            factors
-                .iter()
-                .enumerate()
-                .filter(|(_, f)| matches!(e.node(**f), Node::Add(_)))
-        };
-        let j = match brackets().count() {
-            0 => return false,
-            1 => brackets().next().map_or(0, |(k, _)| k),
-            _ => {
-                let mut best: Option<(usize, usize)> = None;
-                for (k, &f) in brackets() {
-                    let n = self.text_len(f);
-                    if best.is_none_or(|(_, m)| n > m) {
-                        best = Some((k, n));
-                    }
-                }
-                best.map_or(0, |(k, _)| k)
+        match self.bracket(id) {
+            Some(bracket) => {
+                self.split_at(bracket, lead, trail, first, inner, out);
+                true
             }
-        };
+            None => false,
+        }
+    }
+
+    /// [`Splitter::split`] inside the bracket `bracket` found by
+    /// [`Splitter::bracket`].
+    fn split_at(
+        &self,
+        (dens, factors, j): (Vec<Id>, Vec<Id>, usize),
+        lead: &str,
+        trail: &str,
+        first: usize,
+        inner: usize,
+        out: &mut Pieces,
+    ) {
+        let (e, style) = (self.e, self.style);
         let terms = sum_terms(e, factors[j], style);
         let (l, r) = style.inner.parens();
         let mut before = lead.to_owned();
@@ -326,7 +393,7 @@ impl Splitter<'_, '_> {
             let mut after = r.to_owned();
             after.push_str(trail);
             self.bracket_terms(terms, before, after, first, inner, out);
-            return true;
+            return;
         }
         if j > 0 {
             write_product(e, &factors[..j], style, &mut before);
@@ -348,7 +415,43 @@ impl Splitter<'_, '_> {
         }
         after.push_str(trail);
         self.bracket_terms(terms, before, after, first, inner, out);
-        true
+    }
+
+    /// The term at `id` as its denominators, its other factors and which
+    /// of those is the bracket to break inside: the longest bracketed sum
+    /// (the one a break helps most, the first of equals); `None` when it
+    /// has none. A term with one bracket (most) is not written to choose
+    /// it; each bracket's length is written once per node.
+    fn bracket(&self, id: Id) -> Option<(Vec<Id>, Vec<Id>, usize)> {
+        let e = self.e;
+        let factors: &[Id] = match e.node(id) {
+            Node::Mul(factors) => factors,
+            // A bracketed sum alone (after a minus sign: −(a + b + …)).
+            Node::Add(_) => std::slice::from_ref(&id),
+            _ => return None,
+        };
+        let is_bracket = |f: &Id| matches!(e.node(*f), Node::Add(_));
+        if !factors.iter().any(is_bracket) {
+            return None;
+        }
+        let is_den = |f: &Id| matches!(e.node(*f), Node::Pow(_, k) if *k < 0);
+        let (dens, factors): (Vec<Id>, Vec<Id>) = factors.iter().partition(|f| is_den(f));
+        let brackets = || factors.iter().enumerate().filter(|(_, f)| is_bracket(f));
+        let j = match brackets().count() {
+            0 => return None,
+            1 => brackets().next().map_or(0, |(k, _)| k),
+            _ => {
+                let mut best: Option<(usize, usize)> = None;
+                for (k, &f) in brackets() {
+                    let n = self.text_len(f);
+                    if best.is_none_or(|(_, m)| n > m) {
+                        best = Some((k, n));
+                    }
+                }
+                best.map_or(0, |(k, _)| k)
+            }
+        };
+        Some((dens, factors, j))
     }
 
     /// The length in bytes of the text of node `id`, written once per node.
@@ -375,7 +478,7 @@ impl Splitter<'_, '_> {
         after: String,
         first: usize,
         inner: usize,
-        out: &mut Vec<(String, usize, u32)>,
+        out: &mut Pieces,
     ) {
         let last = terms.len() - 1;
         let mut before = Some(before);
