@@ -61,8 +61,10 @@ pub fn latex(s: &str, to: Latex) -> String {
             o.push(' ');
             continue;
         }
-        // A run of super- or subscripts (`E⁻¹`) is one script, `^{-1}`.
+        // A run of super- or subscripts (`E⁻¹`) is one script, `^{-1}`
+        // (none of them is ASCII, as most of prose is).
         if to != Latex::Comment
+            && !c.is_ascii()
             && let Some((script, n)) = script_run(&chars[i - 1..])
         {
             if to == Latex::Math {

@@ -310,9 +310,14 @@ fn words(s: &str, out: &mut Vec<Piece>) {
     // at the first punctuation instead, as plain words would be.
     let mut k = 0;
     while k < toks.len() {
-        let made = [true, false]
-            .into_iter()
-            .find_map(|brackets| formula(&toks, k, run_end(&toks, k, brackets), out));
+        // A word is text (no run of notation starts at it).
+        let made = if toks[k].kind == Kind::Word {
+            None
+        } else {
+            [true, false]
+                .into_iter()
+                .find_map(|brackets| formula(&toks, k, run_end(&toks, k, brackets), out))
+        };
         match made {
             Some(end) => k = end,
             None => {
@@ -394,7 +399,9 @@ fn formula(toks: &[Tok], k: usize, end: usize, out: &mut Vec<Piece>) -> Option<u
         if t.kind != Kind::Atom {
             return false;
         }
-        let c: Vec<char> = t.core.chars().collect();
+        let mut chars = t.core.chars();
+        let first = chars.next();
+        let rest = chars.as_str();
         let article = t.core == "A"
             && (i == 0 || toks[i - 1].trail.ends_with(['.', ':', ';', '!', '?']))
             && toks
@@ -411,9 +418,11 @@ fn formula(toks: &[Tok], k: usize, end: usize, out: &mut Vec<Piece>) -> Option<u
         t.kind == Kind::Atom
             && !article
             && !initial
-            && c.first().is_some_and(char::is_ascii_alphabetic)
-            && (c.len() == 1
-                || c.len() > 2 && c[1] == '/' && c[2..].iter().all(char::is_ascii_digit))
+            && first.is_some_and(|c| c.is_ascii_alphabetic())
+            && (rest.is_empty()
+                || rest
+                    .strip_prefix('/')
+                    .is_some_and(|d| !d.is_empty() && d.chars().all(|c| c.is_ascii_digit())))
     };
     let has_math = (a..b).any(|i| toks[i].kind == Kind::Math || lone(i))
         || (run.len() >= 3 && run.iter().any(|t| t.kind == Kind::Op));
