@@ -13,7 +13,7 @@ use smallvec::SmallVec;
 
 use super::constants::constants_group;
 use super::known::{factor_by, known_factor_node};
-use super::order::{constant_next, constants_of_one_family, conventional, leading_constant};
+use super::order::{conventional, cyclic_difference, cyclic_pair_of_constants, leading_constant};
 use super::timed::{self, Classes};
 use super::{Context, PLAIN_ABOVE};
 use crate::atom::{Atom, AtomKind};
@@ -133,7 +133,7 @@ fn general_group(
             .split(|a| a.is_time_dependent() && matches!(a.kind(), AtomKind::Var { .. }))
             .0;
     }
-    let inv = content.recip().expect("non-zero content");
+    let inv = reciprocal(&content);
 
     let mut outer = key.mul(&common);
     let mut number = content.abs();
@@ -199,7 +199,7 @@ pub(super) fn group_product(
 ) -> Id {
     let order = &cx.pres.constant_order[..];
     let factors = cx.ranks.print.sorted(outer);
-    let mut ids = Vec::new();
+    let mut ids = Vec::with_capacity(factors.len() + bracket.len() + 1);
     if !number.is_one() || (factors.is_empty() && bracket.is_empty()) {
         ids.push(e.push(Node::Num(number.clone())));
     }
@@ -207,8 +207,9 @@ pub(super) fn group_product(
     // gravity, then by name: m g l, I′ θ̇); constants named by a Greek
     // letter (a constant rate Ω) and sin/cos (even of a constant angle)
     // follow the bracket with the rates.
-    let leading = leading_constant;
-    let mut lead: Vec<(Atom, i32)> = factors.iter().copied().filter(|f| leading(f.0)).collect();
+    type Factors = SmallVec<[(Atom, i32); 16]>;
+    let (mut lead, mut trailing): (Factors, Factors) =
+        factors.iter().copied().partition(|f| cx.ranks.leads(f.0));
     cx.ranks.sort_constants(&mut lead, order);
     for (a, x) in lead {
         ids.push(e.atom_pow(a, x));
@@ -216,8 +217,6 @@ pub(super) fn group_product(
     if !trig_only {
         ids.extend(bracket.iter().copied());
     }
-    let mut trailing: Vec<(Atom, i32)> =
-        factors.iter().copied().filter(|f| !leading(f.0)).collect();
     cx.ranks.cyclic_pair(&mut trailing);
     for (a, x) in trailing {
         ids.push(e.atom_pow(a, x));
@@ -258,7 +257,7 @@ fn bracket_sum(
             if plain {
                 (Cow::Borrowed(*m), (*c).clone())
             } else {
-                (Cow::Owned(m.div(common)), *c * inv)
+                (Cow::Owned(m.div(common)), scaled(c, inv))
             }
         })
         .collect();
@@ -468,18 +467,6 @@ pub(super) fn sum_of_nodes(e: &mut Expr, mut nodes: Vec<(Id, bool, u32, bool)>) 
         nodes.insert(0, n);
     }
     (e.add(nodes.into_iter().map(|n| n.0).collect()), negative)
-}
-
-/// Two terms, each a single constant of one cyclic family (I_x and I_z,
-/// A and C), times a common factor.
-pub(super) fn cyclic_pair_of_constants(terms: &[PrintTerm<'_>]) -> bool {
-    let [t0, t1] = terms else { return false };
-    let common = t0.1.gcd(t1.1);
-    let single = |m: &Monomial| match m.div(&common).factors() {
-        [(a, 1)] if !a.is_time_dependent() => Some(*a),
-        _ => None,
-    };
-    matches!((single(t0.1), single(t1.1)), (Some(a), Some(b)) if constants_of_one_family(a, b))
 }
 
 /// Whether a group's minus sign goes in front of its bracket: for a single
@@ -732,23 +719,25 @@ pub(super) fn shared_term_node(
     }
 }
 
-/// A bracket of two terms `a − b` (single constants of one cyclic family,
-/// coefficients +1 and −1 after the common factor) in which `a` follows
-/// `b` in cyclic order, so that it reads better as `−(b − a)`:
-/// (I_x − I_z) → −(I_z − I_x), (A − C) → −(C − A).
-pub(super) fn cyclic_difference(
-    terms: &[PrintTerm<'_>],
-    common: &Monomial,
-) -> Option<(Atom, Atom)> {
-    let [t0, t1] = terms else { return None };
-    let single = |m: &Monomial| match m.div(common).factors() {
-        [(a, 1)] if !a.is_time_dependent() => Some(*a),
-        _ => None,
-    };
-    let (a, b) = (single(t0.1)?, single(t1.1)?);
-    if t0.2.is_negative() || !(t0.2 + t1.2).is_zero() {
-        return None;
+/// `1/content` for a non-zero content; an integer's without the gcd a
+/// general reciprocal takes.
+pub(super) fn reciprocal(content: &Rational) -> Rational {
+    match *content {
+        Rational::Small(n, 1) if n > 0 => Rational::Small(1, n),
+        Rational::Small(n, 1) if n < 0 && n != i64::MIN => Rational::Small(-1, -n),
+        _ => content.recip().expect("non-zero content"),
     }
-    // a − b: reads cyclically when b follows a.
-    (constant_next(b, a) && !constant_next(a, b)).then_some((a, b))
+}
+
+/// `c · inv` with `inv` the [`reciprocal`] of a content of `c`: an integer
+/// over an integer content is an exact division, without the gcd of a
+/// product of fractions.
+pub(super) fn scaled(c: &Rational, inv: &Rational) -> Rational {
+    if let (Rational::Small(k, 1), Rational::Small(s @ (1 | -1), n)) = (c, inv)
+        && k % n == 0
+        && let Some(q) = (k / n).checked_mul(*s)
+    {
+        return Rational::Small(q, 1);
+    }
+    c * inv
 }

@@ -13,10 +13,8 @@ use crate::expr::{Expr, Id};
 use crate::poly::Monomial;
 use crate::rational::Rational;
 
-use super::bracket::{
-    cyclic_difference, cyclic_pair_of_constants, group_product, quotient_in_order, sum_of_nodes,
-};
-use super::order::conventional;
+use super::bracket::{group_product, quotient_in_order, reciprocal, scaled, sum_of_nodes};
+use super::order::{conventional, cyclic_difference, cyclic_pair_of_constants};
 use super::{Context, PLAIN_ABOVE};
 
 /// `key · Σ terms` as [`group_node`](super::bracket::group_node) writes
@@ -91,7 +89,7 @@ pub(super) fn constants_group(
         let t = terms.remove(k);
         terms.insert(0, t);
     }
-    let inv = content.recip().expect("non-zero content");
+    let inv = reciprocal(&content);
     let outer = key.mul(&common);
     let number = content.abs();
     let mut negative = content.is_negative();
@@ -110,7 +108,7 @@ pub(super) fn constants_group(
             let id = if plain {
                 e.term_node(&f, c)
             } else {
-                e.term_node(&f, &(*c * &inv))
+                e.term_node(&f, &scaled(c, &inv))
             };
             nodes.push((id, c.is_negative() != inv.is_negative(), 0, false));
         }

@@ -7,7 +7,7 @@
 use smallvec::SmallVec;
 
 use crate::atom::{Atom, AtomKind, AtomMemo};
-use crate::expr::{Expr, Id, Node, PrintRanks};
+use crate::expr::{Expr, Id, Node, PrintRanks, PrintTerm};
 use crate::poly::Monomial;
 
 /// The ranks of one result's atoms, found once per presentation and read
@@ -240,6 +240,74 @@ pub(super) fn constant_next(a: Atom, b: Atom) -> bool {
         (Some((_, ka, _)), Some((_, kb, _))) => constants_of_one_family(a, b) && (ka + 1) % 3 == kb,
         _ => false,
     }
+}
+
+/// Two terms, each a single constant of one cyclic family (I_x and I_z,
+/// A and C), times a common factor.
+pub(super) fn cyclic_pair_of_constants(terms: &[PrintTerm<'_>]) -> bool {
+    let [t0, t1] = terms else { return false };
+    // Each term over the two's gcd: the atoms it has to a higher power
+    // than the other term.
+    let over_gcd = |m: &Monomial, n: &Monomial| single_quotient(m, n, |x| x.max(0));
+    matches!((over_gcd(t0.1, t1.1), over_gcd(t1.1, t0.1)), (Some(a), Some(b)) if constants_of_one_family(a, b))
+}
+
+/// A bracket of two terms `a − b` (single constants of one cyclic family,
+/// coefficients +1 and −1 after the common factor) in which `a` follows
+/// `b` in cyclic order, so that it reads better as `−(b − a)`:
+/// (I_x − I_z) → −(I_z − I_x), (A − C) → −(C − A).
+pub(super) fn cyclic_difference(
+    terms: &[PrintTerm<'_>],
+    common: &Monomial,
+) -> Option<(Atom, Atom)> {
+    let [t0, t1] = terms else { return None };
+    let single = |m: &Monomial| single_quotient(m, common, |x| x);
+    let (a, b) = (single(t0.1)?, single(t1.1)?);
+    if t0.2.is_negative() || !(t0.2 + t1.2).is_zero() {
+        return None;
+    }
+    // a − b: reads cyclically when b follows a.
+    (constant_next(b, a) && !constant_next(a, b)).then_some((a, b))
+}
+
+/// The atom of a quotient of `m` by `d` that is a single constant to the
+/// first power, `None` when it is anything else; the quotient's exponent
+/// of each atom is `quotient` of its exponent in `m` less that in `d`
+/// (the difference itself for `m / d`, its positive part for `m` over
+/// the gcd of `m` and `d`). One walk over the two sorted factor lists,
+/// nothing built.
+fn single_quotient(m: &Monomial, d: &Monomial, quotient: impl Fn(i32) -> i32) -> Option<Atom> {
+    let (a, b) = (m.factors(), d.factors());
+    let (mut i, mut j) = (0, 0);
+    let mut found = None;
+    loop {
+        let (atom, x, y) = match (a.get(i), b.get(j)) {
+            (Some(p), Some(q)) if p.0 == q.0 => {
+                i += 1;
+                j += 1;
+                (p.0, p.1, q.1)
+            }
+            (Some(p), Some(q)) if p.0 < q.0 => {
+                i += 1;
+                (p.0, p.1, 0)
+            }
+            (Some(p), None) => {
+                i += 1;
+                (p.0, p.1, 0)
+            }
+            (_, Some(q)) => {
+                j += 1;
+                (q.0, 0, q.1)
+            }
+            (None, None) => break,
+        };
+        match quotient(x.checked_sub(y)?) {
+            0 => {}
+            1 if found.is_none() => found = Some(atom),
+            _ => return None,
+        }
+    }
+    found.filter(|a| !a.is_time_dependent())
 }
 
 /// The factors of a term inside a bracket in conventional order: constants

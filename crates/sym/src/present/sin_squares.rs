@@ -145,8 +145,24 @@ fn chains(ts: &mut Terms, hashes: &[u64], cos: Atom, among: Option<&[usize]>) ->
             }
         }
     }
-    out.sort_unstable_by_key(|(_, c)| c[0].1);
-    out
+    by_first_term(out)
+}
+
+/// Chains in the order of their first terms (distinct: a term is in one
+/// chain at most), found by sorting those indices, not by moving the
+/// chains at every step of a sort.
+fn by_first_term(out: Vec<Chain>) -> Vec<Chain> {
+    let mut order: Vec<(usize, usize)> = out
+        .iter()
+        .enumerate()
+        .map(|(k, (_, c))| (c[0].1, k))
+        .collect();
+    order.sort_unstable();
+    let mut slots: Vec<Option<Chain>> = out.into_iter().map(Some).collect();
+    order
+        .into_iter()
+        .map(|(_, k)| slots[k].take().expect("each chain once"))
+        .collect()
 }
 
 /// The exponent of `a` in `m` (0 when absent), by bisection: the factors
@@ -210,8 +226,7 @@ fn patched(
             out.push((rest, chain));
         }
     }
-    out.sort_unstable_by_key(|(_, c)| c[0].1);
-    out
+    by_first_term(out)
 }
 
 /// An empty slot of [`Buckets`], the end of a term list.
