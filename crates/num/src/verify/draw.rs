@@ -6,7 +6,6 @@
 //! draw a step's own conditions (`symmetry`, points at rest, inequalities
 //! selecting a class of bodies) call for.
 
-use std::collections::HashMap;
 use std::rc::Rc;
 
 use hdot_sym::atom::{Atom, AtomKind};
@@ -19,6 +18,7 @@ use hdot_sym::symbols::Decl;
 use nalgebra::{Matrix3, Vector3};
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
+use rustc_hash::FxHashMap;
 
 use super::bodies::{axisymmetric, map_particles, mirrored, random_body, random_rotation};
 use super::jet::{ORDERS, PointJet};
@@ -46,8 +46,8 @@ pub struct Draw {
     /// The sums over each body's particles a moment is formed from.
     moments: Vec<CloudMoments>,
     centres: Vec<Vector3<f64>>,
-    attitudes: HashMap<usize, Matrix3<f64>>,
-    points: HashMap<String, PointJet>,
+    attitudes: FxHashMap<usize, Matrix3<f64>>,
+    points: FxHashMap<String, PointJet>,
     /// The speeds and constraints the motion is drawn consistent with
     /// (read once per check).
     consistent: Rc<Consistent>,
@@ -260,13 +260,13 @@ pub(crate) fn draw(
         bodies.push(cloud);
         centres.push(c);
     }
-    let mut attitudes = HashMap::new();
+    let mut attitudes = FxHashMap::default();
     for (i, m) in ph.frames.iter().enumerate() {
         if *m == FrameMotion::AngularVelocity {
             attitudes.insert(i, *random_rotation(rng).matrix());
         }
     }
-    let mut points = HashMap::new();
+    let mut points = FxHashMap::default();
     let free = ph
         .points
         .iter()

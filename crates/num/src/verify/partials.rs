@@ -12,7 +12,6 @@
 //! The models are made once per state and speed in a draw ([`KaneCache`]).
 
 use std::cell::RefCell;
-use std::collections::HashMap;
 use std::rc::Rc;
 
 use hdot_sym::atom::{Atom, AtomKind};
@@ -34,7 +33,7 @@ use crate::bind::{Values, nth};
 /// model at the drawn speeds, both consistent with the constraints.
 pub(crate) struct Partials {
     bodies: Vec<PartialVelocity>,
-    points: HashMap<String, (Vector3<f64>, f64)>,
+    points: FxHashMap<String, (Vector3<f64>, f64)>,
     frames: Vec<(Vector3<f64>, f64)>,
 }
 

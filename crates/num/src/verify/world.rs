@@ -5,7 +5,6 @@
 //! (position and three derivatives), particles as `r = r_P + R q`.
 
 use std::cell::RefCell;
-use std::collections::HashMap;
 use std::rc::Rc;
 
 use hdot_sym::atom::Atom;
@@ -14,6 +13,7 @@ use hdot_sym::derivation::physics::{Bodies, FrameMotion, Meaning, PointKind, Rul
 use hdot_sym::poly::Poly;
 use hdot_sym::vector::Vec3;
 use nalgebra::{Matrix3, Vector3};
+use rustc_hash::FxHashMap;
 
 use super::VerifyError;
 use super::draw::Draw;
@@ -43,7 +43,7 @@ pub(crate) type Measurement = (Vec<f64>, f64);
 /// the values per lookup); each entry holds the values themselves, their
 /// bits compared in full ([`Values::same_bits`]).
 #[derive(Default)]
-struct Memo(RefCell<HashMap<u64, Vec<MemoEntry>>>);
+struct Memo(RefCell<FxHashMap<u64, Vec<MemoEntry>>>);
 
 /// The values, the meaning, and what it measured.
 type MemoEntry = (Values, Meaning, Measurement);
@@ -56,7 +56,7 @@ pub struct World<'d> {
     /// Attitude jets of the frames (parallel to the derivation's frames).
     pub frames: Vec<MatJet>,
     /// Point jets by name (declared points and body centres).
-    pub points: HashMap<String, PointJet>,
+    pub points: FxHashMap<String, PointJet>,
     /// Each body with the motion that places its particles.
     pub bodies: Vec<Placed<'d>>,
     /// Gravity in N's axes.
@@ -104,7 +104,7 @@ pub(crate) struct Rates {
 /// by equality (an address can be reused by another derivation's
 /// polynomial once the first is dropped).
 pub(crate) fn rates(p: &Poly, count: usize) -> Rc<Rates> {
-    type Known = HashMap<usize, (Poly, Rc<Rates>)>;
+    type Known = FxHashMap<usize, (Poly, Rc<Rates>)>;
     thread_local! {
         static KNOWN: RefCell<Known> = Default::default();
     }
@@ -404,7 +404,7 @@ impl<'d> World<'d> {
             d,
             draw,
             frames,
-            points: HashMap::new(),
+            points: FxHashMap::default(),
             bodies: Vec::new(),
             gravity: Vector3::zeros(),
             coordinate,
@@ -418,7 +418,7 @@ impl<'d> World<'d> {
             let g = vec_jet(g, values)?[0];
             w.gravity = w.frames[fi][0] * g;
         }
-        let mut point_partials: HashMap<String, Vector3<f64>> = HashMap::new();
+        let mut point_partials: FxHashMap<String, Vector3<f64>> = FxHashMap::default();
         let names: Vec<String> = ph
             .points
             .iter()
@@ -488,7 +488,7 @@ impl<'d> World<'d> {
         draw: &Draw,
         values: &Values,
         partials: &[Matrix3<f64>],
-        dp: &mut HashMap<String, Vector3<f64>>,
+        dp: &mut FxHashMap<String, Vector3<f64>>,
         depth: usize,
     ) -> Result<PointJet, VerifyError> {
         if let Some(p) = self.points.get(name) {
