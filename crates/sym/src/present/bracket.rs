@@ -50,10 +50,15 @@ fn general_group(
 ) -> Id {
     let known = &cx.pres.factors[..];
     let order = &cx.pres.constant_order[..];
-    // The order only: most terms of a large bracket are written inside a
-    // shared bracket of constants, which sorts its own (`bracket_sum`
-    // finds the factors of the terms it writes).
-    let mut terms = cx.ranks.print.sort_unfactored(terms, true);
+    // The order only: most terms of a bracket are written inside a shared
+    // bracket of constants, which sorts its own (`bracket_sum` finds the
+    // factors of the terms it writes). A plain bracket (above
+    // PLAIN_ABOVE) writes every term: its factors come with the order.
+    let mut terms = if terms.len() > PLAIN_ABOVE {
+        cx.ranks.print.sort(terms, true)
+    } else {
+        cx.ranks.print.sort_unfactored(terms, true)
+    };
     if ratios && terms.len() == 1 {
         let m = key.mul(terms[0].1);
         let mut f: SmallVec<[(Atom, i32); 16]> = cx.ranks.print.sorted(&m).into_iter().collect();
@@ -378,7 +383,7 @@ fn bracket_sum(
     // (node, negative, highest derivative order, has a part that
     // follows a bracket)
     let mut nodes: Vec<(Id, bool, u32, bool)> = Vec::with_capacity(terms.len());
-    for (k, ((_, term, _), (m, c))) in terms.iter().zip(&parts).enumerate() {
+    for (k, ((factors, term, _), (m, c))) in terms.iter().zip(&parts).enumerate() {
         let top = m.factors().iter().map(|f| f.0.order()).max().unwrap_or(0);
         let follows = match classes.of.get(k) {
             None => m.factors().iter().any(|&(a, _)| !leading_constant(a)),
@@ -420,10 +425,19 @@ fn bracket_sum(
                 class != timed::NONE
             }
         };
+        // The term's factors in print order: sorted with the order when the
+        // bracket is plain (PLAIN_ABOVE), found here otherwise.
+        let in_order = || -> SmallVec<[(Atom, i32); 16]> {
+            if factors.is_empty() {
+                cx.ranks.print.sorted(term).into_iter().collect()
+            } else {
+                factors.iter().copied().collect()
+            }
+        };
         let mut f: SmallVec<[(Atom, i32); 16]> = if plain {
-            cx.ranks.print.sorted(term).into_iter().collect()
+            in_order()
         } else if common_keeps_order {
-            quotient_in_order(&cx.ranks.print.sorted(term), common)
+            quotient_in_order(&in_order(), common)
         } else {
             cx.ranks.print.sorted(m).into_iter().collect()
         };
