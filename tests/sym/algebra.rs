@@ -98,6 +98,20 @@ proptest! {
         prop_assert!(bound <= (&(&a * &b) * &c).len() as u64);
     }
 
+    /// `Poly::sum_of_products` (every term product into one sum, as Kane's
+    /// dot products use it) is the sum of the products formed one by one,
+    /// for factors sharing variables, sines and cosines, and with zeros.
+    #[test]
+    fn a_sum_of_products_is_the_sum_of_the_products(
+        a in expr(), b in expr(), c in expr(), d in expr(), e in expr()
+    ) {
+        let (a, b, c, d, e) = (a.to_poly(), b.to_poly(), c.to_poly(), d.to_poly(), e.to_poly());
+        let zero = Poly::zero();
+        let pairs = [(&a, &b), (&c, &d), (&zero, &e), (&e, &a)];
+        let expected = pairs.iter().fold(Poly::zero(), |s, (x, y)| &s + &(*x * *y));
+        prop_assert_eq!(Poly::sum_of_products(pairs), expected);
+    }
+
     /// Expanding the default presentation of a canonical form gives it back.
     #[test]
     fn canonical_form_is_idempotent(e in expr()) {

@@ -78,16 +78,6 @@ impl Pieces {
             .map(|s| (&self.text[s.start..s.end], s.depth, s.measure))
     }
 
-    /// The number of pieces.
-    pub fn len(&self) -> usize {
-        self.spans.len()
-    }
-
-    /// Whether there is no piece.
-    pub fn is_empty(&self) -> bool {
-        self.spans.is_empty()
-    }
-
     /// Where the next piece's text starts: after a space when a piece is
     /// before it. Returns the text's length before that space, to truncate
     /// back to.
