@@ -32,7 +32,8 @@
 //! Where each part lives: this file the whole (fold, group by the collect
 //! list, order the groups, split fractions by content); `present/fold.rs`
 //! rule 1; `present/bracket.rs` one group with its bracket
-//! (`present/constants.rs` a bracket of constants, directly;
+//! (`present/gather.rs` the sum inside the bracket;
+//! `present/constants.rs` a bracket of constants, directly;
 //! `present/timed.rs` its parts classed by their time-dependent part);
 //! `present/known.rs` rule 3; `present/order.rs` the order of factors;
 //! `present/sin_squares.rs` the choice of sin² θ or 1 − cos² θ.
@@ -65,6 +66,7 @@ use crate::rational::Rational;
 mod bracket;
 mod constants;
 mod fold;
+mod gather;
 mod known;
 mod order;
 mod sin_squares;

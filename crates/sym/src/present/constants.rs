@@ -13,7 +13,8 @@ use crate::expr::{Expr, Id};
 use crate::poly::Monomial;
 use crate::rational::Rational;
 
-use super::bracket::{group_product, quotient_in_order, reciprocal, scaled, sum_of_nodes};
+use super::bracket::{group_product, reciprocal, scaled};
+use super::gather::{quotient_in_order, sum_of_nodes};
 use super::order::{conventional, cyclic_difference, cyclic_pair_of_constants};
 use super::{Context, PLAIN_ABOVE};
 
