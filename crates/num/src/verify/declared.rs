@@ -13,6 +13,7 @@
 //! ([`super::world`]), never from the engine's ω or transport theorem.
 
 use std::collections::BTreeMap;
+use std::rc::Rc;
 
 use hdot_sym::atom::Atom;
 use hdot_sym::derivation::physics::{Meaning, StepMeaning};
@@ -237,28 +238,91 @@ impl Compiled<'_> {
     }
 }
 
+/// The models of one draw at its drawn values, shared by every step
+/// measured there (no `given`, no conditions of [`for_step`]) with the
+/// same coordinates: the values with `[motion]` applied and the symbols
+/// of `[[known]]` bound, and the world at them. A world is a function of
+/// the draw, the values and the coordinates, so a shared one has the bits
+/// a world per step would have; sharing it also shares its measurements
+/// at other values ([`World::measured_at`]: `mass_matrix` and `forcing`
+/// of the same equations both measure them at zero accelerations) and the
+/// partial velocities it has read. The nonlinear bicycle built ten
+/// worlds at the same values per draw.
+#[derive(Default)]
+struct Shared<'a>(std::cell::RefCell<Vec<SharedWorld<'a>>>);
+
+/// The coordinates, the values and the world at them.
+type SharedWorld<'a> = (Vec<Atom>, Rc<Values>, Rc<World<'a>>);
+
+impl<'a> Shared<'a> {
+    /// The world at the drawn `values` for `coordinates`, built once.
+    fn world(
+        &self,
+        d: &'a Derivation,
+        draw: &'a Draw,
+        values: &Values,
+        coordinates: &[Atom],
+    ) -> Result<(Rc<Values>, Rc<World<'a>>), VerifyError> {
+        if let Some((_, v, w)) = self.0.borrow().iter().find(|(c, ..)| c == coordinates) {
+            return Ok((v.clone(), w.clone()));
+        }
+        let mut values = values.clone();
+        constrain(d, &mut values, &[])?;
+        let w = Rc::new(world_with_knowns(d, draw, &mut values, coordinates)?);
+        let values = Rc::new(values);
+        self.0
+            .borrow_mut()
+            .push((coordinates.to_vec(), values.clone(), w.clone()));
+        Ok((values, w))
+    }
+}
+
 /// Compares one step in one draw.
-fn compare_step(
+fn compare_step<'a>(
+    d: &'a Derivation,
+    c: &Compiled<'_>,
+    draw: &'a Draw,
+    values: &Values,
+    rng: &mut ChaCha8Rng,
+    shared: &Shared<'a>,
+) -> Result<Vec<Comparison>, VerifyError> {
+    let stepped = for_step(d, c.meaning, draw, values, rng)?;
+    let coordinates = coordinate(&c.meaning.meaning);
+    match &stepped {
+        None if c.meaning.given.is_empty() => {
+            let (values, w) = shared.world(d, draw, values, &coordinates)?;
+            measure_step(d, c, draw, &values, &w)
+        }
+        _ => {
+            let (draw, values) = match &stepped {
+                Some((dr, v)) => (dr, v),
+                None => (draw, values),
+            };
+            let mut values = values.clone();
+            constrain(d, &mut values, &c.meaning.given)?;
+            let w = world_with_knowns(d, draw, &mut values, &coordinates)?;
+            measure_step(d, c, draw, &values, &w)
+        }
+    }
+}
+
+/// [`compare_step`] once the step's values (conditions applied, knowns
+/// bound) and its world `w` at them are made.
+fn measure_step<'w>(
     d: &Derivation,
     c: &Compiled<'_>,
     draw: &Draw,
     values: &Values,
-    rng: &mut ChaCha8Rng,
+    w: &World<'w>,
 ) -> Result<Vec<Comparison>, VerifyError> {
-    let stepped = for_step(d, c.meaning, draw, values, rng)?;
-    let (draw, values) = match &stepped {
-        Some((dr, v)) => (dr, v),
-        None => (draw, values),
-    };
-    let mut values = values.clone();
-    constrain(d, &mut values, &c.meaning.given)?;
-    let w = world_with_knowns(d, draw, &mut values, &coordinate(&c.meaning.meaning))?;
-    let (derived, dscale) = c.eval(d, &values)?;
+    let (derived, dscale) = c.eval(d, values)?;
     if let Meaning::MassMatrix(x, unknowns) | Meaning::Forcing(x, unknowns) = &c.meaning.meaning {
+        // `w` has the coordinates of `x` (those of the step's meaning).
         let at = |vals: &Values| -> Result<(Vec<f64>, f64), VerifyError> {
-            let w = World::build(d, draw, vals, &coordinate(x))?;
-            let (v, s) = meaning_value(&w, x)?;
-            Ok((v.components(&w, None), s))
+            w.measured_at(vals, x, |w| {
+                let (v, s) = meaning_value(w, x)?;
+                Ok((v.components(w, None), s))
+            })
         };
         let mut zero = values.clone();
         for a in unknowns {
@@ -302,9 +366,10 @@ fn compare_step(
     if let (Meaning::Solves(x), Value::List { labels, .. }) = (&c.meaning.meaning, &c.value) {
         // X at the solved accelerations must vanish; X is linear in them.
         let at = |vals: &Values| -> Result<(Vec<f64>, f64), VerifyError> {
-            let w = World::build(d, draw, vals, &coordinate(x))?;
-            let (v, s) = meaning_value(&w, x)?;
-            Ok((v.components(&w, None), s))
+            w.measured_at(vals, x, |w| {
+                let (v, s) = meaning_value(w, x)?;
+                Ok((v.components(w, None), s))
+            })
         };
         // Solved for the speeds' rates (u̇): the dependent speeds' rates and
         // the coordinates' accelerations follow them, as for `mass_matrix`.
@@ -352,8 +417,8 @@ fn compare_step(
             })
             .collect());
     }
-    let (m, mscale) = meaning_value(&w, &c.meaning.meaning)?;
-    let direct = m.components(&w, c.frame);
+    let (m, mscale) = meaning_value(w, &c.meaning.meaning)?;
+    let direct = m.components(w, c.frame);
     let top = dscale.iter().copied().fold(0.0, f64::max)
         + mscale
         + direct.iter().map(|x| x.abs()).fold(0.0, f64::max);
@@ -525,7 +590,7 @@ fn run(
             claims::conserved_entry(c, &eqs),
         );
     }
-    let consistent = std::rc::Rc::new(Consistent::of(d));
+    let consistent = Rc::new(Consistent::of(d));
     let constrained = consistent
         .speeds
         .as_ref()
@@ -550,9 +615,10 @@ fn run(
         for _ in 0..options.draws.max(1) {
             let (dr, mut values) = draw(d, &mut rng, given, &consistent)?;
             apply(d, &mut values, &d.physics.motion)?;
+            let shared = Shared::default();
             let steps = compiled
                 .iter()
-                .map(|c| compare_step(d, c, &dr, &values, &mut rng))
+                .map(|c| compare_step(d, c, &dr, &values, &mut rng, &shared))
                 .collect::<Result<Vec<_>, _>>()?;
             let vanish = compare_vanishing(d, &dr, &values)?;
             let rates = if eqs.is_empty() {

@@ -48,14 +48,13 @@ type StateKey = Vec<(Atom, u64, u64)>;
 /// active and inertia force a world measures (two per speed) shares it.
 #[derive(Default)]
 pub(crate) struct KaneWorlds<'d> {
-    /// The world's [`StateKey`].
-    key: Option<Rc<StateKey>>,
+    /// The partial velocities of the world's state in the draw's
+    /// [`KaneCache`], found once per world (its [`StateKey`] made and
+    /// hashed once, not once per speed).
+    state: Option<State>,
     /// The values with the dependent speeds and the coordinates' rates
     /// filled in, and the model at them.
     base: Option<(Values, Rc<World<'d>>)>,
-    /// The partial velocities this world has read, by speed (found
-    /// without hashing its key again).
-    read: BySpeed,
 }
 
 /// Each speed's [`Partials`] by the state they were measured at, kept by
@@ -67,7 +66,11 @@ pub(crate) struct KaneWorlds<'d> {
 /// 108 models per draw for 9 distinct ones). A clone starts empty (a
 /// draw changed for a step's conditions is another draw).
 #[derive(Default)]
-pub(crate) struct KaneCache(RefCell<FxHashMap<StateKey, BySpeed>>);
+pub(crate) struct KaneCache(RefCell<FxHashMap<StateKey, State>>);
+
+/// The partial velocities of one state, shared by the cache and the
+/// worlds at that state.
+type State = Rc<RefCell<BySpeed>>;
 
 /// The partial velocities of one state, by speed.
 type BySpeed = Vec<(Atom, Rc<Partials>)>;
@@ -200,26 +203,25 @@ pub(crate) fn partials(w: &World<'_>, u: Atom) -> Result<Rc<Partials>, VerifyErr
             ),
         ));
     }
-    if let Some((_, p)) = w.kane.borrow().read.iter().find(|(v, _)| *v == u) {
-        return Ok(p.clone());
-    }
-    let known = w.kane.borrow().key.clone();
-    let key = match known {
-        Some(k) => k,
+    let known = w.kane.borrow().state.clone();
+    let state = match known {
+        Some(s) => s,
         None => {
-            let k = Rc::new(state_key(consistent.velocity_reads(), &w.values));
-            w.kane.borrow_mut().key = Some(k.clone());
-            k
+            let key = state_key(consistent.velocity_reads(), &w.values);
+            let s = w
+                .draw
+                .kane_cache()
+                .0
+                .borrow_mut()
+                .entry(key)
+                .or_default()
+                .clone();
+            w.kane.borrow_mut().state = Some(s.clone());
+            s
         }
     };
-    let cache = &w.draw.kane_cache().0;
-    let found = cache
-        .borrow()
-        .get(key.as_slice())
-        .and_then(|ps| ps.iter().find(|(v, _)| *v == u).map(|(_, p)| p.clone()));
-    if let Some(p) = found {
-        w.kane.borrow_mut().read.push((u, p.clone()));
-        return Ok(p);
+    if let Some((_, p)) = state.borrow().iter().find(|(v, _)| *v == u) {
+        return Ok(p.clone());
     }
     let unbound = || {
         declaration(
@@ -243,12 +245,7 @@ pub(crate) fn partials(w: &World<'_>, u: Atom) -> Result<Rc<Partials>, VerifyErr
     speeds.fill(d, &mut raised, 1)?.ok_or_else(unbound)?;
     let raised = World::build(d, w.draw, &raised, &[])?;
     let p = Rc::new(Partials::between(&raised, &base_world));
-    cache
-        .borrow_mut()
-        .entry(key.as_ref().clone())
-        .or_default()
-        .push((u, p.clone()));
-    w.kane.borrow_mut().read.push((u, p.clone()));
+    state.borrow_mut().push((u, p.clone()));
     Ok(p)
 }
 
