@@ -381,3 +381,44 @@ fn a_tape_larger_than_the_stack_buffer_evaluates_alike() {
     let exact: f64 = (1..=5000).map(|k| x.powi(k)).sum();
     assert!((got[0] - exact).abs() <= 1e-9 * exact);
 }
+
+/// Outputs of one to three terms are evaluated two at a time, one in each
+/// lane of a vector register; `eval_abs` evaluates them one at a time.
+/// With every coefficient and input positive the magnitudes are the
+/// values, the same operations on the same numbers: the bits must agree.
+#[test]
+fn outputs_evaluated_in_pairs_have_the_bits_of_one_at_a_time() {
+    let leaves = ["a", "b", "x", "y", "z", "x'", "y''", "2", "3/7"];
+    let mut rng = ChaCha8Rng::seed_from_u64(25);
+    for _ in 0..200 {
+        let polys: Vec<Poly> = (0..rng.gen_range(2..9))
+            .map(|_| {
+                let terms: Vec<String> = (0..rng.gen_range(1..4))
+                    .map(|_| {
+                        let factors: Vec<&str> = (0..rng.gen_range(1..4))
+                            .map(|_| leaves[rng.gen_range(0..leaves.len())])
+                            .collect();
+                        let t = factors.join("*");
+                        if rng.gen_bool(0.3) {
+                            format!("{t}/{}", CONSTANTS[rng.gen_range(0..3)])
+                        } else {
+                            t
+                        }
+                    })
+                    .collect();
+                poly(&terms.join(" + "))
+            })
+            .collect();
+        let tape = Tape::compile(&polys);
+        let inputs: Vec<f64> = tape
+            .atoms()
+            .iter()
+            .map(|_| rng.gen_range(0.5..2.0))
+            .collect();
+        let (mut out, mut abs) = (vec![0.0; polys.len()], vec![0.0; polys.len()]);
+        tape.eval(&inputs, &mut out);
+        tape.eval_abs(&inputs, &mut abs);
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&out), bits(&abs), "{polys:?}");
+    }
+}

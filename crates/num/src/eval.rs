@@ -42,6 +42,7 @@ use hdot_sym::atom::Atom;
 
 mod compile;
 mod evaluate;
+mod lanes;
 
 /// The instructions of a tape; operands and destinations are slot
 /// indices. Powers are products (by squaring) of the atom or of its
@@ -85,18 +86,56 @@ struct Sum {
 /// The outputs of a tape by their number of terms, known when compiled:
 /// each class is summed by a loop of its own with no dispatch or slice
 /// per output (a mass matrix has many outputs of one or two terms). The
-/// sums of four terms or more keep their terms in [`Tape`]'s `terms`.
+/// outputs of one, two and three terms are taken two at a time, one in
+/// each lane of a vector register ([`Paired`]). The sums of four terms or
+/// more keep their terms in [`Tape`]'s `terms`.
 #[derive(Clone, Debug, Default, PartialEq)]
 struct Outputs {
     /// No terms: structurally zero.
     zeros: Vec<u32>,
     /// `(out, coef, scale)`: a single term, `coef · slot[scale]` (all its
     /// factors taken out).
-    ones: Vec<(u32, f64, u32)>,
+    ones: Paired<(u32, f64, u32)>,
     /// `(out, scale, terms)`, as in [`Sum`].
-    twos: Vec<(u32, u32, [Term; 2])>,
-    threes: Vec<(u32, u32, [Term; 3])>,
+    twos: Paired<(u32, u32, [Term; 2])>,
+    threes: Paired<(u32, u32, [Term; 3])>,
     longer: Vec<Sum>,
+}
+
+/// The outputs of one class in pairs, evaluated together in the two lanes
+/// of a vector register (`eval/lanes.rs`: the same operations on each
+/// lane as on a scalar, so the same bits), and the last one alone when
+/// their number is odd.
+#[derive(Clone, Debug, PartialEq)]
+struct Paired<T> {
+    pairs: Vec<[T; 2]>,
+    odd: Option<T>,
+}
+
+impl<T> Default for Paired<T> {
+    fn default() -> Self {
+        Paired {
+            pairs: Vec::new(),
+            odd: None,
+        }
+    }
+}
+
+impl<T: Copy> Paired<T> {
+    /// `items` in pairs, in order.
+    fn of(items: &[T]) -> Paired<T> {
+        let mut chunks = items.chunks_exact(2);
+        let pairs = chunks.by_ref().map(|c| [c[0], c[1]]).collect();
+        Paired {
+            pairs,
+            odd: chunks.remainder().first().copied(),
+        }
+    }
+
+    /// Every output of the class, in order.
+    fn iter(&self) -> impl Iterator<Item = &T> {
+        self.pairs.iter().flatten().chain(&self.odd)
+    }
 }
 
 /// A compiled set of polynomials.

@@ -9,7 +9,7 @@ use hdot_sym::poly::Poly;
 // small integer; SipHash was half of compiling the bicycle's steps).
 use rustc_hash::FxHashMap;
 
-use super::{Gather, Ops, Outputs, Sum, Tape, Term, WIDTH};
+use super::{Gather, Ops, Outputs, Paired, Sum, Tape, Term, WIDTH};
 
 /// The slot of `a^e` (`e ≠ 0`), emitting the products (and reciprocal)
 /// it needs once: `x⁵ = (x²)² · x`, `x⁻² = (1/x)²`.
@@ -70,20 +70,24 @@ fn emit_mul(ops: &mut Ops, next: &mut u32, a: u32, b: u32) -> u32 {
 
 impl Outputs {
     fn of(sums: &[Sum], terms: &[Term], zeros: Vec<u32>) -> Outputs {
-        let mut o = Outputs {
-            zeros,
-            ..Outputs::default()
-        };
+        let (mut ones, mut twos, mut threes, mut longer) =
+            (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         for s in sums {
             let t = &terms[s.start as usize..s.end as usize];
             match *t {
-                [a] => o.ones.push((s.out, a.coef, s.scale)),
-                [a, b] => o.twos.push((s.out, s.scale, [a, b])),
-                [a, b, c] => o.threes.push((s.out, s.scale, [a, b, c])),
-                _ => o.longer.push(*s),
+                [a] => ones.push((s.out, a.coef, s.scale)),
+                [a, b] => twos.push((s.out, s.scale, [a, b])),
+                [a, b, c] => threes.push((s.out, s.scale, [a, b, c])),
+                _ => longer.push(*s),
             }
         }
-        o
+        Outputs {
+            zeros,
+            ones: Paired::of(&ones),
+            twos: Paired::of(&twos),
+            threes: Paired::of(&threes),
+            longer,
+        }
     }
 }
 
@@ -318,7 +322,8 @@ impl Tape {
     }
 
     /// Whether every slot an instruction, a term or a scale reads or
-    /// writes is below `slots`, and every output index below `outputs`:
+    /// writes is below `slots`, and every output index (an alias's too)
+    /// below `outputs`:
     /// what lets the evaluation index its buffers unchecked.
     fn indices_in_bounds(&self) -> bool {
         let slot = |i: u32| (i as usize) < self.slots;
@@ -328,6 +333,10 @@ impl Tape {
         slot(self.atoms.len() as u32)
             && self.ops.recips.iter().all(|&(d, s)| slot(d) && slot(s))
             && self.ops.muls.iter().flatten().all(|&i| slot(i))
+            && self
+                .aliases
+                .iter()
+                .all(|&(k, j)| k < self.outputs && j < self.outputs)
             && o.zeros.iter().all(|&k| output(k))
             && o.ones.iter().all(|&(k, _, f)| output(k) && slot(f))
             && o.twos

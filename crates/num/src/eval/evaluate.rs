@@ -2,6 +2,9 @@
 //! vector, the instructions, then each output's compensated sum, in a
 //! buffer on the stack sized for the tape (or one kept per thread).
 
+use std::ops::{Add, Sub};
+
+use super::lanes::Lanes;
 use super::{Tape, Term, Trig, WIDTH};
 
 /// A buffer of slots an evaluation reads and writes: a fixed array on the
@@ -137,7 +140,7 @@ impl Tape {
     /// # Panics
     /// When `out.len() != outputs()`, or `x` is shorter than a planned
     /// component.
-    #[inline]
+    #[inline(always)]
     pub fn eval_at(&self, x: &[f64], given: impl FnOnce(&mut [f64]), out: &mut [f64]) {
         match self.slots {
             0..=16 => self.eval_on_stack::<16>(x, given, out),
@@ -177,7 +180,10 @@ impl Tape {
         debug_assert!(self.slots <= N && N.is_power_of_two());
         let mut buf = [0.0; N];
         self.gather_into(&mut buf, x);
-        given(&mut buf[..self.atoms.len()]);
+        // SAFETY: the inputs are below the slot of 1, which is below the
+        // tape's slots (`indices_in_bounds`), and `buf` has those (checked
+        // by `gather_into`).
+        given(unsafe { buf.get_unchecked_mut(..self.atoms.len()) });
         self.run::<false, [f64; N]>(&mut buf, out);
     }
 
@@ -248,7 +254,10 @@ impl Tape {
             }
         }
         for &(k, j) in &self.aliases {
-            out[k] = out[j];
+            // SAFETY: an alias's indices are below the tape's outputs
+            // (`indices_in_bounds`), and `out` has them (checked above).
+            unsafe { *out.get_unchecked_mut(k) = *out.get_unchecked(j) };
+            once_per_iteration();
         }
     }
 
@@ -280,11 +289,25 @@ impl Tape {
             if ABS { v.abs() } else { v }
         };
         let scale = |k: u32| if ABS { get(k).abs() } else { get(k) };
-        // TwoSum: `sum + v` and its exact error added to `comp`.
-        let add = |(sum, comp): (f64, f64), v: f64| {
-            let x = sum + v;
-            let bv = x - sum;
-            (x, comp + ((sum - (x - bv)) + (v - bv)))
+        // The outputs of a class one at a time.
+        let one = |&(_, c, f): &(u32, f64, u32)| {
+            let c = if ABS { c.abs() } else { c };
+            c * scale(f) + 0.0
+        };
+        let two = |(_, c, [t, u]): &(u32, u32, [Term; 2])| (term(t) + term(u)) * scale(*c) + 0.0;
+        let three = |(_, c, [t, u, v]): &(u32, u32, [Term; 3])| {
+            let (sum, comp) = two_sum(two_sum((term(t), -0.0), term(u)), term(v));
+            (sum + comp) * scale(*c) + 0.0
+        };
+        // Two at a time, one in each lane (the same operations: the same
+        // bits); the magnitudes of `eval_abs` one at a time.
+        let lanes = |k: u32, l: u32| Lanes::new(get(k), get(l));
+        let term2 = |t: &Term, u: &Term| {
+            let mut v = Lanes::new(t.coef, u.coef);
+            for j in 0..W {
+                v = v * lanes(t.factors[j], u.factors[j]);
+            }
+            v
         };
         let o = &self.sums;
         for &k in &o.zeros {
@@ -292,24 +315,69 @@ impl Tape {
             once_per_iteration();
         }
         // `+ 0.0` as the compensated sum's last step adds it: −0 → +0.
-        for &(k, c, f) in &o.ones {
-            let c = if ABS { c.abs() } else { c };
-            put(k, c * scale(f) + 0.0);
+        for [a, b] in &o.ones.pairs {
+            if ABS {
+                put(a.0, one(a));
+                put(b.0, one(b));
+            } else {
+                let v = Lanes::new(a.1, b.1) * lanes(a.2, b.2) + Lanes::splat(0.0);
+                put(a.0, v.lo());
+                put(b.0, v.hi());
+            }
             once_per_iteration();
         }
-        for (k, c, [t, u]) in &o.twos {
-            put(*k, (term(t) + term(u)) * scale(*c) + 0.0);
+        for [a, b] in &o.twos.pairs {
+            if ABS {
+                put(a.0, two(a));
+                put(b.0, two(b));
+            } else {
+                let ([t, u], [t1, u1]) = (a.2, b.2);
+                let v = (term2(&t, &t1) + term2(&u, &u1)) * lanes(a.1, b.1) + Lanes::splat(0.0);
+                put(a.0, v.lo());
+                put(b.0, v.hi());
+            }
         }
-        for (k, c, [t, u, v]) in &o.threes {
-            let (sum, comp) = add(add((term(t), 0.0), term(u)), term(v));
-            put(*k, (sum + comp) * scale(*c) + 0.0);
+        for [a, b] in &o.threes.pairs {
+            if ABS {
+                put(a.0, three(a));
+                put(b.0, three(b));
+            } else {
+                let ([t, u, v], [t1, u1, v1]) = (a.2, b.2);
+                let first = (term2(&t, &t1), Lanes::splat(-0.0));
+                let (sum, comp) = two_sum(two_sum(first, term2(&u, &u1)), term2(&v, &v1));
+                let v = (sum + comp) * lanes(a.1, b.1) + Lanes::splat(0.0);
+                put(a.0, v.lo());
+                put(b.0, v.hi());
+            }
+        }
+        if let Some(a) = &o.ones.odd {
+            put(a.0, one(a));
+        }
+        if let Some(a) = &o.twos.odd {
+            put(a.0, two(a));
+        }
+        if let Some(a) = &o.threes.odd {
+            put(a.0, three(a));
         }
         for r in &o.longer {
             let terms = &self.terms[r.start as usize..r.end as usize];
             if let [t, rest @ ..] = terms {
-                let (sum, comp) = rest.iter().fold((term(t), 0.0), |acc, u| add(acc, term(u)));
+                let first = (term(t), -0.0);
+                let (sum, comp) = rest.iter().fold(first, |acc, u| two_sum(acc, term(u)));
                 put(r.out, (sum + comp) * scale(r.scale) + 0.0);
             }
         }
     }
+}
+
+/// TwoSum (Knuth): `sum + v` and its exact error added to `comp`. The
+/// error of the first addition is added to a `comp` of −0, which LLVM
+/// folds away (`−0 + e = e` for every `e`, where `+0 + e` turns a −0 to
+/// +0: only the sign of a zero differs, and the `+ 0.0` every output ends
+/// with makes it +0 either way).
+#[inline(always)]
+fn two_sum<T: Copy + Add<Output = T> + Sub<Output = T>>((sum, comp): (T, T), v: T) -> (T, T) {
+    let x = sum + v;
+    let bv = x - sum;
+    (x, comp + ((sum - (x - bv)) + (v - bv)))
 }
