@@ -135,6 +135,7 @@ impl<'a> Cached<'a> {
     }
 
     /// Appends `text` whose measure is `width`.
+    #[inline]
     fn push_measured(&self, out: &mut String, text: &str, width: u32) {
         out.push_str(text);
         self.written.set(self.written.get() + width);
@@ -142,23 +143,27 @@ impl<'a> Cached<'a> {
 
     /// Appends `text` (a sign, a separator, a bracket), measured once per
     /// distinct text.
+    #[inline]
     fn push(&self, out: &mut String, text: &'static str) {
         let width = match self.measure {
             None => 0,
-            Some(m) => {
-                let key = (text.as_ptr() as usize, text.len());
-                let mut seps = self.seps.borrow_mut();
-                match seps.iter().find(|s| (s.0, s.1) == key) {
-                    Some(s) => s.2,
-                    None => {
-                        let w = m(text);
-                        seps.push((key.0, key.1, w));
-                        w
-                    }
-                }
-            }
+            Some(m) => self.sep_width(text, m),
         };
         self.push_measured(out, text, width);
+    }
+
+    /// The measure of a static text, measured once per distinct text.
+    fn sep_width(&self, text: &'static str, m: &dyn Fn(&str) -> u32) -> u32 {
+        let key = (text.as_ptr() as usize, text.len());
+        let mut seps = self.seps.borrow_mut();
+        match seps.iter().find(|s| (s.0, s.1) == key) {
+            Some(s) => s.2,
+            None => {
+                let w = m(text);
+                seps.push((key.0, key.1, w));
+                w
+            }
+        }
     }
 
     /// Appends the text of a composite (a fraction, a power of a bracket)
@@ -171,6 +176,7 @@ impl<'a> Cached<'a> {
     }
 
     /// Appends the atom's text without copying it out of the cache.
+    #[inline]
     fn write_atom(&self, a: Atom, out: &mut String) {
         let mut atoms = self.atoms.borrow_mut();
         let i = a.id() as usize;
@@ -292,11 +298,18 @@ fn write_plus(style: &Cached, out: &mut String) {
 }
 
 fn write_product(e: &Expr, factors: &[Id], style: &Cached, out: &mut String) {
-    for (k, &f) in factors.iter().enumerate() {
-        if k > 0 {
-            style.push(out, style.inner.mul_sep(e.node(factors[k - 1]), e.node(f)));
+    // Each factor's node is read once, and serves as the left one of the
+    // next separator; an atom, most factors of a long result, is written
+    // straight from the cache.
+    let mut left: Option<&Node> = None;
+    for &f in factors {
+        let node = e.node(f);
+        if let Some(left) = left {
+            style.push(out, style.inner.mul_sep(left, node));
         }
-        match e.node(f) {
+        left = Some(node);
+        match node {
+            Node::Atom(a) => style.write_atom(*a, out),
             Node::Mul(fs)
                 if !style.inner.paren_fraction_factor()
                     && fs

@@ -401,7 +401,7 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
     let mut seen: HashMap<String, ()> = HashMap::new();
     // Per step, the angles its value is written in the deviation of.
     let mut shifted: HashMap<String, Vec<(String, i64)>> = HashMap::new();
-    for s in &raw.steps {
+    for (k, s) in raw.steps.iter().enumerate() {
         if seen.insert(s.name.get_ref().clone(), ()).is_some() {
             return Err(cx.diag_string(
                 &s.name,
@@ -467,7 +467,12 @@ pub fn load_str_with(path: &str, text: &str, limits: Limits) -> Result<Derivatio
         };
         cx.check_label(s, &value, label_math.as_ref())?;
         let doc = deviations_said(&mut shifted, s, &value);
-        cx.bind(s.name.get_ref(), value.clone());
+        // A step's value is bound for the steps after it to name; the last
+        // has none after it, and its copy (chain-8's Ḣ: 126,000 terms) would
+        // only be made to be dropped.
+        if k + 1 < raw.steps.len() {
+            cx.bind(s.name.get_ref(), value.clone());
+        }
         steps.push(Step {
             name: s.name.get_ref().clone(),
             label: s
