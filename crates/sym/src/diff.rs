@@ -47,7 +47,20 @@ fn atom_dt(a: Atom) -> Vec<(Monomial, Rational)> {
 impl Poly {
     /// The total time derivative `d/dt`.
     pub fn dt(&self) -> Poly {
-        let mut acc = Accum::with_capacity(self.len() * 2);
+        // As many terms as time-dependent factors (fewer where some meet,
+        // more where sin² is rewritten): a table sized for them does not
+        // grow and rehash on the way (chain-8: three tables of 42,000).
+        let products = self
+            .terms()
+            .iter()
+            .map(|(m, _)| {
+                m.factors()
+                    .iter()
+                    .filter(|f| f.0.is_time_dependent())
+                    .count()
+            })
+            .sum();
+        let mut acc = Accum::with_capacity(products);
         // A long polynomial names a few atoms many times: differentiate
         // each once (interning the derivative atoms is a table lookup).
         let mut cache: rustc_hash::FxHashMap<Atom, Vec<(Monomial, Rational)>> = Default::default();
