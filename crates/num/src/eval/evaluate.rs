@@ -122,9 +122,9 @@ impl Tape {
     pub fn eval_slots(&self, slots: &mut [f64], out: &mut [f64], abs: bool) {
         let scratch = &mut slots[..self.slots];
         if abs {
-            self.run::<true, [f64]>(scratch, out);
+            self.run::<true, false, [f64]>(scratch, out);
         } else {
-            self.run::<false, [f64]>(scratch, out);
+            self.run::<false, false, [f64]>(scratch, out);
         }
     }
 
@@ -142,21 +142,49 @@ impl Tape {
     /// component.
     #[inline(always)]
     pub fn eval_at(&self, x: &[f64], given: impl FnOnce(&mut [f64]), out: &mut [f64]) {
+        self.eval_at_with::<false>(x, given, out);
+    }
+
+    /// [`Tape::eval_at`] into an `out` the caller has cleared: the
+    /// structurally zero outputs (no terms) are left as they are, not
+    /// written. A mass matrix's buffer is cleared when it is made, and
+    /// writing its zeros again was ~23 of the heavy top's instructions.
+    ///
+    /// # Panics
+    /// As [`Tape::eval_at`].
+    #[inline(always)]
+    pub fn eval_at_cleared(&self, x: &[f64], given: impl FnOnce(&mut [f64]), out: &mut [f64]) {
+        self.eval_at_with::<true>(x, given, out);
+    }
+
+    /// [`Tape::eval_at`], the zero outputs written unless `CLEARED`.
+    #[inline(always)]
+    fn eval_at_with<const CLEARED: bool>(
+        &self,
+        x: &[f64],
+        given: impl FnOnce(&mut [f64]),
+        out: &mut [f64],
+    ) {
         match self.slots {
-            0..=16 => self.eval_on_stack::<16>(x, given, out),
-            17..=32 => self.eval_on_stack::<32>(x, given, out),
-            33..=64 => self.eval_on_stack::<64>(x, given, out),
-            65..=128 => self.eval_on_stack::<128>(x, given, out),
-            129..=256 => self.eval_on_stack::<256>(x, given, out),
-            257..=1024 => self.eval_on_stack::<1024>(x, given, out),
-            1025..=STACK_SLOTS => self.eval_on_stack::<STACK_SLOTS>(x, given, out),
-            _ => self.eval_on_heap(x, given, out),
+            0..=16 => self.eval_on_stack::<16, CLEARED>(x, given, out),
+            17..=32 => self.eval_on_stack::<32, CLEARED>(x, given, out),
+            33..=64 => self.eval_on_stack::<64, CLEARED>(x, given, out),
+            65..=128 => self.eval_on_stack::<128, CLEARED>(x, given, out),
+            129..=256 => self.eval_on_stack::<256, CLEARED>(x, given, out),
+            257..=1024 => self.eval_on_stack::<1024, CLEARED>(x, given, out),
+            1025..=STACK_SLOTS => self.eval_on_stack::<STACK_SLOTS, CLEARED>(x, given, out),
+            _ => self.eval_on_heap::<CLEARED>(x, given, out),
         }
     }
 
     #[cold]
     #[inline(never)]
-    fn eval_on_heap(&self, x: &[f64], given: impl FnOnce(&mut [f64]), out: &mut [f64]) {
+    fn eval_on_heap<const CLEARED: bool>(
+        &self,
+        x: &[f64],
+        given: impl FnOnce(&mut [f64]),
+        out: &mut [f64],
+    ) {
         // Taken out of the thread's cell while in use: a `given` that
         // evaluates another tape gets a buffer of its own.
         let mut buf = SCRATCH.take();
@@ -164,14 +192,14 @@ impl Tape {
         buf.resize(self.slots, 0.0);
         self.gather_into::<[f64]>(&mut buf, x);
         given(&mut buf[..self.atoms.len()]);
-        self.run::<false, [f64]>(&mut buf, out);
+        self.run::<false, CLEARED, [f64]>(&mut buf, out);
         SCRATCH.set(buf);
     }
 
     // Not inlined: each size keeps a stack frame of its own (one frame
     // holding every size's buffer would probe 40 KB of stack per call).
     #[inline(never)]
-    fn eval_on_stack<const N: usize>(
+    fn eval_on_stack<const N: usize, const CLEARED: bool>(
         &self,
         x: &[f64],
         given: impl FnOnce(&mut [f64]),
@@ -184,7 +212,7 @@ impl Tape {
         // tape's slots (`indices_in_bounds`), and `buf` has those (checked
         // by `gather_into`).
         given(unsafe { buf.get_unchecked_mut(..self.atoms.len()) });
-        self.run::<false, [f64; N]>(&mut buf, out);
+        self.run::<false, CLEARED, [f64; N]>(&mut buf, out);
     }
 
     /// The planned inputs from `x`.
@@ -223,12 +251,17 @@ impl Tape {
         }
     }
 
-    /// The instructions, then each output's sum, on `s` (inputs filled).
+    /// The instructions, then each output's sum, on `s` (inputs filled);
+    /// the zero outputs are written unless `CLEARED`.
     ///
     /// # Panics
     /// When `s` has fewer than the tape's slots, or `out.len() != outputs()`.
     #[inline(always)]
-    fn run<const ABS: bool, S: Slots + ?Sized>(&self, s: &mut S, out: &mut [f64]) {
+    fn run<const ABS: bool, const CLEARED: bool, S: Slots + ?Sized>(
+        &self,
+        s: &mut S,
+        out: &mut [f64],
+    ) {
         assert_eq!(out.len(), self.outputs, "one output per polynomial");
         assert!(s.len() >= self.slots, "a buffer of the tape's slots");
         // SAFETY: every operand and destination of an instruction, and the
@@ -247,10 +280,10 @@ impl Tape {
                 once_per_iteration();
             }
             match self.width {
-                1 => self.sum_terms::<ABS, 1, S>(s, out),
-                2 => self.sum_terms::<ABS, 2, S>(s, out),
-                3 => self.sum_terms::<ABS, 3, S>(s, out),
-                _ => self.sum_terms::<ABS, WIDTH, S>(s, out),
+                1 => self.sum_terms::<ABS, CLEARED, 1, S>(s, out),
+                2 => self.sum_terms::<ABS, CLEARED, 2, S>(s, out),
+                3 => self.sum_terms::<ABS, CLEARED, 3, S>(s, out),
+                _ => self.sum_terms::<ABS, CLEARED, WIDTH, S>(s, out),
             }
         }
         for &(k, j) in &self.aliases {
@@ -271,7 +304,7 @@ impl Tape {
     /// # Safety
     /// `s` has at least the tape's slots, and `out` its outputs.
     #[inline(always)]
-    unsafe fn sum_terms<const ABS: bool, const W: usize, S: Slots + ?Sized>(
+    unsafe fn sum_terms<const ABS: bool, const CLEARED: bool, const W: usize, S: Slots + ?Sized>(
         &self,
         s: &S,
         out: &mut [f64],
@@ -310,9 +343,11 @@ impl Tape {
             v
         };
         let o = &self.sums;
-        for &k in &o.zeros {
-            put(k, 0.0);
-            once_per_iteration();
+        if !CLEARED {
+            for &k in &o.zeros {
+                put(k, 0.0);
+                once_per_iteration();
+            }
         }
         // `+ 0.0` as the compensated sum's last step adds it: −0 → +0.
         for [a, b] in &o.ones.pairs {

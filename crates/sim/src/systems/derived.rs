@@ -171,7 +171,11 @@ pub fn energy_reason(s: &hdot_sym::derivation::Step) -> Option<String> {
         .map(|(field, v)| format!("{field} = \"{v}\""))
 }
 
+// A tag byte (`repr(u8)`): `DerivedSystem::rhs` matches on the form at
+// every evaluation, and the niche in the tapes' vectors that Rust uses
+// otherwise took ~8 instructions to decode.
 #[derive(Debug, Clone)]
+#[repr(u8)]
 enum Form {
     /// q̈ (second order), or q̇ then u̇ (first order).
     Explicit(Compiled),
@@ -200,6 +204,10 @@ pub struct DerivedModel {
     /// them), carried at the end of the state, and their rates.
     carried: Vec<Atom>,
     carried_rates: Option<Compiled>,
+    /// The number of coordinates when the state is `(q, q̇)` and nothing
+    /// else (second order, no carried angles), 0 otherwise: the one test
+    /// `DerivedSystem::rhs` makes for its direct path.
+    plain_dof: usize,
     form: Form,
     inputs: Vec<(String, TimeFunction)>,
     divisors: Vec<Divisor>,
@@ -471,6 +479,15 @@ impl DerivedModel {
         !self.is_first_order() && self.carried_rates.is_none()
     }
 
+    /// [`DerivedModel::plain_dof`]'s value, set when the model is built.
+    fn plain_dof_of(&self) -> usize {
+        if self.is_plain_second_order() {
+            self.dof()
+        } else {
+            0
+        }
+    }
+
     /// [`DerivedModel::accelerations`] of a model known to be of second
     /// order.
     #[inline(always)]
@@ -507,7 +524,13 @@ impl DerivedModel {
         let n = self.dof();
         let mut buf = [0.0; L];
         let out = &mut buf[..n * n + n];
-        self.eval(mf, t, y, out);
+        // M's structural zeros are left as the cleared buffer has them.
+        if mf.given.is_empty() {
+            mf.tape.eval_at_cleared(y, |_| {}, out);
+        } else {
+            mf.tape
+                .eval_at_cleared(y, |slots| self.given_into(mf, t, y, slots), out);
+        }
         solve.solve(out, qdd)
     }
 
@@ -669,7 +692,7 @@ impl<const N: usize> System<N> for DerivedSystem<'_, N> {
         // when compiled, and q̈ from the equations with no call to `rates`
         // (its frame and a `memcpy` call were ~70 of the heavy top's ~560
         // instructions per evaluation).
-        let done = if 2 * m.dof() == N && m.is_plain_second_order() {
+        let done = if N > 0 && 2 * m.plain_dof == N {
             let (q, v) = dy.split_at_mut(N / 2);
             q.copy_from_slice(&y[N / 2..]);
             m.second_order_accelerations(t, y, v)

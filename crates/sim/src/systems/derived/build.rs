@@ -183,11 +183,12 @@ impl DerivedModel {
             Some(cx.compile(&carried_rates).map_err(|e| at(field, e))?)
         };
         let unit_norms = super::unit_norm::UnitNorms::of(d, &coordinates);
-        Ok(DerivedModel {
+        let mut model = DerivedModel {
             coordinates,
             speeds,
             carried,
             carried_rates,
+            plain_dof: 0,
             form,
             inputs,
             divisors,
@@ -198,7 +199,9 @@ impl DerivedModel {
             frames,
             placements,
             gravity,
-        })
+        };
+        model.plain_dof = model.plain_dof_of();
+        Ok(model)
     }
 }
 

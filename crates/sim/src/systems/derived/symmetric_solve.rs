@@ -106,8 +106,11 @@ impl MassSolve {
     /// positive; otherwise the general elimination with partial pivoting.
     /// For n ≤ 3 the pattern selects an instance of the factorisation with
     /// the pattern in its type (no test of it per entry: the heavy top's
-    /// solve spent ~35 of its ~110 instructions in such tests).
-    #[inline]
+    /// solve spent ~35 of its ~110 instructions in such tests). Always
+    /// inlined: a right-hand side that inlines the tape's dispatch is too
+    /// large for LLVM to inline this by itself, and the call with its own
+    /// frame was ~30 of the heavy top's instructions per evaluation.
+    #[inline(always)]
     pub(super) fn solve(&self, mf: &[f64], x: &mut [f64]) -> Option<()> {
         // Bits 3, 6 and 7: L_10, L_20 and L_21 (filled when both others are).
         let done = match &self.ldl {
