@@ -118,19 +118,6 @@ impl Values {
         out
     }
 
-    /// Every value and size by its bits, ordered by atom: equal keys mean
-    /// that every computation from these values gives the same bits
-    /// (`0.0` and `-0.0` differ here).
-    pub(crate) fn bits(&self) -> Vec<(Atom, u64, u64)> {
-        let mut out: Vec<(Atom, u64, u64)> = self
-            .map
-            .iter()
-            .map(|(a, (v, s))| (*a, v.to_bits(), s.to_bits()))
-            .collect();
-        out.sort_unstable_by_key(|x| x.0);
-        out
-    }
-
     /// A fingerprint of every value's and size's bits that does not
     /// depend on the map's order (a sum of one hash per entry, no sort):
     /// values with the same bits have the same fingerprint; whether they
@@ -145,7 +132,8 @@ impl Values {
     }
 
     /// Whether `other` binds the same atoms to values and sizes of the
-    /// same bits (what [`Values::bits`] of both would say, unsorted).
+    /// same bits (`0.0` and `-0.0` differ here): every computation from
+    /// them gives the same bits.
     pub(crate) fn same_bits(&self, other: &Values) -> bool {
         self.map.len() == other.map.len()
             && self.map.iter().all(|(a, (v, s))| {
@@ -153,6 +141,36 @@ impl Values {
                     .map
                     .get(a)
                     .is_some_and(|(w, t)| w.to_bits() == v.to_bits() && t.to_bits() == s.to_bits())
+            })
+    }
+
+    /// A fingerprint of these values as a state of the atoms `reads`
+    /// (sorted): the bits of each read atom's value and size, every other
+    /// atom by its presence only; a sum of one hash per entry (no sort).
+    /// Values that are the same state have the same fingerprint; whether
+    /// they are is [`Values::same_state`].
+    pub(crate) fn state_fingerprint(&self, reads: &[Atom]) -> u64 {
+        use std::hash::{Hash, Hasher};
+        self.map.iter().fold(0u64, |h, (a, (v, s))| {
+            let mut f = rustc_hash::FxHasher::default();
+            if reads.binary_search(a).is_ok() {
+                (a, v.to_bits(), s.to_bits()).hash(&mut f);
+            } else {
+                a.hash(&mut f);
+            }
+            h.wrapping_add(f.finish())
+        })
+    }
+
+    /// Whether `other` binds the same atoms, those of `reads` (sorted) to
+    /// values and sizes of the same bits: the same state of `reads`.
+    pub(crate) fn same_state(&self, other: &Values, reads: &[Atom]) -> bool {
+        self.map.len() == other.map.len()
+            && self.map.iter().all(|(a, (v, s))| {
+                other.map.get(a).is_some_and(|(w, t)| {
+                    reads.binary_search(a).is_err()
+                        || (w.to_bits() == v.to_bits() && t.to_bits() == s.to_bits())
+                })
             })
     }
 

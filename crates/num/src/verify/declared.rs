@@ -114,14 +114,13 @@ impl Report {
 
 /// Measures each of `[motion] vanishes` in one draw: zero along every
 /// motion the rules allow.
-fn compare_vanishing(
-    d: &Derivation,
-    draw: &Draw,
+fn compare_vanishing<'a>(
+    d: &'a Derivation,
+    draw: &'a Draw,
     values: &Values,
+    shared: &Shared<'a>,
 ) -> Result<Vec<Vec<Comparison>>, VerifyError> {
-    let mut values = values.clone();
-    constrain(d, &mut values, &[])?;
-    let w = world_with_knowns(d, draw, &mut values, &[])?;
+    let (_, w) = shared.world(d, draw, values, &[])?;
     d.physics
         .vanishes
         .iter()
@@ -240,7 +239,7 @@ impl Compiled<'_> {
 
 /// The models of one draw at its drawn values, shared by every step
 /// measured there (no `given`, no conditions of [`for_step`]) with the
-/// same coordinates: the values with `[motion]` applied and the symbols
+/// same coordinates, and by `[motion] vanishes`: the values with `[motion]` applied and the symbols
 /// of `[[known]]` bound, and the world at them. A world is a function of
 /// the draw, the values and the coordinates, so a shared one has the bits
 /// a world per step would have; sharing it also shares its measurements
@@ -620,7 +619,7 @@ fn run(
                 .iter()
                 .map(|c| compare_step(d, c, &dr, &values, &mut rng, &shared))
                 .collect::<Result<Vec<_>, _>>()?;
-            let vanish = compare_vanishing(d, &dr, &values)?;
+            let vanish = compare_vanishing(d, &dr, &values, &shared)?;
             let rates = if eqs.is_empty() {
                 vec![Vec::new(); conserved.len()]
             } else {

@@ -37,20 +37,12 @@ pub(crate) struct Partials {
     frames: Vec<(Vector3<f64>, f64)>,
 }
 
-/// The state partial velocities are a function of: every bound atom with
-/// the bits of its value and size when the models' positions and
-/// velocities, or the drawing of the dependent speeds and the
-/// coordinates' rates, can read it ([`velocity_reads`]), the others by
-/// their presence only.
-type StateKey = Vec<(Atom, u64, u64)>;
-
 /// The models at the drawn speeds, made once per world: every generalized
 /// active and inertia force a world measures (two per speed) shares it.
 #[derive(Default)]
 pub(crate) struct KaneWorlds<'d> {
     /// The partial velocities of the world's state in the draw's
-    /// [`KaneCache`], found once per world (its [`StateKey`] made and
-    /// hashed once, not once per speed).
+    /// [`KaneCache`], found once per world (not once per speed).
     state: Option<State>,
     /// The values with the dependent speeds and the coordinates' rates
     /// filled in, and the model at them.
@@ -65,8 +57,15 @@ pub(crate) struct KaneWorlds<'d> {
 /// are made once per draw, not once per world (the nonlinear bicycle made
 /// 108 models per draw for 9 distinct ones). A clone starts empty (a
 /// draw changed for a step's conditions is another draw).
+///
+/// The state partial velocities are a function of is every bound atom
+/// with the bits of its value and size when the models' positions and
+/// velocities, or the drawing of the dependent speeds and the
+/// coordinates' rates, can read it ([`velocity_reads`]), the others by
+/// their presence only ([`Values::same_state`]); the states are found by
+/// their [`Values::state_fingerprint`] (no sort of the values per world).
 #[derive(Default)]
-pub(crate) struct KaneCache(RefCell<FxHashMap<StateKey, State>>);
+pub(crate) struct KaneCache(RefCell<FxHashMap<u64, Vec<(Values, State)>>>);
 
 /// The partial velocities of one state, shared by the cache and the
 /// worlds at that state.
@@ -162,21 +161,6 @@ pub(crate) fn velocity_reads(d: &Derivation, speeds: &Speeds) -> Vec<Atom> {
     out
 }
 
-/// The [`StateKey`] of `values` ([`velocity_reads`] `reads`).
-fn state_key(reads: &[Atom], values: &Values) -> StateKey {
-    values
-        .bits()
-        .into_iter()
-        .map(|(a, v, s)| {
-            if reads.binary_search(&a).is_ok() {
-                (a, v, s)
-            } else {
-                (a, 0, 0)
-            }
-        })
-        .collect()
-}
-
 /// The partial velocities for speed `u` at the state of `w`, made once
 /// per state and draw ([`KaneCache`]).
 ///
@@ -207,15 +191,17 @@ pub(crate) fn partials(w: &World<'_>, u: Atom) -> Result<Rc<Partials>, VerifyErr
     let state = match known {
         Some(s) => s,
         None => {
-            let key = state_key(consistent.velocity_reads(), &w.values);
-            let s = w
-                .draw
-                .kane_cache()
-                .0
-                .borrow_mut()
-                .entry(key)
-                .or_default()
-                .clone();
+            let reads = consistent.velocity_reads();
+            let mut cache = w.draw.kane_cache().0.borrow_mut();
+            let states = cache.entry(w.values.state_fingerprint(reads)).or_default();
+            let s = match states.iter().find(|(v, _)| v.same_state(&w.values, reads)) {
+                Some((_, s)) => s.clone(),
+                None => {
+                    let s = State::default();
+                    states.push((w.values.clone(), s.clone()));
+                    s
+                }
+            };
             w.kane.borrow_mut().state = Some(s.clone());
             s
         }
