@@ -34,6 +34,7 @@
 //! rule 1; `present/bracket.rs` one group with its bracket
 //! (`present/gather.rs` the sum inside the bracket;
 //! `present/constants.rs` a bracket of constants, directly;
+//! `present/trig.rs` a bracket of sines and cosines, directly;
 //! `present/timed.rs` its parts classed by their time-dependent part);
 //! `present/known.rs` rule 3; `present/order.rs` the order of factors;
 //! `present/sin_squares.rs` the choice of sin² θ or 1 − cos² θ.
@@ -71,6 +72,7 @@ mod known;
 mod order;
 mod sin_squares;
 mod timed;
+mod trig;
 use bracket::group_node;
 pub use fold::fold;
 use order::{Ranks, leading_constant};

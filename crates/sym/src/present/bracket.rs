@@ -13,6 +13,7 @@ use super::constants::constants_group;
 use super::gather::{bracket_sum, is_trig};
 use super::known::{factor_by, known_factor_node};
 use super::order::{conventional, cyclic_difference, cyclic_pair_of_constants, leading_constant};
+use super::trig::trig_group;
 use super::{Context, PLAIN_ABOVE};
 use crate::atom::{Atom, AtomKind};
 use crate::expr::{Expr, Id, Node, PrintTerm};
@@ -31,8 +32,16 @@ pub(super) fn group_node(
     cx: &Context<'_>,
     ratios: bool,
 ) -> Id {
-    // A bracket of constants (chain-6 has thousands) takes a direct path.
+    // A bracket of constants (chain-6 has thousands) or of sines and
+    // cosines (hundreds) takes a direct path.
+    #[cfg(test)]
+    if GENERAL_ONLY.with(std::cell::Cell::get) {
+        return general_group(e, key, terms, cx, ratios);
+    }
     if let Some(id) = constants_group(e, key, terms, cx) {
+        return id;
+    }
+    if let Some(id) = trig_group(e, key, terms, cx) {
         return id;
     }
     general_group(e, key, terms, cx, ratios)
@@ -391,4 +400,76 @@ pub(super) fn scaled(c: &Rational, inv: &Rational) -> Rational {
         return Rational::Small(q, 1);
     }
     c * inv
+}
+
+#[cfg(test)]
+thread_local! {
+    /// Tests: every group by the general rules (no direct path).
+    static GENERAL_ONLY: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+#[cfg(test)]
+mod tests {
+    use super::GENERAL_ONLY;
+    use crate::derivation::Derivation;
+
+    /// Every presented result of `d` printed (Unicode), under the
+    /// general rules alone or with the direct path.
+    fn printed(load: &dyn Fn() -> Derivation, general_only: bool) -> Vec<String> {
+        GENERAL_ONLY.with(|g| g.set(general_only));
+        let d = load();
+        let out = d
+            .steps
+            .iter()
+            .flat_map(|s| s.presented())
+            .map(|(label, e)| format!("{label}: {}", crate::print::unicode(&e)))
+            .collect();
+        GENERAL_ONLY.with(|g| g.set(false));
+        out
+    }
+
+    /// The direct paths write every bracket of constants and every bracket
+    /// of sines and cosines as the general rules do: every bundled
+    /// derivation and chain-1 … 5 (chain-5 alone has hundreds of such
+    /// brackets) print the same both ways.
+    #[test]
+    fn direct_paths_write_brackets_as_the_general_rules_do() {
+        // The bundled derivations and the files written for the tests
+        // (textbook, lecturer and newcomer problems; the verify tests').
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+        let dirs = [
+            "derivations",
+            "tests/sym/textbook",
+            "tests/sym/lecturer",
+            "tests/sym/newcomer",
+            "tests/num/derivations",
+        ];
+        let mut files: Vec<_> = dirs
+            .iter()
+            .flat_map(|d| std::fs::read_dir(root.join(d)).expect("a folder of derivations"))
+            .map(|f| f.expect("a directory entry").path())
+            .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+            .collect();
+        files.sort();
+        let mut loads: Vec<Box<dyn Fn() -> Option<Derivation>>> = Vec::new();
+        for f in files {
+            loads.push(Box::new(move || crate::derivation::load(&f).ok()));
+        }
+        for k in 1..=5 {
+            loads.push(Box::new(move || crate::chain::derivation(k).ok()));
+        }
+        let mut compared = 0;
+        for load in &loads {
+            // Scenes and the notes manifest are not derivations.
+            if load().is_none() {
+                continue;
+            }
+            let load = || load().expect("loaded once");
+            let general = printed(&load, true);
+            let direct = printed(&load, false);
+            assert_eq!(direct, general);
+            compared += general.len();
+        }
+        assert!(compared > 100, "only {compared} results compared");
+    }
 }

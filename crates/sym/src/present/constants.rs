@@ -40,10 +40,6 @@ pub(super) fn constants_group(
     terms: &[(Monomial, Rational)],
     cx: &Context<'_>,
 ) -> Option<Id> {
-    #[cfg(test)]
-    if GENERAL_ONLY.with(std::cell::Cell::get) {
-        return None;
-    }
     if terms.len() < 2 || terms.len() > PLAIN_ABOVE || !cx.pres.factors.is_empty() {
         return None;
     }
@@ -126,75 +122,4 @@ pub(super) fn constants_group(
         false,
         cx,
     ))
-}
-
-#[cfg(test)]
-thread_local! {
-    /// Tests: every group by the general rules.
-    static GENERAL_ONLY: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
-}
-
-#[cfg(test)]
-mod tests {
-    use super::GENERAL_ONLY;
-    use crate::derivation::Derivation;
-
-    /// Every presented result of `d` printed (Unicode), under the
-    /// general rules alone or with the direct path.
-    fn printed(load: &dyn Fn() -> Derivation, general_only: bool) -> Vec<String> {
-        GENERAL_ONLY.with(|g| g.set(general_only));
-        let d = load();
-        let out = d
-            .steps
-            .iter()
-            .flat_map(|s| s.presented())
-            .map(|(label, e)| format!("{label}: {}", crate::print::unicode(&e)))
-            .collect();
-        GENERAL_ONLY.with(|g| g.set(false));
-        out
-    }
-
-    /// The direct path writes every bracket of constants as the general
-    /// rules do: every bundled derivation and chain-1 … 5 (chain-5 alone
-    /// has hundreds of such brackets) print the same both ways.
-    #[test]
-    fn brackets_of_constants_as_the_general_rules_write_them() {
-        // The bundled derivations and the files written for the tests
-        // (textbook, lecturer and newcomer problems; the verify tests').
-        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-        let dirs = [
-            "derivations",
-            "tests/sym/textbook",
-            "tests/sym/lecturer",
-            "tests/sym/newcomer",
-            "tests/num/derivations",
-        ];
-        let mut files: Vec<_> = dirs
-            .iter()
-            .flat_map(|d| std::fs::read_dir(root.join(d)).expect("a folder of derivations"))
-            .map(|f| f.expect("a directory entry").path())
-            .filter(|p| p.extension().is_some_and(|x| x == "toml"))
-            .collect();
-        files.sort();
-        let mut loads: Vec<Box<dyn Fn() -> Option<Derivation>>> = Vec::new();
-        for f in files {
-            loads.push(Box::new(move || crate::derivation::load(&f).ok()));
-        }
-        for k in 1..=5 {
-            loads.push(Box::new(move || crate::chain::derivation(k).ok()));
-        }
-        let mut compared = 0;
-        for load in &loads {
-            // Scenes and the notes manifest are not derivations.
-            if load().is_none() {
-                continue;
-            }
-            let load = || load().expect("loaded once");
-            let general = printed(&load, true);
-            let direct = printed(&load, false);
-            assert_eq!(direct, general);
-            compared += general.len();
-        }
-        assert!(compared > 100, "only {compared} results compared");
-    }
 }
