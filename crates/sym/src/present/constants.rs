@@ -14,7 +14,7 @@ use crate::poly::Monomial;
 use crate::rational::Rational;
 
 use super::bracket::{group_product, reciprocal, scaled};
-use super::gather::{quotient_in_order, sum_of_nodes};
+use super::gather::{common_factor, quotient_in_order, sum_of_nodes};
 use super::order::{conventional, cyclic_difference, cyclic_pair_of_constants};
 use super::{Context, PLAIN_ABOVE};
 
@@ -51,14 +51,7 @@ pub(super) fn constants_group(
     if !constants {
         return None;
     }
-    // What every term has.
-    let mut common = terms[0].0.clone();
-    for t in &terms[1..] {
-        if common.is_one() {
-            break;
-        }
-        common = common.gcd(&t.0);
-    }
+    let common = common_factor(terms);
     // A term of two constants or more once `common` is out may share a
     // coefficient with another (a A_x − a B_x): the general path.
     let single = terms.iter().all(|(m, _)| {

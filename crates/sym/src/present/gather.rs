@@ -380,3 +380,16 @@ pub(super) fn shared_term_node(
         m
     }
 }
+
+/// What every term of a bracket has: the gcd of its monomials (`terms` not
+/// empty), stopping once it is 1.
+pub(super) fn common_factor(terms: &[(Monomial, Rational)]) -> Monomial {
+    let mut common = terms[0].0.clone();
+    for t in &terms[1..] {
+        if common.is_one() {
+            break;
+        }
+        common = common.gcd(&t.0);
+    }
+    common
+}

@@ -16,7 +16,7 @@ use crate::poly::Monomial;
 use crate::rational::Rational;
 
 use super::bracket::{group_product, reciprocal, scaled};
-use super::gather::{is_trig, quotient_in_order, sum_of_nodes};
+use super::gather::{common_factor, is_trig, quotient_in_order, sum_of_nodes};
 use super::order::{conventional, cyclic_difference, cyclic_pair_of_constants};
 use super::{Context, PLAIN_ABOVE};
 
@@ -51,14 +51,7 @@ pub(super) fn trig_group(
     if !trig {
         return None;
     }
-    // What every term has.
-    let mut common = terms[0].0.clone();
-    for t in &terms[1..] {
-        if common.is_one() {
-            break;
-        }
-        common = common.gcd(&t.0);
-    }
+    let common = common_factor(terms);
     let mut terms = cx.ranks.print.sort(terms, true);
     // Bracket order: the term that is `common` itself (at most one: the
     // terms are distinct) first, the others in print order.
