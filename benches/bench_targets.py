@@ -13,7 +13,8 @@ Measured here, in the same run as the derivations and their peers:
   hand-written model of the same top (`crates/sim/benches/derived_rhs.rs`
   in its loop mode, `HDOT_RHS_LOOP`): CPU time per evaluation, the
   difference of a run of 2N evaluations and one of N, so that the start-up
-  and the model's compilation cancel.
+  and the model's compilation cancel (the least of five runs of each, the
+  lines interleaved).
 
 Every time is CPU time (user + system) of the process, the median of
 several runs, as the derivations' are.
@@ -108,16 +109,18 @@ def rhs_binary():
     raise SystemExit("bench_targets: cargo built no derived_rhs executable")
 
 
-def per_evaluation(binary, line, count, run_process, median_runs):
-    """CPU seconds per evaluation of one line of the right-hand-side bench."""
-
-    def cpu(n):
-        env = dict(os.environ, HDOT_RHS_LOOP=line, HDOT_RHS_COUNT=str(n))
-        return run_process([binary], env=env)
-
-    (t1, _), _ = median_runs(lambda: cpu(count), 3, 60.0)
-    (t2, _), _ = median_runs(lambda: cpu(2 * count), 3, 120.0)
-    return (t2 - t1) / count
+def per_evaluation(binary, lines, count, run_process, runs=5):
+    """CPU seconds per evaluation of each line of the right-hand-side bench:
+    the least CPU time of `runs` runs of 2N evaluations less the least of
+    `runs` runs of N (a loop of ~30 ns evaluations is slowed, never sped
+    up, by what else the host does; the lines are interleaved, so a slow
+    spell falls on all of them)."""
+    best = {(line, n): float("inf") for line in lines for n in (count, 2 * count)}
+    for _ in range(runs):
+        for line, n in best:
+            env = dict(os.environ, HDOT_RHS_LOOP=line, HDOT_RHS_COUNT=str(n))
+            best[line, n] = min(best[line, n], run_process([binary], env=env)[0])
+    return {line: (best[line, 2 * count] - best[line, count]) / count for line in lines}
 
 
 def fmt(s):
@@ -185,8 +188,8 @@ def report(exe, hd, rows, args, run_process, median_runs):
                                 t < SCENE_SECONDS))
     if not args.no_rhs:
         binary = rhs_binary()
-        per = {line: per_evaluation(binary, line, args.rhs_count, run_process, median_runs)
-               for line in (RHS_HAND, RHS_SOLVED, RHS_MASS_MATRIX)}
+        per = per_evaluation(binary, (RHS_HAND, RHS_SOLVED, RHS_MASS_MATRIX), args.rhs_count,
+                             run_process)
         for line, t in per.items():
             print(f"rhs {line:<32} {t * 1e9:6.1f} ns per evaluation", flush=True)
         for line, bound in ((RHS_SOLVED, RHS_SOLVED_RATIO), (RHS_MASS_MATRIX, RHS_MASS_MATRIX_RATIO)):
@@ -206,7 +209,7 @@ def report(exe, hd, rows, args, run_process, median_runs):
     if not args.no_rhs:
         how.append("Right-hand side: CPU time per evaluation of `crates/sim/benches/derived_rhs.rs` "
                    f"in its loop mode, runs of {2 * args.rhs_count:,} less runs of "
-                   f"{args.rhs_count:,} evaluations, medians of 3.")
+                   f"{args.rhs_count:,} evaluations, the least of 5 of each, the lines interleaved.")
     lines = [
         "",
         " ".join(how),
