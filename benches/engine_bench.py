@@ -9,7 +9,9 @@ In one run, on one machine:
   top, chain-K, the Whipple bicycle and a sum of 50,000 constants;
 * the peers in process, CPU time: SymPy as `benches/compare_sympy.py`
   writes the workloads (sympy.physics.mechanics), SymEngine and Symbolica
-  chain-K's expansion and d/dt on plain symbols;
+  chain-K's expansion and d/dt on plain symbols; in rounds interleaved
+  with hdot's runs, each ratio the median of the rounds' ratios
+  ([`interleaved`]);
 * the rest of the engine's targets (`benches/bench_targets.py`): `hdot
   verify` of every bundled file and of all together, scenes of 100,000
   bodies and of 100,000 cloud particles, the compiled derived right-hand
@@ -29,6 +31,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import statistics
 import subprocess
 import sys
 import time
@@ -123,6 +126,49 @@ def median_runs(fn, runs, budget):
     return results[len(results) // 2], len(results)
 
 
+def interleaved(argvs, peer_jobs, rounds, runs, budget=20.0):
+    """Times hdot's workloads and the peers' in `rounds` rounds: in each,
+    `runs` runs of every hdot workload (`argvs`: name → argv), then one run
+    of every peer job (`peer_jobs`: (workload, peer, fn), fn() → (CPU
+    seconds, terms or None)). A drift in the machine's speed during the
+    run then reaches hdot's side and the peer's of a ratio alike, where
+    timing all of hdot first and the peers minutes later did not.
+
+    Returns (hd, rows): hd[name] = (median CPU s, peak bytes, median wall
+    s) over all runs; rows = (workload, peer, median CPU s, terms, rounds,
+    ratio), the ratio the median over the rounds of the peer's CPU time
+    over the median of hdot's runs of that round. A peer whose runs have
+    taken more than `budget` seconds in all is not run in later rounds."""
+    samples = {name: [] for name in argvs}
+    peer_runs = {(w, p): [] for w, p, _ in peer_jobs}
+    ratios = {(w, p): [] for w, p, _ in peer_jobs}
+    for r in range(rounds):
+        this_round = {}
+        for name, argv in argvs.items():
+            xs = [run_process(argv) for _ in range(runs)]
+            samples[name] += xs
+            this_round[name] = statistics.median(x[0] for x in xs)
+        for w, p, fn in peer_jobs:
+            done = peer_runs[(w, p)]
+            if done and sum(x[0] for x in done) > budget:
+                continue
+            t, terms = fn()
+            done.append((t, terms))
+            ratios[(w, p)].append(t / this_round[w])
+        print(f"(round {r + 1} of {rounds} done)", flush=True)
+    hd = {}
+    for name, argv in argvs.items():
+        xs = samples[name]
+        hd[name] = (statistics.median(x[0] for x in xs), peak_memory(argv),
+                    statistics.median(x[1] for x in xs))
+    rows = []
+    for w, p, _ in peer_jobs:
+        done = peer_runs[(w, p)]
+        rows.append((w, p, statistics.median(x[0] for x in done), done[-1][1], len(done),
+                     statistics.median(ratios[(w, p)])))
+    return hd, rows
+
+
 def machine():
     """(CPU model, cores, load averages) of this machine."""
     model = "unknown"
@@ -157,7 +203,6 @@ def bench(args):
     model, cores, load0 = machine()
     started = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
     print(f"{started}; {model}, {cores} cores; load {load0[0]:.2f} {load0[1]:.2f} {load0[2]:.2f}")
-    hd = {}
     targets = {name: name for name in hdot_workloads}
     # The linearised Whipple bicycle (Kane's equations, derived and
     # linearised about upright running): a file, where it is bundled.
@@ -172,34 +217,28 @@ def bench(args):
         name = f"sum-{args.bench_sum}"
         hdot_workloads.append(name)
         targets[name] = str(sum_file(args.bench_sum))
-    for name in hdot_workloads:
-        argv = [exe, "derive", targets[name], "--format", "latex"]
-        (t, wall), n = median_runs(lambda: run_process(argv), args.runs, 10.0)
-        rss = peak_memory(argv)
-        hd[name] = (t, rss, wall)
-        print(f"hdot {name:<10} CPU {fmt_time(t):>10}  wall {fmt_time(wall):>10}  "
-              f"peak {rss / 1e6:7.1f} MB  (median of {n})", flush=True)
-    rows = []  # (workload, peer, peer CPU seconds, peer terms, runs)
+    argvs = {name: [exe, "derive", targets[name], "--format", "latex"] for name in hdot_workloads}
 
     def sympy_cpu(fn, *a):
         clear_cache()
-        return cpu_time(lambda: fn(*a))[0], 0
+        return cpu_time(lambda: fn(*a))[0], None
 
-    sympy_work = [("gyroscope", lambda: sympy_cpu(sympy_gyroscope))]
-    sympy_work += [(f"chain-{k}", (lambda k=k: sympy_cpu(sympy_chain, k)))
-                   for k in args.bench_chains if k <= args.sympy_max_k]
-    for name, fn in sympy_work:
-        (t, _), n = median_runs(fn, args.peer_runs, 20.0)
-        rows.append((name, "SymPy", t, None, n))
-        print(f"SymPy {name:<10} CPU {fmt_time(t):>10}  (median of {n})", flush=True)
+    # (workload, peer, one run → (CPU seconds, terms or None))
+    peer_jobs = [("gyroscope", "SymPy", lambda: sympy_cpu(sympy_gyroscope))]
+    peer_jobs += [(f"chain-{k}", "SymPy", (lambda k=k: sympy_cpu(sympy_chain, k)))
+                  for k in args.bench_chains if k <= args.sympy_max_k]
     for peer, fn in peers:
-        for k in args.bench_chains:
-            if k > args.peer_max_k:
-                continue
-            (t, terms), n = median_runs(lambda k=k: (lambda r: (r[0], r[1][1]))(cpu_time(lambda: fn(k))),
-                                        args.peer_runs, 20.0)
-            rows.append((f"chain-{k}", peer, t, terms, n))
-            print(f"{peer} chain-{k:<4} CPU {fmt_time(t):>10}  {terms:,} terms (median of {n})", flush=True)
+        peer_jobs += [(f"chain-{k}", peer, (lambda fn=fn, k=k: (lambda r: (r[0], r[1][1]))(cpu_time(lambda: fn(k)))))
+                      for k in args.bench_chains if k <= args.peer_max_k]
+    hd, rows = interleaved(argvs, peer_jobs, args.rounds, args.runs)
+    for name in hdot_workloads:
+        t, rss, wall = hd[name]
+        print(f"hdot {name:<10} CPU {fmt_time(t):>10}  wall {fmt_time(wall):>10}  "
+              f"peak {rss / 1e6:7.1f} MB", flush=True)
+    for w, peer, t, terms, n, ratio in rows:
+        count = f"  {terms:,} terms" if terms else ""
+        print(f"{peer} {w:<10} CPU {fmt_time(t):>10}{count}  ratio {ratio:,.1f}× (median of {n} rounds)",
+              flush=True)
     load1 = os.getloadavg()
     lines = [
         "",
@@ -208,15 +247,18 @@ def bench(args):
         f"Machine: {model} (`lscpu`), {cores} cores (`nproc`); `uptime` load average "
         f"{load0[0]:.2f} / {load0[1]:.2f} / {load0[2]:.2f} at the start and "
         f"{load1[0]:.2f} at the end (a shared machine: the ratios of one run are what count). "
-        f"hdot: median CPU time (user + system) of {args.runs} runs of the whole "
+        f"In {args.rounds} rounds, each of {args.runs} runs of every hdot workload and then one run "
+        "of every peer (so a drift in the machine's speed reaches both sides of a ratio alike). "
+        "hdot: median CPU time (user + system) of all its runs of the whole "
         "process `hdot derive NAME --format latex` (start-up, parse, derive, check, present, "
         "print) run on its own, its wall time; peak resident memory by `/usr/bin/time` (one more run). Peers in process, "
-        f"CPU time, median of up to {args.peer_runs} runs: SymPy as `benches/compare_sympy.py` "
+        "CPU time, median of the rounds' runs: SymPy as `benches/compare_sympy.py` "
         "writes the workloads (sympy.physics.mechanics, expand), SymEngine and Symbolica "
         "chain-K's expansion and d/dt on plain symbols only (no trigonometric reduction, no "
         "printing). bicycle: the Whipple bicycle's Kane equations derived and linearised "
         "about upright running (`bicycle.toml`). sum-N: N distinct constants summed in one step. "
-        "Ratio = peer CPU time / hdot CPU time (above 1: hdot faster).",
+        "Ratio: in each round, the peer's CPU time over the median of hdot's runs of that round "
+        "(above 1: hdot faster); the median of the rounds' ratios.",
         "",
         "| workload | hdot CPU (process) | hdot wall | hdot peak memory | peer | peer CPU | ratio |",
         "|---|---|---|---|---|---|---|",
@@ -227,8 +269,8 @@ def bench(args):
         head = f"| {name} | {fmt_time(t)} | {fmt_time(wall)} | {rss / 1e6:.0f} MB"
         if not mine:
             lines.append(f"{head} | — | — | — |")
-        for w, peer, pt, _, _ in mine:
-            lines.append(f"{head} | {peer} | {fmt_time(pt)} | {pt / t:,.1f}× |")
+        for w, peer, pt, _, _, ratio in mine:
+            lines.append(f"{head} | {peer} | {fmt_time(pt)} | {ratio:,.1f}× |")
     lines += bench_targets.report(exe, hd, rows, args, run_process, median_runs)
     text = "\n".join(lines) + "\n"
     print(text)
@@ -243,14 +285,16 @@ def main():
     target = os.environ.get("CARGO_TARGET_DIR", str(ROOT / "target"))
     ap.add_argument("--hdot", default=str(Path(target) / "release" / "hdot"),
                     help="the hdot release binary (default $CARGO_TARGET_DIR/release/hdot)")
-    ap.add_argument("--runs", type=int, default=7, help="hdot runs per workload (the median is kept)")
+    ap.add_argument("--rounds", type=int, default=3,
+                    help="rounds, each timing every hdot workload and then every peer once")
+    ap.add_argument("--runs", type=int, default=5,
+                    help="hdot runs per workload in each round (the median of all is kept)")
     ap.add_argument("--bench-chains", type=int, nargs="+", default=[4, 6, 7, 8],
                     help="chain-K workloads (default 4 6 7 8)")
     ap.add_argument("--sympy-max-k", type=int, default=5,
                     help="largest chain-K SymPy does (chain-6 takes ~40 s)")
     ap.add_argument("--peer-max-k", type=int, default=7,
                     help="largest chain-K SymEngine and Symbolica do")
-    ap.add_argument("--peer-runs", type=int, default=3, help="peer runs per workload")
     ap.add_argument("--bench-sum", type=int, default=50000,
                     help="also time a sum of this many distinct constants (0: none)")
     bench_targets.add_arguments(ap)
