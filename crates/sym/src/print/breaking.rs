@@ -138,7 +138,7 @@ fn pieces(
             }],
         };
     }
-    let cached = Cached::new(style, additive.then_some(measure));
+    let cached = Cached::new(e, style, additive.then_some(measure));
     let splitter = Splitter {
         e,
         style: &cached,
