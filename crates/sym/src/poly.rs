@@ -51,6 +51,7 @@ use crate::rational::Rational;
 
 mod monomial;
 mod ops;
+mod sin_squares;
 mod sort;
 mod sums;
 mod trig;
@@ -127,6 +128,11 @@ impl Accum {
             m.0.iter()
                 .find(|f| f.1 >= 2 && matches!(f.0.kind(), AtomKind::Sin(_)))
         {
+            // Every square at once (`poly/sin_squares.rs`), or one at a
+            // time for a sine to the fourth power or more.
+            if self.push_sin_squares(&m, &c) {
+                return;
+            }
             let AtomKind::Sin(angle) = s.kind() else {
                 unreachable!()
             };
@@ -137,6 +143,11 @@ impl Accum {
             self.push(with_cos, -c);
             return;
         }
+        self.insert(m, c);
+    }
+
+    /// Adds `c · m` to the sum as it is (`m` has no sine squared).
+    fn insert(&mut self, m: Monomial, c: Rational) {
         match self.map.entry(m) {
             std::collections::hash_map::Entry::Occupied(mut e) => {
                 let v = e.get() + &c;
@@ -219,6 +230,23 @@ impl Poly {
             acc.push(m, c);
         }
         acc.finish()
+    }
+}
+
+impl Poly {
+    /// The terms that `keep` accepts, as a polynomial, when no term has a
+    /// trigonometric denominator (`None` otherwise: a part of a reduced
+    /// fraction need not be reduced). The terms stay sorted.
+    pub fn retain_terms(&self, keep: impl Fn(&Monomial) -> bool) -> Option<Poly> {
+        (!self.trig_den).then(|| Poly {
+            terms: self
+                .terms
+                .iter()
+                .filter(|(m, _)| keep(m))
+                .cloned()
+                .collect(),
+            trig_den: false,
+        })
     }
 }
 

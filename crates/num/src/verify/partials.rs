@@ -27,6 +27,10 @@ use super::world::{World, vee};
 use super::{VerifyError, declaration};
 use crate::bind::{Values, nth};
 
+/// The orders of the models partial velocities are read from: positions
+/// and velocities ([`Partials::between`] reads no acceleration).
+const PARTIAL_ORDERS: usize = 2;
+
 /// Kane's partial velocities for one speed at one state: of each body
 /// ([`PartialVelocity`]), of each point and of each frame (N's axes), with
 /// their magnitudes — the model with the speed raised by one less the
@@ -221,7 +225,7 @@ pub(crate) fn partials(w: &World<'_>, u: Atom) -> Result<Rc<Partials>, VerifyErr
         None => {
             let mut base = w.values.clone();
             speeds.fill(d, &mut base, 1)?.ok_or_else(unbound)?;
-            let world = Rc::new(World::build(d, w.draw, &base, &[])?);
+            let world = Rc::new(World::build_to(d, w.draw, &base, &[], PARTIAL_ORDERS)?);
             w.kane.borrow_mut().base = Some((base.clone(), world.clone()));
             (base, world)
         }
@@ -229,7 +233,7 @@ pub(crate) fn partials(w: &World<'_>, u: Atom) -> Result<Rc<Partials>, VerifyErr
     let (x, _) = base.get(u).ok_or_else(unbound)?;
     let mut raised = base.with(u, x + 1.0);
     speeds.fill(d, &mut raised, 1)?.ok_or_else(unbound)?;
-    let raised = World::build(d, w.draw, &raised, &[])?;
+    let raised = World::build_to(d, w.draw, &raised, &[], PARTIAL_ORDERS)?;
     let p = Rc::new(Partials::between(&raised, &base_world));
     state.borrow_mut().push((u, p.clone()));
     Ok(p)

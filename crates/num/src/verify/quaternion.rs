@@ -9,8 +9,8 @@ use hdot_sym::vector::Mat3;
 use nalgebra::Matrix3;
 
 use super::VerifyError;
-use super::jet::{MatJet, ORDERS, mat_mat};
-use super::world::poly_jet;
+use super::jet::{MatJet, ORDERS, mat_mat_to};
+use super::world::poly_jet_to;
 use crate::bind::Values;
 
 /// The attitude jet and `∂R/∂q` of a frame turned from its parent (jet
@@ -24,17 +24,18 @@ pub(crate) fn turned(
     e: &[Atom; 4],
     coordinate: Option<Atom>,
     values: &Values,
+    orders: usize,
 ) -> Result<(MatJet, Matrix3<f64>), VerifyError> {
     let mut rot: MatJet = [Matrix3::zeros(); ORDERS];
     for i in 0..3 {
         for j in 0..3 {
-            let jet = poly_jet(&c.0[i][j], values)?;
+            let jet = poly_jet_to(&c.0[i][j], values, orders)?;
             for (n, v) in jet.iter().enumerate() {
                 rot[n][(i, j)] = *v;
             }
         }
     }
-    let jet = mat_mat(parent, &rot);
+    let jet = mat_mat_to(parent, &rot, orders);
     let mut partial = parent_partial * rot[0];
     if let Some(q) = coordinate.filter(|q| e.contains(q)) {
         let mut dc = Matrix3::zeros();

@@ -9,7 +9,9 @@ use std::rc::Rc;
 
 use hdot_sym::atom::Atom;
 use hdot_sym::derivation::Derivation;
-use hdot_sym::derivation::physics::{Bodies, FrameMotion, Meaning, PointKind, Rule, RuleValue};
+use hdot_sym::derivation::physics::{
+    Bodies, FrameMotion, Meaning, PointKind, Quantity, Rule, RuleValue,
+};
 use hdot_sym::poly::Poly;
 use hdot_sym::vector::Vec3;
 use nalgebra::{Matrix3, Vector3};
@@ -17,7 +19,7 @@ use rustc_hash::FxHashMap;
 
 use super::VerifyError;
 use super::draw::Draw;
-use super::jet::{BINOMIAL, fro, generator, hinge_jet};
+use super::jet::{BINOMIAL, fro, generator, hinge_jet_to, mat_mat_to, mat_vec_to, rotation_jet_to};
 pub use super::jet::{
     MatJet, ORDERS, PointJet, VecJet, mat_mat, mat_t_vec, mat_vec, rotation_jet, vee,
 };
@@ -63,6 +65,11 @@ pub struct World<'d> {
     pub gravity: Vector3<f64>,
     /// The coordinate the particles' ∂r/∂q is being computed for.
     coordinate: Option<Atom>,
+    /// The orders of the jets computed (the value and `orders − 1` rates;
+    /// the higher ones not computed, zero but for a drawn free point's):
+    /// [`ORDERS`], or 2 for the models partial velocities are read from
+    /// ([`World::build_to`]).
+    orders: usize,
     /// The coordinates the particles carry ∂r/∂q for.
     pub coordinates: Vec<Atom>,
     /// The symbols' values it was built from.
@@ -75,15 +82,41 @@ pub struct World<'d> {
     pub(crate) kane: RefCell<KaneWorlds<'d>>,
 }
 
-/// The jet of a polynomial's value (`p, ṗ, p̈, p⃛`) under `values`.
-pub(crate) fn poly_jet(p: &Poly, values: &Values) -> Result<[f64; ORDERS], VerifyError> {
+/// The jet of a polynomial's value (`p, ṗ, p̈, p⃛`) under `values`, to
+/// the first `orders` orders (the others zero).
+pub(crate) fn poly_jet_to(
+    p: &Poly,
+    values: &Values,
+    orders: usize,
+) -> Result<[f64; ORDERS], VerifyError> {
     let rates = rates(p, ORDERS);
     let at = rates.prepared.resolve(values);
     let mut out = [0.0; ORDERS];
-    for (k, o) in out.iter_mut().enumerate() {
+    for (k, o) in out.iter_mut().enumerate().take(orders) {
         *o = rates.prepared.eval(k, &at)?.0;
     }
     Ok(out)
+}
+
+/// The orders of the jets a measurement of `x` reads: Kane's equations —
+/// generalized active and inertia forces, in lists, sums and multiples,
+/// as a mass matrix or a forcing measures them at other accelerations —
+/// read positions, velocities and accelerations (the partial velocities
+/// come from models of their own); any other meaning is given every order.
+fn orders_read(x: &Meaning) -> usize {
+    fn kane(m: &Meaning) -> bool {
+        match m {
+            Meaning::Quantity(q, _) => matches!(
+                q,
+                Quantity::GeneralizedActiveForce | Quantity::GeneralizedInertiaForce
+            ),
+            Meaning::Sum(terms) => terms.iter().all(|(_, m)| kane(m)),
+            Meaning::List(items) => items.iter().all(kane),
+            Meaning::Scaled(_, m) => kane(m),
+            _ => false,
+        }
+    }
+    if kane(x) { 3 } else { ORDERS }
 }
 
 /// A polynomial and its first time derivatives ([`rates`]).
@@ -133,11 +166,11 @@ pub(crate) fn rates(p: &Poly, count: usize) -> Rc<Rates> {
     })
 }
 
-fn vec_jet(v: &Vec3, values: &Values) -> Result<VecJet, VerifyError> {
+fn vec_jet(v: &Vec3, values: &Values, orders: usize) -> Result<VecJet, VerifyError> {
     let c = [
-        poly_jet(&v.0[0], values)?,
-        poly_jet(&v.0[1], values)?,
-        poly_jet(&v.0[2], values)?,
+        poly_jet_to(&v.0[0], values, orders)?,
+        poly_jet_to(&v.0[1], values, orders)?,
+        poly_jet_to(&v.0[2], values, orders)?,
     ];
     Ok(std::array::from_fn(|n| {
         Vector3::new(c[0][n], c[1][n], c[2][n])
@@ -146,9 +179,14 @@ fn vec_jet(v: &Vec3, values: &Values) -> Result<VecJet, VerifyError> {
 
 /// The jet `q, q̇, q̈, q⃛` of a frame's angle (a constant angle, a fixed
 /// tilt, has no rates).
-fn angle_jet(d: &Derivation, values: &Values, angle: Atom) -> Result<[f64; ORDERS], VerifyError> {
+fn angle_jet(
+    d: &Derivation,
+    values: &Values,
+    angle: Atom,
+    orders: usize,
+) -> Result<[f64; ORDERS], VerifyError> {
     let mut q = [0.0; ORDERS];
-    for (n, x) in q.iter_mut().enumerate() {
+    for (n, x) in q.iter_mut().enumerate().take(orders) {
         *x = match n {
             0 => values.get(angle).map(|(v, _)| v),
             _ if !angle.is_time_dependent() => Some(0.0),
@@ -167,8 +205,9 @@ fn turned(
     parent: &MatJet,
     parent_partial: &Matrix3<f64>,
     (rot, g, moves): (MatJet, Matrix3<f64>, bool),
+    orders: usize,
 ) -> (MatJet, Matrix3<f64>) {
-    let jet = mat_mat(parent, &rot);
+    let jet = mat_mat_to(parent, &rot, orders);
     let mut partial = parent_partial * rot[0];
     if moves {
         partial += parent[0] * rot[0] * g;
@@ -186,9 +225,13 @@ fn offset(
     (rj, frame_partial): (&MatJet, &Matrix3<f64>),
     a: &VecJet,
     da: Option<Vector3<f64>>,
+    orders: usize,
 ) -> (PointJet, Vector3<f64>) {
-    let r = mat_vec(rj, a);
+    let r = mat_vec_to(rj, a, orders);
     let mag = std::array::from_fn(|n| {
+        if n >= orders {
+            return 0.0;
+        }
         base.mag[n]
             + (0..=n)
                 .map(|k| BINOMIAL[n][k] * fro(&rj[k]) * a[n - k].norm())
@@ -288,6 +331,20 @@ impl<'d> World<'d> {
         values: &Values,
         coordinates: &[Atom],
     ) -> Result<World<'d>, VerifyError> {
+        World::build_to(d, draw, values, coordinates, ORDERS)
+    }
+
+    /// [`World::build`] with the jets to the first `orders` orders only
+    /// (the higher ones not computed): 2 for a model only positions and
+    /// velocities are read from (Kane's partial velocities), with the same
+    /// bits in those as a full model's.
+    pub(crate) fn build_to(
+        d: &'d Derivation,
+        draw: &'d Draw,
+        values: &Values,
+        coordinates: &[Atom],
+        orders: usize,
+    ) -> Result<World<'d>, VerifyError> {
         let displacements = coordinates
             .iter()
             .map(|q| displacement(d, values, *q))
@@ -299,7 +356,7 @@ impl<'d> World<'d> {
                 atoms.push(*x);
             }
         }
-        let mut w = World::build_for(d, draw, values, atoms.first().copied())?;
+        let mut w = World::build_for(d, draw, values, atoms.first().copied(), orders)?;
         w.coordinates = coordinates.to_vec();
         if atoms.is_empty() {
             return Ok(w);
@@ -313,7 +370,7 @@ impl<'d> World<'d> {
         };
         let mut partials: Vec<Vec<(Vector3<f64>, Matrix3<f64>)>> = vec![of(&w)];
         for x in atoms.iter().skip(1) {
-            partials.push(of(&World::build_for(d, draw, values, Some(*x))?));
+            partials.push(of(&World::build_for(d, draw, values, Some(*x), orders)?));
         }
         for (bi, b) in w.bodies.iter_mut().enumerate() {
             b.dr = displacements
@@ -337,6 +394,7 @@ impl<'d> World<'d> {
         draw: &'d Draw,
         values: &Values,
         coordinate: Option<Atom>,
+        orders: usize,
     ) -> Result<World<'d>, VerifyError> {
         let ph = &d.physics;
         let mut frames: Vec<MatJet> = Vec::with_capacity(d.frames.len());
@@ -358,38 +416,42 @@ impl<'d> World<'d> {
                     axis,
                     angle,
                 } => {
-                    let q = angle_jet(d, values, *angle)?;
+                    let q = angle_jet(d, values, *angle, orders)?;
                     let g = generator(*axis);
-                    let turn = (rotation_jet(*axis, q), g, Some(angle.base()) == coordinate);
-                    turned(&frames[*parent], &partials[*parent], turn)
+                    let turn = (
+                        rotation_jet_to(*axis, q, orders),
+                        g,
+                        Some(angle.base()) == coordinate,
+                    );
+                    turned(&frames[*parent], &partials[*parent], turn, orders)
                 }
                 FrameMotion::Hinge {
                     parent,
                     axis,
                     angle,
                 } => {
-                    let q = angle_jet(d, values, *angle)?;
+                    let q = angle_jet(d, values, *angle, orders)?;
                     // The axis is constant: its jet's value.
-                    let k = vec_jet(axis, values)?[0];
+                    let k = vec_jet(axis, values, orders)?[0];
                     let turn = (
-                        hinge_jet(k, q),
+                        hinge_jet_to(k, q, orders),
                         k.cross_matrix(),
                         Some(angle.base()) == coordinate,
                     );
-                    turned(&frames[*parent], &partials[*parent], turn)
+                    turned(&frames[*parent], &partials[*parent], turn, orders)
                 }
                 FrameMotion::Quaternion { parent, e } => {
                     let (_, c) = d.frames[i].parent.as_ref().expect("a turned frame");
                     let at = (&frames[*parent], &partials[*parent]);
-                    super::quaternion::turned(at.0, at.1, c, e, coordinate, values)?
+                    super::quaternion::turned(at.0, at.1, c, e, coordinate, values, orders)?
                 }
                 FrameMotion::AngularVelocity => {
-                    let w = vec_jet(&d.frames[i].omega, values)?;
+                    let w = vec_jet(&d.frames[i].omega, values, orders)?;
                     let wx: [Matrix3<f64>; ORDERS] = std::array::from_fn(|n| w[n].cross_matrix());
                     let r = draw.attitude(i);
                     let mut jet = [r, Matrix3::zeros(), Matrix3::zeros(), Matrix3::zeros()];
                     // Ṙ = R W, differentiated by the product rule.
-                    for n in 1..ORDERS {
+                    for n in 1..orders {
                         jet[n] = (0..n)
                             .map(|k| BINOMIAL[n - 1][k] * jet[k] * wx[n - 1 - k])
                             .sum();
@@ -408,6 +470,7 @@ impl<'d> World<'d> {
             bodies: Vec::new(),
             gravity: Vector3::zeros(),
             coordinate,
+            orders,
             coordinates: Vec::new(),
             values: values.clone(),
             memo: Rc::default(),
@@ -415,7 +478,7 @@ impl<'d> World<'d> {
         };
         if let Some((g, f)) = &ph.gravity {
             let fi = d.frames.iter().position(|x| &x.name == f).expect("frame");
-            let g = vec_jet(g, values)?[0];
+            let g = vec_jet(g, values, orders)?[0];
             w.gravity = w.frames[fi][0] * g;
         }
         let mut point_partials: FxHashMap<String, Vector3<f64>> = FxHashMap::default();
@@ -451,7 +514,12 @@ impl<'d> World<'d> {
     /// The same model at the instant `values` describe (the same draw and
     /// coordinates).
     pub(crate) fn at(&self, values: &Values) -> Result<World<'d>, VerifyError> {
-        let mut w = World::build(self.d, self.draw, values, &self.coordinates)?;
+        self.at_to(values, ORDERS)
+    }
+
+    /// [`World::at`] with the jets to the first `orders` orders only.
+    fn at_to(&self, values: &Values, orders: usize) -> Result<World<'d>, VerifyError> {
+        let mut w = World::build_to(self.d, self.draw, values, &self.coordinates, orders)?;
         w.memo = self.memo.clone();
         Ok(w)
     }
@@ -472,7 +540,7 @@ impl<'d> World<'d> {
         }) {
             return Ok(found);
         }
-        let measured = measure(&self.at(values)?)?;
+        let measured = measure(&self.at_to(values, orders_read(x))?)?;
         self.memo.0.borrow_mut().entry(key).or_default().push((
             values.clone(),
             x.clone(),
@@ -511,7 +579,7 @@ impl<'d> World<'d> {
         let (jet, partial) = if let Some(p) = ph.points.iter().find(|p| p.name == name) {
             match &p.kind {
                 PointKind::Fixed(v, f) => {
-                    let r = self.frames[frame_of(f)][0] * vec_jet(v, values)?[0];
+                    let r = self.frames[frame_of(f)][0] * vec_jet(v, values, self.orders)?[0];
                     (
                         PointJet {
                             r: [r, Vector3::zeros(), Vector3::zeros(), Vector3::zeros()],
@@ -532,7 +600,8 @@ impl<'d> World<'d> {
                         )
                     });
                     let frame = (&self.frames[fi], &partials[fi]);
-                    offset((&base, dp[from]), frame, &vec_jet(at, values)?, da)
+                    let a = vec_jet(at, values, self.orders)?;
+                    offset((&base, dp[from]), frame, &a, da, self.orders)
                 }
             }
         } else {
@@ -549,7 +618,13 @@ impl<'d> World<'d> {
                 let c = draw.centre(bi);
                 let zero = Vector3::zeros();
                 let frame = (&self.frames[b.frame], &partials[b.frame]);
-                offset((&base, dp[&b.point]), frame, &[c, zero, zero, zero], None)
+                offset(
+                    (&base, dp[&b.point]),
+                    frame,
+                    &[c, zero, zero, zero],
+                    None,
+                    self.orders,
+                )
             }
         };
         self.points.insert(name.to_owned(), jet);

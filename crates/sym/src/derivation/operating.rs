@@ -198,7 +198,7 @@ impl OperatingPoint {
     /// in the symbols that have a value there and pass `which`:
     /// f(x₀) + Σ ∂f/∂x(x₀) (x − x₀). Other symbols are held as they are.
     pub fn first_order(&self, p: &Poly, which: &dyn Fn(Atom) -> bool) -> Result<Poly, Atom> {
-        let p = &self.shifted(p, which);
+        let p = &self.without_second_order(&self.shifted(p, which), which);
         let mut vars: Vec<Atom> = Vec::new();
         for a in p.atoms() {
             let x = match a.kind() {
@@ -220,6 +220,80 @@ impl OperatingPoint {
             out = &out + &(&dx * &(&Poly::atom(x) - &x0));
         }
         Ok(out)
+    }
+}
+
+/// How an atom of a polynomial stands at the operating point, for
+/// [`OperatingPoint::without_second_order`].
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum AtPoint {
+    /// Zero there: a symbol of value 0, the sine of an angle of value 0.
+    Vanishes,
+    /// Given another value there.
+    Valued,
+    /// Held as it is.
+    Free,
+}
+
+impl OperatingPoint {
+    /// `p` less the terms of second order in what vanishes at the
+    /// operating point — two factors that are zero there, or one squared:
+    /// the term and all its first derivatives are zero there, so it adds
+    /// nothing to the first-order polynomial (the result is the same
+    /// polynomial). The Taylor polynomial differentiates `p` once per
+    /// symbol, and most terms of a body's acceleration about a steady
+    /// motion are products of two small quantities (two rates, a rate and
+    /// a lean): the linearised Kane equations of the nonlinear bicycle
+    /// differentiated every one of them. A term dividing by an atom that
+    /// has a value is kept (its error, or its inverse, is
+    /// [`OperatingPoint::at_shifted`]'s), and `p` is kept whole when one
+    /// of its angles has a value `at_shifted` refuses, or when it has a
+    /// trigonometric denominator (a part of it need not be reduced).
+    fn without_second_order(&self, p: &Poly, which: &dyn Fn(Atom) -> bool) -> Poly {
+        let mut class: rustc_hash::FxHashMap<Atom, AtPoint> = Default::default();
+        for a in p.atoms() {
+            let (value, sin) = match a.kind() {
+                AtomKind::Var { time: true, .. } if which(a) => (self.value(a), true),
+                AtomKind::Sin(q) | AtomKind::Cos(q) if q.is_time_dependent() && which(q) => {
+                    let v = self.value(q);
+                    if let Some(v) = &v
+                        && !v.is_zero()
+                        && v.as_atom().filter(|b| b.is_angle()).is_none()
+                    {
+                        // `at_shifted` refuses this angle's value.
+                        return p.clone();
+                    }
+                    (v, matches!(a.kind(), AtomKind::Sin(_)))
+                }
+                _ => (None, false),
+            };
+            let c = match value {
+                None => AtPoint::Free,
+                Some(v) if v.is_zero() && sin => AtPoint::Vanishes,
+                Some(_) => AtPoint::Valued,
+            };
+            class.insert(a, c);
+        }
+        if !class.values().any(|c| *c == AtPoint::Vanishes) {
+            return p.clone();
+        }
+        let negligible = |m: &crate::poly::Monomial| {
+            let mut order = 0;
+            for &(a, e) in m.factors() {
+                match class[&a] {
+                    AtPoint::Free => {}
+                    _ if e < 0 => return false,
+                    AtPoint::Vanishes => order += e,
+                    AtPoint::Valued => {}
+                }
+            }
+            order >= 2
+        };
+        if !p.terms().iter().any(|(m, _)| negligible(m)) {
+            return p.clone();
+        }
+        p.retain_terms(|m| !negligible(m))
+            .unwrap_or_else(|| p.clone())
     }
 }
 
