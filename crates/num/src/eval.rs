@@ -136,13 +136,20 @@ impl<T: Copy> Paired<T> {
     fn iter(&self) -> impl Iterator<Item = &T> {
         self.pairs.iter().flatten().chain(&self.odd)
     }
+
+    fn iter_mut(&mut self) -> impl Iterator<Item = &mut T> {
+        self.pairs.iter_mut().flatten().chain(&mut self.odd)
+    }
 }
 
 /// A compiled set of polynomials.
 ///
 /// Invariant: slots `0..atoms.len()` are the inputs in [`Tape::atoms`]
 /// order, slot `atoms.len()` holds 1 during an evaluation; every
-/// instruction writes a slot above every slot it reads; every term
+/// instruction writes a slot above every slot it reads, and every slot an
+/// instruction, a term or a scale reads is an input, the slot of 1 or
+/// written by an earlier instruction; the plan of the inputs writes each
+/// input once; every term
 /// multiplies `width` factors (its own, padded with the slot of 1); each
 /// output is
 /// either one of `outputs`' classes (a sum of four terms or more has its
@@ -177,16 +184,27 @@ pub enum Input {
 }
 
 /// How [`Tape::eval_at`] fills the inputs from a state vector, planned once:
-/// slots copied from it, and one `sin_cos` per component whose sine and
-/// cosine are both read (one libm call instead of two). No match on each
-/// input's source per evaluation.
+/// runs of slots copied from runs of its components, and one `sin_cos` per
+/// component whose sine and cosine are both read (one libm call instead of
+/// two). No match on each input's source per evaluation.
 #[derive(Clone, Debug, Default)]
 struct Gather {
-    /// `(slot, i)`: slot ← x[i].
-    copies: Vec<(u32, u32)>,
+    runs: Vec<Run>,
     trig: Vec<Trig>,
+    /// The [`Input::Given`] slots, set to 0 before the caller's closure
+    /// writes them: with the copies and `trig`, every input is written
+    /// once (the buffer on the stack is not cleared).
+    given: Vec<u32>,
     /// One more than the largest component read: the shortest state.
     components: usize,
+}
+
+/// Slots `slot..slot + len` ← `x[i..i + len]`, copied two at a time.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Run {
+    slot: u32,
+    i: u32,
+    len: u32,
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -210,19 +228,51 @@ enum Trig {
 /// # Planning the inputs
 impl Tape {
     /// Plans how [`Tape::eval_at`] fills each input slot: `input(a)` for
-    /// each atom `a` of [`Tape::atoms`]. Until planned, every input is
-    /// [`Input::Given`].
+    /// each atom `a` of [`Tape::atoms`], called once per atom in that
+    /// order. Until planned, every input is [`Input::Given`].
+    ///
+    /// The inputs are put in the order they are gathered in — the state's
+    /// components by component, then the sines and cosines, then the given
+    /// ones (each kind in the order it had) — so that components next to
+    /// each other in the state are copied as a run: [`Tape::atoms`] is to
+    /// be read after planning. The outputs are the same, to the bit.
     pub fn plan_inputs(&mut self, mut input: impl FnMut(Atom) -> Input) {
+        let sources: Vec<Input> = self.atoms.iter().map(|&a| input(a)).collect();
+        let rank = |s: Input| match s {
+            Input::Component(i) => (0, i, false),
+            Input::Sin(i) => (1, i, false),
+            Input::Cos(i) => (1, i, true),
+            Input::Given => (2, 0, false),
+        };
+        // `order[new] = old`; the sort is stable.
+        let mut order: Vec<usize> = (0..sources.len()).collect();
+        order.sort_by_key(|&k| rank(sources[k]));
+        let mut slot_of = vec![0; order.len()];
+        for (new, &old) in order.iter().enumerate() {
+            slot_of[old] = new as u32;
+        }
+        let inputs = order.len() as u32;
+        self.renumber(|i| if i < inputs { slot_of[i as usize] } else { i });
+        self.atoms = order.iter().map(|&k| self.atoms[k]).collect();
+        let mut input = order.iter().map(|&k| sources[k]);
         let mut g = Gather::default();
         let mut trig: Vec<(usize, Option<u32>, Option<u32>)> = Vec::new();
-        for (slot, &a) in self.atoms.iter().enumerate() {
-            let slot = slot as u32;
-            let source = input(a);
+        // A second atom of the same sine or cosine (no caller plans one):
+        // gathered alone, so that every input is written.
+        let mut again = Vec::new();
+        for slot in 0..inputs {
+            let source = input.next().expect("one source per input");
             if let Input::Component(i) | Input::Sin(i) | Input::Cos(i) = source {
                 g.components = g.components.max(i + 1);
             }
             match source {
-                Input::Component(i) => g.copies.push((slot, i as u32)),
+                Input::Component(i) => {
+                    let i = i as u32;
+                    match g.runs.last_mut() {
+                        Some(r) if r.slot + r.len == slot && r.i + r.len == i => r.len += 1,
+                        _ => g.runs.push(Run { slot, i, len: 1 }),
+                    }
+                }
                 Input::Sin(i) | Input::Cos(i) => {
                     let k = match trig.iter().position(|t| t.0 == i) {
                         Some(k) => k,
@@ -231,13 +281,15 @@ impl Tape {
                             trig.len() - 1
                         }
                     };
-                    if matches!(source, Input::Sin(_)) {
-                        trig[k].1 = Some(slot);
-                    } else {
-                        trig[k].2 = Some(slot);
+                    let i = i as u32;
+                    match (source, &mut trig[k]) {
+                        (Input::Sin(_), (_, s @ None, _)) => *s = Some(slot),
+                        (Input::Sin(_), _) => again.push(Trig::Sin { i, slot }),
+                        (_, (_, _, c @ None)) => *c = Some(slot),
+                        _ => again.push(Trig::Cos { i, slot }),
                     }
                 }
-                Input::Given => {}
+                Input::Given => g.given.push(slot),
             }
         }
         g.trig = trig
@@ -251,6 +303,7 @@ impl Tape {
                     (None, None) => unreachable!("a trigonometric input has a slot"),
                 }
             })
+            .chain(again)
             .collect();
         self.gather = g;
     }

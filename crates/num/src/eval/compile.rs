@@ -9,7 +9,7 @@ use hdot_sym::poly::Poly;
 // small integer; SipHash was half of compiling the bicycle's steps).
 use rustc_hash::FxHashMap;
 
-use super::{Gather, Ops, Outputs, Paired, Sum, Tape, Term, WIDTH};
+use super::{Gather, Input, Ops, Outputs, Paired, Sum, Tape, Term, WIDTH};
 
 /// The slot of `a^e` (`e ≠ 0`), emitting the products (and reciprocal)
 /// it needs once: `x⁵ = (x²)² · x`, `x⁻² = (1/x)²`.
@@ -305,7 +305,7 @@ impl Tape {
                 zeros.push(k as u32);
             }
         }
-        let tape = Tape {
+        let mut tape = Tape {
             atoms,
             ops,
             sums: Outputs::of(&sums, &terms, zeros),
@@ -316,9 +316,78 @@ impl Tape {
             slots: next as usize,
             gather: Gather::default(),
         };
-        // The evaluation reads and writes slots and outputs unchecked.
+        tape.plan_inputs(|_| Input::Given);
+        // The evaluation reads and writes slots and outputs unchecked, in
+        // a buffer on the stack it does not clear.
         assert!(tape.indices_in_bounds(), "a tape's indices are in bounds");
+        assert!(
+            tape.writes_before_reads(),
+            "a tape writes each slot before reading it"
+        );
         tape
+    }
+
+    /// Every slot index of the instructions, terms and scales `i`
+    /// replaced by `f(i)` (a permutation of the inputs, in
+    /// [`Tape::plan_inputs`]).
+    pub(super) fn renumber(&mut self, f: impl Fn(u32) -> u32) {
+        for (dst, src) in &mut self.ops.recips {
+            (*dst, *src) = (f(*dst), f(*src));
+        }
+        for i in self.ops.muls.iter_mut().flatten() {
+            *i = f(*i);
+        }
+        let term = |t: &mut Term| t.factors.iter_mut().for_each(|i| *i = f(*i));
+        self.terms.iter_mut().for_each(term);
+        let o = &mut self.sums;
+        for (_, _, scale) in o.ones.iter_mut() {
+            *scale = f(*scale);
+        }
+        for (_, scale, t) in o.twos.iter_mut() {
+            *scale = f(*scale);
+            t.iter_mut().for_each(term);
+        }
+        for (_, scale, t) in o.threes.iter_mut() {
+            *scale = f(*scale);
+            t.iter_mut().for_each(term);
+        }
+        for r in &mut o.longer {
+            r.scale = f(r.scale);
+        }
+    }
+
+    /// Whether every slot an instruction, a term or a scale reads is an
+    /// input (each written by the gathering, [`Tape::plan_inputs`]), the
+    /// slot of 1, or the destination of an instruction run before the
+    /// read (the reciprocals, then the products in order; the terms
+    /// after them all): what lets [`Tape::eval_at`] leave its buffer on
+    /// the stack uninitialised. Its indices are in bounds
+    /// ([`Tape::indices_in_bounds`]).
+    fn writes_before_reads(&self) -> bool {
+        let mut written = vec![false; self.slots];
+        written[..=self.atoms.len()].fill(true);
+        for &(dst, src) in &self.ops.recips {
+            if !written[src as usize] {
+                return false;
+            }
+            written[dst as usize] = true;
+        }
+        for &[dst, a, b] in &self.ops.muls {
+            if !(written[a as usize] && written[b as usize]) {
+                return false;
+            }
+            written[dst as usize] = true;
+        }
+        let read = |i: &u32| written[*i as usize];
+        let term = |t: &Term| t.factors.iter().all(read);
+        let o = &self.sums;
+        o.ones.iter().all(|(_, _, f)| read(f))
+            && o.twos.iter().all(|(_, f, t)| read(f) && t.iter().all(term))
+            && o.threes
+                .iter()
+                .all(|(_, f, t)| read(f) && t.iter().all(term))
+            && o.longer.iter().all(|r| read(&r.scale))
+            && self.terms.iter().all(term)
     }
 
     /// Whether every slot an instruction, a term or a scale reads or

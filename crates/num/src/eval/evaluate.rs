@@ -2,28 +2,41 @@
 //! vector, the instructions, then each output's compensated sum, in a
 //! buffer on the stack sized for the tape (or one kept per thread).
 
+use std::mem::MaybeUninit;
 use std::ops::{Add, Sub};
 
 use super::lanes::Lanes;
 use super::{Tape, Term, Trig, WIDTH};
 
-/// A buffer of slots an evaluation reads and writes: a fixed array on the
-/// stack, or a slice. Read and written unchecked: the operands and
-/// destinations of a tape are below its `slots` (checked once when it is
-/// compiled, [`Tape::indices_in_bounds`]) and [`Tape::run`] checks once per
-/// evaluation that the buffer has that many. A check or mask per operand
-/// was about 45 of the heavy top's 366 instructions in the tape.
+/// A buffer of slots an evaluation reads and writes: an array on the
+/// stack left uninitialised, or a slice. Read and written unchecked: the
+/// operands and destinations of a tape are below its `slots` (checked once
+/// when it is compiled, [`Tape::indices_in_bounds`]) and [`Tape::run`]
+/// checks once per evaluation that the buffer has that many. A check or
+/// mask per operand was about 45 of the heavy top's 366 instructions in
+/// the tape.
 trait Slots {
     fn len(&self) -> usize;
     /// # Safety
-    /// `i < self.len()`.
+    /// `i < self.len()`, and slot `i` written in this evaluation (every
+    /// slot a tape reads is: an input by the gathering, the slot of 1 by
+    /// [`Tape::run`], the others by an earlier instruction — checked once
+    /// when the tape is compiled, `Tape::writes_before_reads`).
     unsafe fn get(&self, i: u32) -> f64;
     /// # Safety
     /// `i < self.len()`.
     unsafe fn set(&mut self, i: u32, v: f64);
+    /// Slots `i` and `i + 1` (one 16-byte store).
+    ///
+    /// # Safety
+    /// `i + 1 < self.len()`.
+    unsafe fn set_pair(&mut self, i: u32, v: [f64; 2]);
 }
 
-impl<const N: usize> Slots for [f64; N] {
+/// The buffer on the stack, not cleared: clearing 16 slots was 9 of the
+/// heavy top's instructions per evaluation, and every slot a tape reads
+/// is written first.
+impl<const N: usize> Slots for [MaybeUninit<f64>; N] {
     #[inline(always)]
     fn len(&self) -> usize {
         N
@@ -31,14 +44,28 @@ impl<const N: usize> Slots for [f64; N] {
     #[inline(always)]
     unsafe fn get(&self, i: u32) -> f64 {
         debug_assert!((i as usize) < N);
-        // SAFETY: the caller's contract.
-        unsafe { *self.get_unchecked(i as usize) }
+        // SAFETY: the caller's contract: in bounds, and written.
+        unsafe { self.get_unchecked(i as usize).assume_init() }
     }
     #[inline(always)]
     unsafe fn set(&mut self, i: u32, v: f64) {
         debug_assert!((i as usize) < N);
         // SAFETY: the caller's contract.
-        unsafe { *self.get_unchecked_mut(i as usize) = v }
+        unsafe {
+            self.get_unchecked_mut(i as usize).write(v);
+        }
+    }
+    #[inline(always)]
+    unsafe fn set_pair(&mut self, i: u32, v: [f64; 2]) {
+        debug_assert!((i as usize) + 1 < N);
+        // SAFETY: the caller's contract; `[f64; 2]` has the layout of two
+        // slots, written unaligned.
+        unsafe {
+            self.as_mut_ptr()
+                .add(i as usize)
+                .cast::<[f64; 2]>()
+                .write_unaligned(v)
+        }
     }
 }
 
@@ -58,6 +85,18 @@ impl Slots for [f64] {
         debug_assert!((i as usize) < self.len());
         // SAFETY: the caller's contract.
         unsafe { *self.get_unchecked_mut(i as usize) = v }
+    }
+    #[inline(always)]
+    unsafe fn set_pair(&mut self, i: u32, v: [f64; 2]) {
+        debug_assert!((i as usize) + 1 < self.len());
+        // SAFETY: the caller's contract; `[f64; 2]` has the layout of two
+        // slots, written unaligned.
+        unsafe {
+            self.as_mut_ptr()
+                .add(i as usize)
+                .cast::<[f64; 2]>()
+                .write_unaligned(v)
+        }
     }
 }
 
@@ -131,9 +170,10 @@ impl Tape {
     /// Evaluates every output at the state vector `x`: the inputs planned
     /// by [`Tape::plan_inputs`] gathered from it, then the [`Input::Given`]
     /// ones written by `given` into the slice it is given
-    /// (`atoms().len()` slots, input i at index i). The gathering and the
-    /// evaluation are one call, in a buffer on the stack sized for this
-    /// tape (no allocation, no shared scratch buffer, no bounds check per
+    /// (`atoms().len()` slots, input i at index i; the given ones are 0
+    /// until it writes them). The gathering and the evaluation are one
+    /// call, in a buffer on the stack sized for this tape and not cleared
+    /// (no allocation, no shared scratch buffer, no bounds check per
     /// operand); a tape of more than 4096 slots uses a buffer kept per
     /// thread instead.
     ///
@@ -166,7 +206,7 @@ impl Tape {
         out: &mut [f64],
     ) {
         match self.slots {
-            0..=16 => self.eval_on_stack::<16, CLEARED>(x, given, out),
+            0..=16 => self.eval_in::<16, CLEARED>(x, given, out),
             17..=32 => self.eval_on_stack::<32, CLEARED>(x, given, out),
             33..=64 => self.eval_on_stack::<64, CLEARED>(x, given, out),
             65..=128 => self.eval_on_stack::<128, CLEARED>(x, given, out),
@@ -197,7 +237,10 @@ impl Tape {
     }
 
     // Not inlined: each size keeps a stack frame of its own (one frame
-    // holding every size's buffer would probe 40 KB of stack per call).
+    // holding every size's buffer would probe 40 KB of stack per call);
+    // the smallest (16 slots, 128 bytes) is inlined into its caller
+    // (`eval_in`): its call, frame and saved registers were ~25 of the
+    // heavy top's instructions per evaluation.
     #[inline(never)]
     fn eval_on_stack<const N: usize, const CLEARED: bool>(
         &self,
@@ -205,14 +248,31 @@ impl Tape {
         given: impl FnOnce(&mut [f64]),
         out: &mut [f64],
     ) {
+        self.eval_in::<N, CLEARED>(x, given, out);
+    }
+
+    /// The evaluation in a buffer of `N` slots on the stack, not cleared
+    /// (every slot read is written first).
+    #[inline(always)]
+    fn eval_in<const N: usize, const CLEARED: bool>(
+        &self,
+        x: &[f64],
+        given: impl FnOnce(&mut [f64]),
+        out: &mut [f64],
+    ) {
         debug_assert!(self.slots <= N && N.is_power_of_two());
-        let mut buf = [0.0; N];
+        let mut buf = [MaybeUninit::<f64>::uninit(); N];
         self.gather_into(&mut buf, x);
         // SAFETY: the inputs are below the slot of 1, which is below the
         // tape's slots (`indices_in_bounds`), and `buf` has those (checked
-        // by `gather_into`).
-        given(unsafe { buf.get_unchecked_mut(..self.atoms.len()) });
-        self.run::<false, CLEARED, [f64; N]>(&mut buf, out);
+        // by `gather_into`); every input is written by `gather_into` (a
+        // planned one gathered, the others set to 0), so the slice is of
+        // initialised `f64`s.
+        let inputs = unsafe {
+            std::slice::from_raw_parts_mut(buf.as_mut_ptr().cast::<f64>(), self.atoms.len())
+        };
+        given(inputs);
+        self.run::<false, CLEARED, [MaybeUninit<f64>; N]>(&mut buf, out);
     }
 
     /// The planned inputs from `x`.
@@ -230,11 +290,38 @@ impl Tape {
         );
         // SAFETY: a planned slot is an input's, below the tape's slots, and
         // `s` has them; a planned component is below `g.components`, and
-        // `x` has them (both checked above).
+        // `x` has them (both checked above); so are a run's, and a pair of
+        // a run is within it.
         unsafe {
+            let pair = |i: u32| {
+                x.as_ptr()
+                    .add(i as usize)
+                    .cast::<[f64; 2]>()
+                    .read_unaligned()
+            };
             let x = |i: u32| *x.get_unchecked(i as usize);
-            for &(slot, i) in &g.copies {
-                s.set(slot, x(i));
+            // Two at a time (a 16-byte load and store), the last pair
+            // ending the run (overlapping the one before when the run is
+            // odd): the heavy top's three rates in two moves. A run of up
+            // to four is its first pair and its last, with no loop.
+            for r in &g.runs {
+                let last = r.len.wrapping_sub(2);
+                match r.len {
+                    1 => s.set(r.slot, x(r.i)),
+                    2..=4 => {
+                        s.set_pair(r.slot, pair(r.i));
+                        s.set_pair(r.slot + last, pair(r.i + last));
+                    }
+                    _ => {
+                        let mut k = 0;
+                        while k < last {
+                            s.set_pair(r.slot + k, pair(r.i + k));
+                            k += 2;
+                            once_per_iteration();
+                        }
+                        s.set_pair(r.slot + last, pair(r.i + last));
+                    }
+                }
                 once_per_iteration();
             }
             for t in &g.trig {
@@ -247,6 +334,11 @@ impl Tape {
                     Trig::Sin { i, slot } => s.set(slot, x(i).sin()),
                     Trig::Cos { i, slot } => s.set(slot, x(i).cos()),
                 }
+            }
+            // Every input written: the buffer on the stack is not cleared.
+            for &slot in &g.given {
+                s.set(slot, 0.0);
+                once_per_iteration();
             }
         }
     }
@@ -314,24 +406,9 @@ impl Tape {
         // (`indices_in_bounds`); `s` and `out` have them (the contract).
         let get = |i: u32| unsafe { s.get(i) };
         let mut put = |k: u32, v: f64| unsafe { *out.get_unchecked_mut(k as usize) = v };
-        let term = |t: &Term| {
-            let mut v = t.coef;
-            for &f in &t.factors[..W] {
-                v *= get(f);
-            }
-            if ABS { v.abs() } else { v }
-        };
-        let scale = |k: u32| if ABS { get(k).abs() } else { get(k) };
-        // The outputs of a class one at a time.
-        let one = |&(_, c, f): &(u32, f64, u32)| {
-            let c = if ABS { c.abs() } else { c };
-            c * scale(f) + 0.0
-        };
-        let two = |(_, c, [t, u]): &(u32, u32, [Term; 2])| (term(t) + term(u)) * scale(*c) + 0.0;
-        let three = |(_, c, [t, u, v]): &(u32, u32, [Term; 3])| {
-            let (sum, comp) = two_sum(two_sum((term(t), -0.0), term(u)), term(v));
-            (sum + comp) * scale(*c) + 0.0
-        };
+        // The outputs of a class one at a time (functions, not closures:
+        // LLVM called a closure used twice out of line, ~24 instructions).
+        let r = Read::<ABS, W, S> { s };
         // Two at a time, one in each lane (the same operations: the same
         // bits); the magnitudes of `eval_abs` one at a time.
         let lanes = |k: u32, l: u32| Lanes::new(get(k), get(l));
@@ -352,8 +429,8 @@ impl Tape {
         // `+ 0.0` as the compensated sum's last step adds it: −0 → +0.
         for [a, b] in &o.ones.pairs {
             if ABS {
-                put(a.0, one(a));
-                put(b.0, one(b));
+                put(a.0, unsafe { r.one(a) });
+                put(b.0, unsafe { r.one(b) });
             } else {
                 let v = Lanes::new(a.1, b.1) * lanes(a.2, b.2) + Lanes::splat(0.0);
                 put(a.0, v.lo());
@@ -363,8 +440,8 @@ impl Tape {
         }
         for [a, b] in &o.twos.pairs {
             if ABS {
-                put(a.0, two(a));
-                put(b.0, two(b));
+                put(a.0, unsafe { r.two(a) });
+                put(b.0, unsafe { r.two(b) });
             } else {
                 let ([t, u], [t1, u1]) = (a.2, b.2);
                 let v = (term2(&t, &t1) + term2(&u, &u1)) * lanes(a.1, b.1) + Lanes::splat(0.0);
@@ -374,8 +451,8 @@ impl Tape {
         }
         for [a, b] in &o.threes.pairs {
             if ABS {
-                put(a.0, three(a));
-                put(b.0, three(b));
+                put(a.0, unsafe { r.three(a) });
+                put(b.0, unsafe { r.three(b) });
             } else {
                 let ([t, u, v], [t1, u1, v1]) = (a.2, b.2);
                 let first = (term2(&t, &t1), Lanes::splat(-0.0));
@@ -386,21 +463,80 @@ impl Tape {
             }
         }
         if let Some(a) = &o.ones.odd {
-            put(a.0, one(a));
+            put(a.0, unsafe { r.one(a) });
         }
         if let Some(a) = &o.twos.odd {
-            put(a.0, two(a));
+            put(a.0, unsafe { r.two(a) });
         }
         if let Some(a) = &o.threes.odd {
-            put(a.0, three(a));
+            put(a.0, unsafe { r.three(a) });
         }
-        for r in &o.longer {
-            let terms = &self.terms[r.start as usize..r.end as usize];
+        for l in &o.longer {
+            let terms = &self.terms[l.start as usize..l.end as usize];
             if let [t, rest @ ..] = terms {
-                let first = (term(t), -0.0);
-                let (sum, comp) = rest.iter().fold(first, |acc, u| two_sum(acc, term(u)));
-                put(r.out, (sum + comp) * scale(r.scale) + 0.0);
+                // SAFETY: as above.
+                unsafe {
+                    let first = (r.term(t), -0.0);
+                    let (sum, comp) = rest.iter().fold(first, |acc, u| two_sum(acc, r.term(u)));
+                    put(l.out, (sum + comp) * r.scale(l.scale) + 0.0);
+                }
             }
+        }
+    }
+}
+
+/// The outputs of one to three terms, one at a time, read from `s`
+/// unchecked: what [`Tape::sum_terms`] sums (the magnitudes of the terms
+/// with `ABS`; `W` factors per term). Every method is inlined.
+struct Read<'a, const ABS: bool, const W: usize, S: Slots + ?Sized> {
+    s: &'a S,
+}
+
+// SAFETY (each method): the caller's contract is [`Tape::sum_terms`]'s —
+// `s` has the tape's slots, every slot a term or a scale reads is in bounds
+// and written, and the items are the tape's.
+impl<const ABS: bool, const W: usize, S: Slots + ?Sized> Read<'_, ABS, W, S> {
+    /// # Safety
+    /// As [`Tape::sum_terms`], `t` a term of the tape.
+    #[inline(always)]
+    unsafe fn term(&self, t: &Term) -> f64 {
+        let mut v = t.coef;
+        for &f in &t.factors[..W] {
+            v *= unsafe { self.s.get(f) };
+        }
+        if ABS { v.abs() } else { v }
+    }
+
+    /// # Safety
+    /// As [`Tape::sum_terms`], `k` a scale of the tape.
+    #[inline(always)]
+    unsafe fn scale(&self, k: u32) -> f64 {
+        let v = unsafe { self.s.get(k) };
+        if ABS { v.abs() } else { v }
+    }
+
+    /// # Safety
+    /// As [`Tape::sum_terms`], `a` an output of one term of the tape.
+    #[inline(always)]
+    unsafe fn one(&self, &(_, c, f): &(u32, f64, u32)) -> f64 {
+        let c = if ABS { c.abs() } else { c };
+        c * unsafe { self.scale(f) } + 0.0
+    }
+
+    /// # Safety
+    /// As [`Tape::sum_terms`], `a` an output of two terms of the tape.
+    #[inline(always)]
+    unsafe fn two(&self, (_, c, [t, u]): &(u32, u32, [Term; 2])) -> f64 {
+        unsafe { (self.term(t) + self.term(u)) * self.scale(*c) + 0.0 }
+    }
+
+    /// # Safety
+    /// As [`Tape::sum_terms`], `a` an output of three terms of the tape.
+    #[inline(always)]
+    unsafe fn three(&self, (_, c, [t, u, v]): &(u32, u32, [Term; 3])) -> f64 {
+        unsafe {
+            let (sum, comp) = two_sum(two_sum((self.term(t), -0.0), self.term(u)), self.term(v));
+            (sum + comp) * self.scale(*c) + 0.0
         }
     }
 }

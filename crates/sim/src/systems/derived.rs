@@ -204,10 +204,11 @@ pub struct DerivedModel {
     /// them), carried at the end of the state, and their rates.
     carried: Vec<Atom>,
     carried_rates: Option<Compiled>,
-    /// The number of coordinates when the state is `(q, q̇)` and nothing
+    /// The length of the state `(q, q̇)` when it is that and nothing
     /// else (second order, no carried angles), 0 otherwise: the one test
-    /// `DerivedSystem::rhs` makes for its direct path.
-    plain_dof: usize,
+    /// `DerivedSystem::rhs` makes for its direct path (a comparison with
+    /// its `N`).
+    plain_state: usize,
     form: Form,
     inputs: Vec<(String, TimeFunction)>,
     divisors: Vec<Divisor>,
@@ -479,10 +480,10 @@ impl DerivedModel {
         !self.is_first_order() && self.carried_rates.is_none()
     }
 
-    /// [`DerivedModel::plain_dof`]'s value, set when the model is built.
-    fn plain_dof_of(&self) -> usize {
+    /// [`DerivedModel::plain_state`]'s value, set when the model is built.
+    fn plain_state_of(&self) -> usize {
         if self.is_plain_second_order() {
-            self.dof()
+            2 * self.dof()
         } else {
             0
         }
@@ -692,7 +693,7 @@ impl<const N: usize> System<N> for DerivedSystem<'_, N> {
         // when compiled, and q̈ from the equations with no call to `rates`
         // (its frame and a `memcpy` call were ~70 of the heavy top's ~560
         // instructions per evaluation).
-        let done = if N > 0 && 2 * m.plain_dof == N {
+        let done = if N > 0 && m.plain_state == N {
             let (q, v) = dy.split_at_mut(N / 2);
             q.copy_from_slice(&y[N / 2..]);
             m.second_order_accelerations(t, y, v)

@@ -188,7 +188,7 @@ impl DerivedModel {
             speeds,
             carried,
             carried_rates,
-            plain_dof: 0,
+            plain_state: 0,
             form,
             inputs,
             divisors,
@@ -200,7 +200,7 @@ impl DerivedModel {
             placements,
             gravity,
         };
-        model.plain_dof = model.plain_dof_of();
+        model.plain_state = model.plain_state_of();
         Ok(model)
     }
 }

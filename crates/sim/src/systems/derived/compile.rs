@@ -117,6 +117,13 @@ impl Resolver<'_> {
         let n = self.coordinates.len();
         let mut planned = sources.iter();
         tape.plan_inputs(|_| input(*planned.next().expect("one source per atom"), n));
+        // The plan orders the inputs as it gathers them: their sources in
+        // that order.
+        let sources = tape
+            .atoms()
+            .iter()
+            .map(|&a| self.source(a))
+            .collect::<Result<Vec<_>, _>>()?;
         let given = sources
             .iter()
             .enumerate()
