@@ -39,21 +39,28 @@ impl Speeds {
     /// The result holds no rate of those coordinates, and is reduced
     /// modulo the unit norm of the Euler parameters.
     pub fn in_speeds(&self, p: &Poly) -> Poly {
-        let mut p = p.clone();
-        loop {
-            let mut changed = false;
-            p = p.subst(&mut |a| match a.kind() {
-                AtomKind::Var { order, .. } if order >= 1 => {
-                    let f = self.rate_of(a.base())?;
-                    changed = true;
-                    Some(f.dt_n(order - 1))
-                }
-                _ => None,
-            });
-            if !changed {
-                return super::quaternion::reduce_all(&p, &self.unit_norms);
-            }
+        // The kinematic equation of a rate that has one.
+        let equation = |a: Atom| match a.kind() {
+            AtomKind::Var { order, .. } if order >= 1 => self.rate_of(a.base()),
+            _ => None,
+        };
+        // Passes until no replacement brings in a rate to replace (q̈ → ḟ
+        // holds q̇): a pass after that would change nothing, and it was a
+        // walk over every atom and a copy of the whole result.
+        let mut again = false;
+        let pass = |p: &Poly, again: &mut bool| {
+            p.subst(&mut |a| {
+                let r = equation(a)?.dt_n(a.order() - 1);
+                *again |= r.atoms().into_iter().any(|b| equation(b).is_some());
+                Some(r)
+            })
+        };
+        let mut p = pass(p, &mut again);
+        while again {
+            again = false;
+            p = pass(&p, &mut again);
         }
+        super::quaternion::reduce_all(&p, &self.unit_norms)
     }
 }
 

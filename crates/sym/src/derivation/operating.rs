@@ -198,7 +198,7 @@ impl OperatingPoint {
     /// in the symbols that have a value there and pass `which`:
     /// f(x₀) + Σ ∂f/∂x(x₀) (x − x₀). Other symbols are held as they are.
     pub fn first_order(&self, p: &Poly, which: &dyn Fn(Atom) -> bool) -> Result<Poly, Atom> {
-        let p = &self.without_second_order(&self.shifted(p, which), which);
+        let p = &self.without_second_order(self.shifted(p, which), which);
         let mut vars: Vec<Atom> = Vec::new();
         for a in p.atoms() {
             let x = match a.kind() {
@@ -222,6 +222,10 @@ impl OperatingPoint {
         Ok(out)
     }
 }
+
+/// The fewest terms [`OperatingPoint::without_second_order`] looks for
+/// negligible terms in.
+const PRUNED_FROM: usize = 16;
 
 /// How an atom of a polynomial stands at the operating point, for
 /// [`OperatingPoint::without_second_order`].
@@ -249,7 +253,11 @@ impl OperatingPoint {
     /// [`OperatingPoint::at_shifted`]'s), and `p` is kept whole when one
     /// of its angles has a value `at_shifted` refuses, or when it has a
     /// trigonometric denominator (a part of it need not be reduced).
-    fn without_second_order(&self, p: &Poly, which: &dyn Fn(Atom) -> bool) -> Poly {
+    fn without_second_order(&self, p: Poly, which: &dyn Fn(Atom) -> bool) -> Poly {
+        // A short polynomial is differentiated quickly: not worth sorting.
+        if p.len() < PRUNED_FROM {
+            return p;
+        }
         let mut class: rustc_hash::FxHashMap<Atom, AtPoint> = Default::default();
         for a in p.atoms() {
             let (value, sin) = match a.kind() {
@@ -261,7 +269,7 @@ impl OperatingPoint {
                         && v.as_atom().filter(|b| b.is_angle()).is_none()
                     {
                         // `at_shifted` refuses this angle's value.
-                        return p.clone();
+                        return p;
                     }
                     (v, matches!(a.kind(), AtomKind::Sin(_)))
                 }
@@ -275,7 +283,7 @@ impl OperatingPoint {
             class.insert(a, c);
         }
         if !class.values().any(|c| *c == AtPoint::Vanishes) {
-            return p.clone();
+            return p;
         }
         let negligible = |m: &crate::poly::Monomial| {
             let mut order = 0;
@@ -290,10 +298,9 @@ impl OperatingPoint {
             order >= 2
         };
         if !p.terms().iter().any(|(m, _)| negligible(m)) {
-            return p.clone();
+            return p;
         }
-        p.retain_terms(|m| !negligible(m))
-            .unwrap_or_else(|| p.clone())
+        p.retain_terms(|m| !negligible(m)).unwrap_or(p)
     }
 }
 
