@@ -192,7 +192,7 @@ struct Gather {
     runs: Vec<Run>,
     trig: Vec<Trig>,
     /// The [`Input::Given`] slots, set to 0 before the caller's closure
-    /// writes them: with the copies and `trig`, every input is written
+    /// writes them: with the runs and `trig`, every input is written
     /// once (the buffer on the stack is not cleared).
     given: Vec<u32>,
     /// One more than the largest component read: the shortest state.
