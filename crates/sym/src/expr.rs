@@ -180,6 +180,8 @@ pub(crate) struct PrintRanks {
     atoms: Vec<Atom>,
     /// Each atom's sin/cos kind, in print order.
     trig: Vec<crate::poly::Trig>,
+    /// Each atom's derivative order, in print order.
+    order: Vec<u32>,
 }
 
 impl PrintRanks {
@@ -205,10 +207,16 @@ impl PrintRanks {
         // Sort keys are distinct (names), so the order found is immaterial.
         atoms.sort_by_cached_key(|a| a.sort_key());
         let trig = atoms.iter().map(|&a| crate::poly::trig_of(a)).collect();
+        let order = atoms.iter().map(|&a| a.order()).collect();
         for (k, a) in atoms.iter().enumerate() {
             rank[a.id() as usize] = k as u32;
         }
-        PrintRanks { rank, atoms, trig }
+        PrintRanks {
+            rank,
+            atoms,
+            trig,
+            order,
+        }
     }
 
     /// The rank of `a`, `None` when it is not among the atoms.
@@ -300,13 +308,22 @@ impl PrintRanks {
             );
         }
         // Every term's key in one flat array (its slice `start..end`), so
-        // that no key is allocated on its own.
+        // that no key is allocated on its own; beside it, the key's first
+        // entries packed into one integer that orders as they do
+        // ([`packed_prefix`]): most comparisons of the sort are one integer
+        // comparison, the slices compared only where the prefixes tie.
         let mut codes: Vec<u64> =
             Vec::with_capacity(terms.iter().map(|t| t.0.factors().len() + 1).sum());
-        let mut keyed: Vec<(u32, u32, u32)> = Vec::with_capacity(terms.len());
+        let mut keyed: Vec<(u128, u32, u32, u32)> = Vec::with_capacity(terms.len());
+        // (A few terms are sorted in a few comparisons: not packed.)
+        let mut packed = terms.len() >= 32;
         for (i, (m, _)) in terms.iter().enumerate() {
             let top = if derivative_first {
-                m.factors().iter().map(|f| f.0.order()).max().unwrap_or(0)
+                m.factors()
+                    .iter()
+                    .map(|f| self.order[self.rank[f.0.id() as usize] as usize])
+                    .max()
+                    .unwrap_or(0)
             } else {
                 0
             };
@@ -314,14 +331,29 @@ impl PrintRanks {
             codes.push(u64::from(u32::MAX - top));
             codes.extend(m.factors().iter().map(|&(a, x)| self.code(a, x)));
             codes[start + 1..].sort_unstable();
-            keyed.push((start as u32, codes.len() as u32, i as u32));
+            let prefix = if packed {
+                packed_prefix(&codes[start..])
+            } else {
+                None
+            };
+            packed &= prefix.is_some();
+            keyed.push((
+                prefix.unwrap_or(0),
+                start as u32,
+                codes.len() as u32,
+                i as u32,
+            ));
         }
-        let key = |k: &(u32, u32, u32)| &codes[k.0 as usize..k.1 as usize];
-        keyed.sort_unstable_by(|a, b| key(a).cmp(key(b)));
+        let key = |k: &(u128, u32, u32, u32)| &codes[k.1 as usize..k.2 as usize];
+        if packed {
+            keyed.sort_unstable_by(|a, b| a.0.cmp(&b.0).then_with(|| key(a).cmp(key(b))));
+        } else {
+            keyed.sort_unstable_by(|a, b| key(a).cmp(key(b)));
+        }
         keyed
             .iter()
             .map(|k| {
-                let i = k.2 as usize;
+                let i = k.3 as usize;
                 let fs = if factors {
                     self.factors_of(&key(k)[1..])
                 } else {
@@ -331,6 +363,40 @@ impl PrintRanks {
             })
             .collect()
     }
+}
+
+/// The first entries of a term's sort key (`[u32::MAX − top order,
+/// codes…]`, see [`PrintRanks::sort`]) packed into one integer that orders
+/// as the slices do on those entries: 8 bits for the top order, then 16
+/// bits for each of the first seven codes (0 where the key has ended, which
+/// orders a key before its extensions, as slices are ordered), each code
+/// its rank and exponent in the code's order. Two keys whose prefixes
+/// differ are ordered by them; equal prefixes leave the rest to the
+/// slices. `None` when some entry does not fit (a top order of 255 or
+/// more, a rank of 512 or more, an exponent outside −31 … 32).
+fn packed_prefix(key: &[u64]) -> Option<u128> {
+    const FIELDS: usize = 7;
+    let top = u64::from(u32::MAX) - key[0];
+    if top >= 255 {
+        return None;
+    }
+    let mut packed = u128::from(255 - top);
+    for k in 0..FIELDS {
+        let field = match key.get(k + 1) {
+            None => 0,
+            Some(&code) => {
+                let rank = code >> 32;
+                // The code's low half is i32::MAX − x.
+                let x = i64::from(i32::MAX) - (code & 0xffff_ffff) as i64;
+                if rank >= 512 || !(-31..=32).contains(&x) {
+                    return None;
+                }
+                1 + ((rank << 6) | (32 - x) as u64)
+            }
+        };
+        packed = (packed << 16) | u128::from(field);
+    }
+    Some(packed)
 }
 
 /// Orders printed terms: by their factors' name keys, then exponents.

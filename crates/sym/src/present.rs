@@ -120,10 +120,13 @@ struct Context<'p> {
 
 /// Presents `p` in textbook form (see the module doc).
 pub fn present(p: &Poly, pres: &Presentation) -> Expr {
-    let mut p = p.clone();
+    // Folded only when there is something to fold: no copy of the result
+    // otherwise.
+    let mut folded: Option<Poly> = None;
     for (name, def) in &pres.fold {
-        p = fold(&p, *name, def);
+        folded = Some(fold(folded.as_ref().unwrap_or(p), *name, def));
     }
+    let p = folded.as_ref().unwrap_or(p);
     let rank = |a: Atom| pres.collect.iter().position(|k| *k == a);
     // Group by the collected part of each monomial. The rests of a group
     // are distinct (key · rest is the term's monomial), so a group is a

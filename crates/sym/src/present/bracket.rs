@@ -4,15 +4,16 @@
 //! known factor or a cyclic difference, and a solved form's ratios. The sum
 //! inside the bracket is `gather.rs`'s.
 
-use std::cmp::Reverse;
-use std::collections::BTreeMap;
-
+use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
+use std::cmp::Reverse;
 
 use super::constants::constants_group;
-use super::gather::{bracket_sum, is_trig};
+use super::gather::bracket_sum;
 use super::known::{factor_by, known_factor_node};
-use super::order::{conventional, cyclic_difference, cyclic_pair_of_constants, leading_constant};
+use super::order::{
+    Ranks, conventional, cyclic_difference, cyclic_pair_of_constants, leading_constant,
+};
 use super::trig::trig_group;
 use super::{Context, PLAIN_ABOVE};
 use crate::atom::{Atom, AtomKind};
@@ -91,7 +92,7 @@ fn general_group(
         all = all.gcd(t.1);
     }
     let bracket_order = |t: &PrintTerm<'_>| {
-        let top = t.1.factors().iter().map(|f| f.0.order()).max();
+        let top = cx.ranks.top(t.1);
         // Some factor of t / all that is not a leading constant (t / all
         // is not built: the exponents are compared).
         let timed =
@@ -102,11 +103,7 @@ fn general_group(
                     .factors()
                     .iter()
                     .any(|&(a, _)| t.1.exponent(a) == 0 && !leading_constant(a));
-        (
-            Reverse(top.unwrap_or(0)),
-            timed,
-            distribute && has_divisor(t.1),
-        )
+        (Reverse(top), timed, distribute && has_divisor(t.1))
     };
     // A stable sort of terms already in print order: often nothing moves,
     // and the keys tell it without a sort.
@@ -128,7 +125,7 @@ fn general_group(
         if terms[0].2.is_negative() {
             terms.swap(0, 1);
         }
-    } else if pull_sign(&terms) && lead_positive_inside(&mut terms) {
+    } else if pull_sign(&terms, &cx.ranks) && lead_positive_inside(&mut terms) {
         content = -content;
     } else if terms[0].2.is_negative()
         && let Some(k) = terms.iter().position(|t| !t.2.is_negative())
@@ -188,11 +185,11 @@ fn general_group(
         && terms.iter().all(|t| {
             t.1.factors()
                 .iter()
-                .all(|&(a, x)| is_trig(a) || x == common.exponent(a))
+                .all(|&(a, x)| cx.ranks.is_trig(a) || x == common.exponent(a))
                 && common
                     .factors()
                     .iter()
-                    .all(|&(a, x)| is_trig(a) || x == t.1.exponent(a))
+                    .all(|&(a, x)| cx.ranks.is_trig(a) || x == t.1.exponent(a))
         });
     group_product(e, &outer, &number, negative, bracket, trig_only, cx)
 }
@@ -248,7 +245,7 @@ pub(super) fn group_product(
 /// negative. So −I′ (φ̈ sin θ + 2 φ̇ θ̇ cos θ), but m z ẍ − m x z̈ + ḣ_y
 /// rather than −(m x z̈ − m z ẍ − ḣ_y), and I ω_z cos θ − I′ φ̇ − I′ φ̇ cos² θ
 /// rather than −(I′ φ̇ + I′ φ̇ cos² θ − I ω_z cos θ).
-pub(super) fn pull_sign(terms: &[PrintTerm<'_>]) -> bool {
+pub(super) fn pull_sign(terms: &[PrintTerm<'_>], ranks: &Ranks) -> bool {
     let negative = terms.iter().filter(|t| t.2.is_negative()).count();
     if terms.len() == 1 {
         return negative == 1;
@@ -256,19 +253,41 @@ pub(super) fn pull_sign(terms: &[PrintTerm<'_>]) -> bool {
     if 2 * negative <= terms.len() {
         return false;
     }
-    // Per kind: (any positive, any negative).
-    let mut kinds: BTreeMap<Monomial, (bool, bool)> = BTreeMap::new();
-    for t in terms {
-        let kind = t.1.split(leading_constant).0;
-        let e = kinds.entry(kind).or_default();
+    // Per kind: (a term of it, any positive, any negative). A term's kind
+    // is found by a hash of its constant factors, then compared factor by
+    // factor with the kinds of that hash (nothing built per term).
+    fn constants<'m>(m: &'m Monomial, ranks: &'m Ranks) -> impl Iterator<Item = &'m (Atom, i32)> {
+        m.factors().iter().filter(|f| ranks.leads(f.0))
+    }
+    let mut kinds: Vec<(usize, bool, bool)> = Vec::new();
+    let mut by_hash: FxHashMap<u64, SmallVec<[u32; 1]>> = FxHashMap::default();
+    for (i, t) in terms.iter().enumerate() {
+        let mut h: u64 = 0x243F_6A88_85A3_08D3;
+        for &(a, x) in t.1.factors() {
+            if ranks.leads(a) {
+                let w = (u64::from(a.id()) << 32) | u64::from(x as u32);
+                h = (h ^ w).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+                h ^= h >> 29;
+            }
+        }
+        let slot = by_hash.entry(h).or_default();
+        let found = slot
+            .iter()
+            .copied()
+            .find(|&k| constants(terms[kinds[k as usize].0].1, ranks).eq(constants(t.1, ranks)));
+        let k = found.unwrap_or_else(|| {
+            kinds.push((i, false, false));
+            slot.push((kinds.len() - 1) as u32);
+            (kinds.len() - 1) as u32
+        }) as usize;
         if t.2.is_negative() {
-            e.1 = true;
+            kinds[k].2 = true;
         } else {
-            e.0 = true;
+            kinds[k].1 = true;
         }
     }
-    let all_positive = kinds.values().any(|&(p, n)| p && !n);
-    let all_negative = kinds.values().any(|&(p, n)| n && !p);
+    let all_positive = kinds.iter().any(|&(_, p, n)| p && !n);
+    let all_negative = kinds.iter().any(|&(_, p, n)| n && !p);
     !(all_positive && all_negative)
 }
 

@@ -61,7 +61,7 @@ pub(super) fn bracket_sum(
     let simple = big
         || parts
             .iter()
-            .all(|(m, _)| m.factors().iter().all(|f| is_trig(f.0)));
+            .all(|(m, _)| m.factors().iter().all(|f| cx.ranks.is_trig(f.0)));
     // The part that follows a bracket (rates, sin and cos, constant
     // rates named by Greek letters: J s + (C − A) Ω), as a class of the
     // parts that share it (present/timed.rs; none when `simple`).
@@ -128,14 +128,14 @@ pub(super) fn bracket_sum(
     let any_trig = !simple
         && parts
             .iter()
-            .any(|(m, _)| m.factors().iter().any(|f| is_trig(f.0)));
+            .any(|(m, _)| m.factors().iter().any(|f| cx.ranks.is_trig(f.0)));
     if any_trig {
         let mut splits: Vec<Option<(Monomial, Monomial)>> = Vec::with_capacity(parts.len());
         for (k, (m, _)) in parts.iter().enumerate() {
             let split = if classes.shared(k) || linear_of[k].is_some() {
                 None
             } else {
-                Some(m.split(is_trig)).filter(|(_, rest)| !rest.is_one())
+                Some(m.split(|a| cx.ranks.is_trig(a))).filter(|(_, rest)| !rest.is_one())
             };
             splits.push(split);
         }
@@ -171,7 +171,9 @@ pub(super) fn bracket_sum(
     // follows a bracket)
     let mut nodes: Vec<(Id, bool, u32, bool)> = Vec::with_capacity(terms.len());
     for (k, ((factors, term, _), (m, c))) in terms.iter().zip(&parts).enumerate() {
-        let top = m.factors().iter().map(|f| f.0.order()).max().unwrap_or(0);
+        // (Found only for a term that is written: most parts of a large
+        // bracket stand in a shared one.)
+        let top = || cx.ranks.top(m);
         let follows = match classes.of.get(k) {
             None => m.factors().iter().any(|&(a, _)| !leading_constant(a)),
             Some(&class) => {
@@ -183,7 +185,7 @@ pub(super) fn bracket_sum(
                             .map(|(_, u, c)| (u.clone(), c.clone()))
                             .collect();
                         let id = group_node(e, x, &sub, cx, ratios);
-                        nodes.push((id, matches!(e.node(id), Node::Neg(_)), top, false));
+                        nodes.push((id, matches!(e.node(id), Node::Neg(_)), top(), false));
                     }
                     continue;
                 }
@@ -195,7 +197,7 @@ pub(super) fn bracket_sum(
                         let sub = std::mem::take(sub);
                         let id = group_node(e, rest, &sub, cx, ratios);
                         let follows = rest.factors().iter().any(|&(a, _)| !leading_constant(a));
-                        nodes.push((id, matches!(e.node(id), Node::Neg(_)), top, follows));
+                        nodes.push((id, matches!(e.node(id), Node::Neg(_)), top(), follows));
                     }
                     continue;
                 }
@@ -205,7 +207,7 @@ pub(super) fn bracket_sum(
                     if !sub.is_empty() {
                         let sub = std::mem::take(sub);
                         let id = group_node(e, t, &sub, cx, ratios);
-                        nodes.push((id, matches!(e.node(id), Node::Neg(_)), top, true));
+                        nodes.push((id, matches!(e.node(id), Node::Neg(_)), top(), true));
                     }
                     continue;
                 }
@@ -237,7 +239,7 @@ pub(super) fn bracket_sum(
         } else {
             e.term_node(&f, c)
         };
-        nodes.push((id, c.is_negative(), top, follows));
+        nodes.push((id, c.is_negative(), top(), follows));
     }
     sum_of_nodes(e, nodes)
 }

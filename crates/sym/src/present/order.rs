@@ -6,6 +6,7 @@
 
 use smallvec::SmallVec;
 
+use super::gather::is_trig;
 use crate::atom::{Atom, AtomKind, AtomMemo};
 use crate::expr::{Expr, Id, Node, PrintRanks, PrintTerm};
 use crate::poly::Monomial;
@@ -22,7 +23,14 @@ pub(super) struct Ranks {
     conv: Vec<u32>,
     /// The [`cyclic_place`] of each atom by id, its family numbered.
     place: Vec<Option<NumberedPlace>>,
+    /// What each atom is, by id, read for every factor of every term
+    /// (see [`Ranks::kind_bits`]): its derivative order, and whether it
+    /// is a sine or a cosine (`u32::MAX` for atoms not in the result).
+    kind: Vec<u32>,
 }
+
+/// The bit of [`Ranks`]' `kind` entry that marks a sine or a cosine.
+const TRIG: u32 = 1 << 31;
 
 impl Ranks {
     /// The ranks of the atoms of `monomials`, constants ordered by the
@@ -60,10 +68,54 @@ impl Ranks {
                 if i >= place.len() {
                     place.resize(i + 1, None);
                 }
-                place[i] = Some((f as u32, k, o));
+                place[i] = Some((f as u32, k as u8, o));
             }
         }
-        Ranks { print, conv, place }
+        let mut kind = Vec::new();
+        for &a in print.atoms() {
+            let i = a.id() as usize;
+            if i >= kind.len() {
+                kind.resize(i + 1, u32::MAX);
+            }
+            kind[i] = Ranks::kind_bits(a);
+        }
+        Ranks {
+            print,
+            conv,
+            place,
+            kind,
+        }
+    }
+
+    /// An atom's entry in the `kind` table: its derivative order (below
+    /// bit 31; orders are far smaller), with the [`TRIG`] bit for a sine or
+    /// a cosine.
+    fn kind_bits(a: Atom) -> u32 {
+        let trig = if is_trig(a) { TRIG } else { 0 };
+        a.order().min(TRIG - 2) | trig
+    }
+
+    /// `a`'s entry in the `kind` table (found when `a` is not in it).
+    fn kind_of(&self, a: Atom) -> u32 {
+        match self.kind.get(a.id() as usize) {
+            Some(&k) if k != u32::MAX => k,
+            _ => Ranks::kind_bits(a),
+        }
+    }
+
+    /// [`is_trig`] of `a`, read from the table.
+    pub(super) fn is_trig(&self, a: Atom) -> bool {
+        self.kind_of(a) & TRIG != 0
+    }
+
+    /// The highest derivative order among the factors of `m` (0 for 1),
+    /// read from the table.
+    pub(super) fn top(&self, m: &Monomial) -> u32 {
+        m.factors()
+            .iter()
+            .map(|f| self.kind_of(f.0) & !TRIG)
+            .max()
+            .unwrap_or(0)
     }
 
     /// Whether every factor's atom is in the table.
@@ -71,19 +123,21 @@ impl Ranks {
         fs.iter().all(|f| self.print.rank(f.0).is_some())
     }
 
-    /// [`cyclic_pair`] with each factor's place read from the table.
+    /// [`cyclic_pair`] with each factor's place read from the table (one
+    /// look at each factor; the general path when one is not in it).
     pub(super) fn cyclic_pair(&self, fs: &mut [(Atom, i32)]) {
-        if !self.covers(fs) {
-            return cyclic_pair(fs);
+        if fs.len() < 2 {
+            return;
         }
-        let placed: SmallVec<[(usize, NumberedPlace); 16]> = fs
-            .iter()
-            .enumerate()
-            .filter_map(|(k, f)| {
-                let p = self.place.get(f.0.id() as usize).copied().flatten();
-                p.map(|p| (k, p))
-            })
-            .collect();
+        let mut placed: SmallVec<[(u32, NumberedPlace); 8]> = SmallVec::new();
+        for (k, f) in fs.iter().enumerate() {
+            if self.print.rank(f.0).is_none() {
+                return cyclic_pair(fs);
+            }
+            if let Some(p) = self.place.get(f.0.id() as usize).copied().flatten() {
+                placed.push((k as u32, p));
+            }
+        }
         pairs_in_order(fs, &placed);
     }
 
@@ -187,8 +241,12 @@ pub(super) fn constant_class(a: Atom, order: &[String]) -> (usize, u8, &'static 
 /// A place in a cyclic order: (family, position, which order).
 pub(super) type Place = (&'static str, usize, u8);
 
-/// A [`Place`] with its family numbered (in one result's [`Ranks`]).
-type NumberedPlace = (u32, usize, u8);
+/// A [`Place`] with its family numbered (in one result's [`Ranks`]), its
+/// position (0, 1 or 2) as a byte.
+type NumberedPlace = (u32, u8, u8);
+
+/// A [`Place`] with its position as a byte.
+type BytePlace = (&'static str, u8, u8);
 
 /// The position of a subscript or letter in a cyclic order (x → y → z,
 /// 1 → 2 → 3, A → B → C, also with a common subscript: A_p → B_p → C_p),
@@ -365,22 +423,22 @@ pub(super) fn cyclic_pair(fs: &mut [(Atom, i32)]) {
     // strings), and only the factors that have one are visited. A family
     // of exactly two factors is looked at once, from its first member; a
     // swap exchanges those two, so no other family's members move.
-    let placed: SmallVec<[(usize, Place); 16]> = fs
+    let placed: SmallVec<[(u32, BytePlace); 8]> = fs
         .iter()
         .enumerate()
-        .filter_map(|(k, f)| cyclic_place(f.0).map(|p| (k, p)))
+        .filter_map(|(k, f)| cyclic_place(f.0).map(|p| (k as u32, (p.0, p.1 as u8, p.2))))
         .collect();
     pairs_in_order(fs, &placed);
 }
 
 /// The swaps of [`cyclic_pair`], given the factors that have a place (the
-/// factor's index, its place with the family as a name or a number).
-fn pairs_in_order<F: Copy + Eq>(fs: &mut [(Atom, i32)], placed: &[(usize, (F, usize, u8))]) {
+/// factor's index, its place with the family as a name or a number and
+/// the position as a byte).
+fn pairs_in_order<F: Copy + Eq>(fs: &mut [(Atom, i32)], placed: &[(u32, (F, u8, u8))]) {
     if placed.len() < 2 {
         return;
     }
-    let next =
-        |a: (F, usize, u8), b: (F, usize, u8)| a.0 == b.0 && a.2 == b.2 && (a.1 + 1) % 3 == b.1;
+    let next = |a: (F, u8, u8), b: (F, u8, u8)| a.0 == b.0 && a.2 == b.2 && (a.1 + 1) % 3 == b.1;
     for (j, &(p, pp)) in placed.iter().enumerate() {
         let family = pp.0;
         if placed[..j].iter().any(|e| e.1.0 == family) {
@@ -390,6 +448,7 @@ fn pairs_in_order<F: Copy + Eq>(fs: &mut [(Atom, i32)], placed: &[(usize, (F, us
         let (Some(&(q, pq)), None) = (rest.next(), rest.next()) else {
             continue;
         };
+        let (p, q) = (p as usize, q as usize);
         if fs[p].1 == 1 && fs[q].1 == 1 && next(pq, pp) && !next(pp, pq) {
             fs.swap(p, q);
         }

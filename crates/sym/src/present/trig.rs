@@ -16,7 +16,7 @@ use crate::poly::Monomial;
 use crate::rational::Rational;
 
 use super::bracket::{group_product, reciprocal, scaled};
-use super::gather::{common_factor, is_trig, quotient_in_order, sum_of_nodes};
+use super::gather::{common_factor, quotient_in_order, sum_of_nodes};
 use super::order::{conventional, cyclic_difference, cyclic_pair_of_constants};
 use super::{Context, PLAIN_ABOVE};
 
@@ -45,9 +45,11 @@ pub(super) fn trig_group(
     if terms.len() < 2 || terms.len() > PLAIN_ABOVE || !cx.pres.factors.is_empty() {
         return None;
     }
-    let trig = terms
-        .iter()
-        .all(|(m, _)| m.factors().iter().all(|&(a, x)| x > 0 && is_trig(a)));
+    let trig = terms.iter().all(|(m, _)| {
+        m.factors()
+            .iter()
+            .all(|&(a, x)| x > 0 && cx.ranks.is_trig(a))
+    });
     if !trig {
         return None;
     }
