@@ -186,3 +186,46 @@ fn replace_leaf(t: &Tree, a: Atom, f: &Tree) -> Tree {
         other => other.clone(),
     }
 }
+
+/// The angles, rates and constant of `sines_squared_expand_as_one_minus_cosines_squared`.
+const ANGLES: [&str; 3] = ["theta", "phi", "psi"];
+
+/// One factor `sin(q)^s cos(q)^c` per angle and a constant to a power, as
+/// text (exponents `[s, c]` per angle, then the constant's).
+fn monomial_text(exps: &[[u32; 2]], k: u32) -> String {
+    let mut t = format!("a^{k}");
+    for (q, [s, c]) in ANGLES.iter().zip(exps) {
+        t.push_str(&format!("*sin({q})^{s}*cos({q})^{c}"));
+    }
+    t
+}
+
+proptest! {
+    #![proptest_config(config())]
+
+    /// A product whose monomial holds several sines squared (or cubed, or to
+    /// the fourth power) enters the sum as the expansion of
+    /// sin^(e mod 2) q (1 − cos² q)^(e div 2) over its angles, the same
+    /// polynomial as that expansion built with no sine squared anywhere:
+    /// every square rewritten at once or one at a time alike.
+    #[test]
+    fn sines_squared_expand_as_one_minus_cosines_squared(
+        left in proptest::collection::vec([0u32..=3, 0u32..=2], 3),
+        right in proptest::collection::vec([0u32..=3, 0u32..=2], 3),
+        k in 0u32..=2,
+        c in -5i32..=5,
+    ) {
+        let s = hdot_sym::Symbols::parse_decl(&["a"], &ANGLES);
+        let product = format!("({c})*({})*({})", monomial_text(&left, k), monomial_text(&right, 1));
+        let mut expanded = format!("({c})*a^{}", k + 1);
+        for (q, (l, r)) in ANGLES.iter().zip(left.iter().zip(&right)) {
+            let (sin, cos) = (l[0] + r[0], l[1] + r[1]);
+            expanded.push_str(&format!(
+                "*sin({q})^{}*(1 - cos({q})^2)^{}*cos({q})^{cos}",
+                sin % 2,
+                sin / 2
+            ));
+        }
+        prop_assert_eq!(s.poly(&product).unwrap(), s.poly(&expanded).unwrap(), "{} ≠ {}", product, expanded);
+    }
+}

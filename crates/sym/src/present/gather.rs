@@ -383,6 +383,25 @@ pub(super) fn shared_term_node(
     }
 }
 
+/// What every term of a bracket has ([`common_factor`]) when the bracket
+/// may take a direct path (`constants.rs`, `trig.rs`): 2 to
+/// [`PLAIN_ABOVE`] terms, no known factors asked for, and every factor of
+/// every term a positive power of an atom `of_kind` accepts; `None`
+/// otherwise.
+pub(super) fn direct_common(
+    terms: &[(Monomial, Rational)],
+    cx: &Context<'_>,
+    of_kind: impl Fn(Atom) -> bool,
+) -> Option<Monomial> {
+    if terms.len() < 2 || terms.len() > PLAIN_ABOVE || !cx.pres.factors.is_empty() {
+        return None;
+    }
+    let all = terms
+        .iter()
+        .all(|(m, _)| m.factors().iter().all(|&(a, x)| x > 0 && of_kind(a)));
+    all.then(|| common_factor(terms))
+}
+
 /// What every term of a bracket has: the gcd of its monomials (`terms` not
 /// empty), stopping once it is 1.
 pub(super) fn common_factor(terms: &[(Monomial, Rational)]) -> Monomial {

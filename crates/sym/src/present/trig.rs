@@ -15,10 +15,10 @@ use crate::expr::{Expr, Id};
 use crate::poly::Monomial;
 use crate::rational::Rational;
 
+use super::Context;
 use super::bracket::{group_product, reciprocal, scaled};
-use super::gather::{common_factor, quotient_in_order, sum_of_nodes};
+use super::gather::{direct_common, quotient_in_order, sum_of_nodes};
 use super::order::{conventional, cyclic_difference, cyclic_pair_of_constants};
-use super::{Context, PLAIN_ABOVE};
 
 /// `key · Σ terms` as [`group_node`](super::bracket::group_node) writes
 /// it, when the group is a bracket of sines and cosines: two terms or
@@ -42,18 +42,7 @@ pub(super) fn trig_group(
     terms: &[(Monomial, Rational)],
     cx: &Context<'_>,
 ) -> Option<Id> {
-    if terms.len() < 2 || terms.len() > PLAIN_ABOVE || !cx.pres.factors.is_empty() {
-        return None;
-    }
-    let trig = terms.iter().all(|(m, _)| {
-        m.factors()
-            .iter()
-            .all(|&(a, x)| x > 0 && cx.ranks.is_trig(a))
-    });
-    if !trig {
-        return None;
-    }
-    let common = common_factor(terms);
+    let common = direct_common(terms, cx, |a| cx.ranks.is_trig(a))?;
     let mut terms = cx.ranks.print.sort(terms, true);
     // Bracket order: the term that is `common` itself (at most one: the
     // terms are distinct) first, the others in print order.
